@@ -1,0 +1,20 @@
+/* zscan tests — shared helpers for the check suites. */
+#ifndef ZS_TESTUTIL_H
+#define ZS_TESTUTIL_H
+
+#include <check.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* Runs the suite and returns the process exit status (0 when all passed). */
+int zs_test_run(Suite *s);
+
+/* A path below the source tree (tests/data/...) or the build tree, in a
+ * static buffer that the next call overwrites. */
+const char *zs_test_src(const char *rel);
+const char *zs_test_bin(const char *rel);
+
+/* 64-bit FNV-1a of a byte buffer, for comparing images by hash. */
+uint64_t zs_test_fnv1a(const void *data, size_t n);
+
+#endif
