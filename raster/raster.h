@@ -60,6 +60,7 @@ enum {
   ZS_MAX_POLY_VERTS = 64       /* per face, before clipping */
 };
 
+#define ZS_PI 3.14159265358979323846
 #define ZS_DEPTH_FAR 0xFFFFFFFFu
 #define ZS_ID_NONE 0xFFFFFFFFu
 
@@ -176,6 +177,9 @@ int zs_mat_look_at(double m[16], const double eye[3], const double target[3],
 /* gluPerspective: fovy in degrees, aspect = width / height. */
 void zs_mat_perspective(double m[16], double fovy_deg, double aspect,
                         double znear, double zfar);
+/* glOrtho. */
+void zs_mat_ortho(double m[16], double left, double right, double bottom,
+                  double top, double znear, double zfar);
 void zs_mat_apply(const double m[16], const double p[3], double out[4]);
 
 #endif

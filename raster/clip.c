@@ -1,0 +1,85 @@
+/* Clipping in homogeneous clip space (Sutherland–Hodgman).
+ *
+ * Planes, each as "inside when d >= 0":
+ *   near   z + w >= 0     nothing behind the eye is ever rasterized: for a
+ *                         perspective camera w = -z_eye >= near > 0 inside
+ *   far    w - z >= 0
+ *   guard  gx w -+ x >= 0, gy w -+ y >= 0
+ * The guard band is wider than the viewport (gx = 1 + 2^15 / width), so
+ * faces are clipped in x and y only when their window coordinates would
+ * leave +-2^15 pixels and overflow the fixed-point setup; everything else
+ * is left to the rasterizer's own span and row limits, which are exact.
+ *
+ * Watertightness: an edge shared by two faces is clipped by both.  The
+ * intersection is always computed from the inside vertex towards the
+ * outside one, so both faces get the very same point, bit for bit.
+ */
+#include "raster/internal.h"
+
+enum {
+  CLIP_NEAR = 1, CLIP_FAR = 2,
+  CLIP_LEFT = 4, CLIP_RIGHT = 8, CLIP_BOTTOM = 16, CLIP_TOP = 32
+};
+
+static double plane_dist(const zs_clip_vert *v, int plane, double gx,
+                         double gy) {
+  switch (plane) {
+    case CLIP_NEAR: return v->z + v->w;
+    case CLIP_FAR: return v->w - v->z;
+    case CLIP_LEFT: return gx * v->w + v->x;
+    case CLIP_RIGHT: return gx * v->w - v->x;
+    case CLIP_BOTTOM: return gy * v->w + v->y;
+    default: return gy * v->w - v->y;
+  }
+}
+
+unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double gy) {
+  unsigned code = 0;
+  for (int p = CLIP_NEAR; p <= CLIP_TOP; p <<= 1)
+    if (!(plane_dist(v, p, gx, gy) >= 0.0)) code |= (unsigned)p; /* NaN: out */
+  return code;
+}
+
+/* The point where the edge from `in` (d_in >= 0) to `out` (d_out < 0)
+ * crosses the plane. */
+static zs_clip_vert intersect(const zs_clip_vert *in, double d_in,
+                              const zs_clip_vert *out, double d_out) {
+  double t = d_in / (d_in - d_out);
+  zs_clip_vert r;
+  r.x = in->x + t * (out->x - in->x);
+  r.y = in->y + t * (out->y - in->y);
+  r.z = in->z + t * (out->z - in->z);
+  r.w = in->w + t * (out->w - in->w);
+  return r;
+}
+
+int zs_clip_polygon(const zs_clip_vert *in, int n, unsigned mask, double gx,
+                    double gy, zs_clip_vert *out) {
+  zs_clip_vert buf[2][ZS_CLIP_MAX_VERTS];
+  const zs_clip_vert *src = in;
+  int count = n;
+  int which = 0;
+  for (int p = CLIP_NEAR; p <= CLIP_TOP; p <<= 1) {
+    if (!(mask & (unsigned)p)) continue;
+    zs_clip_vert *dst = buf[which];
+    int m = 0;
+    for (int i = 0; i < count; i++) {
+      const zs_clip_vert *a = &src[i];
+      const zs_clip_vert *b = &src[(i + 1) % count];
+      double da = plane_dist(a, p, gx, gy), db = plane_dist(b, p, gx, gy);
+      int ain = da >= 0.0, bin = db >= 0.0;
+      /* A convex polygon gains at most one vertex per plane; only a face
+       * that is not convex in clip space could come near this bound. */
+      if (m + 2 > ZS_CLIP_MAX_VERTS) return 0;
+      if (ain) dst[m++] = *a;
+      if (ain && !bin) dst[m++] = intersect(a, da, b, db);
+      else if (!ain && bin) dst[m++] = intersect(b, db, a, da);
+    }
+    count = m;
+    src = dst;
+    which ^= 1;
+    if (count < 3) return 0;
+  }
+  for (int i = 0; i < count; i++) out[i] = src[i];
+  return count;
+}

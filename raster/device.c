@@ -1,0 +1,332 @@
+/* The device: its context, and the commands clear, draw and finish.
+ *
+ * zbuffer mode (immediate): each draw is transformed, clipped, set up into
+ * a batch and walked at once into full-frame depth, id and colour buffers.
+ * scanline mode: draws are set up into one batch for the whole frame, and
+ * zs_device_finish walks it with buffers one row long, handing each row
+ * out as soon as it is complete; the device then holds O(width) pixels.
+ * Both walk with the same code and the same total order on (depth, id), so
+ * their images are the same to the byte.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/internal.h"
+
+#define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
+
+struct zs_device {
+  zs_device_config cfg;
+  double view[16], proj[16];
+  double znear, zfar;
+  int perspective;
+  double gx, gy;                  /* guard band half-widths, NDC units */
+  zs_raster_stats stats;
+
+  uint32_t *depth, *id, *rgb, *count;  /* full frame (zbuffer mode) */
+  uint32_t *row_depth, *row_id, *row_rgb, *row_count; /* scanline mode */
+  uint32_t *row_out;                   /* one shaded row */
+
+  zs_batch batch;
+  zs_walk_scratch scratch;
+  zs_clip_vert *clip;             /* per mesh vertex, this draw */
+  double *eye;
+  unsigned *outcode;
+  int32_t cap_verts;
+};
+
+static uint32_t *alloc_u32(size_t n) { return malloc(n * sizeof(uint32_t)); }
+
+zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
+                           zs_error *err) {
+  *out = NULL;
+  if (cfg->width < 1 || cfg->height < 1 || cfg->width > ZS_MAX_IMAGE_SIDE ||
+      cfg->height > ZS_MAX_IMAGE_SIDE)
+    return zs_error_set(err, ZS_ERR_LIMIT,
+                        "image size %dx%d: each side must be 1 to %d",
+                        cfg->width, cfg->height, ZS_MAX_IMAGE_SIDE);
+  if (cfg->threads < 1)
+    return zs_error_set(err, ZS_ERR_ARG, "threads must be at least 1");
+  zs_device *d = calloc(1, sizeof *d);
+  if (!d) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  d->cfg = *cfg;
+  size_t w = (size_t)cfg->width, px = w * (size_t)cfg->height;
+  int ok = 1;
+  if (cfg->algo == ZS_ALGO_ZBUFFER) {
+    d->depth = alloc_u32(px);
+    d->id = alloc_u32(px);
+    d->rgb = alloc_u32(px);
+    ok = d->depth && d->id && d->rgb;
+    if (ok && cfg->shade == ZS_SHADE_OVERDRAW) ok = (d->count = alloc_u32(px)) != NULL;
+  } else {
+    d->row_depth = alloc_u32(w);
+    d->row_id = alloc_u32(w);
+    d->row_rgb = alloc_u32(w);
+    d->row_count = alloc_u32(w);
+    ok = d->row_depth && d->row_id && d->row_rgb && d->row_count;
+  }
+  if (ok) ok = (d->row_out = alloc_u32(w)) != NULL;
+  if (!ok) {
+    zs_device_destroy(d);
+    return zs_error_set(err, ZS_ERR_NOMEM,
+                        "image size %dx%d: not enough memory for the buffers",
+                        cfg->width, cfg->height);
+  }
+  d->gx = 1.0 + (double)(1 << 15) / cfg->width;
+  d->gy = 1.0 + (double)(1 << 15) / cfg->height;
+  zs_mat_identity(d->view);
+  zs_mat_identity(d->proj);
+  d->znear = 1.0;
+  d->zfar = 100.0;
+  zs_device_clear(d);
+  *out = d;
+  return ZS_OK;
+}
+
+void zs_device_destroy(zs_device *d) {
+  if (!d) return;
+  free(d->depth);
+  free(d->id);
+  free(d->rgb);
+  free(d->count);
+  free(d->row_depth);
+  free(d->row_id);
+  free(d->row_rgb);
+  free(d->row_count);
+  free(d->row_out);
+  zs_batch_free(&d->batch);
+  zs_walk_scratch_free(&d->scratch);
+  free(d->clip);
+  free(d->eye);
+  free(d->outcode);
+  free(d);
+}
+
+const zs_device_config *zs_device_config_of(const zs_device *d) { return &d->cfg; }
+const zs_raster_stats *zs_device_stats(const zs_device *d) { return &d->stats; }
+const uint32_t *zs_device_depth_buffer(const zs_device *d) { return d->depth; }
+const uint32_t *zs_device_id_buffer(const zs_device *d) { return d->id; }
+
+void zs_device_set_camera(zs_device *d, const double view[16],
+                          const double proj[16]) {
+  memcpy(d->view, view, sizeof d->view);
+  memcpy(d->proj, proj, sizeof d->proj);
+  /* A perspective matrix has -1 in its last row; recover near and far
+   * from its third row for the depth shading. */
+  double a = proj[10], b = proj[11];
+  d->perspective = proj[14] != 0.0;
+  if (d->perspective) {
+    d->znear = b / (a - 1.0);
+    d->zfar = b / (a + 1.0);
+  } else {
+    d->znear = (b + 1.0) / a;
+    d->zfar = (b - 1.0) / a;
+  }
+}
+
+static void fill_u32(uint32_t *p, size_t n, uint32_t v) {
+  for (size_t i = 0; i < n; i++) p[i] = v;
+}
+
+void zs_device_clear(zs_device *d) {
+  memset(&d->stats, 0, sizeof d->stats);
+  zs_batch_reset(&d->batch);
+  if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
+    size_t px = (size_t)d->cfg.width * (size_t)d->cfg.height;
+    fill_u32(d->depth, px, ZS_DEPTH_FAR);
+    fill_u32(d->id, px, ZS_ID_NONE);
+    fill_u32(d->rgb, px, d->cfg.background);
+    if (d->count) memset(d->count, 0, px * sizeof *d->count);
+  }
+}
+
+static int reserve_verts(zs_device *d, int32_t n) {
+  if (n <= d->cap_verts) return 1;
+  zs_clip_vert *c = realloc(d->clip, (size_t)n * sizeof *c);
+  if (!c) return 0;
+  d->clip = c;
+  double *e = realloc(d->eye, (size_t)n * 3 * sizeof *e);
+  if (!e) return 0;
+  d->eye = e;
+  unsigned *o = realloc(d->outcode, (size_t)n * sizeof *o);
+  if (!o) return 0;
+  d->outcode = o;
+  d->cap_verts = n;
+  return 1;
+}
+
+static zs_kernel kernel_of(const zs_device *d) {
+  return d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
+}
+
+static zs_target full_frame_target(zs_device *d) {
+  zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width};
+  return t;
+}
+
+static void add_counts(zs_device *d, const zs_walk_counts *c) {
+  d->stats.spans += c->spans;
+  d->stats.pixels_tested += c->tested;
+  d->stats.pixels_written += c->written;
+}
+
+zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
+                         const double model[16], uint32_t id_base,
+                         zs_error *err) {
+  if (mesh->nverts < 0 || mesh->nfaces < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
+  if (!reserve_verts(d, mesh->nverts > 0 ? mesh->nverts : 1))
+    return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  d->stats.draws++;
+
+  double mv[16], mvp[16];
+  if (model) zs_mat_mul(mv, d->view, model);
+  else memcpy(mv, d->view, sizeof mv);
+  zs_mat_mul(mvp, d->proj, mv);
+
+  /* Transform: every vertex once, to eye space (for the normals of flat
+   * shading) and to clip space, with its outcode. */
+  const int flat = d->cfg.shade == ZS_SHADE_FLAT;
+  for (int32_t i = 0; i < mesh->nverts; i++) {
+    const double *p = &mesh->pos[3 * i];
+    double c[4];
+    zs_mat_apply(mvp, p, c);
+    d->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
+    d->outcode[i] = zs_clip_outcode(&d->clip[i], d->gx, d->gy);
+    if (flat) {
+      double e[4];
+      zs_mat_apply(mv, p, e);
+      memcpy(&d->eye[3 * i], e, 3 * sizeof e[0]);
+    }
+  }
+
+  zs_setup_params sp = {d->cfg.width, d->cfg.height, d->cfg.cull_back, 0, 0};
+  zs_clip_vert in[ZS_MAX_POLY_VERTS], out[ZS_CLIP_MAX_VERTS];
+  for (int32_t f = 0; f < mesh->nfaces; f++) {
+    int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
+    d->stats.polygons_in++;
+    if (n < 3 || n > ZS_MAX_POLY_VERTS) {
+      d->stats.polygons_degenerate++;
+      continue;
+    }
+    const int32_t *fv = &mesh->face_vert[s];
+    unsigned and_code = ~0u, or_code = 0;
+    for (int i = 0; i < n; i++) {
+      if (fv[i] < 0 || fv[i] >= mesh->nverts)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "draw: face %d uses vertex %d of %d", (int)f,
+                            (int)fv[i], (int)mesh->nverts);
+      and_code &= d->outcode[fv[i]];
+      or_code |= d->outcode[fv[i]];
+    }
+    if (and_code) {
+      d->stats.polygons_outside++;
+      continue;
+    }
+    sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
+    sp.rgb = mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
+    if (flat) {
+      /* Newell's normal of the face in eye space */
+      double nrm[3] = {0, 0, 0};
+      for (int i = 0; i < n; i++) {
+        const double *a = &d->eye[3 * fv[i]], *b = &d->eye[3 * fv[(i + 1) % n]];
+        nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      }
+      sp.rgb = zs_shade_flat(sp.rgb, nrm);
+    }
+    for (int i = 0; i < n; i++) in[i] = d->clip[fv[i]];
+    const zs_clip_vert *poly = in;
+    if (or_code) {
+      d->stats.polygons_clipped++;
+      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, out);
+      if (n == 0) {
+        d->stats.polygons_outside++;
+        continue;
+      }
+      poly = out;
+    }
+    switch (zs_setup_polygon(&d->batch, &sp, poly, n)) {
+      case ZS_SETUP_DRAWN: d->stats.polygons_rasterized++; break;
+      case ZS_SETUP_BACK: d->stats.polygons_culled_back++; break;
+      case ZS_SETUP_DEGENERATE: d->stats.polygons_degenerate++; break;
+      case ZS_SETUP_NOMEM: return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    }
+  }
+
+  if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
+    zs_target t = full_frame_target(d);
+    zs_walk_counts c = {0, 0, 0};
+    if (!zs_scan_batch(&d->batch, kernel_of(d), &t, 0, d->cfg.height, NULL,
+                       &d->scratch, &c))
+      return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    add_counts(d, &c);
+    zs_batch_reset(&d->batch);
+  }
+  return ZS_OK;
+}
+
+/* Scanline mode: the one-row buffers are cleared before each row and
+ * shaded and handed out after it. */
+typedef struct row_emit {
+  zs_device *d;
+  zs_row_sink sink;
+  void *user;
+} row_emit;
+
+static void emit_row(zs_device *d, int y, const uint32_t *depth,
+                     const uint32_t *id, const uint32_t *rgb,
+                     const uint32_t *count, zs_row_sink sink, void *user) {
+  if (!sink) return;
+  const uint32_t *colours = rgb;
+  if (d->cfg.shade != ZS_SHADE_FLAT) {
+    zs_shade_row(d->cfg.shade, d->cfg.width, depth, id, count,
+                 d->cfg.background, d->znear, d->zfar, d->perspective,
+                 d->row_out);
+    colours = d->row_out;
+  }
+  zs_row row = {y, d->cfg.width, colours, depth, id,
+                d->cfg.shade == ZS_SHADE_OVERDRAW ? count : NULL};
+  sink(user, &row);
+}
+
+static void scanline_begin_row(void *user, int y) {
+  (void)y;
+  zs_device *d = ((row_emit *)user)->d;
+  size_t w = (size_t)d->cfg.width;
+  fill_u32(d->row_depth, w, ZS_DEPTH_FAR);
+  fill_u32(d->row_id, w, ZS_ID_NONE);
+  fill_u32(d->row_rgb, w, d->cfg.background);
+  memset(d->row_count, 0, w * sizeof *d->row_count);
+}
+
+static void scanline_end_row(void *user, int y) {
+  row_emit *e = user;
+  zs_device *d = e->d;
+  emit_row(d, y, d->row_depth, d->row_id, d->row_rgb, d->row_count, e->sink,
+           e->user);
+}
+
+zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
+                           zs_error *err) {
+  const int w = d->cfg.width, h = d->cfg.height;
+  if (d->cfg.algo == ZS_ALGO_SCANLINE) {
+    row_emit e = {d, sink, user};
+    zs_row_hooks hooks = {scanline_begin_row, scanline_end_row, &e};
+    zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w};
+    zs_walk_counts c = {0, 0, 0};
+    if (!zs_scan_batch(&d->batch, kernel_of(d), &t, 0, h, &hooks, &d->scratch, &c))
+      return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
+    add_counts(d, &c);
+    zs_batch_reset(&d->batch);
+    return ZS_OK;
+  }
+  for (int y = 0; y < h; y++) {
+    size_t off = (size_t)y * (size_t)w;
+    emit_row(d, y, d->depth + off, d->id + off, d->rgb + off,
+             d->count ? d->count + off : NULL, sink, user);
+  }
+  return ZS_OK;
+}

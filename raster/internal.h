@@ -1,0 +1,141 @@
+/* zscan raster — the device's private structures, shared by its stages:
+ *   transform (transform.c) -> clip (clip.c) -> snap and set up (setup.c)
+ *   -> sorted tables, active lists, spans (scanline.c) -> rows out (shade.c)
+ * device.c holds the context and runs the commands. */
+#ifndef ZS_RASTER_INTERNAL_H
+#define ZS_RASTER_INTERNAL_H
+
+#include <stdint.h>
+
+#include "raster/raster.h"
+
+/* A polygon may gain one vertex per clip plane (6 planes). */
+enum { ZS_CLIP_MAX_VERTS = ZS_MAX_POLY_VERTS + 6 };
+
+/* One edge of a polygon's left or right chain: snapped end points in
+ * subpixels, image coordinates (y down), Y0 < Y1.  It covers the pixel rows
+ * whose centre yc has Y0 < yc <= Y1: rows row0 .. row1. */
+typedef struct zs_edge {
+  int32_t X0, Y0, X1, Y1;
+  int32_t row0, row1;
+} zs_edge;
+
+/* One polygon of the sorted polygon table, ready for the scanline walk.
+ * The lecture's (a, b, c, d) plane is held as the fixed-point depth plane
+ *   Z(px, py) = zc + dzdx (px - ox) + dzdy (py - oy)
+ * in units of 2^-(32 + zshift) of the window depth, evaluated at pixel
+ * centres.  Its edges are edges[edge0 .. edge0 + nleft - 1] (the left chain,
+ * top to bottom) followed by nright edges of the right chain. */
+typedef struct zs_poly {
+  uint32_t id;
+  uint32_t rgb;         /* shaded colour */
+  int32_t row0, row1;   /* rows covered, inclusive, before the viewport */
+  int32_t ox, oy;       /* the plane's origin pixel */
+  int64_t zc, dzdx, dzdy;
+  int32_t edge0;
+  uint8_t nleft, nright;
+  uint8_t zshift;
+} zs_poly;
+
+/* The polygons and edges of a batch: one draw in zbuffer mode, the whole
+ * frame in scanline mode. */
+typedef struct zs_batch {
+  zs_poly *polys;
+  int32_t npolys, cap_polys;
+  zs_edge *edges;
+  int32_t nedges, cap_edges;
+} zs_batch;
+
+/* A vertex after transformation: clip coordinates and eye coordinates. */
+typedef struct zs_clip_vert {
+  double x, y, z, w;
+} zs_clip_vert;
+
+/* ---- clip.c ---- */
+/* Outcode bits of a clip-space vertex against near, far and the guard
+ * band (gx, gy: the band's half-widths in NDC units). */
+unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double gy);
+/* Clips the convex polygon in[0..n-1] against every plane set in mask;
+ * writes the result to out (ZS_CLIP_MAX_VERTS entries) and returns its
+ * vertex count (0 when nothing is left). */
+int zs_clip_polygon(const zs_clip_vert *in, int n, unsigned mask, double gx,
+                    double gy, zs_clip_vert *out);
+
+/* ---- setup.c ---- */
+typedef struct zs_setup_params {
+  int width, height;
+  int cull_back;
+  uint32_t id, rgb;
+} zs_setup_params;
+
+typedef enum zs_setup_result {
+  ZS_SETUP_DRAWN,
+  ZS_SETUP_BACK,
+  ZS_SETUP_DEGENERATE,
+  ZS_SETUP_NOMEM
+} zs_setup_result;
+
+/* Snaps the clipped polygon to the sub-pixel grid, computes its depth plane
+ * and edge chains, and appends it (or, if snapping left it not convex, a
+ * fan of triangles with the same plane) to the batch. */
+zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *p,
+                                 const zs_clip_vert *v, int n);
+
+void zs_batch_reset(zs_batch *b);
+void zs_batch_free(zs_batch *b);
+
+/* ---- scanline.c ---- */
+typedef enum zs_kernel {
+  ZS_KERNEL_DRAW,      /* less-with-id test; write depth, id, colour */
+  ZS_KERNEL_OVERDRAW   /* count every fragment, no test */
+} zs_kernel;
+
+/* Where spans land: full-frame buffers (row_stride = width) or one row
+ * (row_stride = 0).  Any pointer may be NULL when its kernel does not use
+ * it. */
+typedef struct zs_target {
+  uint32_t *depth, *id, *rgb, *count;
+  int64_t row_stride;
+  int width;
+} zs_target;
+
+typedef struct zs_walk_counts {
+  uint64_t spans, tested, written;
+} zs_walk_counts;
+
+/* Called after each row in [row_begin, row_end) is complete, and before it
+ * starts (begin_row) — scanline mode clears and emits its one-row buffers
+ * there.  Either may be NULL. */
+typedef struct zs_row_hooks {
+  void (*begin_row)(void *user, int y);
+  void (*end_row)(void *user, int y);
+  void *user;
+} zs_row_hooks;
+
+/* Per-walk scratch, kept by the device so walks do not allocate. */
+typedef struct zs_walk_scratch {
+  int32_t *bucket_head, *next;  /* the sorted polygon table */
+  int32_t cap_rows, cap_polys;
+  struct zs_active *active;     /* the active polygon / edge-pair list */
+  int32_t cap_active;
+} zs_walk_scratch;
+
+/* Walks rows [row_begin, row_end) of the batch: builds the sorted polygon
+ * table, keeps the active lists, fills spans with the kernel.  Returns 0
+ * when out of memory. */
+int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
+                  int row_begin, int row_end, const zs_row_hooks *hooks,
+                  zs_walk_scratch *s, zs_walk_counts *counts);
+void zs_walk_scratch_free(zs_walk_scratch *s);
+
+/* ---- shade.c ---- */
+/* The flat colour of a face: rgb times the Lambert term of its eye-space
+ * normal n (need not be unit) against the fixed light. */
+uint32_t zs_shade_flat(uint32_t rgb, const double n[3]);
+/* The colours of one finished row for the shading mode. */
+void zs_shade_row(zs_shade shade, int width, const uint32_t *depth,
+                  const uint32_t *id, const uint32_t *count,
+                  uint32_t background, double znear, double zfar,
+                  int perspective, uint32_t *rgb_out);
+
+#endif

@@ -1,0 +1,239 @@
+/* The scanline z-buffer walk of the lecture, in integers.
+ *
+ * Sorted polygon table: the batch's polygons bucketed by their first row
+ * (clamped to the walk's first row), a linked list per row.
+ * Sorted edge table: each polygon's edges, in two chains (left and right)
+ * ordered by their top row; when an edge of a pair runs out, the next edge
+ * of its chain replaces it, as the lecture's "find the new edge in the
+ * sorted edge table".
+ * Active polygon list / active edge list: one zs_active per polygon that
+ * meets the current row, holding its edge pair (xl, dxl, dyl, xr, dxr, dyr)
+ * and zl, the depth at (xl, y); dzx = dzdx and dzy = dzdy are the
+ * polygon's.
+ *
+ * Edges are stepped with an exact integer DDA.  For an edge from (X0, Y0)
+ * to (X1, Y1) (subpixels, Y0 < Y1, D = 256 (Y1 - Y0)), the first column
+ * whose centre lies at or right of the edge on row r is
+ *   x(r) = ceil(num(r) / D),
+ *   num(r) = (X0 - 128)(Y1 - Y0) + (256 r + 128 - Y0)(X1 - X0),
+ * kept as x and a remainder rem = x D - num in [0, D).  Going down a row
+ * adds 256 (X1 - X0) to num: a whole part q and a remainder part rs, and a
+ * carry when rem would go negative.  No division per row, no error that
+ * accumulates: x(r) is exact on every row.  The span of a row is
+ * [x_left, x_right): a centre on the left edge is in, on the right edge
+ * out (raster.h, COVERAGE).
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/internal.h"
+
+typedef struct zs_edge_dda {
+  int64_t x, rem, q, rs, d;
+  int32_t rows;  /* rows left after the current one (the lecture's dy) */
+} zs_edge_dda;
+
+typedef struct zs_active {
+  int32_t poly;
+  int32_t left, left_end, right, right_end; /* current and last edge */
+  zs_edge_dda l, r;
+  int64_t zl;    /* depth plane at (l.x, y) */
+} zs_active;
+
+static int64_t floor_div(int64_t a, int64_t d) {
+  return a >= 0 ? a / d : -((-a + d - 1) / d);
+}
+
+static void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
+  int64_t dy = (int64_t)e->Y1 - e->Y0, dx = (int64_t)e->X1 - e->X0;
+  s->d = 256 * dy;
+  int64_t num = ((int64_t)e->X0 - 128) * dy + ((int64_t)row * 256 + 128 - e->Y0) * dx;
+  s->x = floor_div(num + s->d - 1, s->d); /* ceil */
+  s->rem = s->x * s->d - num;
+  s->q = floor_div(256 * dx, s->d);
+  s->rs = 256 * dx - s->q * s->d;
+  s->rows = e->row1 - row;
+}
+
+static inline void dda_step(zs_edge_dda *s) {
+  s->x += s->q;
+  s->rem -= s->rs;
+  if (s->rem < 0) {
+    s->rem += s->d;
+    s->x++;
+  }
+  s->rows--;
+}
+
+/* Index of the edge of chain [first, last] that covers row. */
+static int32_t edge_at(const zs_edge *edges, int32_t first, int32_t last,
+                       int32_t row) {
+  int32_t i = first;
+  while (i < last && edges[i].row1 < row) i++;
+  return i;
+}
+
+static inline uint32_t depth_of(int64_t z, int shift, int64_t zfar) {
+  if (z <= 0) return 0;
+  if (z >= zfar) return ZS_DEPTH_FAR;
+  return (uint32_t)(z >> shift);
+}
+
+/* The span kernels, one loop per kernel, chosen once per batch: the walk
+ * below is inlined into a copy per kernel with k a constant. */
+static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
+                             int x0, int x1, int64_t z, int64_t dz,
+                             int shift, uint32_t id, uint32_t rgb,
+                             uint64_t *written) {
+  if (k == ZS_KERNEL_OVERDRAW) {
+    uint32_t *cnt = t->count + off;
+    for (int x = x0; x < x1; x++) cnt[x]++;
+    *written += (uint64_t)(x1 - x0);
+    return;
+  }
+  uint32_t *zr = t->depth + off, *ir = t->id + off, *cr = t->rgb + off;
+  const int64_t zfar = (int64_t)ZS_DEPTH_FAR << shift;
+  uint64_t w = 0;
+  for (int x = x0; x < x1; x++, z += dz) {
+    uint32_t d = depth_of(z, shift, zfar);
+    uint32_t zb = zr[x];
+    if (d < zb || (d == zb && id < ir[x])) {
+      zr[x] = d;
+      ir[x] = id;
+      cr[x] = rgb;
+      w++;
+    }
+  }
+  *written += w;
+}
+
+static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
+  if (rows > s->cap_rows) {
+    int32_t *p = realloc(s->bucket_head, (size_t)rows * sizeof *p);
+    if (!p) return 0;
+    s->bucket_head = p;
+    s->cap_rows = rows;
+  }
+  if (polys > s->cap_polys) {
+    int32_t *p = realloc(s->next, (size_t)polys * sizeof *p);
+    if (!p) return 0;
+    s->next = p;
+    zs_active *a = realloc(s->active, (size_t)polys * sizeof *a);
+    if (!a) return 0;
+    s->active = a;
+    s->cap_polys = polys;
+    s->cap_active = polys;
+  }
+  return 1;
+}
+
+void zs_walk_scratch_free(zs_walk_scratch *s) {
+  free(s->bucket_head);
+  free(s->next);
+  free(s->active);
+  memset(s, 0, sizeof *s);
+}
+
+static inline void walk(const zs_batch *b, const zs_kernel k,
+                        const zs_target *t, int row_begin, int row_end,
+                        const zs_row_hooks *hooks, zs_walk_scratch *s,
+                        zs_walk_counts *counts) {
+  const zs_poly *polys = b->polys;
+  const zs_edge *edges = b->edges;
+  int32_t *head = s->bucket_head, *next = s->next;
+  zs_active *act = s->active;
+  const int width = t->width;
+
+  /* The sorted polygon table: bucket each polygon under the first row of
+   * the walk it meets; walking the batch backwards keeps each bucket in
+   * batch order. */
+  int32_t nrows = row_end - row_begin;
+  for (int32_t i = 0; i < nrows; i++) head[i] = -1;
+  int32_t first_bucket = nrows;
+  for (int32_t i = b->npolys - 1; i >= 0; i--) {
+    const zs_poly *p = &polys[i];
+    if (p->row1 < row_begin || p->row0 >= row_end) continue;
+    int32_t r = (p->row0 > row_begin ? p->row0 : row_begin) - row_begin;
+    next[i] = head[r];
+    head[r] = i;
+    if (r < first_bucket) first_bucket = r;
+  }
+
+  int32_t nact = 0;
+  uint64_t spans = 0, tested = 0, written = 0;
+  int32_t y = hooks ? row_begin : row_begin + first_bucket;
+  for (; y < row_end; y++) {
+    if (hooks && hooks->begin_row) hooks->begin_row(hooks->user, y);
+
+    /* New polygons join the active lists with their edge pair. */
+    for (int32_t i = head[y - row_begin]; i >= 0; i = next[i]) {
+      const zs_poly *p = &polys[i];
+      zs_active *a = &act[nact++];
+      a->poly = i;
+      a->left_end = p->edge0 + p->nleft - 1;
+      a->right_end = a->left_end + p->nright;
+      a->left = edge_at(edges, p->edge0, a->left_end, y);
+      a->right = edge_at(edges, a->left_end + 1, a->right_end, y);
+      dda_start(&a->l, &edges[a->left], y);
+      dda_start(&a->r, &edges[a->right], y);
+      a->zl = p->zc + p->dzdx * (a->l.x - p->ox) + p->dzdy * (y - p->oy);
+    }
+
+    const int64_t off = t->row_stride * y;
+    int32_t kept = 0;
+    for (int32_t j = 0; j < nact; j++) {
+      zs_active *a = &act[j];
+      const zs_poly *p = &polys[a->poly];
+      int64_t x0 = a->l.x, x1 = a->r.x;
+      if (x0 < 0) x0 = 0;
+      if (x1 > width) x1 = width;
+      if (x0 < x1) {
+        int64_t z = a->zl + p->dzdx * (x0 - a->l.x);
+        fill_span(k, t, off, (int)x0, (int)x1, z, p->dzdx, p->zshift, p->id,
+                  p->rgb, &written);
+        spans++;
+        tested += (uint64_t)(x1 - x0);
+      }
+      if (y == p->row1) continue; /* the polygon ends on this row */
+
+      /* Down one row: step both edges, or replace an edge that ran out
+       * with the next of its chain; zl follows xl along the plane. */
+      int64_t old_xl = a->l.x;
+      if (a->l.rows > 0) dda_step(&a->l);
+      else dda_start(&a->l, &edges[++a->left], y + 1);
+      if (a->r.rows > 0) dda_step(&a->r);
+      else dda_start(&a->r, &edges[++a->right], y + 1);
+      a->zl += p->dzdx * (a->l.x - old_xl) + p->dzdy;
+      act[kept++] = *a;
+    }
+    nact = kept;
+
+    if (hooks && hooks->end_row) hooks->end_row(hooks->user, y);
+    if (!hooks && nact == 0) {
+      /* Nothing active: jump to the next row that has a bucket. */
+      int32_t r = y + 1 - row_begin;
+      while (r < nrows && head[r] < 0) r++;
+      y = row_begin + r - 1;
+    }
+  }
+  counts->spans += spans;
+  counts->tested += tested;
+  counts->written += written;
+}
+
+int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
+                  int row_begin, int row_end, const zs_row_hooks *hooks,
+                  zs_walk_scratch *s, zs_walk_counts *counts) {
+  if (row_end <= row_begin) return 1;
+  if (!reserve_scratch(s, row_end - row_begin, b->npolys > 0 ? b->npolys : 1))
+    return 0;
+  switch (k) {
+    case ZS_KERNEL_DRAW:
+      walk(b, ZS_KERNEL_DRAW, t, row_begin, row_end, hooks, s, counts);
+      break;
+    case ZS_KERNEL_OVERDRAW:
+      walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, hooks, s, counts);
+      break;
+  }
+  return 1;
+}

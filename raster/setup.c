@@ -1,0 +1,251 @@
+/* Triangle and polygon set-up: snapping, the fixed-point depth plane, and
+ * the left and right edge chains of the sorted tables.
+ *
+ * Snapping.  Window coordinates are rounded to 1/256 pixel (ties to even,
+ * the default rounding mode).  Image y is height - window y, computed after
+ * rounding in window coordinates so that snapping is the same as OpenGL's.
+ *
+ * Orientation.  In image coordinates (y down) the shoelace sum
+ *   area2 = sum X_i Y_{i+1} - X_{i+1} Y_i
+ * is negative for a face counter-clockwise in window coordinates: a front
+ * face.  It is exact in 64-bit integers (|X|,|Y| < 2^24).
+ *
+ * The depth plane (the lecture's ax + by + cz + d = 0, solved for z).  From
+ * three snapped vertices, dz/dx and dz/dy per pixel are computed in double
+ * (Cramer's rule on exact integer differences), then quantized with
+ * 32 + zshift fraction bits.  zshift is the largest of 20 .. 0 for which
+ *   (|dzdx| W + |dzdy| H + |zc| + 1) 2^(32 + zshift) < 2^61,
+ * W, H the polygon's extent in pixels, so that no sum over the polygon's
+ * box can overflow 64 bits.  Only slivers far thinner than a pixel with
+ * nearly the whole depth range across them need fewer bits; past even
+ * zshift = 0 their gradient is scaled down to fit (they cover at most a
+ * few pixels, and still deterministically).
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "raster/internal.h"
+
+static int32_t floordiv256(int64_t v) {
+  return (int32_t)(v >= 0 ? v / 256 : -((-v + 255) / 256));
+}
+
+/* First and last pixel row whose centre yc satisfies ytop < yc <= ybot. */
+static int32_t first_row(int32_t ytop) { return floordiv256((int64_t)ytop - 128) + 1; }
+static int32_t last_row(int32_t ybot) { return floordiv256((int64_t)ybot - 128); }
+
+void zs_batch_reset(zs_batch *b) {
+  b->npolys = 0;
+  b->nedges = 0;
+}
+
+void zs_batch_free(zs_batch *b) {
+  free(b->polys);
+  free(b->edges);
+  *b = (zs_batch){0};
+}
+
+static int reserve(zs_batch *b, int polys, int edges) {
+  if (b->npolys + polys > b->cap_polys) {
+    int32_t cap = b->cap_polys ? b->cap_polys * 2 : 1024;
+    while (cap < b->npolys + polys) cap *= 2;
+    zs_poly *p = realloc(b->polys, (size_t)cap * sizeof *p);
+    if (!p) return 0;
+    b->polys = p;
+    b->cap_polys = cap;
+  }
+  if (b->nedges + edges > b->cap_edges) {
+    int32_t cap = b->cap_edges ? b->cap_edges * 2 : 4096;
+    while (cap < b->nedges + edges) cap *= 2;
+    zs_edge *e = realloc(b->edges, (size_t)cap * sizeof *e);
+    if (!e) return 0;
+    b->edges = e;
+    b->cap_edges = cap;
+  }
+  return 1;
+}
+
+typedef struct plane {
+  int32_t ox, oy;
+  int64_t zc, dzdx, dzdy;
+  uint8_t zshift;
+} plane;
+
+/* The fixed-point plane through vertices a, b, c (indices into X, Y, Z),
+ * whose doubled area det must be non-zero; box is the polygon's extent in
+ * pixels. */
+static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
+                        int a, int b, int c, double box_w, double box_h) {
+  double dx1 = (double)X[b] - X[a], dy1 = (double)Y[b] - Y[a];
+  double dx2 = (double)X[c] - X[a], dy2 = (double)Y[c] - Y[a];
+  double dz1 = Z[b] - Z[a], dz2 = Z[c] - Z[a];
+  double det = dx1 * dy2 - dx2 * dy1;
+  /* per subpixel, then per pixel */
+  double A = (dz1 * dy2 - dz2 * dy1) / det * ZS_SUBPIXEL_ONE;
+  double B = (dx1 * dz2 - dx2 * dz1) / det * ZS_SUBPIXEL_ONE;
+  plane p;
+  p.ox = floordiv256(X[a]);
+  p.oy = floordiv256(Y[a]);
+  /* Offsets of the origin pixel's centre from vertex a, in pixels (< 1). */
+  double cx = ((double)p.ox * 256 + 128 - X[a]) / 256.0;
+  double cy = ((double)p.oy * 256 + 128 - Y[a]) / 256.0;
+  double zc = Z[a] + A * cx + B * cy;
+  double bound = fabs(A) * box_w + fabs(B) * box_h + fabs(zc) + 1.0;
+  const double limit = 2305843009213693952.0; /* 2^61 */
+  int shift = 20;
+  while (shift > 0 && bound * ldexp(1.0, 32 + shift) >= limit) shift--;
+  if (bound * ldexp(1.0, 32) >= limit) {
+    double f = (limit / ldexp(1.0, 32)) / bound * 0.5;
+    A *= f;
+    B *= f;
+  }
+  double scale = ldexp(1.0, 32 + shift);
+  p.zshift = (uint8_t)shift;
+  p.dzdx = llrint(A * scale);
+  p.dzdy = llrint(B * scale);
+  p.zc = llrint(zc * scale);
+  return p;
+}
+
+/* Appends the polygon idx[0..n-1] (convex, y-monotone, area2 != 0) with
+ * the given plane.  Returns 0 when out of memory. */
+static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
+                const int32_t *X, const int32_t *Y, const int *idx, int n,
+                int64_t area2) {
+  int top = 0, bot = 0;
+  for (int i = 1; i < n; i++) {
+    if (Y[idx[i]] < Y[idx[top]]) top = i;
+    if (Y[idx[i]] > Y[idx[bot]]) bot = i;
+  }
+  int32_t row0 = first_row(Y[idx[top]]), row1 = last_row(Y[idx[bot]]);
+  if (row0 > row1) return 1; /* between two rows of pixel centres */
+  if (!reserve(b, 1, n)) return 0;
+
+  zs_poly *p = &b->polys[b->npolys];
+  p->id = sp->id;
+  p->rgb = sp->rgb;
+  p->row0 = row0;
+  p->row1 = row1;
+  p->ox = pl->ox;
+  p->oy = pl->oy;
+  p->zc = pl->zc;
+  p->dzdx = pl->dzdx;
+  p->dzdy = pl->dzdy;
+  p->zshift = pl->zshift;
+  p->edge0 = b->nedges;
+
+  /* Walking forward (increasing index) from the top vertex runs down the
+   * right side when area2 > 0 (clockwise on the screen), else the left. */
+  int forward_is_left = area2 < 0;
+  int counts[2] = {0, 0};
+  for (int side = 0; side < 2; side++) { /* 0: left chain, 1: right chain */
+    int step = ((side == 0) == forward_is_left) ? 1 : n - 1;
+    for (int i = top; i != bot; i = (i + step) % n) {
+      int j = (i + step) % n;
+      zs_edge e = {X[idx[i]], Y[idx[i]], X[idx[j]], Y[idx[j]], 0, 0};
+      e.row0 = first_row(e.Y0);
+      e.row1 = last_row(e.Y1);
+      if (e.row0 > e.row1) continue; /* horizontal, or between rows */
+      b->edges[b->nedges++] = e;
+      counts[side]++;
+    }
+  }
+  p->nleft = (uint8_t)counts[0];
+  p->nright = (uint8_t)counts[1];
+  b->npolys++;
+  return 1;
+}
+
+static int64_t cross3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
+  return ((int64_t)X[b] - X[a]) * ((int64_t)Y[c] - Y[b]) -
+         ((int64_t)Y[b] - Y[a]) * ((int64_t)X[c] - X[b]);
+}
+
+/* Convex (every turn the way of area2, or straight) and y-monotone: one
+ * left and one right chain, one span per row.  Local turns alone would let
+ * a star that winds twice through; monotony catches it. */
+static int convex_monotone(const int32_t *X, const int32_t *Y, const int *idx,
+                           int n, int64_t area2) {
+  for (int i = 0; i < n; i++) {
+    int64_t t = cross3(X, Y, idx[(i + n - 1) % n], idx[i], idx[(i + 1) % n]);
+    if ((t > 0 && area2 < 0) || (t < 0 && area2 > 0)) return 0;
+  }
+  /* Going round, the vertical direction may change only at the top and
+   * at the bottom vertex. */
+  int changes = 0, first = 0, last = 0;
+  for (int i = 0; i < n; i++) {
+    int64_t d = (int64_t)Y[idx[(i + 1) % n]] - Y[idx[i]];
+    int s = (d > 0) - (d < 0);
+    if (!s) continue;
+    if (!first) first = s;
+    if (last && s != last) changes++;
+    last = s;
+  }
+  if (first && last && first != last) changes++;
+  return changes <= 2;
+}
+
+zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
+                                 const zs_clip_vert *v, int n) {
+  int32_t X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
+  double Z[ZS_CLIP_MAX_VERTS];
+  int idx[ZS_CLIP_MAX_VERTS];
+  const double half_w = 0.5 * sp->width, half_h = 0.5 * sp->height;
+  const int64_t h_sub = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
+  int m = 0;
+  for (int i = 0; i < n; i++) {
+    double xw = (v[i].x / v[i].w + 1.0) * half_w;
+    double yw = (v[i].y / v[i].w + 1.0) * half_h;
+    double zw = (v[i].z / v[i].w + 1.0) * 0.5;
+    X[m] = (int32_t)lrint(xw * ZS_SUBPIXEL_ONE);
+    Y[m] = (int32_t)(h_sub - lrint(yw * ZS_SUBPIXEL_ONE));
+    Z[m] = zw < 0.0 ? 0.0 : zw > 1.0 ? 1.0 : zw;
+    /* drop a vertex that snapped onto its predecessor */
+    if (m > 0 && X[m] == X[m - 1] && Y[m] == Y[m - 1]) continue;
+    idx[m] = m;
+    m++;
+  }
+  while (m > 1 && X[m - 1] == X[0] && Y[m - 1] == Y[0]) m--;
+  if (m < 3) return ZS_SETUP_DEGENERATE;
+
+  int64_t area2 = 0;
+  int32_t xmin = X[0], xmax = X[0], ymin = Y[0], ymax = Y[0];
+  for (int i = 0; i < m; i++) {
+    int j = (i + 1) % m;
+    area2 += (int64_t)X[i] * Y[j] - (int64_t)X[j] * Y[i];
+    if (X[i] < xmin) xmin = X[i];
+    if (X[i] > xmax) xmax = X[i];
+    if (Y[i] < ymin) ymin = Y[i];
+    if (Y[i] > ymax) ymax = Y[i];
+  }
+  if (area2 == 0) return ZS_SETUP_DEGENERATE;
+  if (sp->cull_back && area2 > 0) return ZS_SETUP_BACK;
+
+  /* The plane from the fan triangle (0, k, k+1) of largest area: the best
+   * conditioned choice, and the same for every piece of the face. */
+  int best = 1;
+  int64_t best_area = 0;
+  for (int k = 1; k + 1 < m; k++) {
+    int64_t a = llabs(cross3(X, Y, 0, k, k + 1));
+    if (a > best_area) {
+      best_area = a;
+      best = k;
+    }
+  }
+  double box_w = (double)(xmax - xmin) / 256.0 + 2.0;
+  double box_h = (double)(ymax - ymin) / 256.0 + 2.0;
+  plane pl = make_plane(X, Y, Z, 0, best, best + 1, box_w, box_h);
+
+  if (convex_monotone(X, Y, idx, m, area2))
+    return emit(b, sp, &pl, X, Y, idx, m, area2) ? ZS_SETUP_DRAWN
+                                                 : ZS_SETUP_NOMEM;
+  /* Snapping bent the polygon: draw it as a fan of triangles that share its
+   * plane; their common edges split the pixels between them exactly. */
+  for (int k = 1; k + 1 < m; k++) {
+    int tri[3] = {0, k, k + 1};
+    int64_t a = cross3(X, Y, 0, k, k + 1);
+    if (a == 0) continue;
+    if (!emit(b, sp, &pl, X, Y, tri, 3, a)) return ZS_SETUP_NOMEM;
+  }
+  return ZS_SETUP_DRAWN;
+}

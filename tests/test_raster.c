@@ -1,0 +1,538 @@
+/* The raster core: coverage rule, watertightness, the lecture's z-buffer
+ * examples, the two hidden-surface modes, order independence.  Geometry is
+ * built directly as meshes; most tests use an orthographic camera whose
+ * window coordinates are the world's x and y, so vertices on the 1/256 grid
+ * are not moved by snapping and a slow reference can use them as they are. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/raster.h"
+#include "raster/rng.h"
+#include "tests/testutil.h"
+
+/* ---- helpers ---- */
+
+typedef struct frame {
+  int w, h;
+  uint32_t *rgb, *depth, *id, *count;
+} frame;
+
+static void frame_sink(void *user, const zs_row *row) {
+  frame *f = user;
+  size_t off = (size_t)row->y * (size_t)f->w;
+  memcpy(f->rgb + off, row->rgb, (size_t)f->w * 4);
+  memcpy(f->depth + off, row->depth, (size_t)f->w * 4);
+  memcpy(f->id + off, row->id, (size_t)f->w * 4);
+  if (row->count) memcpy(f->count + off, row->count, (size_t)f->w * 4);
+}
+
+static frame frame_new(int w, int h) {
+  frame f = {w, h, NULL, NULL, NULL, NULL};
+  size_t n = (size_t)w * (size_t)h;
+  f.rgb = calloc(n, 4);
+  f.depth = calloc(n, 4);
+  f.id = calloc(n, 4);
+  f.count = calloc(n, 4);
+  return f;
+}
+
+static void frame_free(frame *f) {
+  free(f->rgb);
+  free(f->depth);
+  free(f->id);
+  free(f->count);
+}
+
+typedef struct mesh_buf {
+  zs_mesh m;
+  int32_t cap_v, cap_f, cap_fv;
+} mesh_buf;
+
+static int32_t mb_vert(mesh_buf *b, double x, double y, double z) {
+  if (b->m.nverts == b->cap_v) {
+    b->cap_v = b->cap_v ? 2 * b->cap_v : 64;
+    b->m.pos = realloc(b->m.pos, (size_t)b->cap_v * 3 * sizeof(double));
+  }
+  double *p = &b->m.pos[3 * b->m.nverts];
+  p[0] = x;
+  p[1] = y;
+  p[2] = z;
+  return b->m.nverts++;
+}
+
+static void mb_face(mesh_buf *b, const int32_t *v, int n, uint32_t rgb) {
+  if (b->m.nfaces + 1 >= b->cap_f) {
+    b->cap_f = b->cap_f ? 2 * b->cap_f : 64;
+    b->m.face_start = realloc(b->m.face_start, (size_t)(b->cap_f + 1) * sizeof(int32_t));
+    b->m.face_rgb = realloc(b->m.face_rgb, (size_t)b->cap_f * sizeof(uint32_t));
+    if (b->m.nfaces == 0) b->m.face_start[0] = 0;
+  }
+  int32_t s = b->m.face_start[b->m.nfaces];
+  if (s + n > b->cap_fv) {
+    while (s + n > b->cap_fv) b->cap_fv = b->cap_fv ? 2 * b->cap_fv : 256;
+    b->m.face_vert = realloc(b->m.face_vert, (size_t)b->cap_fv * sizeof(int32_t));
+  }
+  memcpy(&b->m.face_vert[s], v, (size_t)n * sizeof(int32_t));
+  b->m.face_rgb[b->m.nfaces] = rgb;
+  b->m.nfaces++;
+  b->m.face_start[b->m.nfaces] = s + n;
+}
+
+static void mb_free(mesh_buf *b) {
+  free(b->m.pos);
+  free(b->m.face_start);
+  free(b->m.face_vert);
+  free(b->m.face_rgb);
+  memset(b, 0, sizeof *b);
+}
+
+/* Orthographic camera: window x = world x, window y = world y, eye depth
+ * = -world z mapped from [znear, zfar]. */
+static void ortho_camera(zs_device *d, int w, int h, double znear, double zfar) {
+  double view[16], proj[16];
+  zs_mat_identity(view);
+  zs_mat_ortho(proj, 0, w, 0, h, znear, zfar);
+  zs_device_set_camera(d, view, proj);
+}
+
+static zs_device *device(int w, int h, zs_algo algo, zs_shade shade, int cull) {
+  zs_device_config cfg = {w, h, algo, shade, cull, 1, 0};
+  zs_device *d = NULL;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+  return d;
+}
+
+/* Renders mesh in the given mode into f (allocated by the caller). */
+static zs_raster_stats render(const zs_mesh *m, int w, int h, zs_algo algo,
+                              zs_shade shade, int cull, const double view[16],
+                              const double proj[16], frame *f) {
+  zs_device *d = device(w, h, algo, shade, cull);
+  if (view) zs_device_set_camera(d, view, proj);
+  else ortho_camera(d, w, h, -10, 10);
+  zs_device_clear(d);
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_device_draw(d, m, NULL, 0, &err), ZS_OK);
+  ck_assert_int_eq(zs_device_finish(d, frame_sink, f, &err), ZS_OK);
+  zs_raster_stats s = *zs_device_stats(d);
+  zs_device_destroy(d);
+  return s;
+}
+
+/* ---- the example square ---- */
+
+START_TEST(square_on_pixel_centres) {
+  /* Corners (+-0.375, +-0.375, -1) seen from the origin down -z, fovy 90,
+   * 8x8: the edges fall on pixel centres 2.5 and 5.5; left and bottom edges
+   * are in, so columns 2..4 and rows 3..5 (row 0 at the top). */
+  mesh_buf b = {0};
+  int32_t v[4] = {mb_vert(&b, -0.375, -0.375, -1), mb_vert(&b, 0.375, -0.375, -1),
+                  mb_vert(&b, 0.375, 0.375, -1), mb_vert(&b, -0.375, 0.375, -1)};
+  mb_face(&b, v, 4, 0xFFFFFF);
+  double view[16], proj[16];
+  zs_mat_identity(view);
+  zs_mat_perspective(proj, 90, 1, 0.1, 10);
+  for (int algo = 0; algo < 2; algo++) {
+    frame f = frame_new(8, 8);
+    render(&b.m, 8, 8, (zs_algo)algo, ZS_SHADE_ID, 0, view, proj, &f);
+    for (int y = 0; y < 8; y++)
+      for (int x = 0; x < 8; x++) {
+        int in = x >= 2 && x <= 4 && y >= 3 && y <= 5;
+        ck_assert_msg((f.id[y * 8 + x] == 0) == in, "algo %d pixel %d,%d", algo, x, y);
+      }
+    frame_free(&f);
+  }
+  mb_free(&b);
+}
+END_TEST
+
+/* ---- a slow reference: edge functions with the same tie rule ---- */
+
+/* Is the centre of pixel (px, py) (image coordinates) inside the triangle
+ * with image-subpixel vertices X, Y?  Edge functions, exact in integers;
+ * on an edge, in when it is a left or a bottom edge of the written image. */
+static int ref_inside(const int64_t X[3], const int64_t Y[3], int px, int py) {
+  int64_t area2 = 0;
+  for (int i = 0; i < 3; i++) area2 += X[i] * Y[(i + 1) % 3] - X[(i + 1) % 3] * Y[i];
+  if (area2 == 0) return 0;
+  int order[3] = {0, 1, 2};
+  if (area2 < 0) { order[1] = 2; order[2] = 1; } /* make it clockwise on screen */
+  int64_t cx = (int64_t)px * 256 + 128, cy = (int64_t)py * 256 + 128;
+  for (int i = 0; i < 3; i++) {
+    int a = order[i], b = order[(i + 1) % 3];
+    int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+    int64_t e = dx * (cy - Y[a]) - dy * (cx - X[a]);
+    if (e < 0) return 0;
+    if (e == 0 && !(dy < 0 || (dy == 0 && dx < 0))) return 0;
+  }
+  return 1;
+}
+
+START_TEST(random_triangles_match_reference) {
+  /* Seeded differential test: random triangles with vertices on the
+   * subpixel grid, a third of them on pixel centres, against ref_inside.
+   * On failure, the seed and triangle are printed to replay. */
+  const int W = 40, H = 30;
+  const uint64_t seed = 20261122;
+  zs_rng rng;
+  zs_rng_seed(&rng, seed);
+  for (int t = 0; t < 400; t++) {
+    int64_t X[3], Y[3];
+    mesh_buf b = {0};
+    int32_t v[3];
+    for (int i = 0; i < 3; i++) {
+      int64_t xs = (int64_t)zs_rng_below(&rng, (uint64_t)(W + 8) * 256) - 4 * 256;
+      int64_t ys = (int64_t)zs_rng_below(&rng, (uint64_t)(H + 8) * 256) - 4 * 256;
+      if (zs_rng_below(&rng, 3) == 0) { xs = (xs & ~255) + 128; ys = (ys & ~255) + 128; }
+      if (t % 7 == 0 && i == 2) ys = Y[0]; /* horizontal edges */
+      X[i] = xs;
+      Y[i] = ys;
+      /* image subpixel -> window units: x = X/256, y_win = H - Y/256 */
+      v[i] = mb_vert(&b, xs / 256.0, H - ys / 256.0, -(double)i / 4.0);
+    }
+    mb_face(&b, v, 3, 0xFFFFFF);
+    for (int algo = 0; algo < 2; algo++) {
+      frame f = frame_new(W, H);
+      render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_OVERDRAW, 0, NULL, NULL, &f);
+      for (int py = 0; py < H; py++)
+        for (int px = 0; px < W; px++) {
+          int want = ref_inside(X, Y, px, py);
+          int got = (int)f.count[py * W + px];
+          ck_assert_msg(got == want,
+                        "seed %llu triangle %d algo %d pixel %d,%d: got %d want %d "
+                        "(X %lld %lld %lld, Y %lld %lld %lld)",
+                        (unsigned long long)seed, t, algo, px, py, got, want,
+                        (long long)X[0], (long long)X[1], (long long)X[2],
+                        (long long)Y[0], (long long)Y[1], (long long)Y[2]);
+        }
+      frame_free(&f);
+    }
+    mb_free(&b);
+  }
+}
+END_TEST
+
+/* ---- watertightness ---- */
+
+START_TEST(fan_of_thin_triangles_covers_once) {
+  /* 10,000 thin triangles around a centre on a pixel centre form a convex
+   * 10,000-gon: inside it every pixel gets exactly one fragment, outside
+   * none, and each row's covered pixels are one run. */
+  const int W = 256, H = 256, N = 10000;
+  mesh_buf b = {0};
+  int32_t c = mb_vert(&b, 128.5, 128.5, 0);
+  int32_t first = b.m.nverts;
+  for (int i = 0; i < N; i++) {
+    double a = 2 * ZS_PI * i / N;
+    mb_vert(&b, 128.5 + 120.3 * cos(a), 128.5 + 120.3 * sin(a), 0);
+  }
+  for (int i = 0; i < N; i++) {
+    int32_t v[3] = {c, first + i, first + (i + 1) % N};
+    mb_face(&b, v, 3, 0xFFFFFF);
+  }
+  for (int algo = 0; algo < 2; algo++) {
+    frame f = frame_new(W, H);
+    zs_raster_stats s = render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_OVERDRAW, 0, NULL, NULL, &f);
+    uint64_t covered = 0;
+    for (int y = 0; y < H; y++) {
+      int runs = 0, prev = 0;
+      for (int x = 0; x < W; x++) {
+        uint32_t k = f.count[y * W + x];
+        ck_assert_msg(k <= 1, "algo %d pixel %d,%d covered %u times", algo, x, y, k);
+        if (k && !prev) runs++;
+        prev = (int)k;
+        covered += k;
+      }
+      ck_assert_msg(runs <= 1, "algo %d row %d has a crack (%d runs)", algo, y, runs);
+    }
+    /* A disc of radius 120.3 holds about pi r^2 = 45,465 pixel centres. */
+    ck_assert_uint_gt(covered, 45000);
+    ck_assert_uint_lt(covered, 46000);
+    ck_assert_uint_eq(s.pixels_written, covered);
+    frame_free(&f);
+  }
+  mb_free(&b);
+}
+END_TEST
+
+/* A closed, convex mesh: a UV sphere.  With back faces culled, every pixel
+ * of its silhouette is covered exactly once; without, exactly twice. */
+static void sphere(mesh_buf *b, double cx, double cy, double cz, double r,
+                   int slices, int stacks) {
+  int32_t base = b->m.nverts;
+  int32_t top = mb_vert(b, cx, cy + r, cz);
+  for (int i = 1; i < stacks; i++) {
+    double phi = ZS_PI * i / stacks;
+    for (int j = 0; j < slices; j++) {
+      double th = 2 * ZS_PI * j / slices;
+      mb_vert(b, cx + r * sin(phi) * cos(th), cy + r * cos(phi), cz + r * sin(phi) * sin(th));
+    }
+  }
+  int32_t bottom = mb_vert(b, cx, cy - r, cz);
+  (void)base;
+#define RING(i, j) (top + 1 + (i) * slices + ((j) % slices))
+  for (int j = 0; j < slices; j++) {
+    int32_t t[3] = {top, RING(0, j + 1), RING(0, j)};
+    mb_face(b, t, 3, 0xFFFFFF);
+    int32_t u[3] = {bottom, RING(stacks - 2, j), RING(stacks - 2, j + 1)};
+    mb_face(b, u, 3, 0xFFFFFF);
+  }
+  for (int i = 0; i + 1 < stacks - 1; i++)
+    for (int j = 0; j < slices; j++) {
+      int32_t q[4] = {RING(i, j), RING(i, j + 1), RING(i + 1, j + 1), RING(i + 1, j)};
+      mb_face(b, q, 4, 0xFFFFFF);
+    }
+#undef RING
+}
+
+START_TEST(closed_mesh_covers_once_front_twice_both) {
+  mesh_buf b = {0};
+  sphere(&b, 0, 0, -6, 1.7, 48, 32);
+  double view[16], proj[16];
+  zs_mat_look_at(view, (double[3]){0.3, 0.2, 0}, (double[3]){0, 0, -6}, (double[3]){0, 1, 0});
+  zs_mat_perspective(proj, 40, 4.0 / 3.0, 0.5, 20);
+  for (int algo = 0; algo < 2; algo++) {
+    frame f1 = frame_new(160, 120), f2 = frame_new(160, 120), fid = frame_new(160, 120);
+    render(&b.m, 160, 120, (zs_algo)algo, ZS_SHADE_OVERDRAW, 1, view, proj, &f1);
+    render(&b.m, 160, 120, (zs_algo)algo, ZS_SHADE_OVERDRAW, 0, view, proj, &f2);
+    render(&b.m, 160, 120, (zs_algo)algo, ZS_SHADE_ID, 0, view, proj, &fid);
+    int covered = 0;
+    for (int i = 0; i < 160 * 120; i++) {
+      int in = fid.id[i] != ZS_ID_NONE;
+      ck_assert_uint_eq(f1.count[i], in ? 1u : 0u);
+      ck_assert_uint_eq(f2.count[i], in ? 2u : 0u);
+      covered += in;
+    }
+    ck_assert_int_gt(covered, 3000);
+    frame_free(&f1);
+    frame_free(&f2);
+    frame_free(&fid);
+  }
+  mb_free(&b);
+}
+END_TEST
+
+/* ---- the lecture's z-buffer examples ---- */
+
+/* The lecture's depth convention: z larger is nearer, background -5.  An
+ * orthographic camera looking down -z from the origin with the far plane
+ * at lecture z = -5 maps lecture z to window depth (10 - z) / 15. */
+static int lecture_z(uint32_t d) {
+  double z = 10.0 - 15.0 * (d / 4294967296.0);
+  if (d == ZS_DEPTH_FAR) z = -5.0;
+  return (int)lrint(z);
+}
+
+START_TEST(lecture_zbuffer_examples) {
+  /* 8 x 6 buffers.  Example 1: a square at z = -1 over columns 2..5, rows
+   * 1..4.  Example 2: then a sloped rectangle over columns 2..6, rows 2..3,
+   * whose pixel depths are 2, 1, 0, -1, -2 (one step of -1 per pixel). */
+  static const int after_square[6][8] = {
+      {-5, -5, -5, -5, -5, -5, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
+      {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
+      {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -5, -5, -5, -5, -5, -5}};
+  static const int after_both[6][8] = {
+      {-5, -5, -5, -5, -5, -5, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
+      {-5, -5, 2, 1, 0, -1, -2, -5},    {-5, -5, 2, 1, 0, -1, -2, -5},
+      {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -5, -5, -5, -5, -5, -5}};
+  mesh_buf sq = {0}, both = {0};
+  /* window y = 6 - image row; the square spans image rows 1..4 */
+  int32_t s[4] = {mb_vert(&sq, 2, 1, -1), mb_vert(&sq, 6, 1, -1), mb_vert(&sq, 6, 5, -1),
+                  mb_vert(&sq, 2, 5, -1)};
+  mb_face(&sq, s, 4, 0xFF0000);
+  int32_t s2[4] = {mb_vert(&both, 2, 1, -1), mb_vert(&both, 6, 1, -1),
+                   mb_vert(&both, 6, 5, -1), mb_vert(&both, 2, 5, -1)};
+  mb_face(&both, s2, 4, 0xFF0000);
+  /* z = 4.5 - x: 2 at the centre of column 2, -2 at column 6 */
+  int32_t t[4] = {mb_vert(&both, 2, 2, 2.5), mb_vert(&both, 7, 2, -2.5),
+                  mb_vert(&both, 7, 4, -2.5), mb_vert(&both, 2, 4, 2.5)};
+  mb_face(&both, t, 4, 0x00FF00);
+  double view[16], proj[16];
+  zs_mat_identity(view);
+  zs_mat_ortho(proj, 0, 8, 0, 6, -10, 5);
+  for (int algo = 0; algo < 2; algo++) {
+    frame f = frame_new(8, 6);
+    render(&sq.m, 8, 6, (zs_algo)algo, ZS_SHADE_ID, 0, view, proj, &f);
+    for (int y = 0; y < 6; y++)
+      for (int x = 0; x < 8; x++)
+        ck_assert_int_eq(lecture_z(f.depth[y * 8 + x]), after_square[y][x]);
+    render(&both.m, 8, 6, (zs_algo)algo, ZS_SHADE_ID, 0, view, proj, &f);
+    for (int y = 0; y < 6; y++)
+      for (int x = 0; x < 8; x++)
+        ck_assert_msg(lecture_z(f.depth[y * 8 + x]) == after_both[y][x],
+                      "algo %d pixel %d,%d: %d", algo, x, y, lecture_z(f.depth[y * 8 + x]));
+    frame_free(&f);
+  }
+  mb_free(&sq);
+  mb_free(&both);
+}
+END_TEST
+
+/* ---- order independence and the two modes ---- */
+
+START_TEST(modes_agree_and_order_does_not_matter) {
+  /* Random interpenetrating triangles, many coplanar (equal depth: the id
+   * rule decides), drawn in file order and shuffled: all four images are
+   * the same to the byte. */
+  const int W = 96, H = 72;
+  zs_rng rng;
+  zs_rng_seed(&rng, 7);
+  mesh_buf b = {0};
+  for (int i = 0; i < 300; i++) {
+    int32_t v[3];
+    double z = (i % 3 == 0) ? -2.0 : zs_rng_range(&rng, -5, -1);
+    for (int k = 0; k < 3; k++)
+      v[k] = mb_vert(&b, zs_rng_range(&rng, -10, W + 10), zs_rng_range(&rng, -10, H + 10),
+                     (i % 3 == 0) ? z : zs_rng_range(&rng, -5, -1));
+    mb_face(&b, v, 3, (uint32_t)zs_rng_below(&rng, 0x1000000));
+  }
+  /* the shuffled copy keeps each face's id */
+  mesh_buf s = {0};
+  int32_t *perm = malloc(300 * sizeof *perm), *ids = malloc(300 * sizeof *ids);
+  for (int i = 0; i < 300; i++) perm[i] = i;
+  for (int i = 299; i > 0; i--) {
+    int j = (int)zs_rng_below(&rng, (uint64_t)i + 1);
+    int32_t t = perm[i];
+    perm[i] = perm[j];
+    perm[j] = t;
+  }
+  for (int i = 0; i < b.m.nverts; i++) mb_vert(&s, b.m.pos[3 * i], b.m.pos[3 * i + 1], b.m.pos[3 * i + 2]);
+  for (int i = 0; i < 300; i++) {
+    mb_face(&s, &b.m.face_vert[3 * perm[i]], 3, b.m.face_rgb[perm[i]]);
+    ids[i] = perm[i];
+  }
+  s.m.face_id = ids;
+  uint64_t hash[4];
+  int k = 0;
+  for (int shuffled = 0; shuffled < 2; shuffled++)
+    for (int algo = 0; algo < 2; algo++) {
+      frame f = frame_new(W, H);
+      render(shuffled ? &s.m : &b.m, W, H, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &f);
+      hash[k++] = zs_test_fnv1a(f.rgb, (size_t)W * H * 4) ^ zs_test_fnv1a(f.depth, (size_t)W * H * 4);
+      frame_free(&f);
+    }
+  ck_assert_uint_eq(hash[0], hash[1]);
+  ck_assert_uint_eq(hash[0], hash[2]);
+  ck_assert_uint_eq(hash[0], hash[3]);
+  free(perm);
+  s.m.face_id = NULL;
+  free(ids);
+  mb_free(&s);
+  mb_free(&b);
+}
+END_TEST
+
+START_TEST(depth_stepping_equals_evaluation) {
+  /* Steep and shallow planes: the depth the walk wrote at each pixel equals
+   * the plane evaluated there in double, to within one unit of the 32-bit
+   * depth (the plane is quantized once; stepping adds nothing). */
+  const int W = 64, H = 64;
+  mesh_buf b = {0};
+  int32_t v[3] = {mb_vert(&b, 1, 1, -1), mb_vert(&b, 63, 5, -9), mb_vert(&b, 20, 62, -4)};
+  mb_face(&b, v, 3, 0xFFFFFF);
+  frame f = frame_new(W, H);
+  render(&b.m, W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, NULL, NULL, &f);
+  /* window depth = (z_eye_dist + 10) / 20 with ortho near -10 far 10, and
+   * z_eye_dist = -z; the plane through the three vertices: */
+  double P[3][3] = {{1, 1, 1}, {63, 5, 9}, {20, 62, 4}}; /* x, y_win, distance */
+  double ux = P[1][0] - P[0][0], uy = P[1][1] - P[0][1], uz = P[1][2] - P[0][2];
+  double vx = P[2][0] - P[0][0], vy = P[2][1] - P[0][1], vz = P[2][2] - P[0][2];
+  double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  int checked = 0;
+  for (int y = 0; y < H; y++)
+    for (int x = 0; x < W; x++) {
+      if (f.id[y * W + x] == ZS_ID_NONE) continue;
+      double cx = x + 0.5, cy = H - (y + 0.5);
+      double dist = P[0][2] - (nx * (cx - P[0][0]) + ny * (cy - P[0][1])) / nz;
+      double want = (dist + 10.0) / 20.0 * 4294967296.0;
+      ck_assert_msg(fabs(f.depth[y * W + x] - want) <= 2.0, "pixel %d,%d: %u vs %.1f", x, y,
+                    f.depth[y * W + x], want);
+      checked++;
+    }
+  ck_assert_int_gt(checked, 1500);
+  frame_free(&f);
+  mb_free(&b);
+}
+END_TEST
+
+START_TEST(degenerate_faces_draw_nothing) {
+  mesh_buf b = {0};
+  int32_t v[3] = {mb_vert(&b, 1, 1, 0), mb_vert(&b, 5, 5, 0), mb_vert(&b, 9, 9, 0)};
+  mb_face(&b, v, 3, 0xFFFFFF); /* collinear */
+  int32_t u[3] = {v[0], v[0], v[1]};
+  mb_face(&b, u, 3, 0xFFFFFF); /* repeated vertex */
+  for (int algo = 0; algo < 2; algo++) {
+    frame f = frame_new(16, 16);
+    zs_raster_stats s = render(&b.m, 16, 16, (zs_algo)algo, ZS_SHADE_OVERDRAW, 0, NULL, NULL, &f);
+    ck_assert_uint_eq(s.pixels_written, 0);
+    ck_assert_uint_eq(s.polygons_degenerate, 2);
+    frame_free(&f);
+  }
+  mb_free(&b);
+}
+END_TEST
+
+START_TEST(back_faces_culled_only_when_asked) {
+  mesh_buf b = {0};
+  /* counter-clockwise in window coordinates: front */
+  int32_t f1[3] = {mb_vert(&b, 1, 1, 0), mb_vert(&b, 10, 1, 0), mb_vert(&b, 1, 10, 0)};
+  mb_face(&b, f1, 3, 0xFFFFFF);
+  int32_t f2[3] = {mb_vert(&b, 12, 1, 0), mb_vert(&b, 12, 10, 0), mb_vert(&b, 15, 1, 0)};
+  mb_face(&b, f2, 3, 0xFFFFFF);
+  frame f = frame_new(16, 16);
+  zs_raster_stats s = render(&b.m, 16, 16, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 1, NULL, NULL, &f);
+  ck_assert_uint_eq(s.polygons_culled_back, 1);
+  ck_assert_uint_eq(s.polygons_rasterized, 1);
+  s = render(&b.m, 16, 16, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, NULL, NULL, &f);
+  ck_assert_uint_eq(s.polygons_culled_back, 0);
+  ck_assert_uint_eq(s.polygons_rasterized, 2);
+  frame_free(&f);
+  mb_free(&b);
+}
+END_TEST
+
+START_TEST(nothing_behind_the_eye) {
+  /* A triangle straddling the eye plane: only the part in front of the
+   * near plane is drawn; one wholly behind draws nothing. */
+  mesh_buf b = {0};
+  int32_t t[3] = {mb_vert(&b, -1, -1, -2), mb_vert(&b, 1, -1, -2), mb_vert(&b, 0, 1, 3)};
+  mb_face(&b, t, 3, 0xFFFFFF);
+  int32_t u[3] = {mb_vert(&b, -1, -1, 2), mb_vert(&b, 1, -1, 2), mb_vert(&b, 0, 1, 2)};
+  mb_face(&b, u, 3, 0xFFFFFF);
+  double view[16], proj[16];
+  zs_mat_identity(view);
+  zs_mat_perspective(proj, 60, 1, 0.5, 10);
+  frame f = frame_new(32, 32);
+  zs_raster_stats s = render(&b.m, 32, 32, ZS_ALGO_SCANLINE, ZS_SHADE_ID, 0, view, proj, &f);
+  ck_assert_uint_eq(s.polygons_clipped, 1);
+  ck_assert_uint_eq(s.polygons_outside, 1);
+  ck_assert_uint_gt(s.pixels_written, 0);
+  for (int i = 0; i < 32 * 32; i++) ck_assert(f.id[i] == ZS_ID_NONE || f.id[i] == 0);
+  frame_free(&f);
+  mb_free(&b);
+}
+END_TEST
+
+static Suite *suite(void) {
+  Suite *s = suite_create("raster");
+  TCase *tc = tcase_create("core");
+  tcase_set_timeout(tc, 600);
+  tcase_add_test(tc, square_on_pixel_centres);
+  tcase_add_test(tc, random_triangles_match_reference);
+  tcase_add_test(tc, fan_of_thin_triangles_covers_once);
+  tcase_add_test(tc, closed_mesh_covers_once_front_twice_both);
+  tcase_add_test(tc, lecture_zbuffer_examples);
+  tcase_add_test(tc, modes_agree_and_order_does_not_matter);
+  tcase_add_test(tc, depth_stepping_equals_evaluation);
+  tcase_add_test(tc, degenerate_faces_draw_nothing);
+  tcase_add_test(tc, back_faces_culled_only_when_asked);
+  tcase_add_test(tc, nothing_behind_the_eye);
+  suite_add_tcase(s, tc);
+  return s;
+}
+
+int main(void) { return zs_test_run(suite()); }
