@@ -1,5 +1,7 @@
 #include "raster/rng.h"
 
+#include <string.h>
+
 static uint64_t splitmix64(uint64_t *x) {
   uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -41,4 +43,18 @@ uint64_t zs_rng_below(zs_rng *rng, uint64_t n) {
   uint64_t x;
   do x = zs_rng_next(rng); while (x >= limit);
   return x % n;
+}
+
+void zs_rng_shuffle(zs_rng *rng, void *base, size_t n, size_t size) {
+  unsigned char *p = base, tmp[64];
+  for (size_t i = n; i > 1; i--) {
+    size_t j = (size_t)zs_rng_below(rng, i);
+    unsigned char *a = p + (i - 1) * size, *b = p + j * size;
+    for (size_t k = 0; k < size; k += sizeof tmp) {
+      size_t c = size - k < sizeof tmp ? size - k : sizeof tmp;
+      memcpy(tmp, a + k, c);
+      memcpy(a + k, b + k, c);
+      memcpy(b + k, tmp, c);
+    }
+  }
 }

@@ -8,6 +8,7 @@
 #ifndef ZS_RNG_H
 #define ZS_RNG_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 typedef struct zs_rng {
@@ -22,5 +23,8 @@ double zs_rng_uniform(zs_rng *rng);
 double zs_rng_range(zs_rng *rng, double lo, double hi);
 /* Uniform integer in [0, n), n > 0, without modulo bias. */
 uint64_t zs_rng_below(zs_rng *rng, uint64_t n);
+/* Shuffles the n elements of size bytes at base (Fisher-Yates, drawing
+ * from the last element down): every order equally likely. */
+void zs_rng_shuffle(zs_rng *rng, void *base, size_t n, size_t size);
 
 #endif

@@ -14,12 +14,13 @@
  * three snapped vertices, dz/dx and dz/dy per pixel are computed in double
  * (Cramer's rule on exact integer differences), then quantized with
  * 32 + zshift fraction bits.  zshift is the largest of 20 .. 0 for which
- *   (|dzdx| W + |dzdy| H + |zc| + 1) 2^(32 + zshift) < 2^61,
- * W, H the polygon's extent in pixels, so that no sum over the polygon's
- * box can overflow 64 bits.  Only slivers far thinner than a pixel with
- * nearly the whole depth range across them need fewer bits; past even
- * zshift = 0 their gradient is scaled down to fit (they cover at most a
- * few pixels, and still deterministically).
+ *   (|dzdx| (W + 1/2) + |dzdy| (H + 1/2) + |z_a| + 1) 2^(32 + zshift) < 2^61,
+ * W, H the polygon's extent in pixels plus 2, z_a the depth of the plane's
+ * vertex, so that no sum over the polygon's box can overflow 64 bits.  Only
+ * slivers far thinner than a pixel with nearly the whole depth range
+ * across them need fewer bits; past even zshift = 0 their gradient is
+ * scaled down to fit (they cover at most a few pixels, and still
+ * deterministically).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -89,16 +90,21 @@ static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
   /* Offsets of the origin pixel's centre from vertex a, in pixels (< 1). */
   double cx = ((double)p.ox * 256 + 128 - X[a]) / 256.0;
   double cy = ((double)p.oy * 256 + 128 - Y[a]) / 256.0;
-  double zc = Z[a] + A * cx + B * cy;
-  double bound = fabs(A) * box_w + fabs(B) * box_h + fabs(zc) + 1.0;
-  const double limit = 2305843009213693952.0; /* 2^61 */
-  int shift = 20;
-  while (shift > 0 && bound * ldexp(1.0, 32 + shift) >= limit) shift--;
-  if (bound * ldexp(1.0, 32) >= limit) {
-    double f = (limit / ldexp(1.0, 32)) / bound * 0.5;
+  /* Everything the walk adds up stays below this, in depth units: zc is
+   * within half a pixel of vertex a. */
+  double bound = fabs(A) * (box_w + 0.5) + fabs(B) * (box_h + 0.5) + fabs(Z[a]) + 1.0;
+  /* bound = m 2^e with m in [0.5, 1): bound 2^(32 + shift) < 2^61 holds
+   * exactly when shift <= 29 - e. */
+  int e;
+  frexp(bound, &e);
+  int shift = 29 - e < 20 ? 29 - e : 20;
+  if (shift < 0) {
+    double f = ldexp(1.0, 27) / bound; /* fit the gradient to zshift 0 */
     A *= f;
     B *= f;
+    shift = 0;
   }
+  double zc = Z[a] + A * cx + B * cy;
   double scale = ldexp(1.0, 32 + shift);
   p.zshift = (uint8_t)shift;
   p.dzdx = llrint(A * scale);

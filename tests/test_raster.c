@@ -394,12 +394,7 @@ START_TEST(modes_agree_and_order_does_not_matter) {
   mesh_buf s = {0};
   int32_t *perm = malloc(300 * sizeof *perm), *ids = malloc(300 * sizeof *ids);
   for (int i = 0; i < 300; i++) perm[i] = i;
-  for (int i = 299; i > 0; i--) {
-    int j = (int)zs_rng_below(&rng, (uint64_t)i + 1);
-    int32_t t = perm[i];
-    perm[i] = perm[j];
-    perm[j] = t;
-  }
+  zs_rng_shuffle(&rng, perm, 300, sizeof *perm);
   for (int i = 0; i < b.m.nverts; i++) mb_vert(&s, b.m.pos[3 * i], b.m.pos[3 * i + 1], b.m.pos[3 * i + 2]);
   for (int i = 0; i < 300; i++) {
     mb_face(&s, &b.m.face_vert[3 * perm[i]], 3, b.m.face_rgb[perm[i]]);

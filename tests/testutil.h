@@ -17,4 +17,14 @@ const char *zs_test_bin(const char *rel);
 /* 64-bit FNV-1a of a byte buffer, for comparing images by hash. */
 uint64_t zs_test_fnv1a(const void *data, size_t n);
 
+
+/* Runs build/zscan with args (NULL-terminated, without "zscan"); captures
+ * stdout and stderr (each cut at cap - 1 bytes, NUL-terminated) and returns
+ * the exit status, or -1 when it did not exit normally (a crash). */
+int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *err,
+                      size_t err_cap);
+
+/* Whether a file exists. */
+int zs_test_exists(const char *path);
+
 #endif

@@ -1,0 +1,43 @@
+/* zscan scene — the camera: where it stands, where it looks, its lens.
+ *
+ * Conventions of gluLookAt / gluPerspective (raster/raster.h).  A camera
+ * may be given in part; zs_camera_complete fills in what is missing from
+ * the bounds of what is to be seen:
+ *   - no eye: the default direction.  The eye looks at the centre of the
+ *     bounds from the direction ZS_CAMERA_DEFAULT_DIR (front, right and
+ *     above), far enough that the bounding sphere fits the narrower of the
+ *     two fields of view with 5 % to spare;
+ *   - no target: the centre of the bounds;
+ *   - no near / far: the bounding sphere seen from the eye, far = distance
+ *     to its back + 1 %, near = distance to its front less 1 %, at least
+ *     far / 10^4 (the eye may be inside).
+ */
+#ifndef ZS_SCENE_CAMERA_H
+#define ZS_SCENE_CAMERA_H
+
+#include "raster/error.h"
+
+#define ZS_CAMERA_DEFAULT_DIR {0.55, 0.45, 1.0}
+#define ZS_CAMERA_DEFAULT_FOVY 45.0
+
+typedef struct zs_camera {
+  double eye[3], target[3], up[3];
+  double fovy;          /* vertical field of view, degrees, in (0, 180) */
+  double znear, zfar;   /* 0 < znear < zfar */
+  int has_eye, has_target, has_up, has_near, has_far;
+} zs_camera;
+
+/* A camera with nothing given: up +y, fovy 45. */
+void zs_camera_default(zs_camera *c);
+
+/* Fills what c lacks from the bounds lo..hi (see above). */
+void zs_camera_complete(zs_camera *c, const double lo[3], const double hi[3],
+                        double aspect);
+
+/* Checks the camera and makes its view and projection matrices; the
+ * message names what is wrong (fovy outside (0, 180), near <= 0,
+ * near >= far, eye == target, up zero or parallel to the view). */
+zs_status zs_camera_matrices(const zs_camera *c, double aspect, double view[16],
+                             double proj[16], zs_error *err);
+
+#endif

@@ -1,0 +1,392 @@
+/* zscan scene — the model: growable mesh arrays, and the splitting of
+ * concave and non-planar polygons into pieces the rasterizer can draw.
+ *
+ * Every array grows geometrically (doubling), so n appends copy O(n)
+ * elements in all.  A polygon reserves room for its worst case before it
+ * writes anything, so an allocation failure leaves the model as it was.
+ */
+#include "scene/model.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MIN_CAPACITY = 16 };
+
+/* A non-planar polygon is one with a vertex farther than this fraction of
+ * its diameter from its Newell plane.  1e-5 keeps whole the quads that are
+ * planar but for the rounding of a text file (six decimals in an OBJ),
+ * while a curved patch quad, bent by far more, is split so that its depth
+ * follows its two triangles as any other renderer would draw them. */
+#define PLANARITY_TOLERANCE 1e-5
+
+/* ---- storage ---------------------------------------------------------- */
+
+void zs_model_init(zs_model *m) {
+  static const zs_model empty; /* static: all counts 0, all pointers NULL */
+  *m = empty;
+}
+
+void zs_model_free(zs_model *m) {
+  if (!m) return;
+  free(m->mesh.pos);
+  free(m->mesh.face_start);
+  free(m->mesh.face_vert);
+  free(m->mesh.face_rgb);
+  free(m->mesh.face_id);
+  free(m->face_object);
+  for (int32_t i = 0; i < m->nobjects; i++) free(m->object_names[i]);
+  free(m->object_names);
+  zs_model_init(m);
+}
+
+/* The capacity to grow cap to so that need elements fit, or -1 when need
+ * cannot be counted in an int32_t (the mesh counts are int32_t). */
+static int32_t grown_capacity(int32_t cap, int64_t need) {
+  if (need > INT32_MAX) return -1;
+  int64_t c = cap < MIN_CAPACITY ? MIN_CAPACITY : cap;
+  while (c < need) c *= 2;
+  return c > INT32_MAX ? INT32_MAX : (int32_t)c;
+}
+
+/* realloc to count elements of elem bytes; NULL (p untouched) on failure,
+ * including a size that does not fit in size_t. */
+static void *resize(void *p, size_t count, size_t elem) {
+  if (count > SIZE_MAX / elem) return NULL;
+  return realloc(p, count * elem);
+}
+
+static int reserve_vertices(zs_model *m, int64_t need) {
+  if (need <= m->cap_verts) return 1;
+  int32_t cap = grown_capacity(m->cap_verts, need);
+  if (cap < 0) return 0;
+  double *pos = resize(m->mesh.pos, (size_t)cap, 3 * sizeof *pos);
+  if (!pos) return 0;
+  m->mesh.pos = pos;
+  m->cap_verts = cap;
+  return 1;
+}
+
+/* Makes room for nfaces faces using nface_verts indices in all.  The
+ * per-face arrays share cap_faces, which is raised only once all of them
+ * have grown; an array that grew before a later one failed is merely
+ * larger than needed. */
+static int reserve_faces(zs_model *m, int64_t nfaces, int64_t nface_verts) {
+  zs_mesh *mesh = &m->mesh;
+  if (nfaces > m->cap_faces) {
+    int32_t cap = grown_capacity(m->cap_faces, nfaces);
+    if (cap < 0) return 0;
+    int32_t *start = resize(mesh->face_start, (size_t)cap + 1, sizeof *start);
+    if (!start) return 0;
+    if (!mesh->face_start) start[0] = 0;
+    mesh->face_start = start;
+    uint32_t *rgb = resize(mesh->face_rgb, (size_t)cap, sizeof *rgb);
+    if (!rgb) return 0;
+    mesh->face_rgb = rgb;
+    int32_t *id = resize(mesh->face_id, (size_t)cap, sizeof *id);
+    if (!id) return 0;
+    mesh->face_id = id;
+    int32_t *obj = resize(m->face_object, (size_t)cap, sizeof *obj);
+    if (!obj) return 0;
+    m->face_object = obj;
+    m->cap_faces = cap;
+  }
+  if (nface_verts > m->cap_face_verts) {
+    int32_t cap = grown_capacity(m->cap_face_verts, nface_verts);
+    if (cap < 0) return 0;
+    int32_t *fv = resize(mesh->face_vert, (size_t)cap, sizeof *fv);
+    if (!fv) return 0;
+    mesh->face_vert = fv;
+    m->cap_face_verts = cap;
+  }
+  return 1;
+}
+
+/* The number of vertex indices the faces use so far. */
+static int32_t face_vert_count(const zs_model *m) {
+  return m->mesh.nfaces > 0 ? m->mesh.face_start[m->mesh.nfaces] : 0;
+}
+
+/* Appends one face; the room must have been reserved. */
+static void append_face(zs_model *m, const int32_t *v, int n, uint32_t rgb,
+                        int32_t id, int32_t obj) {
+  zs_mesh *mesh = &m->mesh;
+  int32_t f = mesh->nfaces;
+  int32_t start = face_vert_count(m);
+  memcpy(mesh->face_vert + start, v, (size_t)n * sizeof *v);
+  mesh->face_start[f] = start;
+  mesh->face_start[f + 1] = start + n;
+  mesh->face_rgb[f] = rgb;
+  mesh->face_id[f] = id;
+  m->face_object[f] = obj;
+  mesh->nfaces = f + 1;
+}
+
+int32_t zs_model_add_vertex(zs_model *m, double x, double y, double z) {
+  if (!reserve_vertices(m, (int64_t)m->mesh.nverts + 1)) return -1;
+  int32_t i = m->mesh.nverts++;
+  double *p = m->mesh.pos + 3 * (size_t)i;
+  p[0] = x;
+  p[1] = y;
+  p[2] = z;
+  return i;
+}
+
+int32_t zs_model_object(zs_model *m, const char *name) {
+  if (!name) return -1;
+  /* Newest first: a file that switches objects mostly returns to a recent
+   * one.  The header has no room for an index, so the search is linear. */
+  for (int32_t i = m->nobjects - 1; i >= 0; i--)
+    if (strcmp(m->object_names[i], name) == 0) return i;
+  if (m->nobjects == m->cap_objects) {
+    int32_t cap = grown_capacity(m->cap_objects, (int64_t)m->nobjects + 1);
+    if (cap < 0) return -1;
+    char **names = resize(m->object_names, (size_t)cap, sizeof *names);
+    if (!names) return -1;
+    m->object_names = names;
+    m->cap_objects = cap;
+  }
+  char *copy = strdup(name);
+  if (!copy) return -1;
+  m->object_names[m->nobjects] = copy;
+  return m->nobjects++;
+}
+
+int zs_model_bounds(const zs_model *m, double lo[3], double hi[3]) {
+  if (m->mesh.nverts <= 0) return 0;
+  for (int k = 0; k < 3; k++) lo[k] = hi[k] = m->mesh.pos[k];
+  for (int32_t i = 1; i < m->mesh.nverts; i++) {
+    const double *p = m->mesh.pos + 3 * (size_t)i;
+    for (int k = 0; k < 3; k++) {
+      if (p[k] < lo[k]) lo[k] = p[k];
+      if (p[k] > hi[k]) hi[k] = p[k];
+    }
+  }
+  return 1;
+}
+
+/* ---- polygon geometry ------------------------------------------------- */
+
+/* Arrays of these are passed without const: before C23, a vec3 * does not
+ * convert to a const vec3 * implicitly. */
+typedef double vec2[2];
+typedef double vec3[3];
+
+/* The cross product of the 2D edges a->b and b->c: > 0 for a left turn. */
+static double turn(const double *a, const double *b, const double *c) {
+  return (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+}
+
+/* Newell's normal: twice the vector area of the polygon, exact for planar
+ * polygons and the best-fitting plane's normal for non-planar ones.  Its
+ * component along an axis is twice the signed area of the projection onto
+ * the plane of the other two axes. */
+static void newell_normal(vec3 *p, int n, vec3 nrm) {
+  nrm[0] = nrm[1] = nrm[2] = 0.0;
+  for (int i = 0; i < n; i++) {
+    const double *a = p[i], *b = p[(i + 1) % n];
+    nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+}
+
+/* p is relative to the centroid, so the plane of nrm through the centroid
+ * passes through the origin. */
+static int is_planar(vec3 *p, int n, const vec3 nrm) {
+  double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+  double diameter = 0.0, far = 0.0;
+  for (int i = 0; i < n; i++) {
+    double d = fabs(p[i][0] * nrm[0] + p[i][1] * nrm[1] + p[i][2] * nrm[2]);
+    if (d / len > far) far = d / len;
+    for (int j = i + 1; j < n; j++) {
+      double dx = p[i][0] - p[j][0], dy = p[i][1] - p[j][1],
+             dz = p[i][2] - p[j][2];
+      double dist = sqrt(dx * dx + dy * dy + dz * dz);
+      if (dist > diameter) diameter = dist;
+    }
+  }
+  return far <= PLANARITY_TOLERANCE * diameter;
+}
+
+/* Drops the axis along which the normal is largest, keeping the other two
+ * in cyclic order (and swapping them when that component is negative), so
+ * the projected polygon winds counter-clockwise with a positive area. */
+static void project(vec3 *p, int n, const vec3 nrm, vec2 *q) {
+  int k = 0;
+  for (int a = 1; a < 3; a++)
+    if (fabs(nrm[a]) > fabs(nrm[k])) k = a;
+  int i = (k + 1) % 3, j = (k + 2) % 3;
+  if (nrm[k] < 0) {
+    int t = i;
+    i = j;
+    j = t;
+  }
+  for (int v = 0; v < n; v++) {
+    q[v][0] = p[v][i];
+    q[v][1] = p[v][j];
+  }
+}
+
+/* Sign changes of a cyclic sequence, zeros skipped. */
+static int sign_changes(const double *d, int n) {
+  int changes = 0, first = 0, last = 0;
+  for (int i = 0; i < n; i++) {
+    int s = (d[i] > 0) - (d[i] < 0);
+    if (s == 0) continue;
+    if (first == 0) first = s;
+    else if (s != last) changes++;
+    last = s;
+  }
+  if (first != 0 && last != first) changes++;
+  return changes;
+}
+
+/* Whether the counter-clockwise polygon q is convex: no right turn, no
+ * edge doubling back, and a boundary that turns around only once.  Left
+ * turns alone would accept a pentagram; turning once means the edge
+ * directions change sign at most twice in x and twice in y. */
+static int is_convex(vec2 *q, int n) {
+  double dx[ZS_MAX_POLY_VERTS], dy[ZS_MAX_POLY_VERTS];
+  for (int i = 0; i < n; i++) {
+    const double *a = q[i], *b = q[(i + 1) % n], *c = q[(i + 2) % n];
+    double t = turn(a, b, c);
+    if (t < 0) return 0;
+    double dot = (b[0] - a[0]) * (c[0] - b[0]) + (b[1] - a[1]) * (c[1] - b[1]);
+    if (t == 0 && dot < 0) return 0;
+    dx[i] = b[0] - a[0];
+    dy[i] = b[1] - a[1];
+  }
+  return sign_changes(dx, n) <= 2 && sign_changes(dy, n) <= 2;
+}
+
+/* Whether p lies in the counter-clockwise triangle abc or on its edges. */
+static int in_triangle(const double *p, const double *a, const double *b,
+                       const double *c) {
+  return turn(a, b, p) >= 0 && turn(b, c, p) >= 0 && turn(c, a, p) >= 0;
+}
+
+/* ---- splitting -------------------------------------------------------- */
+
+static void add_fan(zs_model *m, const int32_t *v, int n, uint32_t rgb,
+                    int32_t id, int32_t obj) {
+  for (int i = 1; i + 1 < n; i++) {
+    int32_t tri[3] = {v[0], v[i], v[i + 1]};
+    append_face(m, tri, 3, rgb, id, obj);
+  }
+}
+
+/* Ear clipping of the counter-clockwise projection q.  Vertex b, between a
+ * and c in what is left of the polygon, is an ear when it turns left and no
+ * other remaining vertex lies in triangle abc; it suffices to test the
+ * vertices that do not turn left, since if any vertex is inside, one of
+ * those is.  Triangles keep the polygon's vertex order, so its winding.
+ * A polygon that intersects itself may have no ear left: then the first
+ * vertex that turns left (or, failing that, any vertex) is cut anyway, so
+ * the loop always ends with n - 2 triangles. */
+static void add_ear_clipped(zs_model *m, const int32_t *v, vec2 *q,
+                            int n, uint32_t rgb, int32_t id, int32_t obj) {
+  int prev[ZS_MAX_POLY_VERTS], next[ZS_MAX_POLY_VERTS];
+  for (int i = 0; i < n; i++) {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  int left = n, b = 0, misses = 0;
+  while (left > 3) {
+    int a = prev[b], c = next[b];
+    int ear = turn(q[a], q[b], q[c]) > 0;
+    for (int p = next[c]; ear && p != a; p = next[p])
+      if (turn(q[prev[p]], q[p], q[next[p]]) <= 0 &&
+          in_triangle(q[p], q[a], q[b], q[c]))
+        ear = 0;
+    if (!ear && ++misses < left) {
+      b = c;
+      continue;
+    }
+    if (!ear) {
+      /* A whole round without an ear: settle for a convex vertex. */
+      for (int i = 0, t = b; i < left; i++, t = next[t]) {
+        if (turn(q[prev[t]], q[t], q[next[t]]) > 0) {
+          b = t;
+          break;
+        }
+      }
+      a = prev[b];
+      c = next[b];
+    }
+    int32_t tri[3] = {v[a], v[b], v[c]};
+    append_face(m, tri, 3, rgb, id, obj);
+    next[a] = c;
+    prev[c] = a;
+    left--;
+    misses = 0;
+    b = c;
+  }
+  int32_t tri[3] = {v[prev[b]], v[b], v[next[b]]};
+  append_face(m, tri, 3, rgb, id, obj);
+}
+
+/* Stores the polygon v (n >= 3, no repeated consecutive index) whole when
+ * it is planar and convex, else as triangles. */
+static void add_split(zs_model *m, const int32_t *v, int n, uint32_t rgb,
+                      int32_t id, int32_t obj) {
+  /* Positions relative to the centroid keep the sums below well
+   * conditioned for a polygon far from the origin. */
+  vec3 p[ZS_MAX_POLY_VERTS];
+  vec3 centre = {0.0, 0.0, 0.0};
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++) centre[k] += m->mesh.pos[3 * (size_t)v[i] + k];
+  for (int k = 0; k < 3; k++) centre[k] /= n;
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 3; k++)
+      p[i][k] = m->mesh.pos[3 * (size_t)v[i] + k] - centre[k];
+
+  vec3 nrm;
+  newell_normal(p, n, nrm);
+  if (nrm[0] == 0.0 && nrm[1] == 0.0 && nrm[2] == 0.0) {
+    /* No area and no plane (collinear points, or a figure eight whose
+     * halves cancel): triangles are at least convex. */
+    add_fan(m, v, n, rgb, id, obj);
+    return;
+  }
+  vec2 q[ZS_MAX_POLY_VERTS];
+  project(p, n, nrm, q);
+  int convex = is_convex(q, n);
+  if (convex && is_planar(p, n, nrm))
+    append_face(m, v, n, rgb, id, obj);
+  else if (convex)
+    add_fan(m, v, n, rgb, id, obj);
+  else
+    add_ear_clipped(m, v, q, n, rgb, id, obj);
+}
+
+zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
+                               uint32_t rgb, int32_t obj) {
+  if (!idx || n < 3 || n > ZS_MAX_POLY_VERTS) return ZS_ERR_ARG;
+  if (obj < -1 || obj >= m->nobjects) return ZS_ERR_ARG;
+  for (int i = 0; i < n; i++)
+    if (idx[i] < 0 || idx[i] >= m->mesh.nverts) return ZS_ERR_ARG;
+  /* Face ids are int32_t: one more face cannot be numbered. */
+  if (m->nsource_faces == INT32_MAX) return ZS_ERR_NOMEM;
+
+  /* Drop repeated consecutive vertices, the last against the first too. */
+  int32_t v[ZS_MAX_POLY_VERTS];
+  int k = 0;
+  for (int i = 0; i < n; i++)
+    if (k == 0 || idx[i] != v[k - 1]) v[k++] = idx[i];
+  while (k > 1 && v[k - 1] == v[0]) k--;
+
+  /* The worst case is n - 2 triangles (3n - 6 >= n indices). */
+  if (!reserve_faces(m, (int64_t)m->mesh.nfaces + (n - 2),
+                     (int64_t)face_vert_count(m) + 3 * (n - 2)))
+    return ZS_ERR_NOMEM;
+
+  int32_t id = m->nsource_faces;
+  if (k < 3)
+    append_face(m, idx, n, rgb, id, obj); /* zero area: kept for numbering */
+  else
+    add_split(m, v, k, rgb, id, obj);
+  m->nsource_faces++;
+  return ZS_OK;
+}

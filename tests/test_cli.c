@@ -1,0 +1,161 @@
+/* The zscan command as a user meets it: error messages and exit status on
+ * bad files and bad options, and outputs that are never half written. */
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "tests/testutil.h"
+
+static char out[1 << 16], err[1 << 16];
+
+/* Exactly one line on stderr. */
+static int one_line(const char *s) {
+  const char *nl = strchr(s, '\n');
+  return nl && nl[1] == '\0';
+}
+
+START_TEST(bad_obj_files_refused_with_file_and_line) {
+  /* Every file of tests/data/bad_obj: exit 1, one line
+   * "zscan render: PATH:LINE: reason", no image written. */
+  const char *dir = zs_test_src("tests/data/bad_obj");
+  char dirbuf[4096];
+  snprintf(dirbuf, sizeof dirbuf, "%s", dir);
+  DIR *d = opendir(dirbuf);
+  ck_assert_ptr_nonnull(d);
+  int files = 0;
+  struct dirent *e;
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-bad.png", ZS_BINARY_DIR);
+  while ((e = readdir(d))) {
+    size_t n = strlen(e->d_name);
+    if (n < 5 || strcmp(e->d_name + n - 4, ".obj") != 0) continue;
+    char path[8192];
+    snprintf(path, sizeof path, "%s/%s", dirbuf, e->d_name);
+    unlink(png);
+    const char *args[] = {"render", path, "-o", png, "--size", "32x32", NULL};
+    int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+    ck_assert_msg(rc == 1, "%s: exit %d (stderr: %s)", e->d_name, rc, err);
+    /* the file named is the OBJ, or the material library beside it */
+    char prefix[8300];
+    snprintf(prefix, sizeof prefix, "zscan render: %.*s.", (int)(strlen(path) - 4), path);
+    ck_assert_msg(strncmp(err, prefix, strlen(prefix)) == 0, "%s: message '%s'", e->d_name, err);
+    const char *p = strchr(err + strlen(prefix), ':');
+    ck_assert_msg(p && (strncmp(p - 4, ".obj", 4) == 0 || strncmp(p - 4, ".mtl", 4) == 0),
+                  "%s: message '%s'", e->d_name, err);
+    p++;
+    ck_assert_msg(*p >= '1' && *p <= '9', "%s: no line number in '%s'", e->d_name, err);
+    while (*p >= '0' && *p <= '9') p++;
+    ck_assert_msg(strncmp(p, ": ", 2) == 0 && p[2] != '\n', "%s: no reason in '%s'", e->d_name, err);
+    ck_assert_msg(one_line(err), "%s: not one line: '%s'", e->d_name, err);
+    ck_assert_msg(!zs_test_exists(png), "%s: an image was written", e->d_name);
+    files++;
+  }
+  closedir(d);
+  ck_assert_int_ge(files, 10);
+}
+END_TEST
+
+typedef struct bad_option {
+  const char *args[12];
+  const char *message; /* a part of the one-line message */
+} bad_option;
+
+static const bad_option bad_options[] = {
+    {{"render", "--size", "0x0", NULL}, "--size: 0x0: each side must be 1 to 16384"},
+    {{"render", "--size", "100000x100000", NULL}, "each side must be 1 to 16384"},
+    {{"render", "--size", "12", NULL}, "--size: expected WxH, got '12'"},
+    {{"render", "--eye", "1,nan,2", NULL}, "--eye: expected x,y,z"},
+    {{"render", "--eye", "-1,-2", NULL}, "--eye: expected x,y,z"},
+    {{"render", "--fovy", "0", NULL}, "fovy 0: must be between 0 and 180 degrees"},
+    {{"render", "--fovy", "180", NULL}, "fovy 180: must be between 0 and 180 degrees"},
+    {{"render", "--fovy", "inf", NULL}, "--fovy: expected a finite number"},
+    {{"render", "--near", "0", NULL}, "near 0: must be greater than 0"},
+    {{"render", "--near", "-1", NULL}, "near -1: must be greater than 0"},
+    {{"render", "--near", "5", "--far", "5", NULL}, "near must be less than far"},
+    {{"render", "--near", "5", "--far", "1", NULL}, "near must be less than far"},
+    {{"render", "--up", "0,0,0", NULL}, "up 0,0,0: zero or parallel to the view direction"},
+    {{"render", "--eye", "0,10,0", "--target", "0,0,0", "--up", "0,1,0", NULL},
+     "up 0,1,0: zero or parallel to the view direction"},
+    {{"render", "--eye", "1,1,1", "--target", "1,1,1", NULL}, "eye and target are the same point"},
+    {{"render", "-o", "/nonexistent-dir/x.png", NULL}, "cannot write in /nonexistent-dir"},
+    {{"render", "--depth", "/nonexistent-dir/x.pfm", NULL}, "cannot write in /nonexistent-dir"},
+    {{"render", "--frobnicate", NULL}, "unknown option '--frobnicate'"},
+    {{"render", "--algo", "painter", NULL}, "--algo: expected zbuffer or scanline"},
+    {{"render", "--shade", "pink", NULL}, "--shade: expected flat, id, depth or overdraw"},
+    {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 256"},
+    {{"render", "--repeat", NULL}, "--repeat: missing value"},
+    {{"render", "a.obj", "b.obj", NULL}, "more than one INPUT"},
+    {{"render", "model.stl", NULL}, "unknown input format"},
+    {{"render", "builtin:nothing", NULL}, "unknown generated scene 'nothing'"},
+    {{"render", "builtin:cubes?n=0", NULL}, "0 is outside 1 .. 64"},
+    {{"render", "/nonexistent-dir/m.obj", NULL}, "/nonexistent-dir/m.obj: cannot open"},
+};
+
+START_TEST(bad_option_refused) {
+  const bad_option *b = &bad_options[_i];
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-opt-%d.png", ZS_BINARY_DIR, _i);
+  /* "render -o PNG" first, unless the case names its own output */
+  const char *args[16];
+  int n = 0, has_o = 0;
+  for (int i = 0; b->args[i]; i++) has_o |= strcmp(b->args[i], "-o") == 0;
+  args[n++] = b->args[0];
+  if (!has_o) {
+    args[n++] = "-o";
+    args[n++] = png;
+  }
+  for (int i = 1; b->args[i]; i++) args[n++] = b->args[i];
+  args[n] = NULL;
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 1, "case %d: exit %d, stderr '%s'", _i, rc, err);
+  ck_assert_msg(strncmp(err, "zscan render: ", 14) == 0, "case %d: '%s'", _i, err);
+  ck_assert_msg(strstr(err, b->message) != NULL, "case %d: '%s' lacks '%s'", _i, err, b->message);
+  ck_assert_msg(one_line(err), "case %d: not one line: '%s'", _i, err);
+  ck_assert_msg(!zs_test_exists(png), "case %d: an image was written", _i);
+}
+END_TEST
+
+START_TEST(render_writes_png_and_stats) {
+  char png[4096], pfm[4096];
+  snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
+  snprintf(pfm, sizeof pfm, "%s/cli-ok.pfm", ZS_BINARY_DIR);
+  unlink(png);
+  unlink(pfm);
+  const char *args[] = {"render", "--size", "64x48", "-o", png, "--depth", pfm, "--stats",
+                        "--repeat", "3", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  ck_assert(zs_test_exists(png));
+  ck_assert(zs_test_exists(pfm));
+  /* the statistics are the last line of stdout, one JSON object */
+  ck_assert_msg(out[0] == '{' && one_line(out), "stdout: %s", out);
+  const char *keys[] = {"\"faces\":10374", "\"objects\":10", "\"pixels_tested\":",
+                        "\"pixels_written\":", "\"ms_per_frame\":", "\"repeat\":3",
+                        "\"image_hash\":\""};
+  for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
+    ck_assert_msg(strstr(out, keys[i]) != NULL, "stdout lacks %s: %s", keys[i], out);
+  ck_assert_str_eq(err, "");
+}
+END_TEST
+
+START_TEST(unknown_command) {
+  const char *args[] = {"paint", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_int_eq(rc, 2);
+  ck_assert(strstr(err, "zscan: unknown command 'paint'") == err);
+}
+END_TEST
+
+int main(void) {
+  Suite *s = suite_create("cli");
+  TCase *tc = tcase_create("errors");
+  tcase_set_timeout(tc, 300);
+  tcase_add_test(tc, bad_obj_files_refused_with_file_and_line);
+  tcase_add_loop_test(tc, bad_option_refused, 0, sizeof bad_options / sizeof bad_options[0]);
+  tcase_add_test(tc, render_writes_png_and_stats);
+  tcase_add_test(tc, unknown_command);
+  suite_add_tcase(s, tc);
+  return zs_test_run(s);
+}

@@ -1,0 +1,185 @@
+/* Golden images: every test scene in every hidden-surface mode and shading,
+ * checked by the hash of its pixels (zs_image_hash) against
+ * tests/golden/hashes.txt.  The same file must hold for every build (gcc,
+ * clang, -O0, -O3: CI runs this suite in each), the two modes must agree,
+ * and shuffling the faces of the scene must change no byte.
+ *
+ * On a mismatch the image is written to the build directory as
+ * golden-NAME.png, with golden-NAME.txt listing the differing rows.
+ * To accept new images (with a reason in the commit message):
+ *   ZS_GOLDEN_UPDATE=1 build/test_golden   (rewrites tests/golden/hashes.txt)
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/rng.h"
+#include "scene/camera.h"
+#include "scene/model.h"
+#include "tests/testutil.h"
+#include "tools/frame.h"
+#include "tools/image.h"
+#include "tools/input.h"
+
+typedef struct golden_case {
+  const char *name;
+  const char *input; /* relative to the source tree, or builtin: */
+  int width, height;
+  zs_shade shade;
+  int cull_back;
+  int has_eye;
+  double eye[3], target[3];
+} golden_case;
+
+static const golden_case cases[] = {
+    {"default-flat", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
+    {"default-id", "builtin:default", 320, 240, ZS_SHADE_ID, 0, 0, {0}, {0}},
+    {"default-depth", "builtin:default", 320, 240, ZS_SHADE_DEPTH, 0, 0, {0}, {0}},
+    {"default-culled", "builtin:default", 200, 150, ZS_SHADE_ID, 1, 0, {0}, {0}},
+    {"default-close", "builtin:default", 256, 256, ZS_SHADE_FLAT, 0, 1, {1.5, 1.2, 2.0}, {0, 0.5, 0}},
+    {"cubes-4", "builtin:cubes?n=4", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
+    {"cubes-4-inside", "builtin:cubes?n=4", 160, 120, ZS_SHADE_ID, 0, 1, {3.1, 3.2, 3.3}, {0, 0, 0}},
+    {"cyclic", "tests/data/scenes/cyclic.obj", 160, 160, ZS_SHADE_ID, 0, 1, {0.3, 0.2, 8}, {0, 0, 0}},
+    {"interpenetrate", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
+    {"interpenetrate-depth", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_DEPTH, 0, 0, {0}, {0}},
+    {"sphere-ell", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
+    {"sphere-ell-overdraw", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_OVERDRAW, 0, 0, {0}, {0}},
+};
+enum { NCASES = sizeof cases / sizeof cases[0] };
+
+static uint64_t expected[NCASES];
+static int have_expected[NCASES];
+static uint64_t got_hash[NCASES];
+static int updating;
+
+static void load_hashes(void) {
+  FILE *f = fopen(zs_test_src("tests/golden/hashes.txt"), "r");
+  if (!f) return;
+  char name[128];
+  unsigned long long h;
+  while (fscanf(f, "%127s %llx", name, &h) == 2)
+    for (int i = 0; i < NCASES; i++)
+      if (strcmp(name, cases[i].name) == 0) {
+        expected[i] = h;
+        have_expected[i] = 1;
+      }
+  fclose(f);
+}
+
+static void load_input(const char *input, zs_model *m) {
+  zs_error err;
+  zs_error_clear(&err);
+  const char *spec = strncmp(input, "builtin:", 8) == 0 ? input : zs_test_src(input);
+  char path[4096];
+  snprintf(path, sizeof path, "%s", spec);
+  ck_assert_msg(zs_input_load(path, m, &err) == ZS_OK, "%s", err.msg);
+}
+
+static uint64_t render_case(const golden_case *c, const zs_model *m, zs_algo algo,
+                            zs_image *keep) {
+  zs_camera cam;
+  zs_camera_default(&cam);
+  if (c->has_eye) {
+    memcpy(cam.eye, c->eye, sizeof cam.eye);
+    memcpy(cam.target, c->target, sizeof cam.target);
+    cam.has_eye = cam.has_target = 1;
+  }
+  zs_frame_opts o = {c->width, c->height, algo, c->shade, c->cull_back, 1};
+  zs_image im;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_msg(zs_frame_render(m, &cam, &o, &im, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+  uint64_t h = zs_image_hash(&im);
+  if (keep) *keep = im;
+  else zs_image_free(&im);
+  return h;
+}
+
+/* The same faces in a seeded random order, each keeping its id. */
+static void shuffle_faces(const zs_model *src, zs_model *dst, uint64_t seed) {
+  zs_model_init(dst);
+  for (int32_t v = 0; v < src->mesh.nverts; v++)
+    zs_model_add_vertex(dst, src->mesh.pos[3 * v], src->mesh.pos[3 * v + 1],
+                        src->mesh.pos[3 * v + 2]);
+  int32_t n = src->mesh.nfaces;
+  int32_t *perm = malloc((size_t)n * sizeof *perm);
+  for (int32_t i = 0; i < n; i++) perm[i] = i;
+  zs_rng rng;
+  zs_rng_seed(&rng, seed);
+  zs_rng_shuffle(&rng, perm, (size_t)n, sizeof *perm);
+  for (int32_t i = 0; i < n; i++) {
+    int32_t f = perm[i], s = src->mesh.face_start[f];
+    int32_t k = src->mesh.face_start[f + 1] - s;
+    /* Mesh faces are convex and planar already, so each is stored whole;
+     * it then takes back the id of its source face. */
+    int32_t before = dst->mesh.nfaces;
+    ck_assert_int_eq(zs_model_add_polygon(dst, &src->mesh.face_vert[s], (int)k,
+                                          src->mesh.face_rgb[f], -1), ZS_OK);
+    ck_assert_int_eq(dst->mesh.nfaces, before + 1);
+    dst->mesh.face_id[before] = src->mesh.face_id[f];
+  }
+  free(perm);
+}
+
+static void write_artefacts(const golden_case *c, const zs_image *im) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/golden-%s.png", ZS_BINARY_DIR, c->name);
+  zs_error err;
+  zs_error_clear(&err);
+  zs_png_write(path, im, &err);
+  fprintf(stderr, "golden %s: image written to %s\n", c->name, path);
+}
+
+START_TEST(golden_case_matches) {
+  const golden_case *c = &cases[_i];
+  zs_model m;
+  load_input(c->input, &m);
+  zs_image im;
+  uint64_t hz = render_case(c, &m, ZS_ALGO_ZBUFFER, &im);
+  uint64_t hs = render_case(c, &m, ZS_ALGO_SCANLINE, NULL);
+  ck_assert_msg(hz == hs, "%s: zbuffer %016llx != scanline %016llx", c->name,
+                (unsigned long long)hz, (unsigned long long)hs);
+  zs_model shuffled;
+  shuffle_faces(&m, &shuffled, 1000 + (uint64_t)_i);
+  uint64_t hsh = render_case(c, &shuffled, ZS_ALGO_ZBUFFER, NULL);
+  ck_assert_msg(hz == hsh, "%s: shuffled faces give %016llx, not %016llx", c->name,
+                (unsigned long long)hsh, (unsigned long long)hz);
+  got_hash[_i] = hz;
+  if (!updating) {
+    ck_assert_msg(have_expected[_i], "%s: no golden hash (run with ZS_GOLDEN_UPDATE=1)", c->name);
+    if (hz != expected[_i]) write_artefacts(c, &im);
+    ck_assert_msg(hz == expected[_i], "%s: hash %016llx, golden %016llx", c->name,
+                  (unsigned long long)hz, (unsigned long long)expected[_i]);
+  }
+  zs_image_free(&im);
+  zs_model_free(&shuffled);
+  zs_model_free(&m);
+}
+END_TEST
+
+int main(void) {
+  updating = getenv("ZS_GOLDEN_UPDATE") != NULL;
+  load_hashes();
+  Suite *s = suite_create("golden");
+  TCase *tc = tcase_create("images");
+  tcase_set_timeout(tc, 600);
+  tcase_add_loop_test(tc, golden_case_matches, 0, NCASES);
+  suite_add_tcase(s, tc);
+  if (updating) {
+    /* one process, so the hashes are gathered here */
+    setenv("CK_FORK", "no", 1);
+  }
+  int rc = zs_test_run(s);
+  if (updating && rc == 0) {
+    FILE *f = fopen(zs_test_src("tests/golden/hashes.txt"), "w");
+    if (!f) {
+      perror("tests/golden/hashes.txt");
+      return 1;
+    }
+    for (int i = 0; i < NCASES; i++)
+      fprintf(f, "%s %016llx\n", cases[i].name, (unsigned long long)got_hash[i]);
+    fclose(f);
+    fprintf(stderr, "wrote tests/golden/hashes.txt\n");
+  }
+  return rc;
+}

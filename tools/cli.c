@@ -1,0 +1,93 @@
+#include "tools/cli.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err) {
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (end == s || *end != '\0' || !isfinite(v) || errno == ERANGE)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected a finite number, got '%s'", opt, s);
+  *out = v;
+  return ZS_OK;
+}
+
+zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
+                     zs_error *err) {
+  char *end;
+  errno = 0;
+  long v = strtol(s, &end, 10);
+  if (end == s || *end != '\0' || errno == ERANGE)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected a whole number, got '%s'", opt, s);
+  if (v < lo || v > hi)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: %ld is outside %ld .. %ld", opt, v, lo, hi);
+  *out = (int)v;
+  return ZS_OK;
+}
+
+zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err) {
+  const char *p = s;
+  for (int i = 0; i < 3; i++) {
+    char *end;
+    errno = 0;
+    double v = strtod(p, &end);
+    int sep_ok = (i < 2) ? *end == ',' : *end == '\0';
+    if (end == p || !sep_ok || !isfinite(v) || errno == ERANGE)
+      return zs_error_set(err, ZS_ERR_ARG, "%s: expected x,y,z (three finite numbers), got '%s'",
+                          opt, s);
+    out[i] = v;
+    p = end + 1;
+  }
+  return ZS_OK;
+}
+
+zs_status zs_cli_size(const char *opt, const char *s, int max, int *w, int *h,
+                      zs_error *err) {
+  char *end;
+  errno = 0;
+  long a = strtol(s, &end, 10);
+  if (end == s || (*end != 'x' && *end != 'X') || errno == ERANGE)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected WxH, got '%s'", opt, s);
+  const char *p = end + 1;
+  long b = strtol(p, &end, 10);
+  if (end == p || *end != '\0' || errno == ERANGE)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected WxH, got '%s'", opt, s);
+  if (a < 1 || b < 1 || a > max || b > max)
+    return zs_error_set(err, ZS_ERR_LIMIT, "%s: %s: each side must be 1 to %d", opt, s, max);
+  *w = (int)a;
+  *h = (int)b;
+  return ZS_OK;
+}
+
+zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error *err) {
+  if (*i + 1 >= argc)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: missing value", argv[*i]);
+  *out = argv[++*i];
+  return ZS_OK;
+}
+
+zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err) {
+  if (!*path) return zs_error_set(err, ZS_ERR_ARG, "%s: empty path", opt);
+  char dir[PATH_MAX];
+  const char *slash = strrchr(path, '/');
+  if (!slash) snprintf(dir, sizeof dir, ".");
+  else if (slash == path) snprintf(dir, sizeof dir, "/");
+  else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+  if (access(dir, W_OK) != 0)
+    return zs_error_set(err, ZS_ERR_IO, "%s: %s: cannot write in %s: %s", opt, path, dir,
+                        strerror(errno));
+  return ZS_OK;
+}
+
+double zs_wall_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}

@@ -1,0 +1,30 @@
+/* zscan tools — strict parsing of command-line values.
+ *
+ * Every parser takes the option's name for its message and refuses
+ * anything but the whole string as the value asked for: "1.5x" is not a
+ * number, "nan" and "inf" are not numbers either.  Messages read
+ * "--size: expected WxH, got '12'". */
+#ifndef ZS_TOOLS_CLI_H
+#define ZS_TOOLS_CLI_H
+
+#include "raster/error.h"
+
+zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err);
+zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
+                     zs_error *err);
+/* "x,y,z" */
+zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err);
+/* "WxH", each side 1 .. max */
+zs_status zs_cli_size(const char *opt, const char *s, int max, int *w, int *h,
+                      zs_error *err);
+/* The value of option argv[*i], advancing *i; an error when it is missing. */
+zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error *err);
+/* Refuses an output path whose directory does not exist or cannot be
+ * written, before any work is done. */
+zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
+
+/* Wall-clock milliseconds from a monotonic clock: for reporting only,
+ * never in an output that must be the same on every run. */
+double zs_wall_ms(void);
+
+#endif

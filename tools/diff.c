@@ -1,0 +1,211 @@
+/* zscan tools — comparing two images; see tools/diff.h. */
+#include "tools/diff.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RGB_MASK 0xFFFFFFu
+#define DIFF_RED 0xFF0000u
+
+enum {
+  EXIT_SAME = 0,
+  EXIT_DIFFERENT = 1,
+  EXIT_ERROR = 2,
+  MAX_IDS_LISTED = 20,
+  ID_VALUES = 1 << 24 /* every 24-bit pixel value */
+};
+
+/* The largest difference between corresponding channels of p and q. */
+static int channel_diff(uint32_t p, uint32_t q) {
+  int max = 0;
+  for (int shift = 0; shift <= 16; shift += 8) {
+    int d = abs((int)((p >> shift) & 0xFF) - (int)((q >> shift) & 0xFF));
+    if (d > max) max = d;
+  }
+  return max;
+}
+
+/* The grey of p darkened to a quarter: R = G = B = luma / 4. */
+static uint32_t dark_grey(uint32_t p) {
+  uint32_t r = (p >> 16) & 0xFF, g = (p >> 8) & 0xFF, b = p & 0xFF;
+  uint32_t luma = (77 * r + 150 * g + 29 * b + 128) >> 8; /* 0 .. 255 */
+  uint32_t v = luma / 4;
+  return v << 16 | v << 8 | v;
+}
+
+zs_status zs_image_diff(const zs_image *a, const zs_image *b,
+                        zs_image *diff_out, zs_diff_result *res,
+                        zs_error *err) {
+  res->differing = 0;
+  res->total = 0;
+  res->max_channel_diff = 0;
+  if (diff_out) {
+    diff_out->width = 0;
+    diff_out->height = 0;
+    diff_out->rgb = NULL;
+  }
+  if (a->width != b->width || a->height != b->height)
+    return zs_error_set(err, ZS_ERR_ARG, "images differ in size: %dx%d and %dx%d",
+                        a->width, a->height, b->width, b->height);
+  if (diff_out) {
+    zs_status st = zs_image_alloc(diff_out, a->width, a->height, err);
+    if (st != ZS_OK) return st;
+  }
+  size_t n = (size_t)a->width * (size_t)a->height;
+  for (size_t i = 0; i < n; i++) {
+    uint32_t pa = a->rgb[i] & RGB_MASK, pb = b->rgb[i] & RGB_MASK;
+    if (pa == pb) {
+      if (diff_out) diff_out->rgb[i] = dark_grey(pa);
+      continue;
+    }
+    res->differing++;
+    int d = channel_diff(pa, pb);
+    if (d > res->max_channel_diff) res->max_channel_diff = d;
+    if (diff_out) diff_out->rgb[i] = DIFF_RED;
+  }
+  res->total = n;
+  return ZS_OK;
+}
+
+/* ---- The command ---- */
+
+typedef struct diff_args {
+  const char *a, *b; /* the images */
+  const char *out;   /* -o, or NULL */
+  int ids;           /* --ids */
+} diff_args;
+
+static int fail(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* Prints "zscan diff: reason" on stderr; returns the error exit status. */
+static int fail(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fputs("zscan diff: ", stderr);
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  return EXIT_ERROR;
+}
+
+/* Returns 0, or EXIT_ERROR after printing why. */
+static int parse_args(int argc, char **argv, diff_args *args) {
+  static const char usage[] = "usage: zscan diff A.png B.png [-o diff.png] [--ids]";
+  args->a = args->b = args->out = NULL;
+  args->ids = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *arg = argv[i];
+    if (strcmp(arg, "-o") == 0) {
+      if (i + 1 >= argc) return fail("-o needs a file name; %s", usage);
+      args->out = argv[++i];
+    } else if (strcmp(arg, "--ids") == 0) {
+      args->ids = 1;
+    } else if (arg[0] == '-' && arg[1] != '\0') {
+      return fail("unknown option '%s'; %s", arg, usage);
+    } else if (!args->a) {
+      args->a = arg;
+    } else if (!args->b) {
+      args->b = arg;
+    } else {
+      return fail("too many files ('%s'); %s", arg, usage);
+    }
+  }
+  if (!args->b) return fail("two images needed; %s", usage);
+  return 0;
+}
+
+static void mark(uint64_t *seen, uint32_t value) {
+  seen[value / 64] |= (uint64_t)1 << (value % 64);
+}
+
+static int popcount64(uint64_t x) {
+  int n = 0;
+  for (; x; x &= x - 1) n++;
+  return n;
+}
+
+/* Prints "faces_involved K: ..." for the pixel values of a and b at the
+ * pixels where they differ.  Returns 0, or -1 when out of memory. */
+static int print_ids(const zs_image *a, const zs_image *b) {
+  size_t words = ID_VALUES / 64;
+  uint64_t *seen = calloc(words, sizeof *seen); /* one bit per value */
+  if (!seen) return -1;
+  size_t n = (size_t)a->width * (size_t)a->height;
+  for (size_t i = 0; i < n; i++) {
+    uint32_t pa = a->rgb[i] & RGB_MASK, pb = b->rgb[i] & RGB_MASK;
+    if (pa != pb) {
+      mark(seen, pa);
+      mark(seen, pb);
+    }
+  }
+  unsigned long involved = 0;
+  for (size_t w = 0; w < words; w++) involved += (unsigned long)popcount64(seen[w]);
+
+  printf("faces_involved %lu:", involved);
+  unsigned long listed = 0;
+  for (size_t w = 0; w < words && listed < MAX_IDS_LISTED; w++) {
+    if (seen[w] == 0) continue;
+    for (int bit = 0; bit < 64 && listed < MAX_IDS_LISTED; bit++) {
+      if (!(seen[w] >> bit & 1)) continue;
+      unsigned long value = (unsigned long)(w * 64 + (size_t)bit);
+      if (value == 0)
+        printf(" background");
+      else
+        printf(" %lu", value - 1);
+      listed++;
+    }
+  }
+  if (involved > listed) printf(" ...");
+  printf("\n");
+  free(seen);
+  return 0;
+}
+
+int zs_cmd_diff(int argc, char **argv) {
+  diff_args args;
+  if (parse_args(argc, argv, &args) != 0) return EXIT_ERROR;
+
+  zs_error err;
+  zs_error_clear(&err);
+  zs_image a = {0, 0, NULL}, b = {0, 0, NULL}, diff = {0, 0, NULL};
+  zs_diff_result res;
+  int status = EXIT_ERROR;
+  if (zs_png_read(args.a, &a, &err) != ZS_OK ||
+      zs_png_read(args.b, &b, &err) != ZS_OK)
+    goto done;
+  if (zs_image_diff(&a, &b, args.out ? &diff : NULL, &res, &err) != ZS_OK) {
+    /* the sizes: say which files */
+    fail("%s and %s: %s", args.a, args.b, err.msg);
+    zs_error_clear(&err);
+    goto done;
+  }
+  if (args.out && zs_png_write(args.out, &diff, &err) != ZS_OK) goto done;
+
+  printf("pixels_differing %llu of %llu\n", (unsigned long long)res.differing,
+         (unsigned long long)res.total);
+  printf("max_channel_diff %d\n", res.max_channel_diff);
+  if (args.ids && print_ids(&a, &b) != 0) {
+    zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
+    goto done;
+  }
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    zs_error_set(&err, ZS_ERR_IO, "cannot write the report: %s",
+                 strerror(errno));
+    goto done;
+  }
+  status = res.differing > 0 ? EXIT_DIFFERENT : EXIT_SAME;
+
+done:
+  if (err.code != ZS_OK) fail("%s", err.msg);
+  zs_image_free(&a);
+  zs_image_free(&b);
+  zs_image_free(&diff);
+  return status;
+}

@@ -1,0 +1,55 @@
+#include "tools/frame.h"
+
+#include <string.h>
+
+typedef struct gather {
+  zs_image *im;
+  float *depth;
+} gather;
+
+static void gather_row(void *user, const zs_row *row) {
+  gather *g = user;
+  size_t off = (size_t)row->y * (size_t)row->width;
+  memcpy(g->im->rgb + off, row->rgb, (size_t)row->width * sizeof *row->rgb);
+  if (g->depth)
+    for (int x = 0; x < row->width; x++)
+      g->depth[off + (size_t)x] =
+          row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
+}
+
+zs_status zs_frame_camera(const zs_model *model, const zs_camera *cam, int width,
+                          int height, double view[16], double proj[16], zs_error *err) {
+  zs_camera c = *cam;
+  double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+  double aspect = (double)width / height;
+  zs_model_bounds(model, lo, hi);
+  zs_camera_complete(&c, lo, hi, aspect);
+  return zs_camera_matrices(&c, aspect, view, proj, err);
+}
+
+zs_status zs_frame_render_on(zs_device *dev, const zs_model *model,
+                             const double view[16], const double proj[16],
+                             zs_image *out, float *depth, zs_error *err) {
+  gather g = {out, depth};
+  zs_device_clear(dev);
+  zs_device_set_camera(dev, view, proj);
+  if (zs_device_draw(dev, &model->mesh, NULL, 0, err)) return err->code;
+  return zs_device_finish(dev, gather_row, &g, err);
+}
+
+zs_status zs_frame_render(const zs_model *model, const zs_camera *cam,
+                          const zs_frame_opts *o, zs_image *out, float *depth,
+                          zs_raster_stats *stats, zs_error *err) {
+  double view[16], proj[16];
+  if (zs_frame_camera(model, cam, o->width, o->height, view, proj, err)) return err->code;
+  zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
+                          o->cull_back, o->threads, ZS_BACKGROUND_RGB};
+  zs_device *dev = NULL;
+  if (zs_device_create(&cfg, &dev, err)) return err->code;
+  zs_status st = zs_image_alloc(out, o->width, o->height, err);
+  if (st == ZS_OK) st = zs_frame_render_on(dev, model, view, proj, out, depth, err);
+  if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
+  if (st != ZS_OK) zs_image_free(out);
+  zs_device_destroy(dev);
+  return st;
+}

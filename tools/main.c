@@ -1,0 +1,28 @@
+/* zscan — the command: `zscan COMMAND [args]`. */
+#include <stdio.h>
+#include <string.h>
+
+#include "tools/diff.h"
+#include "tools/render.h"
+
+static const char usage[] =
+    "usage: zscan COMMAND [options]\n"
+    "commands:\n"
+    "  render [INPUT]   render one frame to a PNG (zscan render --help)\n"
+    "  diff A.png B.png compare two images (pixels differing, faces involved)\n";
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    fputs(usage, stderr);
+    return 2;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "render") == 0) return zs_cmd_render(argc - 1, argv + 1);
+  if (strcmp(cmd, "diff") == 0) return zs_cmd_diff(argc - 1, argv + 1);
+  if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+    fputs(usage, stdout);
+    return 0;
+  }
+  fprintf(stderr, "zscan: unknown command '%s'\n%s", cmd, usage);
+  return 2;
+}

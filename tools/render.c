@@ -1,0 +1,218 @@
+/* `zscan render [INPUT] [options]`: one frame of INPUT to a PNG, with its
+ * counters.  See `zscan render --help` (usage below) for the options. */
+#include "tools/render.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/raster.h"
+#include "scene/camera.h"
+#include "scene/model.h"
+#include "tools/cli.h"
+#include "tools/frame.h"
+#include "tools/image.h"
+#include "tools/input.h"
+
+static const char usage[] =
+    "usage: zscan render [INPUT] [options]\n"
+    "  INPUT               FILE.obj or builtin:NAME[?k=v] (default: the teapot field)\n"
+    "  -o FILE.png         output image (default zscan.png)\n"
+    "  --size WxH          image size (default 1024x768)\n"
+    "  --eye x,y,z         camera position (default: frame the input)\n"
+    "  --target x,y,z      point looked at (default: centre of the input)\n"
+    "  --up x,y,z          up direction (default 0,1,0)\n"
+    "  --fovy DEG          vertical field of view (default 45)\n"
+    "  --near N --far F    clip planes (default: fit the input)\n"
+    "  --algo zbuffer|scanline   hidden-surface mode (default zbuffer)\n"
+    "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
+    "  --cull-back         drop faces turned away from the camera\n"
+    "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
+    "  --threads N         render threads (default 1)\n"
+    "  --repeat K          render K times; ms_per_frame is the median\n"
+    "  --stats             print the frame's counters as one JSON line\n";
+
+typedef struct render_opts {
+  const char *input, *out_png, *out_pfm;
+  int width, height;
+  zs_camera cam;
+  zs_algo algo;
+  zs_shade shade;
+  int cull_back, threads, repeat, stats;
+} render_opts;
+
+static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
+  memset(o, 0, sizeof *o);
+  o->out_png = "zscan.png";
+  o->width = 1024;
+  o->height = 768;
+  o->threads = 1;
+  o->repeat = 1;
+  zs_camera_default(&o->cam);
+  zs_camera *c = &o->cam;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = NULL;
+#define VALUE() \
+  if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
+    if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+      VALUE();
+      o->out_png = v;
+    } else if (strcmp(a, "--size") == 0) {
+      VALUE();
+      if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
+    } else if (strcmp(a, "--eye") == 0) {
+      VALUE();
+      if (zs_cli_vec3(a, v, c->eye, err)) return err->code;
+      c->has_eye = 1;
+    } else if (strcmp(a, "--target") == 0) {
+      VALUE();
+      if (zs_cli_vec3(a, v, c->target, err)) return err->code;
+      c->has_target = 1;
+    } else if (strcmp(a, "--up") == 0) {
+      VALUE();
+      if (zs_cli_vec3(a, v, c->up, err)) return err->code;
+      c->has_up = 1;
+    } else if (strcmp(a, "--fovy") == 0) {
+      VALUE();
+      if (zs_cli_double(a, v, &c->fovy, err)) return err->code;
+    } else if (strcmp(a, "--near") == 0) {
+      VALUE();
+      if (zs_cli_double(a, v, &c->znear, err)) return err->code;
+      c->has_near = 1;
+    } else if (strcmp(a, "--far") == 0) {
+      VALUE();
+      if (zs_cli_double(a, v, &c->zfar, err)) return err->code;
+      c->has_far = 1;
+    } else if (strcmp(a, "--algo") == 0) {
+      VALUE();
+      if (strcmp(v, "zbuffer") == 0) o->algo = ZS_ALGO_ZBUFFER;
+      else if (strcmp(v, "scanline") == 0) o->algo = ZS_ALGO_SCANLINE;
+      else return zs_error_set(err, ZS_ERR_ARG, "--algo: expected zbuffer or scanline, got '%s'", v);
+    } else if (strcmp(a, "--shade") == 0) {
+      VALUE();
+      if (strcmp(v, "flat") == 0) o->shade = ZS_SHADE_FLAT;
+      else if (strcmp(v, "id") == 0) o->shade = ZS_SHADE_ID;
+      else if (strcmp(v, "depth") == 0) o->shade = ZS_SHADE_DEPTH;
+      else if (strcmp(v, "overdraw") == 0) o->shade = ZS_SHADE_OVERDRAW;
+      else return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat, id, depth or overdraw, got '%s'", v);
+    } else if (strcmp(a, "--cull-back") == 0) {
+      o->cull_back = 1;
+    } else if (strcmp(a, "--depth") == 0) {
+      VALUE();
+      o->out_pfm = v;
+    } else if (strcmp(a, "--threads") == 0) {
+      VALUE();
+      if (zs_cli_int(a, v, 1, 256, &o->threads, err)) return err->code;
+    } else if (strcmp(a, "--repeat") == 0) {
+      VALUE();
+      if (zs_cli_int(a, v, 1, 100000, &o->repeat, err)) return err->code;
+    } else if (strcmp(a, "--stats") == 0) {
+      o->stats = 1;
+    } else if (a[0] == '-' && a[1] != '\0') {
+      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan render --help)", a);
+    } else if (!o->input) {
+      o->input = a;
+    } else {
+      return zs_error_set(err, ZS_ERR_ARG, "more than one INPUT: '%s' and '%s'", o->input, a);
+    }
+#undef VALUE
+  }
+  if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
+  if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
+  return ZS_OK;
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static void print_stats(const render_opts *o, const zs_model *m,
+                        const zs_raster_stats *s, uint64_t hash, double ms,
+                        double load_ms) {
+  printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
+         o->input ? o->input : "builtin:default", o->width, o->height,
+         o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : "scanline");
+  /* triangles: what the polygons would be as triangle fans */
+  long long triangles = 0;
+  for (int32_t f = 0; f < m->mesh.nfaces; f++)
+    triangles += m->mesh.face_start[f + 1] - m->mesh.face_start[f] - 2;
+  printf("\"objects\":%d,\"faces\":%d,\"triangles\":%lld,\"vertices\":%d,\"draws\":%llu,",
+         (int)m->nobjects, (int)m->nsource_faces, triangles, (int)m->mesh.nverts,
+         (unsigned long long)s->draws);
+  printf("\"polygons_in\":%llu,\"polygons_outside\":%llu,\"polygons_clipped\":%llu,"
+         "\"polygons_culled_back\":%llu,\"polygons_degenerate\":%llu,"
+         "\"polygons_rasterized\":%llu,",
+         (unsigned long long)s->polygons_in, (unsigned long long)s->polygons_outside,
+         (unsigned long long)s->polygons_clipped, (unsigned long long)s->polygons_culled_back,
+         (unsigned long long)s->polygons_degenerate, (unsigned long long)s->polygons_rasterized);
+  printf("\"spans\":%llu,\"pixels_tested\":%llu,\"pixels_written\":%llu,"
+         "\"image_hash\":\"%016llx\",",
+         (unsigned long long)s->spans, (unsigned long long)s->pixels_tested,
+         (unsigned long long)s->pixels_written, (unsigned long long)hash);
+  printf("\"threads\":%d,\"repeat\":%d,\"ms_per_frame\":%.3f,\"ms_load\":%.3f}\n", o->threads,
+         o->repeat, ms, load_ms);
+}
+
+static zs_status run(const render_opts *o, zs_error *err) {
+  zs_model model;
+  double t0 = zs_wall_ms();
+  if (zs_input_load(o->input, &model, err)) return err->code;
+  double load_ms = zs_wall_ms() - t0;
+
+  zs_status st = ZS_OK;
+  zs_device *dev = NULL;
+  zs_image im = {0, 0, NULL};
+  float *depth = NULL;
+  double *times = NULL;
+  double view[16], proj[16];
+  if ((st = zs_frame_camera(&model, &o->cam, o->width, o->height, view, proj, err))) goto done;
+  zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
+                          o->cull_back, o->threads, ZS_BACKGROUND_RGB};
+  if ((st = zs_device_create(&cfg, &dev, err))) goto done;
+  if ((st = zs_image_alloc(&im, o->width, o->height, err))) goto done;
+  if (o->out_pfm && !(depth = malloc((size_t)o->width * (size_t)o->height * sizeof *depth))) {
+    st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory for the depth map");
+    goto done;
+  }
+  if (!(times = malloc((size_t)o->repeat * sizeof *times))) {
+    st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+    goto done;
+  }
+  for (int k = 0; k < o->repeat; k++) {
+    double start = zs_wall_ms();
+    if ((st = zs_frame_render_on(dev, &model, view, proj, &im, depth, err))) goto done;
+    times[k] = zs_wall_ms() - start;
+  }
+  qsort(times, (size_t)o->repeat, sizeof *times, cmp_double);
+  double median = o->repeat % 2 ? times[o->repeat / 2]
+                                : 0.5 * (times[o->repeat / 2 - 1] + times[o->repeat / 2]);
+
+  if ((st = zs_png_write(o->out_png, &im, err))) goto done;
+  if (depth && (st = zs_pfm_write(o->out_pfm, o->width, o->height, depth, err))) goto done;
+  if (o->stats) print_stats(o, &model, zs_device_stats(dev), zs_image_hash(&im), median, load_ms);
+
+done:
+  free(times);
+  free(depth);
+  zs_image_free(&im);
+  zs_device_destroy(dev);
+  zs_model_free(&model);
+  return st;
+}
+
+int zs_cmd_render(int argc, char **argv) {
+  for (int i = 1; i < argc; i++)
+    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+      fputs(usage, stdout);
+      return 0;
+    }
+  render_opts o;
+  zs_error err;
+  zs_error_clear(&err);
+  if (parse(argc, argv, &o, &err) || run(&o, &err)) {
+    fprintf(stderr, "zscan render: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# zscan set-up, shared by tools/render-demo.sh and tools/run-tests.sh:
+# installs the Debian packages the build and tests need when any is missing
+# (as root, with apt-get; `apt-get update` first), then configures and
+# builds in $ZS_BUILD_DIR (default build/).
+#
+# Environment:
+#   ZS_BUILD_DIR     build directory (default: build)
+#   ZS_BUILD_TYPE    CMake build type (default: Release)
+#   ZS_CMAKE_ARGS    extra CMake arguments (e.g. -DZS_SANITIZE=ON)
+#   CC               the compiler (default: cc)
+set -euo pipefail
+
+zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+# What each package is for:
+#   cmake gcc make pkg-config   the build
+#   libpng-dev                  PNG output (tools/image.c)
+#   check                       the unit-test framework (tests/)
+#   clang                       the second compiler CI builds and sanitizes with
+zs_packages=(cmake gcc make pkg-config libpng-dev check clang)
+
+zs_missing=()
+for p in "${zs_packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    zs_missing+=("$p")
+  fi
+done
+if [ ${#zs_missing[@]} -gt 0 ]; then
+  echo "setup: installing ${zs_missing[*]}" >&2
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "setup: missing packages (${zs_missing[*]}) and not root: install them with apt-get" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${zs_missing[@]}" >&2
+fi
+
+ZS_BUILD_DIR=${ZS_BUILD_DIR:-"$zs_root/build"}
+ZS_BUILD_TYPE=${ZS_BUILD_TYPE:-Release}
+# shellcheck disable=SC2086
+cmake -S "$zs_root" -B "$ZS_BUILD_DIR" -DCMAKE_BUILD_TYPE="$ZS_BUILD_TYPE" \
+  -DZS_WERROR=ON ${ZS_CMAKE_ARGS:-} >/dev/null
+cmake --build "$ZS_BUILD_DIR" -j "$(nproc)"
