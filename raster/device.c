@@ -16,26 +16,6 @@
 
 #define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
 
-struct zs_device {
-  zs_device_config cfg;
-  double view[16], proj[16];
-  double znear, zfar;
-  int perspective;
-  double gx, gy;                  /* guard band half-widths, NDC units */
-  zs_raster_stats stats;
-
-  uint32_t *depth, *id, *rgb, *count;  /* full frame (zbuffer mode) */
-  uint32_t *row_depth, *row_id, *row_rgb, *row_count; /* scanline mode */
-  uint32_t *row_out;                   /* one shaded row */
-
-  zs_batch batch;
-  zs_walk_scratch scratch;
-  zs_clip_vert *clip;             /* per mesh vertex, this draw */
-  double *eye;
-  unsigned *outcode;
-  int32_t cap_verts;
-};
-
 static uint32_t *alloc_u32(size_t n) { return malloc(n * sizeof(uint32_t)); }
 
 zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
@@ -79,6 +59,9 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
   zs_mat_identity(d->proj);
   d->znear = 1.0;
   d->zfar = 100.0;
+  zs_clock_params defaults;
+  zs_clock_params_default(&defaults);
+  zs_device_set_clock(d, &defaults, NULL);
   zs_device_clear(d);
   *out = d;
   return ZS_OK;
@@ -98,8 +81,9 @@ void zs_device_destroy(zs_device *d) {
   zs_batch_free(&d->batch);
   zs_walk_scratch_free(&d->scratch);
   free(d->clip);
-  free(d->eye);
+  free(d->eyepos);
   free(d->outcode);
+  free(d->queries);
   free(d);
 }
 
@@ -112,6 +96,9 @@ void zs_device_set_camera(zs_device *d, const double view[16],
                           const double proj[16]) {
   memcpy(d->view, view, sizeof d->view);
   memcpy(d->proj, proj, sizeof d->proj);
+  /* view = [R | t] with R a rotation: the eye is -R^T t. */
+  for (int i = 0; i < 3; i++)
+    d->eye[i] = -(view[i] * view[3] + view[4 + i] * view[7] + view[8 + i] * view[11]);
   /* A perspective matrix has -1 in its last row; recover near and far
    * from its third row for the depth shading. */
   double a = proj[10], b = proj[11];
@@ -131,6 +118,7 @@ static void fill_u32(uint32_t *p, size_t n, uint32_t v) {
 
 void zs_device_clear(zs_device *d) {
   memset(&d->stats, 0, sizeof d->stats);
+  zs_clock_reset(d);
   zs_batch_reset(&d->batch);
   if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
     size_t px = (size_t)d->cfg.width * (size_t)d->cfg.height;
@@ -146,9 +134,9 @@ static int reserve_verts(zs_device *d, int32_t n) {
   zs_clip_vert *c = realloc(d->clip, (size_t)n * sizeof *c);
   if (!c) return 0;
   d->clip = c;
-  double *e = realloc(d->eye, (size_t)n * 3 * sizeof *e);
+  double *e = realloc(d->eyepos, (size_t)n * 3 * sizeof *e);
   if (!e) return 0;
-  d->eye = e;
+  d->eyepos = e;
   unsigned *o = realloc(d->outcode, (size_t)n * sizeof *o);
   if (!o) return 0;
   d->outcode = o;
@@ -156,7 +144,7 @@ static int reserve_verts(zs_device *d, int32_t n) {
   return 1;
 }
 
-static zs_kernel kernel_of(const zs_device *d) {
+static zs_kernel draw_kernel(const zs_device *d) {
   return d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
 }
 
@@ -171,9 +159,10 @@ static void add_counts(zs_device *d, const zs_walk_counts *c) {
   d->stats.pixels_written += c->written;
 }
 
-zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
-                         const double model[16], uint32_t id_base,
-                         zs_error *err) {
+zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
+                              const double model[16], uint32_t id_base,
+                              uint32_t rgb, zs_kernel k, zs_walk_counts *out,
+                              zs_error *err) {
   if (mesh->nverts < 0 || mesh->nfaces < 0)
     return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
   if (!reserve_verts(d, mesh->nverts > 0 ? mesh->nverts : 1))
@@ -187,7 +176,7 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
 
   /* Transform: every vertex once, to eye space (for the normals of flat
    * shading) and to clip space, with its outcode. */
-  const int flat = d->cfg.shade == ZS_SHADE_FLAT;
+  const int flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
   for (int32_t i = 0; i < mesh->nverts; i++) {
     const double *p = &mesh->pos[3 * i];
     double c[4];
@@ -197,12 +186,14 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
     if (flat) {
       double e[4];
       zs_mat_apply(mv, p, e);
-      memcpy(&d->eye[3 * i], e, 3 * sizeof e[0]);
+      memcpy(&d->eyepos[3 * i], e, 3 * sizeof e[0]);
     }
   }
 
-  zs_setup_params sp = {d->cfg.width, d->cfg.height, d->cfg.cull_back, 0, 0};
-  zs_clip_vert in[ZS_MAX_POLY_VERTS], out[ZS_CLIP_MAX_VERTS];
+  zs_setup_params sp = {d->cfg.width, d->cfg.height,
+                        d->cfg.cull_back && k != ZS_KERNEL_QUERY, 0, 0,
+                        k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
+  zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
   for (int32_t f = 0; f < mesh->nfaces; f++) {
     int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
     d->stats.polygons_in++;
@@ -225,12 +216,13 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
       continue;
     }
     sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
-    sp.rgb = mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
+    sp.rgb = rgb != ZS_RGB_MESH ? rgb
+             : mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
     if (flat) {
       /* Newell's normal of the face in eye space */
       double nrm[3] = {0, 0, 0};
       for (int i = 0; i < n; i++) {
-        const double *a = &d->eye[3 * fv[i]], *b = &d->eye[3 * fv[(i + 1) % n]];
+        const double *a = &d->eyepos[3 * fv[i]], *b = &d->eyepos[3 * fv[(i + 1) % n]];
         nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
         nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
         nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
@@ -241,12 +233,12 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
     const zs_clip_vert *poly = in;
     if (or_code) {
       d->stats.polygons_clipped++;
-      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, out);
+      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
       if (n == 0) {
         d->stats.polygons_outside++;
         continue;
       }
-      poly = out;
+      poly = clipped;
     }
     switch (zs_setup_polygon(&d->batch, &sp, poly, n)) {
       case ZS_SETUP_DRAWN: d->stats.polygons_rasterized++; break;
@@ -256,14 +248,39 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
     }
   }
 
+  *out = (zs_walk_counts){0, 0, 0};
   if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
     zs_target t = full_frame_target(d);
-    zs_walk_counts c = {0, 0, 0};
-    if (!zs_scan_batch(&d->batch, kernel_of(d), &t, 0, d->cfg.height, NULL,
-                       &d->scratch, &c))
+    if (!zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, &d->scratch, out))
       return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-    add_counts(d, &c);
+    d->stats.spans += out->spans;
+    if (k == ZS_KERNEL_DRAW || k == ZS_KERNEL_OVERDRAW) {
+      d->stats.pixels_tested += out->tested;
+      d->stats.pixels_written += out->written;
+    }
     zs_batch_reset(&d->batch);
+  }
+  return ZS_OK;
+}
+
+zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
+                         const double model[16], uint32_t id_base, uint32_t rgb,
+                         zs_error *err) {
+  uint64_t polygons = d->stats.polygons_rasterized;
+  zs_walk_counts c;
+  zs_clock_cpu(d, d->costs.cpu_per_call);
+  zs_status st = zs_device_draw_with(d, mesh, model, id_base, rgb, draw_kernel(d), &c, err);
+  if (st != ZS_OK) return st;
+  /* In scanline mode the pixels are walked in finish; the clock charges
+   * them there. */
+  int64_t cost = d->costs.per_call +
+                 d->costs.per_polygon * (int64_t)(d->stats.polygons_rasterized - polygons) +
+                 d->costs.per_pixel * (int64_t)c.tested + d->costs.per_write * (int64_t)c.written;
+  int64_t end = zs_clock_gpu_command(d, cost, 0);
+  if (d->query_open) {
+    zs_query_rec *q = &d->queries[d->nqueries - 1];
+    q->samples += c.written;
+    q->gpu_end_ps = end;
   }
   return ZS_OK;
 }
@@ -317,9 +334,11 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
     zs_row_hooks hooks = {scanline_begin_row, scanline_end_row, &e};
     zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w};
     zs_walk_counts c = {0, 0, 0};
-    if (!zs_scan_batch(&d->batch, kernel_of(d), &t, 0, h, &hooks, &d->scratch, &c))
+    if (!zs_scan_batch(&d->batch, draw_kernel(d), &t, 0, h, &hooks, &d->scratch, &c))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
     add_counts(d, &c);
+    zs_clock_gpu_command(d, d->costs.per_pixel * (int64_t)c.tested +
+                                d->costs.per_write * (int64_t)c.written, 0);
     zs_batch_reset(&d->batch);
     return ZS_OK;
   }

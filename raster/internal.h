@@ -66,6 +66,7 @@ typedef struct zs_setup_params {
   int width, height;
   int cull_back;
   uint32_t id, rgb;
+  uint32_t depth_bias;  /* depth units (2^-32) to pull the plane nearer */
 } zs_setup_params;
 
 typedef enum zs_setup_result {
@@ -87,7 +88,8 @@ void zs_batch_free(zs_batch *b);
 /* ---- scanline.c ---- */
 typedef enum zs_kernel {
   ZS_KERNEL_DRAW,      /* less-with-id test; write depth, id, colour */
-  ZS_KERNEL_OVERDRAW   /* count every fragment, no test */
+  ZS_KERNEL_OVERDRAW,  /* count every fragment, no test */
+  ZS_KERNEL_QUERY      /* less-or-equal test, no writes: count passes */
 } zs_kernel;
 
 /* Where spans land: full-frame buffers (row_stride = width) or one row
@@ -137,5 +139,64 @@ void zs_shade_row(zs_shade shade, int width, const uint32_t *depth,
                   const uint32_t *id, const uint32_t *count,
                   uint32_t background, double znear, double zfar,
                   int perspective, uint32_t *rgb_out);
+
+/* ---- the device (device.c, query.c, clock.c) ---- */
+
+/* A query: its samples so far, and when the GPU finished its last command
+ * (ps); the result is ready a latency later. */
+typedef struct zs_query_rec {
+  uint64_t samples;
+  int64_t gpu_end_ps;
+} zs_query_rec;
+
+/* The clock's costs in integer picoseconds (from zs_clock_params). */
+typedef struct zs_clock_costs {
+  int64_t per_call, per_polygon, per_pixel, per_write, per_query_pixel;
+  int64_t switch_cost, latency;
+  int64_t cpu_per_call, cpu_per_query, cpu_per_node, cpu_per_frustum, cpu_per_cost_eval;
+} zs_clock_costs;
+
+struct zs_device {
+  zs_device_config cfg;
+  double view[16], proj[16];
+  double eye[3];                  /* world position of the eye */
+  double znear, zfar;
+  int perspective;
+  double gx, gy;                  /* guard band half-widths, NDC units */
+  zs_raster_stats stats;
+
+  uint32_t *depth, *id, *rgb, *count;  /* full frame (zbuffer mode) */
+  uint32_t *row_depth, *row_id, *row_rgb, *row_count; /* scanline mode */
+  uint32_t *row_out;                   /* one shaded row */
+
+  zs_batch batch;
+  zs_walk_scratch scratch;
+  zs_clip_vert *clip;             /* per mesh vertex, this draw */
+  double *eyepos;
+  unsigned *outcode;
+  int32_t cap_verts;
+
+  /* queries and the clock */
+  zs_clock_params clock_params;
+  zs_clock_costs costs;
+  zs_clock_stats clock;
+  zs_query_rec *queries;
+  uint32_t nqueries, cap_queries;
+  int query_open;                 /* a query is between begin and end */
+  int last_was_query;             /* the GPU's last command was a query box */
+};
+
+/* Draws mesh with kernel k (DRAW or QUERY); the walk's counts go to out.
+ * Shared by zs_device_draw and zs_device_query_box. */
+zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
+                              const double model[16], uint32_t id_base,
+                              uint32_t rgb, zs_kernel k, zs_walk_counts *out,
+                              zs_error *err);
+
+/* clock.c: the GPU executes a command of the given cost (ps), issued by the
+ * CPU now; returns the GPU time at which it ends. */
+int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query);
+void zs_clock_cpu(zs_device *d, int64_t cost);
+void zs_clock_reset(zs_device *d);
 
 #endif

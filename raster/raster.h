@@ -63,6 +63,7 @@ enum {
 #define ZS_PI 3.14159265358979323846
 #define ZS_DEPTH_FAR 0xFFFFFFFFu
 #define ZS_ID_NONE 0xFFFFFFFFu
+#define ZS_RGB_MESH 0xFF000000u /* draw with the mesh's own colours */
 
 /* Geometry the device draws: owned by the caller, read only.
  * Faces are index lists into pos: face f uses face_vert[face_start[f] ..
@@ -146,10 +147,11 @@ void zs_device_set_camera(zs_device *dev, const double view[16],
 void zs_device_clear(zs_device *dev);
 
 /* Draws every face of mesh, placed by model (NULL: identity); face f gets
- * id id_base + face_id[f].  In zbuffer mode the faces are rasterized now; in
- * scanline mode they are set up and kept for zs_device_finish. */
+ * id id_base + face_id[f] and the colour rgb, or its mesh colour when rgb
+ * is ZS_RGB_MESH.  In zbuffer mode the faces are rasterized now; in scanline
+ * mode they are set up and kept for zs_device_finish. */
 zs_status zs_device_draw(zs_device *dev, const zs_mesh *mesh,
-                         const double model[16], uint32_t id_base,
+                         const double model[16], uint32_t id_base, uint32_t rgb,
                          zs_error *err);
 
 /* Ends the frame (scanline mode rasterizes it now) and hands every row to
@@ -163,6 +165,100 @@ const zs_raster_stats *zs_device_stats(const zs_device *dev);
  * the top, width * height entries. */
 const uint32_t *zs_device_depth_buffer(const zs_device *dev);
 const uint32_t *zs_device_id_buffer(const zs_device *dev);
+
+/* ---- query.c: occlusion queries ----
+ *
+ * Between zs_device_query_begin and zs_device_query_end, every pixel that
+ * passes the depth test adds one sample to the query: pixels written by
+ * draws, and pixels of query boxes.  A query box (zs_device_query_box)
+ * draws the faces of an axis-aligned world box that face the eye (all six,
+ * turned inwards, when the eye is inside) with the test "less or equal"
+ * and no writes, so a box touching geometry already drawn (a cube's own
+ * faces) counts as visible, and each pixel of its outline counts once.
+ * The box is brought ZS_QUERY_DEPTH_BIAS depth units (2^-28 of the depth
+ * range) towards the eye: a box flush with geometry reaches the same depth
+ * through different rounding (model x view on the mesh, view on the box's
+ * world corners), and a visible node must never test as hidden.  A
+ * box cut by the near plane counts only what lies beyond the plane: callers
+ * treat such boxes as visible without asking.  Queries need the full-frame
+ * depth buffer: zbuffer mode only.  Several queries may be in flight while
+ * draws go on, as on a GPU; ids count from 0 each frame. */
+enum { ZS_QUERY_DEPTH_BIAS = 16 };
+typedef uint32_t zs_query;
+
+zs_status zs_device_query_begin(zs_device *dev, zs_query *q, zs_error *err);
+zs_status zs_device_query_end(zs_device *dev, zs_error *err);
+zs_status zs_device_query_box(zs_device *dev, const double lo[3],
+                              const double hi[3], zs_error *err);
+/* Whether the result of q is available at the CPU's current modelled time
+ * (never advances the clock). */
+int zs_device_query_ready(const zs_device *dev, zs_query q);
+/* The samples of q.  When the result is not ready, the CPU waits: its clock
+ * moves to the result's ready time and the wait counts as a stall. */
+uint64_t zs_device_query_result(zs_device *dev, zs_query q);
+
+/* ---- clock.c: the modelled clock ----
+ *
+ * Real queries answer after a latency, and a CPU that waits for an answer
+ * stalls.  The device models both sides with clocks that advance by costs
+ * computed from counts, never from wall time, so modelled times are the
+ * same on every run, build and thread count:
+ *   GPU: a command starts when both the GPU is free and the CPU has issued
+ *        it, and takes  per_call + polygons * per_polygon
+ *        + pixels tested * per_pixel + pixels written * per_write  (draws)
+ *        or per_call + polygons * per_polygon + pixels * per_query_pixel
+ *        (query boxes); a change between drawing and querying costs
+ *        switch_ns; a query's result is ready query_latency after the GPU
+ *        finished its last command inside the query (its GPU end).
+ *   CPU: issuing a draw or a query costs cpu_per_call / cpu_per_query; the
+ *        caller reports its own work (node visits, frustum tests, cost-model
+ *        evaluations) with zs_device_cpu_work; asking for a result not yet
+ *        ready moves the CPU clock to the ready time.  That wait has two
+ *        parts, counted apart: up to the query's GPU end the CPU waits for
+ *        queued GPU work (sync: the GPU is the bottleneck), after it for
+ *        the latency (a stall: what CHC-style methods hide).  With latency
+ *        0 nothing ever stalls.
+ *   A frame's modelled time is the later of the two clocks at its end.
+ * Times are kept in integer picoseconds; parameters are nanoseconds. */
+typedef struct zs_clock_params {
+  double per_call_ns;         /* GPU: fixed cost of a draw or query box */
+  double per_polygon_ns;      /* GPU: per polygon set up */
+  double per_pixel_ns;        /* GPU: per pixel depth-tested by a draw */
+  double per_write_ns;        /* GPU: per pixel written */
+  double per_query_pixel_ns;  /* GPU: per pixel tested by a query box */
+  double switch_ns;           /* GPU: per change between drawing and querying */
+  double query_latency_ns;    /* GPU: from a query's end to its result */
+  double cpu_per_call_ns;     /* CPU: issuing a draw */
+  double cpu_per_query_ns;    /* CPU: issuing a query (begin, box, end) */
+  double cpu_per_node_ns;     /* CPU: visiting a hierarchy node */
+  double cpu_per_frustum_ns;  /* CPU: one box-frustum test */
+  double cpu_per_cost_eval_ns;/* CPU: one cost-model evaluation */
+} zs_clock_params;
+
+typedef enum zs_cpu_work {
+  ZS_CPU_NODE, ZS_CPU_FRUSTUM_TEST, ZS_CPU_COST_EVAL
+} zs_cpu_work;
+
+typedef struct zs_clock_stats {
+  uint64_t queries;           /* queries issued this frame */
+  uint64_t query_waits;       /* results asked for before they were ready */
+  uint64_t stalls;            /* of those, waits that reached into the latency */
+  uint64_t query_pixels;      /* pixels tested by query boxes */
+  uint64_t switches;          /* changes between drawing and querying */
+  int64_t sync_ps;            /* CPU waiting for queued GPU work */
+  int64_t stall_ps;           /* CPU waiting for query latency */
+  int64_t gpu_ps, cpu_ps;     /* the two clocks now */
+} zs_clock_stats;
+
+/* The documented defaults (clock.c). */
+void zs_clock_params_default(zs_clock_params *p);
+/* Returns ZS_ERR_ARG when a parameter is negative or not finite. */
+zs_status zs_device_set_clock(zs_device *dev, const zs_clock_params *p,
+                              zs_error *err);
+void zs_device_cpu_work(zs_device *dev, zs_cpu_work kind, uint64_t count);
+const zs_clock_stats *zs_device_clock(const zs_device *dev);
+/* The frame's modelled time so far: the later of the two clocks. */
+int64_t zs_device_frame_ps(const zs_device *dev);
 
 /* ---- transform.c: matrices and the camera (OpenGL conventions) ---- */
 void zs_mat_identity(double m[16]);

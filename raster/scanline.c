@@ -91,9 +91,15 @@ static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
     *written += (uint64_t)(x1 - x0);
     return;
   }
-  uint32_t *zr = t->depth + off, *ir = t->id + off, *cr = t->rgb + off;
   const int64_t zfar = (int64_t)ZS_DEPTH_FAR << shift;
   uint64_t w = 0;
+  if (k == ZS_KERNEL_QUERY) {
+    const uint32_t *zr = t->depth + off;
+    for (int x = x0; x < x1; x++, z += dz) w += depth_of(z, shift, zfar) <= zr[x];
+    *written += w;
+    return;
+  }
+  uint32_t *zr = t->depth + off, *ir = t->id + off, *cr = t->rgb + off;
   for (int x = x0; x < x1; x++, z += dz) {
     uint32_t d = depth_of(z, shift, zfar);
     uint32_t zb = zr[x];
@@ -233,6 +239,9 @@ int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
       break;
     case ZS_KERNEL_OVERDRAW:
       walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, hooks, s, counts);
+      break;
+    case ZS_KERNEL_QUERY:
+      walk(b, ZS_KERNEL_QUERY, t, row_begin, row_end, hooks, s, counts);
       break;
   }
   return 1;

@@ -134,7 +134,7 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   p->row1 = row1;
   p->ox = pl->ox;
   p->oy = pl->oy;
-  p->zc = pl->zc;
+  p->zc = pl->zc - ((int64_t)sp->depth_bias << pl->zshift);
   p->dzdx = pl->dzdx;
   p->dzdy = pl->dzdy;
   p->zshift = pl->zshift;

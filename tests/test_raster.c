@@ -45,49 +45,6 @@ static void frame_free(frame *f) {
   free(f->count);
 }
 
-typedef struct mesh_buf {
-  zs_mesh m;
-  int32_t cap_v, cap_f, cap_fv;
-} mesh_buf;
-
-static int32_t mb_vert(mesh_buf *b, double x, double y, double z) {
-  if (b->m.nverts == b->cap_v) {
-    b->cap_v = b->cap_v ? 2 * b->cap_v : 64;
-    b->m.pos = realloc(b->m.pos, (size_t)b->cap_v * 3 * sizeof(double));
-  }
-  double *p = &b->m.pos[3 * b->m.nverts];
-  p[0] = x;
-  p[1] = y;
-  p[2] = z;
-  return b->m.nverts++;
-}
-
-static void mb_face(mesh_buf *b, const int32_t *v, int n, uint32_t rgb) {
-  if (b->m.nfaces + 1 >= b->cap_f) {
-    b->cap_f = b->cap_f ? 2 * b->cap_f : 64;
-    b->m.face_start = realloc(b->m.face_start, (size_t)(b->cap_f + 1) * sizeof(int32_t));
-    b->m.face_rgb = realloc(b->m.face_rgb, (size_t)b->cap_f * sizeof(uint32_t));
-    if (b->m.nfaces == 0) b->m.face_start[0] = 0;
-  }
-  int32_t s = b->m.face_start[b->m.nfaces];
-  if (s + n > b->cap_fv) {
-    while (s + n > b->cap_fv) b->cap_fv = b->cap_fv ? 2 * b->cap_fv : 256;
-    b->m.face_vert = realloc(b->m.face_vert, (size_t)b->cap_fv * sizeof(int32_t));
-  }
-  memcpy(&b->m.face_vert[s], v, (size_t)n * sizeof(int32_t));
-  b->m.face_rgb[b->m.nfaces] = rgb;
-  b->m.nfaces++;
-  b->m.face_start[b->m.nfaces] = s + n;
-}
-
-static void mb_free(mesh_buf *b) {
-  free(b->m.pos);
-  free(b->m.face_start);
-  free(b->m.face_vert);
-  free(b->m.face_rgb);
-  memset(b, 0, sizeof *b);
-}
-
 /* Orthographic camera: window x = world x, window y = world y, eye depth
  * = -world z mapped from [znear, zfar]. */
 static void ortho_camera(zs_device *d, int w, int h, double znear, double zfar) {
@@ -116,7 +73,7 @@ static zs_raster_stats render(const zs_mesh *m, int w, int h, zs_algo algo,
   zs_device_clear(d);
   zs_error err;
   zs_error_clear(&err);
-  ck_assert_int_eq(zs_device_draw(d, m, NULL, 0, &err), ZS_OK);
+  ck_assert_int_eq(zs_device_draw(d, m, NULL, 0, ZS_RGB_MESH, &err), ZS_OK);
   ck_assert_int_eq(zs_device_finish(d, frame_sink, f, &err), ZS_OK);
   zs_raster_stats s = *zs_device_stats(d);
   zs_device_destroy(d);
@@ -385,9 +342,12 @@ START_TEST(modes_agree_and_order_does_not_matter) {
   for (int i = 0; i < 300; i++) {
     int32_t v[3];
     double z = (i % 3 == 0) ? -2.0 : zs_rng_range(&rng, -5, -1);
-    for (int k = 0; k < 3; k++)
-      v[k] = mb_vert(&b, zs_rng_range(&rng, -10, W + 10), zs_rng_range(&rng, -10, H + 10),
-                     (i % 3 == 0) ? z : zs_rng_range(&rng, -5, -1));
+    for (int k = 0; k < 3; k++) {
+      /* one draw per statement (docs/ARCHITECTURE.md, Determinism) */
+      double x = zs_rng_range(&rng, -10, W + 10), y = zs_rng_range(&rng, -10, H + 10);
+      double zk = (i % 3 == 0) ? z : zs_rng_range(&rng, -5, -1);
+      v[k] = mb_vert(&b, x, y, zk);
+    }
     mb_face(&b, v, 3, (uint32_t)zs_rng_below(&rng, 0x1000000));
   }
   /* the shuffled copy keeps each face's id */

@@ -1,5 +1,8 @@
 #include "tests/testutil.h"
 
+#include <stdlib.h>
+#include <string.h>
+
 #include <stdio.h>
 
 int zs_test_run(Suite *s) {
@@ -83,3 +86,44 @@ int zs_test_exists(const char *path) {
   struct stat st;
   return stat(path, &st) == 0;
 }
+
+/* ---- meshes built by hand ---- */
+
+int32_t mb_vert(mesh_buf *b, double x, double y, double z) {
+  if (b->m.nverts == b->cap_v) {
+    b->cap_v = b->cap_v ? 2 * b->cap_v : 64;
+    b->m.pos = realloc(b->m.pos, (size_t)b->cap_v * 3 * sizeof(double));
+  }
+  double *p = &b->m.pos[3 * b->m.nverts];
+  p[0] = x;
+  p[1] = y;
+  p[2] = z;
+  return b->m.nverts++;
+}
+
+void mb_face(mesh_buf *b, const int32_t *v, int n, uint32_t rgb) {
+  if (b->m.nfaces + 1 >= b->cap_f) {
+    b->cap_f = b->cap_f ? 2 * b->cap_f : 64;
+    b->m.face_start = realloc(b->m.face_start, (size_t)(b->cap_f + 1) * sizeof(int32_t));
+    b->m.face_rgb = realloc(b->m.face_rgb, (size_t)b->cap_f * sizeof(uint32_t));
+    if (b->m.nfaces == 0) b->m.face_start[0] = 0;
+  }
+  int32_t s = b->m.face_start[b->m.nfaces];
+  if (s + n > b->cap_fv) {
+    while (s + n > b->cap_fv) b->cap_fv = b->cap_fv ? 2 * b->cap_fv : 256;
+    b->m.face_vert = realloc(b->m.face_vert, (size_t)b->cap_fv * sizeof(int32_t));
+  }
+  memcpy(&b->m.face_vert[s], v, (size_t)n * sizeof(int32_t));
+  b->m.face_rgb[b->m.nfaces] = rgb;
+  b->m.nfaces++;
+  b->m.face_start[b->m.nfaces] = s + n;
+}
+
+void mb_free(mesh_buf *b) {
+  free(b->m.pos);
+  free(b->m.face_start);
+  free(b->m.face_vert);
+  free(b->m.face_rgb);
+  memset(b, 0, sizeof *b);
+}
+

@@ -27,4 +27,14 @@ int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *
 /* Whether a file exists. */
 int zs_test_exists(const char *path);
 
+/* A mesh built by hand in a test: mb_vert / mb_face append, mb_free frees. */
+#include "raster/raster.h"
+typedef struct mesh_buf {
+  zs_mesh m;
+  int32_t cap_v, cap_f, cap_fv;
+} mesh_buf;
+int32_t mb_vert(mesh_buf *b, double x, double y, double z);
+void mb_face(mesh_buf *b, const int32_t *v, int n, uint32_t rgb);
+void mb_free(mesh_buf *b);
+
 #endif

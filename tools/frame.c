@@ -33,7 +33,7 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_model *model,
   gather g = {out, depth};
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
-  if (zs_device_draw(dev, &model->mesh, NULL, 0, err)) return err->code;
+  if (zs_device_draw(dev, &model->mesh, NULL, 0, ZS_RGB_MESH, err)) return err->code;
   return zs_device_finish(dev, gather_row, &g, err);
 }
 

@@ -18,7 +18,12 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   libpng-dev                  PNG output (tools/image.c)
 #   check                       the unit-test framework (tests/)
 #   clang                       the second compiler CI builds and sanitizes with
-zs_packages=(cmake gcc make pkg-config libpng-dev check clang)
+#   libcjson-dev                scene files (JSON) and statistics
+#   libassimp-dev               model formats beyond OBJ (PLY, STL, OFF, glTF...)
+#   assimp-testmodels           real and deliberately broken models for the tests
+#   gnuplot-nox                 the benchmark plots
+zs_packages=(cmake gcc make pkg-config libpng-dev check clang libcjson-dev
+             libassimp-dev assimp-testmodels gnuplot-nox)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do
