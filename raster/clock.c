@@ -6,7 +6,9 @@
  * `zscan calibrate` measures the same constants for zscan's own raster
  * code, and a user can enter any GPU's.
  *   per_call            2 us      a draw call's fixed GPU cost
+ *   per_vertex          0         (a GPU's vertex work is in per_polygon)
  *   per_polygon         20 ns     set-up: 50 M polygons/s
+ *   per_span            0         (a GPU rasterizes in tiles, not spans)
  *   per_pixel           0.5 ns    depth test: 2 G pixels/s
  *   per_write           0.5 ns    colour + depth write
  *   per_query_pixel     0.25 ns   depth-only test of a query box
@@ -26,7 +28,9 @@
 void zs_clock_params_default(zs_clock_params *p) {
   *p = (zs_clock_params){
       .per_call_ns = 2000.0,
+      .per_vertex_ns = 0.0,
       .per_polygon_ns = 20.0,
+      .per_span_ns = 0.0,
       .per_pixel_ns = 0.5,
       .per_write_ns = 0.5,
       .per_query_pixel_ns = 0.25,
@@ -47,18 +51,19 @@ static int64_t to_ps(double ns) {
 }
 
 zs_status zs_device_set_clock(zs_device *d, const zs_clock_params *p, zs_error *err) {
-  const double v[] = {p->per_call_ns,       p->per_polygon_ns,      p->per_pixel_ns,
-                      p->per_write_ns,      p->per_query_pixel_ns,  p->switch_ns,
-                      p->query_latency_ns,  p->cpu_per_call_ns,     p->cpu_per_query_ns,
-                      p->cpu_per_node_ns,   p->cpu_per_frustum_ns,  p->cpu_per_cost_eval_ns};
+  const double v[] = {p->per_call_ns,        p->per_vertex_ns,       p->per_polygon_ns,
+                      p->per_span_ns,        p->per_pixel_ns,        p->per_write_ns,
+                      p->per_query_pixel_ns, p->switch_ns,           p->query_latency_ns,
+                      p->cpu_per_call_ns,    p->cpu_per_query_ns,    p->cpu_per_node_ns,
+                      p->cpu_per_frustum_ns, p->cpu_per_cost_eval_ns};
   int64_t ps[sizeof v / sizeof v[0]];
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
     if ((ps[i] = to_ps(v[i])) < 0)
       return zs_error_set(err, ZS_ERR_ARG, "clock parameter %g: must be a finite number of "
                                            "nanoseconds from 0 to 1e12", v[i]);
   d->clock_params = *p;
-  d->costs = (zs_clock_costs){ps[0], ps[1], ps[2], ps[3], ps[4],  ps[5],
-                              ps[6], ps[7], ps[8], ps[9], ps[10], ps[11]};
+  d->costs = (zs_clock_costs){ps[0], ps[1], ps[2],  ps[3],  ps[4],  ps[5],  ps[6],
+                              ps[7], ps[8], ps[9], ps[10], ps[11], ps[12], ps[13]};
   return ZS_OK;
 }
 
@@ -70,6 +75,15 @@ void zs_clock_reset(zs_device *d) {
 }
 
 void zs_clock_cpu(zs_device *d, int64_t cost) { d->clock.cpu_ps += cost; }
+
+int64_t zs_clock_command_cost(const zs_device *d, int32_t vertices, uint64_t polygons,
+                              const zs_walk_counts *c, int is_query) {
+  const zs_clock_costs *k = &d->costs;
+  int64_t pixels = is_query ? k->per_query_pixel * (int64_t)c->tested
+                            : k->per_pixel * (int64_t)c->tested + k->per_write * (int64_t)c->written;
+  return k->per_call + k->per_vertex * vertices + k->per_polygon * (int64_t)polygons +
+         k->per_span * (int64_t)c->spans + pixels;
+}
 
 int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query) {
   /* The GPU cannot start a command before the CPU has issued it. */

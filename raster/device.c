@@ -168,6 +168,7 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
   if (!reserve_verts(d, mesh->nverts > 0 ? mesh->nverts : 1))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
   d->stats.draws++;
+  d->stats.vertices += (uint64_t)mesh->nverts;
 
   double mv[16], mvp[16];
   if (model) zs_mat_mul(mv, d->view, model);
@@ -273,9 +274,8 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
   if (st != ZS_OK) return st;
   /* In scanline mode the pixels are walked in finish; the clock charges
    * them there. */
-  int64_t cost = d->costs.per_call +
-                 d->costs.per_polygon * (int64_t)(d->stats.polygons_rasterized - polygons) +
-                 d->costs.per_pixel * (int64_t)c.tested + d->costs.per_write * (int64_t)c.written;
+  int64_t cost = zs_clock_command_cost(d, mesh->nverts, d->stats.polygons_rasterized - polygons,
+                                       &c, 0);
   int64_t end = zs_clock_gpu_command(d, cost, 0);
   if (d->query_open) {
     zs_query_rec *q = &d->queries[d->nqueries - 1];
@@ -337,8 +337,7 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
     if (!zs_scan_batch(&d->batch, draw_kernel(d), &t, 0, h, &hooks, &d->scratch, &c))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
     add_counts(d, &c);
-    zs_clock_gpu_command(d, d->costs.per_pixel * (int64_t)c.tested +
-                                d->costs.per_write * (int64_t)c.written, 0);
+    zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);
     zs_batch_reset(&d->batch);
     return ZS_OK;
   }

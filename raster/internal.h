@@ -151,7 +151,7 @@ typedef struct zs_query_rec {
 
 /* The clock's costs in integer picoseconds (from zs_clock_params). */
 typedef struct zs_clock_costs {
-  int64_t per_call, per_polygon, per_pixel, per_write, per_query_pixel;
+  int64_t per_call, per_vertex, per_polygon, per_span, per_pixel, per_write, per_query_pixel;
   int64_t switch_cost, latency;
   int64_t cpu_per_call, cpu_per_query, cpu_per_node, cpu_per_frustum, cpu_per_cost_eval;
 } zs_clock_costs;
@@ -193,8 +193,11 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
                               uint32_t rgb, zs_kernel k, zs_walk_counts *out,
                               zs_error *err);
 
-/* clock.c: the GPU executes a command of the given cost (ps), issued by the
- * CPU now; returns the GPU time at which it ends. */
+/* clock.c: the GPU time (ps) of a draw or query box with these counts. */
+int64_t zs_clock_command_cost(const zs_device *d, int32_t vertices, uint64_t polygons,
+                              const zs_walk_counts *c, int is_query);
+/* The GPU executes a command of the given cost (ps), issued by the CPU
+ * now; returns the GPU time at which it ends. */
 int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query);
 void zs_clock_cpu(zs_device *d, int64_t cost);
 void zs_clock_reset(zs_device *d);

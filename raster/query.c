@@ -75,9 +75,8 @@ zs_status zs_device_query_box(zs_device *d, const double lo[3], const double hi[
   zs_status st = zs_device_draw_with(d, &box, NULL, 0, 0, ZS_KERNEL_QUERY, &c, err);
   if (st != ZS_OK) return st;
   d->clock.query_pixels += c.tested;
-  int64_t cost = d->costs.per_call +
-                 d->costs.per_polygon * (int64_t)(d->stats.polygons_rasterized - polygons) +
-                 d->costs.per_query_pixel * (int64_t)c.tested;
+  int64_t cost = zs_clock_command_cost(d, box.nverts, d->stats.polygons_rasterized - polygons,
+                                       &c, 1);
   zs_query_rec *q = &d->queries[d->nqueries - 1];
   q->gpu_end_ps = zs_clock_gpu_command(d, cost, 1);
   q->samples += c.written;

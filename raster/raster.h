@@ -105,6 +105,7 @@ typedef struct zs_device_config {
 /* Counters of one frame (since the last zs_device_clear). */
 typedef struct zs_raster_stats {
   uint64_t draws;
+  uint64_t vertices;             /* vertices transformed */
   uint64_t polygons_in;          /* faces submitted */
   uint64_t polygons_outside;     /* dropped whole: outside a clip plane */
   uint64_t polygons_clipped;     /* crossed near, far or the guard band */
@@ -204,9 +205,10 @@ uint64_t zs_device_query_result(zs_device *dev, zs_query q);
  * computed from counts, never from wall time, so modelled times are the
  * same on every run, build and thread count:
  *   GPU: a command starts when both the GPU is free and the CPU has issued
- *        it, and takes  per_call + polygons * per_polygon
+ *        it, and takes  per_call + vertices * per_vertex
+ *        + polygons * per_polygon + spans * per_span
  *        + pixels tested * per_pixel + pixels written * per_write  (draws)
- *        or per_call + polygons * per_polygon + pixels * per_query_pixel
+ *        or the same with pixels * per_query_pixel for the pixel terms
  *        (query boxes); a change between drawing and querying costs
  *        switch_ns; a query's result is ready query_latency after the GPU
  *        finished its last command inside the query (its GPU end).
@@ -222,7 +224,9 @@ uint64_t zs_device_query_result(zs_device *dev, zs_query q);
  * Times are kept in integer picoseconds; parameters are nanoseconds. */
 typedef struct zs_clock_params {
   double per_call_ns;         /* GPU: fixed cost of a draw or query box */
+  double per_vertex_ns;       /* GPU: per vertex transformed */
   double per_polygon_ns;      /* GPU: per polygon set up */
+  double per_span_ns;         /* GPU: per span (a polygon's run on one row) */
   double per_pixel_ns;        /* GPU: per pixel depth-tested by a draw */
   double per_write_ns;        /* GPU: per pixel written */
   double per_query_pixel_ns;  /* GPU: per pixel tested by a query box */

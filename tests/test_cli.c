@@ -91,6 +91,11 @@ static const bad_option bad_options[] = {
     {{"render", "builtin:nothing", NULL}, "unknown generated scene 'nothing'"},
     {{"render", "builtin:cubes?n=0", NULL}, "0 is outside 1 .. 64"},
     {{"render", "/nonexistent-dir/m.obj", NULL}, "/nonexistent-dir/m.obj: cannot open"},
+    {{"render", "--clock-set", "per_pixel_ns=-3", NULL},
+     "--clock-set per_pixel_ns: expected nanoseconds from 0 to 1e12, got -3"},
+    {{"render", "--clock-set", "bogus_ns=3", NULL}, "--clock-set bogus_ns: unknown clock parameter"},
+    {{"render", "--clock-set", "per_pixel_ns", NULL}, "--clock-set: expected KEY=VALUE"},
+    {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open"},
 };
 
 START_TEST(bad_option_refused) {

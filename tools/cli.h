@@ -23,6 +23,9 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
  * written, before any work is done. */
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
 
+/* The median of v[0..n-1], n > 0 (sorts v). */
+double zs_median(double *v, int n);
+
 /* Wall-clock milliseconds from a monotonic clock: for reporting only,
  * never in an output that must be the same on every run. */
 double zs_wall_ms(void);

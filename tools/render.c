@@ -10,6 +10,7 @@
 #include "scene/camera.h"
 #include "scene/model.h"
 #include "tools/cli.h"
+#include "tools/clockfile.h"
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
@@ -30,7 +31,9 @@ static const char usage[] =
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --threads N         render threads (default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
-    "  --stats             print the frame's counters as one JSON line\n";
+    "  --stats             print the frame's counters as one JSON line\n"
+    "  --clock FILE.json   the device clock's constants (zscan calibrate writes one)\n"
+    "  --clock-set K=V     set one clock constant, in ns (e.g. query_latency_ns=0)\n";
 
 typedef struct render_opts {
   const char *input, *out_png, *out_pfm;
@@ -39,6 +42,7 @@ typedef struct render_opts {
   zs_algo algo;
   zs_shade shade;
   int cull_back, threads, repeat, stats;
+  zs_clock_params clock;
 } render_opts;
 
 static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
@@ -49,6 +53,7 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   o->threads = 1;
   o->repeat = 1;
   zs_camera_default(&o->cam);
+  zs_clock_params_default(&o->clock);
   zs_camera *c = &o->cam;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
@@ -108,6 +113,12 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       if (zs_cli_int(a, v, 1, 100000, &o->repeat, err)) return err->code;
     } else if (strcmp(a, "--stats") == 0) {
       o->stats = 1;
+    } else if (strcmp(a, "--clock") == 0) {
+      VALUE();
+      if (zs_clockfile_load(v, &o->clock, err)) return err->code;
+    } else if (strcmp(a, "--clock-set") == 0) {
+      VALUE();
+      if (zs_clock_set(v, &o->clock, err)) return err->code;
     } else if (a[0] == '-' && a[1] != '\0') {
       return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan render --help)", a);
     } else if (!o->input) {
@@ -122,14 +133,9 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   return ZS_OK;
 }
 
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
 static void print_stats(const render_opts *o, const zs_model *m,
-                        const zs_raster_stats *s, uint64_t hash, double ms,
-                        double load_ms) {
+                        const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
+                        double ms, double load_ms) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->width, o->height,
          o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : "scanline");
@@ -150,6 +156,12 @@ static void print_stats(const render_opts *o, const zs_model *m,
          "\"image_hash\":\"%016llx\",",
          (unsigned long long)s->spans, (unsigned long long)s->pixels_tested,
          (unsigned long long)s->pixels_written, (unsigned long long)hash);
+  const zs_clock_stats *k = zs_device_clock(dev);
+  printf("\"queries\":%llu,\"query_waits\":%llu,\"stalls\":%llu,\"stall_ms\":%.6f,"
+         "\"sync_ms\":%.6f,\"gpu_ms\":%.6f,\"cpu_ms\":%.6f,\"modelled_ms\":%.6f,",
+         (unsigned long long)k->queries, (unsigned long long)k->query_waits,
+         (unsigned long long)k->stalls, k->stall_ps * 1e-9, k->sync_ps * 1e-9, k->gpu_ps * 1e-9,
+         k->cpu_ps * 1e-9, zs_device_frame_ps(dev) * 1e-9);
   printf("\"threads\":%d,\"repeat\":%d,\"ms_per_frame\":%.3f,\"ms_load\":%.3f}\n", o->threads,
          o->repeat, ms, load_ms);
 }
@@ -170,6 +182,7 @@ static zs_status run(const render_opts *o, zs_error *err) {
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
+  if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   if ((st = zs_image_alloc(&im, o->width, o->height, err))) goto done;
   if (o->out_pfm && !(depth = malloc((size_t)o->width * (size_t)o->height * sizeof *depth))) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory for the depth map");
@@ -184,13 +197,12 @@ static zs_status run(const render_opts *o, zs_error *err) {
     if ((st = zs_frame_render_on(dev, &model, view, proj, &im, depth, err))) goto done;
     times[k] = zs_wall_ms() - start;
   }
-  qsort(times, (size_t)o->repeat, sizeof *times, cmp_double);
-  double median = o->repeat % 2 ? times[o->repeat / 2]
-                                : 0.5 * (times[o->repeat / 2 - 1] + times[o->repeat / 2]);
+  double median = zs_median(times, o->repeat);
 
   if ((st = zs_png_write(o->out_png, &im, err))) goto done;
   if (depth && (st = zs_pfm_write(o->out_pfm, o->width, o->height, depth, err))) goto done;
-  if (o->stats) print_stats(o, &model, zs_device_stats(dev), zs_image_hash(&im), median, load_ms);
+  if (o->stats)
+    print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms);
 
 done:
   free(times);

@@ -1,0 +1,106 @@
+#include "tools/clockfile.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "tools/cli.h"
+
+#define FIELD(name) {#name, offsetof(zs_clock_params, name)}
+const zs_clock_field zs_clock_fields[] = {
+    FIELD(per_call_ns),      FIELD(per_vertex_ns),    FIELD(per_polygon_ns),
+    FIELD(per_span_ns),      FIELD(per_pixel_ns),
+    FIELD(per_write_ns),     FIELD(per_query_pixel_ns), FIELD(switch_ns),
+    FIELD(query_latency_ns), FIELD(cpu_per_call_ns),  FIELD(cpu_per_query_ns),
+    FIELD(cpu_per_node_ns),  FIELD(cpu_per_frustum_ns), FIELD(cpu_per_cost_eval_ns),
+};
+#undef FIELD
+const int zs_clock_nfields = (int)(sizeof zs_clock_fields / sizeof zs_clock_fields[0]);
+
+static double *field(zs_clock_params *p, const char *name) {
+  for (int i = 0; i < zs_clock_nfields; i++)
+    if (strcmp(zs_clock_fields[i].name, name) == 0)
+      return (double *)((char *)p + zs_clock_fields[i].offset);
+  return NULL;
+}
+
+static zs_status set_value(const char *where, const char *name, double v, zs_clock_params *p,
+                           zs_error *err) {
+  double *f = field(p, name);
+  if (!f) return zs_error_set(err, ZS_ERR_ARG, "%s%s: unknown clock parameter", where, name);
+  if (!isfinite(v) || v < 0.0 || v > 1e12)
+    return zs_error_set(err, ZS_ERR_ARG, "%s%s: expected nanoseconds from 0 to 1e12, got %g",
+                        where, name, v);
+  *f = v;
+  return ZS_OK;
+}
+
+zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err) {
+  const char *eq = strchr(assignment, '=');
+  if (!eq) return zs_error_set(err, ZS_ERR_ARG, "--clock-set: expected KEY=VALUE, got '%s'", assignment);
+  char name[64];
+  snprintf(name, sizeof name, "%.*s", (int)(eq - assignment), assignment);
+  double v;
+  char opt[96];
+  snprintf(opt, sizeof opt, "--clock-set %s", name);
+  if (zs_cli_double(opt, eq + 1, &v, err)) return err->code;
+  return set_value("--clock-set ", name, v, p, err);
+}
+
+zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  char buf[1 << 16];
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  int too_long = !feof(f);
+  fclose(f);
+  if (too_long) return zs_error_set(err, ZS_ERR_LIMIT, "%s: larger than a clock file can be", path);
+  buf[n] = '\0';
+  cJSON *root = cJSON_ParseWithLength(buf, n);
+  if (!root || !cJSON_IsObject(root)) {
+    cJSON_Delete(root);
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: expected one JSON object of clock parameters", path);
+  }
+  char where[4200];
+  snprintf(where, sizeof where, "%s: ", path);
+  zs_status st = ZS_OK;
+  for (cJSON *it = root->child; it && st == ZS_OK; it = it->next) {
+    if (!cJSON_IsNumber(it))
+      st = zs_error_set(err, ZS_ERR_PARSE, "%s: %s: expected a number", path, it->string);
+    else
+      st = set_value(where, it->string, it->valuedouble, p, err);
+  }
+  cJSON_Delete(root);
+  return st;
+}
+
+void zs_clock_print(FILE *f, const zs_clock_params *p) {
+  fputs("{", f);
+  for (int i = 0; i < zs_clock_nfields; i++)
+    fprintf(f, "%s\"%s\":%.6g", i ? "," : "", zs_clock_fields[i].name,
+            *(const double *)((const char *)p + zs_clock_fields[i].offset));
+  fputs("}\n", f);
+}
+
+zs_status zs_clockfile_write(const char *path, const zs_clock_params *p, zs_error *err) {
+  char tmp[4200];
+  snprintf(tmp, sizeof tmp, "%s.tmp.XXXXXX", path);
+  int fd = mkstemp(tmp);
+  if (fd < 0) return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+  FILE *f = fdopen(fd, "w");
+  if (!f) {
+    close(fd);
+    unlink(tmp);
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+  }
+  zs_clock_print(f, p);
+  if (fclose(f) != 0 || rename(tmp, path) != 0) {
+    unlink(tmp);
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+  }
+  return ZS_OK;
+}
