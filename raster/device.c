@@ -89,6 +89,7 @@ void zs_device_destroy(zs_device *d) {
 
 const zs_device_config *zs_device_config_of(const zs_device *d) { return &d->cfg; }
 const zs_raster_stats *zs_device_stats(const zs_device *d) { return &d->stats; }
+void zs_device_set_trace(zs_device *d, const zs_trace_observer *obs) { d->trace = obs; }
 const uint32_t *zs_device_depth_buffer(const zs_device *d) { return d->depth; }
 const uint32_t *zs_device_id_buffer(const zs_device *d) { return d->id; }
 
@@ -252,7 +253,7 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
   *out = (zs_walk_counts){0, 0, 0};
   if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
     zs_target t = full_frame_target(d);
-    if (!zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, &d->scratch, out))
+    if (!zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out))
       return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
     d->stats.spans += out->spans;
     if (k == ZS_KERNEL_DRAW || k == ZS_KERNEL_OVERDRAW) {
@@ -334,7 +335,7 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
     zs_row_hooks hooks = {scanline_begin_row, scanline_end_row, &e};
     zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w};
     zs_walk_counts c = {0, 0, 0};
-    if (!zs_scan_batch(&d->batch, draw_kernel(d), &t, 0, h, &hooks, &d->scratch, &c))
+    if (!zs_scan_batch(&d->batch, draw_kernel(d), &t, 0, h, &hooks, d->trace, &d->scratch, &c))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
     add_counts(d, &c);
     zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);

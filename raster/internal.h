@@ -114,20 +114,43 @@ typedef struct zs_row_hooks {
   void *user;
 } zs_row_hooks;
 
+/* An edge being walked: the exact integer DDA of scanline.c. */
+typedef struct zs_edge_dda {
+  int64_t x, rem, q, rs, d;
+  int32_t rows;  /* rows left after the current one (the lecture's dy) */
+} zs_edge_dda;
+
+/* An entry of the active lists: a polygon and its current edge pair. */
+typedef struct zs_active {
+  int32_t poly;
+  int32_t left, left_end, right, right_end; /* current and last edge */
+  zs_edge_dda l, r;
+  int64_t zl;    /* depth plane at (l.x, y) */
+} zs_active;
+
+void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row);
+
 /* Per-walk scratch, kept by the device so walks do not allocate. */
 typedef struct zs_walk_scratch {
   int32_t *bucket_head, *next;  /* the sorted polygon table */
   int32_t cap_rows, cap_polys;
-  struct zs_active *active;     /* the active polygon / edge-pair list */
+  zs_active *active;            /* the active polygon / edge-pair list */
   int32_t cap_active;
+  zs_trace_pair *trace_pairs;   /* a traced row (trace.c) */
+  zs_trace_span *trace_spans;
 } zs_walk_scratch;
+
+/* trace.c: the sorted tables handed to obs; one active entry as a pair. */
+void zs_trace_tables(const zs_batch *b, const zs_trace_observer *obs);
+void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_pair *out);
 
 /* Walks rows [row_begin, row_end) of the batch: builds the sorted polygon
  * table, keeps the active lists, fills spans with the kernel.  Returns 0
  * when out of memory. */
 int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
                   int row_begin, int row_end, const zs_row_hooks *hooks,
-                  zs_walk_scratch *s, zs_walk_counts *counts);
+                  const zs_trace_observer *obs, zs_walk_scratch *s,
+                  zs_walk_counts *counts);
 void zs_walk_scratch_free(zs_walk_scratch *s);
 
 /* ---- shade.c ---- */
@@ -183,6 +206,7 @@ struct zs_device {
   zs_query_rec *queries;
   uint32_t nqueries, cap_queries;
   int query_open;                 /* a query is between begin and end */
+  const zs_trace_observer *trace; /* scanline mode's observer, or NULL */
   int last_was_query;             /* the GPU's last command was a query box */
 };
 

@@ -28,23 +28,11 @@
 
 #include "raster/internal.h"
 
-typedef struct zs_edge_dda {
-  int64_t x, rem, q, rs, d;
-  int32_t rows;  /* rows left after the current one (the lecture's dy) */
-} zs_edge_dda;
-
-typedef struct zs_active {
-  int32_t poly;
-  int32_t left, left_end, right, right_end; /* current and last edge */
-  zs_edge_dda l, r;
-  int64_t zl;    /* depth plane at (l.x, y) */
-} zs_active;
-
 static int64_t floor_div(int64_t a, int64_t d) {
   return a >= 0 ? a / d : -((-a + d - 1) / d);
 }
 
-static void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
+void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
   int64_t dy = (int64_t)e->Y1 - e->Y0, dx = (int64_t)e->X1 - e->X0;
   s->d = 256 * dy;
   int64_t num = ((int64_t)e->X0 - 128) * dy + ((int64_t)row * 256 + 128 - e->Y0) * dx;
@@ -137,13 +125,15 @@ void zs_walk_scratch_free(zs_walk_scratch *s) {
   free(s->bucket_head);
   free(s->next);
   free(s->active);
+  free(s->trace_pairs);
+  free(s->trace_spans);
   memset(s, 0, sizeof *s);
 }
 
 static inline void walk(const zs_batch *b, const zs_kernel k,
                         const zs_target *t, int row_begin, int row_end,
-                        const zs_row_hooks *hooks, zs_walk_scratch *s,
-                        zs_walk_counts *counts) {
+                        const zs_row_hooks *hooks, const zs_trace_observer *obs,
+                        zs_walk_scratch *s, zs_walk_counts *counts) {
   const zs_poly *polys = b->polys;
   const zs_edge *edges = b->edges;
   int32_t *head = s->bucket_head, *next = s->next;
@@ -165,6 +155,7 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
     if (r < first_bucket) first_bucket = r;
   }
 
+  if (obs) zs_trace_tables(b, obs);
   int32_t nact = 0;
   uint64_t spans = 0, tested = 0, written = 0;
   int32_t y = hooks ? row_begin : row_begin + first_bucket;
@@ -180,25 +171,27 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
       a->right_end = a->left_end + p->nright;
       a->left = edge_at(edges, p->edge0, a->left_end, y);
       a->right = edge_at(edges, a->left_end + 1, a->right_end, y);
-      dda_start(&a->l, &edges[a->left], y);
-      dda_start(&a->r, &edges[a->right], y);
+      zs_edge_dda_start(&a->l, &edges[a->left], y);
+      zs_edge_dda_start(&a->r, &edges[a->right], y);
       a->zl = p->zc + p->dzdx * (a->l.x - p->ox) + p->dzdy * (y - p->oy);
     }
 
     const int64_t off = t->row_stride * y;
-    int32_t kept = 0;
+    int32_t kept = 0, ntrace_spans = 0;
     for (int32_t j = 0; j < nact; j++) {
       zs_active *a = &act[j];
       const zs_poly *p = &polys[a->poly];
       int64_t x0 = a->l.x, x1 = a->r.x;
       if (x0 < 0) x0 = 0;
       if (x1 > width) x1 = width;
+      if (obs) zs_trace_pair_of(a, p, y, &s->trace_pairs[j]);
       if (x0 < x1) {
         int64_t z = a->zl + p->dzdx * (x0 - a->l.x);
         fill_span(k, t, off, (int)x0, (int)x1, z, p->dzdx, p->zshift, p->id,
                   p->rgb, &written);
         spans++;
         tested += (uint64_t)(x1 - x0);
+        if (obs) s->trace_spans[ntrace_spans++] = (zs_trace_span){(int32_t)x0, (int32_t)x1 - 1, p->id};
       }
       if (y == p->row1) continue; /* the polygon ends on this row */
 
@@ -206,11 +199,15 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
        * with the next of its chain; zl follows xl along the plane. */
       int64_t old_xl = a->l.x;
       if (a->l.rows > 0) dda_step(&a->l);
-      else dda_start(&a->l, &edges[++a->left], y + 1);
+      else zs_edge_dda_start(&a->l, &edges[++a->left], y + 1);
       if (a->r.rows > 0) dda_step(&a->r);
-      else dda_start(&a->r, &edges[++a->right], y + 1);
+      else zs_edge_dda_start(&a->r, &edges[++a->right], y + 1);
       a->zl += p->dzdx * (a->l.x - old_xl) + p->dzdy;
       act[kept++] = *a;
+    }
+    if (obs && obs->row) {
+      zs_trace_row tr = {y, s->trace_pairs, nact, s->trace_spans, ntrace_spans};
+      obs->row(obs->user, &tr);
     }
     nact = kept;
 
@@ -229,19 +226,29 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
 
 int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
                   int row_begin, int row_end, const zs_row_hooks *hooks,
-                  zs_walk_scratch *s, zs_walk_counts *counts) {
+                  const zs_trace_observer *obs, zs_walk_scratch *s,
+                  zs_walk_counts *counts) {
   if (row_end <= row_begin) return 1;
   if (!reserve_scratch(s, row_end - row_begin, b->npolys > 0 ? b->npolys : 1))
     return 0;
+  if (obs) {
+    /* one pair and at most one span per active polygon and row */
+    size_t n = (size_t)(b->npolys > 0 ? b->npolys : 1);
+    zs_trace_pair *tp = realloc(s->trace_pairs, n * sizeof *tp);
+    if (tp) s->trace_pairs = tp;
+    zs_trace_span *ts = realloc(s->trace_spans, n * sizeof *ts);
+    if (ts) s->trace_spans = ts;
+    if (!tp || !ts) return 0;
+  }
   switch (k) {
     case ZS_KERNEL_DRAW:
-      walk(b, ZS_KERNEL_DRAW, t, row_begin, row_end, hooks, s, counts);
+      walk(b, ZS_KERNEL_DRAW, t, row_begin, row_end, hooks, obs, s, counts);
       break;
     case ZS_KERNEL_OVERDRAW:
-      walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, hooks, s, counts);
+      walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, hooks, obs, s, counts);
       break;
     case ZS_KERNEL_QUERY:
-      walk(b, ZS_KERNEL_QUERY, t, row_begin, row_end, hooks, s, counts);
+      walk(b, ZS_KERNEL_QUERY, t, row_begin, row_end, hooks, obs, s, counts);
       break;
   }
   return 1;

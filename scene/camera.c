@@ -5,7 +5,8 @@
 #include "raster/raster.h"
 
 void zs_camera_default(zs_camera *c) {
-  *c = (zs_camera){{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, ZS_CAMERA_DEFAULT_FOVY, 0, 0, 0, 0, 0, 0, 0};
+  *c = (zs_camera){{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, ZS_CAMERA_DEFAULT_FOVY, 0, {0, 0, 0, 0},
+                   0, 0, 0, 0, 0, 0, 0};
 }
 
 void zs_camera_complete(zs_camera *c, const double lo[3], const double hi[3],
@@ -42,16 +43,21 @@ void zs_camera_complete(zs_camera *c, const double lo[3], const double hi[3],
   if (!c->has_near) {
     double n = 0.99 * (d - radius);
     double floor_n = c->zfar * 1e-4;
-    c->znear = n > floor_n ? n : floor_n;
+    /* orthographic: the eye may stand among the objects, near may be < 0 */
+    c->znear = c->ortho ? d - 1.01 * radius : n > floor_n ? n : floor_n;
     c->has_near = 1;
   }
 }
 
 zs_status zs_camera_matrices(const zs_camera *c, double aspect, double view[16],
                              double proj[16], zs_error *err) {
-  if (!(c->fovy > 0.0 && c->fovy < 180.0))
+  if (c->ortho && !(c->extent[0] < c->extent[1] && c->extent[2] < c->extent[3]))
+    return zs_error_set(err, ZS_ERR_ARG, "ortho %g,%g,%g,%g: need left < right and bottom < top",
+                        c->extent[0], c->extent[1], c->extent[2], c->extent[3]);
+  if (!c->ortho && !(c->fovy > 0.0 && c->fovy < 180.0))
     return zs_error_set(err, ZS_ERR_ARG, "fovy %g: must be between 0 and 180 degrees", c->fovy);
-  if (!(c->znear > 0.0))
+  /* glOrtho takes any near < far; a perspective camera needs near > 0 */
+  if (!c->ortho && !(c->znear > 0.0))
     return zs_error_set(err, ZS_ERR_ARG, "near %g: must be greater than 0", c->znear);
   if (!(c->znear < c->zfar))
     return zs_error_set(err, ZS_ERR_ARG, "near %g, far %g: near must be less than far",
@@ -61,6 +67,9 @@ zs_status zs_camera_matrices(const zs_camera *c, double aspect, double view[16],
   if (!zs_mat_look_at(view, c->eye, c->target, c->up))
     return zs_error_set(err, ZS_ERR_ARG, "up %g,%g,%g: zero or parallel to the view direction",
                         c->up[0], c->up[1], c->up[2]);
-  zs_mat_perspective(proj, c->fovy, aspect, c->znear, c->zfar);
+  if (c->ortho)
+    zs_mat_ortho(proj, c->extent[0], c->extent[1], c->extent[2], c->extent[3], c->znear, c->zfar);
+  else
+    zs_mat_perspective(proj, c->fovy, aspect, c->znear, c->zfar);
   return ZS_OK;
 }

@@ -11,6 +11,11 @@
  *   - no near / far: the bounding sphere seen from the eye, far = distance
  *     to its back + 1 %, near = distance to its front less 1 %, at least
  *     far / 10^4 (the eye may be inside).
+ * An orthographic camera (ortho) maps the view-space rectangle extent
+ * (left, right, bottom, top) onto the image, as glOrtho; for it fovy is
+ * not used, and near may be 0 or negative (planes behind the eye).  The lecture's examples use one: with extent
+ * (-0.5, W - 0.5, -0.5, H - 0.5) and the eye looking down -z, world (x, y)
+ * lands on the centre of pixel column x, row H - 1 - y.
  */
 #ifndef ZS_SCENE_CAMERA_H
 #define ZS_SCENE_CAMERA_H
@@ -23,6 +28,8 @@
 typedef struct zs_camera {
   double eye[3], target[3], up[3];
   double fovy;          /* vertical field of view, degrees, in (0, 180) */
+  int ortho;            /* orthographic (glOrtho) instead of perspective */
+  double extent[4];     /* orthographic: left, right, bottom, top, in view units */
   double znear, zfar;   /* 0 < znear < zfar */
   int has_eye, has_target, has_up, has_near, has_far;
 } zs_camera;

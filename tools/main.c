@@ -5,12 +5,14 @@
 #include "tools/calibrate.h"
 #include "tools/diff.h"
 #include "tools/render.h"
+#include "tools/trace.h"
 
 static const char usage[] =
     "usage: zscan COMMAND [options]\n"
     "commands:\n"
     "  render [INPUT]   render one frame to a PNG (zscan render --help)\n"
     "  diff A.png B.png compare two images (pixels differing, faces involved)\n"
+    "  trace INPUT      the scanline z-buffer's tables, scanline by scanline\n"
     "  calibrate        measure the device clock's constants on this machine\n";
 
 int main(int argc, char **argv) {
@@ -21,6 +23,7 @@ int main(int argc, char **argv) {
   const char *cmd = argv[1];
   if (strcmp(cmd, "render") == 0) return zs_cmd_render(argc - 1, argv + 1);
   if (strcmp(cmd, "diff") == 0) return zs_cmd_diff(argc - 1, argv + 1);
+  if (strcmp(cmd, "trace") == 0) return zs_cmd_trace(argc - 1, argv + 1);
   if (strcmp(cmd, "calibrate") == 0) return zs_cmd_calibrate(argc - 1, argv + 1);
   if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
     fputs(usage, stdout);

@@ -14,20 +14,15 @@
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
+#include "tools/viewopts.h"
 
-static const char usage[] =
+static const char usage_head[] =
     "usage: zscan render [INPUT] [options]\n"
     "  INPUT               FILE.obj or builtin:NAME[?k=v] (default: the teapot field)\n"
-    "  -o FILE.png         output image (default zscan.png)\n"
-    "  --size WxH          image size (default 1024x768)\n"
-    "  --eye x,y,z         camera position (default: frame the input)\n"
-    "  --target x,y,z      point looked at (default: centre of the input)\n"
-    "  --up x,y,z          up direction (default 0,1,0)\n"
-    "  --fovy DEG          vertical field of view (default 45)\n"
-    "  --near N --far F    clip planes (default: fit the input)\n"
+    "  -o FILE.png         output image (default zscan.png)\n";
+static const char usage_tail[] =
     "  --algo zbuffer|scanline   hidden-surface mode (default zbuffer)\n"
     "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
-    "  --cull-back         drop faces turned away from the camera\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --threads N         render threads (default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
@@ -37,57 +32,30 @@ static const char usage[] =
 
 typedef struct render_opts {
   const char *input, *out_png, *out_pfm;
-  int width, height;
-  zs_camera cam;
+  zs_view_opts view;
   zs_algo algo;
   zs_shade shade;
-  int cull_back, threads, repeat, stats;
+  int threads, repeat, stats;
   zs_clock_params clock;
 } render_opts;
 
 static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   memset(o, 0, sizeof *o);
   o->out_png = "zscan.png";
-  o->width = 1024;
-  o->height = 768;
+  zs_view_opts_default(&o->view, 1024, 768);
   o->threads = 1;
   o->repeat = 1;
-  zs_camera_default(&o->cam);
   zs_clock_params_default(&o->clock);
-  zs_camera *c = &o->cam;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
 #define VALUE() \
   if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
+    int taken = zs_view_opts_parse(&o->view, argc, argv, &i, err);
+    if (taken < 0) return err->code;
+    if (taken) continue;
     if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
       VALUE();
       o->out_png = v;
-    } else if (strcmp(a, "--size") == 0) {
-      VALUE();
-      if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
-    } else if (strcmp(a, "--eye") == 0) {
-      VALUE();
-      if (zs_cli_vec3(a, v, c->eye, err)) return err->code;
-      c->has_eye = 1;
-    } else if (strcmp(a, "--target") == 0) {
-      VALUE();
-      if (zs_cli_vec3(a, v, c->target, err)) return err->code;
-      c->has_target = 1;
-    } else if (strcmp(a, "--up") == 0) {
-      VALUE();
-      if (zs_cli_vec3(a, v, c->up, err)) return err->code;
-      c->has_up = 1;
-    } else if (strcmp(a, "--fovy") == 0) {
-      VALUE();
-      if (zs_cli_double(a, v, &c->fovy, err)) return err->code;
-    } else if (strcmp(a, "--near") == 0) {
-      VALUE();
-      if (zs_cli_double(a, v, &c->znear, err)) return err->code;
-      c->has_near = 1;
-    } else if (strcmp(a, "--far") == 0) {
-      VALUE();
-      if (zs_cli_double(a, v, &c->zfar, err)) return err->code;
-      c->has_far = 1;
     } else if (strcmp(a, "--algo") == 0) {
       VALUE();
       if (strcmp(v, "zbuffer") == 0) o->algo = ZS_ALGO_ZBUFFER;
@@ -100,8 +68,6 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       else if (strcmp(v, "depth") == 0) o->shade = ZS_SHADE_DEPTH;
       else if (strcmp(v, "overdraw") == 0) o->shade = ZS_SHADE_OVERDRAW;
       else return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat, id, depth or overdraw, got '%s'", v);
-    } else if (strcmp(a, "--cull-back") == 0) {
-      o->cull_back = 1;
     } else if (strcmp(a, "--depth") == 0) {
       VALUE();
       o->out_pfm = v;
@@ -137,7 +103,7 @@ static void print_stats(const render_opts *o, const zs_model *m,
                         const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
                         double ms, double load_ms) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
-         o->input ? o->input : "builtin:default", o->width, o->height,
+         o->input ? o->input : "builtin:default", o->view.width, o->view.height,
          o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : "scanline");
   /* triangles: what the polygons would be as triangle fans */
   long long triangles = 0;
@@ -178,13 +144,13 @@ static zs_status run(const render_opts *o, zs_error *err) {
   float *depth = NULL;
   double *times = NULL;
   double view[16], proj[16];
-  if ((st = zs_frame_camera(&model, &o->cam, o->width, o->height, view, proj, err))) goto done;
-  zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
-                          o->cull_back, o->threads, ZS_BACKGROUND_RGB};
+  if ((st = zs_frame_camera(&model, &o->view.cam, o->view.width, o->view.height, view, proj, err))) goto done;
+  zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
+                          o->view.cull_back, o->threads, ZS_BACKGROUND_RGB};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
-  if ((st = zs_image_alloc(&im, o->width, o->height, err))) goto done;
-  if (o->out_pfm && !(depth = malloc((size_t)o->width * (size_t)o->height * sizeof *depth))) {
+  if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;
+  if (o->out_pfm && !(depth = malloc((size_t)o->view.width * (size_t)o->view.height * sizeof *depth))) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory for the depth map");
     goto done;
   }
@@ -200,7 +166,7 @@ static zs_status run(const render_opts *o, zs_error *err) {
   double median = zs_median(times, o->repeat);
 
   if ((st = zs_png_write(o->out_png, &im, err))) goto done;
-  if (depth && (st = zs_pfm_write(o->out_pfm, o->width, o->height, depth, err))) goto done;
+  if (depth && (st = zs_pfm_write(o->out_pfm, o->view.width, o->view.height, depth, err))) goto done;
   if (o->stats)
     print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms);
 
@@ -216,7 +182,9 @@ done:
 int zs_cmd_render(int argc, char **argv) {
   for (int i = 1; i < argc; i++)
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      fputs(usage, stdout);
+      fputs(usage_head, stdout);
+      fputs(zs_view_opts_usage, stdout);
+      fputs(usage_tail, stdout);
       return 0;
     }
   render_opts o;

@@ -1,0 +1,196 @@
+/* zscan trace against the lecture: the active edge table of its
+ * two-polygon example at scanline y = 6, the z-buffer grids of its two
+ * z-buffer examples, and ids that match `zscan render --shade id`. */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "tests/testutil.h"
+#include "tools/image.h"
+
+static char out[1 << 20], err[1 << 16];
+
+#define TWO_POLYGONS_VIEW "--ortho", "-0.5,11.5,-0.5,9.5", "--eye", "0,0,10", "--target", "0,0,0", \
+                          "--size", "12x10"
+#define ZBUFFER_VIEW "--ortho", "-0.5,7.5,-0.5,5.5", "--eye", "0,0,0", "--target", "0,0,-1", \
+                     "--near", "-10", "--far", "5", "--size", "8x6"
+
+/* The JSON line of scanline y in the trace output (the first line holds
+ * the tables). */
+static cJSON *scanline(int y) {
+  for (char *line = out; line && *line;) {
+    char *nl = strchr(line, '\n');
+    if (nl) *nl = '\0';
+    cJSON *o = cJSON_Parse(line);
+    if (nl) *nl = '\n';
+    cJSON *yy = o ? cJSON_GetObjectItem(o, "y") : NULL;
+    if (yy && (int)yy->valuedouble == y) return o;
+    cJSON_Delete(o);
+    line = nl ? nl + 1 : NULL;
+  }
+  return NULL;
+}
+
+static const char *str(const cJSON *o, const char *k) {
+  const cJSON *v = cJSON_GetObjectItem(o, k);
+  return cJSON_IsString(v) ? v->valuestring : "";
+}
+
+static double num(const cJSON *o, const char *k) {
+  const cJSON *v = cJSON_GetObjectItem(o, k);
+  return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+START_TEST(two_polygons_active_edges_at_y6) {
+  /* The lecture: at y = 6 (row 3 here) the active edge table holds
+   *   xl=4, dxl=1, dyl=3, xr=7, dxr=0, dyr=3, id=1
+   *   xl=41/6, dxl=5/6, dyl=5, xr=73/8, dxr=3/8, dyr=5, id=2
+   * (its ids 1 and 2 are our faces 0 and 1). */
+  const char *args[] = {"trace", zs_test_src("tests/data/lecture/two_polygons.obj"), TWO_POLYGONS_VIEW,
+                        "--format", "json", NULL};
+  char path[4096];
+  snprintf(path, sizeof path, "%s", args[1]);
+  args[1] = path;
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  cJSON *row = scanline(3);
+  ck_assert_ptr_nonnull(row);
+  cJSON *edges = cJSON_GetObjectItem(row, "active_edges");
+  ck_assert_int_eq(cJSON_GetArraySize(edges), 2);
+  const cJSON *e0 = cJSON_GetArrayItem(edges, 0), *e1 = cJSON_GetArrayItem(edges, 1);
+  ck_assert_double_eq(num(e0, "id"), 0);
+  ck_assert_str_eq(str(e0, "xl_fraction"), "4");
+  ck_assert_str_eq(str(e0, "dxl_fraction"), "1");
+  ck_assert_double_eq(num(e0, "dyl"), 3);
+  ck_assert_str_eq(str(e0, "xr_fraction"), "7");
+  ck_assert_str_eq(str(e0, "dxr_fraction"), "0");
+  ck_assert_double_eq(num(e0, "dyr"), 3);
+  ck_assert_double_eq(num(e1, "id"), 1);
+  ck_assert_str_eq(str(e1, "xl_fraction"), "41/6");
+  ck_assert_str_eq(str(e1, "dxl_fraction"), "5/6");
+  ck_assert_double_eq(num(e1, "dyl"), 5);
+  ck_assert_str_eq(str(e1, "xr_fraction"), "73/8");
+  ck_assert_str_eq(str(e1, "dxr_fraction"), "3/8");
+  ck_assert_double_eq(num(e1, "dyr"), 5);
+  ck_assert_double_eq_tol(num(e1, "xl"), 41.0 / 6.0, 1e-12);
+  /* spans: columns 4..6 for polygon 1, 7..9 for polygon 2 */
+  cJSON *spans = cJSON_GetObjectItem(row, "spans");
+  ck_assert_int_eq(cJSON_GetArraySize(spans), 2);
+  ck_assert_double_eq(num(cJSON_GetArrayItem(spans, 0), "x0"), 4);
+  ck_assert_double_eq(num(cJSON_GetArrayItem(spans, 0), "x1"), 6);
+  ck_assert_double_eq(num(cJSON_GetArrayItem(spans, 1), "x0"), 7);
+  ck_assert_double_eq(num(cJSON_GetArrayItem(spans, 1), "x1"), 9);
+  cJSON_Delete(row);
+
+  /* the text format says the same */
+  const char *targs[] = {"trace", path, TWO_POLYGONS_VIEW, "--rows", "3:3", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(targs, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "xl 4 dxl 1 dyl 3 | xr 7 dxr 0 dyr 3"));
+  ck_assert_ptr_nonnull(strstr(out, "xl 41/6 dxl 5/6 dyl 5 | xr 73/8 dxr 3/8 dyr 5"));
+  /* the lower left edge of polygon 2 starts a row below its vertex (6, 7):
+   * the lecture's "non-extreme vertex shortened by one" */
+  ck_assert_ptr_nonnull(strstr(out, "     3      1  left   6.833333        5/6    5"));
+}
+END_TEST
+
+START_TEST(ids_match_render_shade_id) {
+  char path[4096], png[4096];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
+  snprintf(png, sizeof png, "%s/trace-ids.png", ZS_BINARY_DIR);
+  const char *rargs[] = {"render", path, TWO_POLYGONS_VIEW, "--algo", "scanline", "--shade", "id",
+                         "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(rargs, out, sizeof out, err, sizeof err), 0);
+  zs_image im;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+  const char *targs[] = {"trace", path, TWO_POLYGONS_VIEW, "--format", "json", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(targs, out, sizeof out, err, sizeof err), 0);
+  int covered = 0;
+  for (int y = 0; y < 10; y++) {
+    cJSON *row = scanline(y);
+    ck_assert_ptr_nonnull(row);
+    cJSON *ids = cJSON_GetObjectItem(row, "ids");
+    ck_assert_int_eq(cJSON_GetArraySize(ids), 12);
+    for (int x = 0; x < 12; x++) {
+      uint32_t want = im.rgb[y * 12 + x];
+      ck_assert_uint_eq((uint32_t)cJSON_GetArrayItem(ids, x)->valuedouble, want);
+      covered += want != 0;
+    }
+    cJSON_Delete(row);
+  }
+  ck_assert_int_gt(covered, 20);
+  zs_image_free(&im);
+}
+END_TEST
+
+static void check_grid(const char *obj, const int want[6][8]) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s", zs_test_src(obj));
+  const char *args[] = {"trace", path, ZBUFFER_VIEW, "--format", "json", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  for (int y = 0; y < 6; y++) {
+    cJSON *row = scanline(y);
+    ck_assert_ptr_nonnull(row);
+    cJSON *z = cJSON_GetObjectItem(row, "z_view");
+    for (int x = 0; x < 8; x++) {
+      double v = cJSON_GetArrayItem(z, x)->valuedouble;
+      ck_assert_msg(fabs(v - want[y][x]) < 1e-6, "%s row %d column %d: %g, lecture %d", obj, y, x,
+                    v, want[y][x]);
+    }
+    cJSON_Delete(row);
+  }
+}
+
+START_TEST(lecture_zbuffer_grids) {
+  static const int square[6][8] = {
+      {-5, -5, -5, -5, -5, -5, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
+      {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
+      {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -5, -5, -5, -5, -5, -5}};
+  static const int both[6][8] = {
+      {-5, -5, -5, -5, -5, -5, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
+      {-5, -5, 2, 1, 0, -1, -2, -5},    {-5, -5, 2, 1, 0, -1, -2, -5},
+      {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -5, -5, -5, -5, -5, -5}};
+  check_grid("tests/data/lecture/zbuffer_square.obj", square);
+  check_grid("tests/data/lecture/zbuffer_two.obj", both);
+}
+END_TEST
+
+START_TEST(step_pictures_one_per_scanline) {
+  char dir[4096], path[4096];
+  snprintf(dir, sizeof dir, "%s/trace-steps", ZS_BINARY_DIR);
+  mkdir(dir, 0755);
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
+  const char *args[] = {"trace", path, TWO_POLYGONS_VIEW, "--png-dir", dir, "--scale", "4", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  for (int y = 0; y < 10; y++) {
+    char png[4200];
+    snprintf(png, sizeof png, "%s/scanline-%04d.png", dir, y);
+    zs_image im;
+    zs_error e;
+    zs_error_clear(&e);
+    ck_assert_msg(zs_png_read(png, &im, &e) == ZS_OK, "%s", e.msg);
+    ck_assert_int_eq(im.width, (2 * 12 + 1) * 4);
+    ck_assert_int_eq(im.height, 10 * 4);
+    zs_image_free(&im);
+  }
+  const char *bad[] = {"trace", path, "--png-dir", "/nonexistent-dir", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
+  ck_assert_str_eq(err, "zscan trace: --png-dir /nonexistent-dir: not a directory\n");
+}
+END_TEST
+
+int main(void) {
+  Suite *s = suite_create("trace");
+  TCase *tc = tcase_create("lecture");
+  tcase_set_timeout(tc, 120);
+  tcase_add_test(tc, two_polygons_active_edges_at_y6);
+  tcase_add_test(tc, ids_match_render_shade_id);
+  tcase_add_test(tc, lecture_zbuffer_grids);
+  tcase_add_test(tc, step_pictures_one_per_scanline);
+  suite_add_tcase(s, tc);
+  return zs_test_run(s);
+}

@@ -1,0 +1,518 @@
+/* `zscan trace INPUT [options]`: renders INPUT in scanline mode and prints
+ * the data structures of the lecture (the sorted polygon table, the sorted
+ * edge table, then per scanline the active polygons, the active edge pairs,
+ * the spans filled, and the row of ids and of the z-buffer), as text or as
+ * JSON lines, and can draw a picture per scanline.
+ *
+ * Units: rows and columns of the image (row 0 at the top); x values in
+ * pixel-centre units (column c has its centre at x = c), shown exactly as
+ * fractions where the DDA holds them exactly; depth as window depth in
+ * [0, 1], 0 at the near plane, beside the fixed-point integers. */
+#include "tools/trace.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "raster/raster.h"
+#include "tools/cli.h"
+#include "tools/frame.h"
+#include "tools/image.h"
+#include "tools/input.h"
+#include "tools/viewopts.h"
+
+static const char usage[] =
+    "usage: zscan trace INPUT [options]\n"
+    "  --rows Y0:Y1        only these rows (inclusive; default all)\n"
+    "  --format text|json  text (default) or JSON lines: the tables, then one\n"
+    "                      object per scanline\n"
+    "  --png-dir DIR       also a picture per scanline: the frame so far, the\n"
+    "                      scanline, its active edges and spans, the z-buffer\n"
+    "  --scale S           picture pixels per image pixel (default 16)\n";
+
+typedef struct trace_opts {
+  const char *input, *png_dir;
+  zs_view_opts view;
+  int row0, row1, json, scale;
+} trace_opts;
+
+/* What the observer saw of the row being finished, kept until the sink
+ * hands over the row's ids and depths. */
+typedef struct tracer {
+  const trace_opts *o;
+  double proj10, proj11;  /* the projection's depth row, for view-space z */
+  int ortho;
+  FILE *out;
+  zs_trace_pair *pairs;
+  zs_trace_span *spans;
+  int npairs, nspans, cap;
+  int failed;
+  /* the step pictures: the frame so far */
+  uint32_t *ids, *depth;
+  zs_error err;
+} tracer;
+
+/* ---- numbers as the lecture writes them ---- */
+
+static int64_t gcd64(int64_t a, int64_t b) {
+  if (a < 0) a = -a;
+  if (b < 0) b = -b;
+  while (b) {
+    int64_t t = a % b;
+    a = b;
+    b = t;
+  }
+  return a ? a : 1;
+}
+
+/* x - rem / d as "n" or "n/m" (reduced) */
+static void fraction(char *buf, size_t n, int64_t x, int64_t rem, int64_t d) {
+  int64_t num = x * d - rem, g = gcd64(num, d);
+  if (d / g == 1) snprintf(buf, n, "%lld", (long long)(num / g));
+  else snprintf(buf, n, "%lld/%lld", (long long)(num / g), (long long)(d / g));
+}
+
+/* (X1 - X0) / (Y1 - Y0) as a reduced fraction */
+static void slope(char *buf, size_t n, int64_t dx, int64_t dy) {
+  int64_t g = gcd64(dx, dy);
+  if (dy / g == 1) snprintf(buf, n, "%lld", (long long)(dx / g));
+  else snprintf(buf, n, "%lld/%lld", (long long)(dx / g), (long long)(dy / g));
+}
+
+static int in_rows(const trace_opts *o, int y) { return y >= o->row0 && y <= o->row1; }
+
+/* ---- the tables ---- */
+
+static int cmp_row0_poly(const void *a, const void *b) {
+  const zs_trace_poly *p = a, *q = b;
+  return (p->row0 > q->row0) - (p->row0 < q->row0);
+}
+
+static int cmp_row0_edge(const void *a, const void *b) {
+  const zs_trace_edge *p = a, *q = b;
+  return (p->row0 > q->row0) - (p->row0 < q->row0);
+}
+
+static cJSON *json_poly(const zs_trace_poly *p) {
+  cJSON *o = cJSON_CreateObject();
+  cJSON_AddNumberToObject(o, "id", p->id);
+  cJSON_AddNumberToObject(o, "row", p->row0);
+  cJSON_AddNumberToObject(o, "dy", p->row1 - p->row0);
+  cJSON_AddNumberToObject(o, "z0", p->z0);
+  cJSON_AddNumberToObject(o, "dzx", p->dzx);
+  cJSON_AddNumberToObject(o, "dzy", p->dzy);
+  cJSON_AddNumberToObject(o, "origin_x", p->ox);
+  cJSON_AddNumberToObject(o, "origin_y", p->oy);
+  cJSON_AddNumberToObject(o, "zshift", p->zshift);
+  char hex[8];
+  snprintf(hex, sizeof hex, "#%06x", p->rgb & 0xFFFFFF);
+  cJSON_AddStringToObject(o, "colour", hex);
+  return o;
+}
+
+static cJSON *json_edge(const zs_trace_edge *e) {
+  cJSON *o = cJSON_CreateObject();
+  char s[64];
+  cJSON_AddNumberToObject(o, "id", e->id);
+  cJSON_AddStringToObject(o, "side", e->side ? "right" : "left");
+  cJSON_AddNumberToObject(o, "row", e->row0);
+  cJSON_AddNumberToObject(o, "dy", e->row1 - e->row0);
+  cJSON_AddNumberToObject(o, "x", e->x_top);
+  cJSON_AddNumberToObject(o, "dx", e->dx);
+  slope(s, sizeof s, (int64_t)e->X1 - e->X0, (int64_t)e->Y1 - e->Y0);
+  cJSON_AddStringToObject(o, "dx_fraction", s);
+  return o;
+}
+
+static void print_json(tracer *t, cJSON *o) {
+  char *s = cJSON_PrintUnformatted(o);
+  if (s) fprintf(t->out, "%s\n", s);
+  else t->failed = 1;
+  free(s);
+  cJSON_Delete(o);
+}
+
+static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
+                      const zs_trace_edge *edges, int nedges) {
+  tracer *t = user;
+  /* The walk buckets by first row, keeping batch order inside a bucket:
+   * a stable sort by row gives the same order. */
+  zs_trace_poly *p = malloc((size_t)(npolys ? npolys : 1) * sizeof *p);
+  zs_trace_edge *e = malloc((size_t)(nedges ? nedges : 1) * sizeof *e);
+  if (!p || !e) {
+    free(p);
+    free(e);
+    t->failed = 1;
+    return;
+  }
+  memcpy(p, polys, (size_t)npolys * sizeof *p);
+  memcpy(e, edges, (size_t)nedges * sizeof *e);
+  /* insertion sort: stable, and the tables of a teaching scene are short */
+  for (int i = 1; i < npolys; i++)
+    for (int j = i; j > 0 && cmp_row0_poly(&p[j - 1], &p[j]) > 0; j--) {
+      zs_trace_poly tmp = p[j];
+      p[j] = p[j - 1];
+      p[j - 1] = tmp;
+    }
+  for (int i = 1; i < nedges; i++)
+    for (int j = i; j > 0 && cmp_row0_edge(&e[j - 1], &e[j]) > 0; j--) {
+      zs_trace_edge tmp = e[j];
+      e[j] = e[j - 1];
+      e[j - 1] = tmp;
+    }
+  if (t->o->json) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "width", t->o->view.width);
+    cJSON_AddNumberToObject(o, "height", t->o->view.height);
+    cJSON *pa = cJSON_AddArrayToObject(o, "polygon_table");
+    for (int i = 0; i < npolys; i++) cJSON_AddItemToArray(pa, json_poly(&p[i]));
+    cJSON *ea = cJSON_AddArrayToObject(o, "edge_table");
+    for (int i = 0; i < nedges; i++) cJSON_AddItemToArray(ea, json_edge(&e[i]));
+    print_json(t, o);
+  } else {
+    FILE *f = t->out;
+    fprintf(f, "sorted polygon table (bucketed by first row; dy = rows after it)\n");
+    fprintf(f, "  %4s %6s %4s %12s %12s %12s  %s\n", "row", "id", "dy", "z0", "dzx", "dzy",
+            "colour");
+    for (int i = 0; i < npolys; i++)
+      fprintf(f, "  %4d %6u %4d %12.9f %12.9f %12.9f  #%06x   z0 at pixel (%d, %d)\n", p[i].row0,
+              p[i].id, p[i].row1 - p[i].row0, p[i].z0, p[i].dzx, p[i].dzy, p[i].rgb & 0xFFFFFF,
+              p[i].ox, p[i].oy);
+    fprintf(f, "sorted edge table (bucketed by top row; x at that row's centre)\n");
+    fprintf(f, "  %4s %6s %5s %10s %10s %4s\n", "row", "id", "side", "x", "dx", "dy");
+    for (int i = 0; i < nedges; i++) {
+      char s[64];
+      slope(s, sizeof s, (int64_t)e[i].X1 - e[i].X0, (int64_t)e[i].Y1 - e[i].Y0);
+      fprintf(f, "  %4d %6u %5s %10.6f %10s %4d\n", e[i].row0, e[i].id,
+              e[i].side ? "right" : "left", e[i].x_top, s, e[i].row1 - e[i].row0);
+    }
+  }
+  free(p);
+  free(e);
+}
+
+/* ---- each scanline ---- */
+
+static void on_row(void *user, const zs_trace_row *row) {
+  tracer *t = user;
+  if (row->npairs > t->cap || row->nspans > t->cap) {
+    int cap = row->npairs > row->nspans ? row->npairs : row->nspans;
+    zs_trace_pair *p = realloc(t->pairs, (size_t)cap * sizeof *p);
+    if (p) t->pairs = p;
+    zs_trace_span *s = realloc(t->spans, (size_t)cap * sizeof *s);
+    if (s) t->spans = s;
+    if (!p || !s) {
+      t->failed = 1;
+      return;
+    }
+    t->cap = cap;
+  }
+  memcpy(t->pairs, row->pairs, (size_t)row->npairs * sizeof *row->pairs);
+  memcpy(t->spans, row->spans, (size_t)row->nspans * sizeof *row->spans);
+  t->npairs = row->npairs;
+  t->nspans = row->nspans;
+}
+
+static cJSON *json_pair(const zs_trace_pair *p) {
+  cJSON *o = cJSON_CreateObject();
+  char s[64];
+  cJSON_AddNumberToObject(o, "id", p->id);
+  cJSON_AddNumberToObject(o, "xl", p->xl_real);
+  cJSON_AddNumberToObject(o, "dxl", p->dxl);
+  cJSON_AddNumberToObject(o, "dyl", p->dyl);
+  cJSON_AddNumberToObject(o, "xr", p->xr_real);
+  cJSON_AddNumberToObject(o, "dxr", p->dxr);
+  cJSON_AddNumberToObject(o, "dyr", p->dyr);
+  cJSON_AddNumberToObject(o, "zl", p->zl_real);
+  cJSON_AddNumberToObject(o, "dzx", p->dzx);
+  cJSON_AddNumberToObject(o, "dzy", p->dzy);
+  fraction(s, sizeof s, p->xl, p->reml, p->dl);
+  cJSON_AddStringToObject(o, "xl_fraction", s);
+  fraction(s, sizeof s, p->xr, p->remr, p->dr);
+  cJSON_AddStringToObject(o, "xr_fraction", s);
+  slope(s, sizeof s, p->dxl_num, p->dl);
+  cJSON_AddStringToObject(o, "dxl_fraction", s);
+  slope(s, sizeof s, p->dxr_num, p->dr);
+  cJSON_AddStringToObject(o, "dxr_fraction", s);
+  cJSON *fx = cJSON_AddObjectToObject(o, "fixed");
+  cJSON_AddNumberToObject(fx, "xl", (double)p->xl);
+  cJSON_AddNumberToObject(fx, "xr", (double)p->xr);
+  cJSON_AddNumberToObject(fx, "zl", (double)p->zl);
+  cJSON_AddNumberToObject(fx, "zshift", p->zshift);
+  return o;
+}
+
+/* The view-space z of a stored depth (the lecture's z when the eye looks
+ * down -z: larger is nearer): invert z_ndc = 2 d - 1 through the
+ * projection's third row. */
+static double view_z(const tracer *t, uint32_t depth) {
+  double ndc = 2.0 * (depth == ZS_DEPTH_FAR ? 1.0 : depth / 4294967296.0) - 1.0;
+  return t->ortho ? (ndc - t->proj11) / t->proj10 : -t->proj11 / (ndc + t->proj10);
+}
+
+static void print_row(tracer *t, const zs_row *row) {
+  const int w = row->width;
+  if (t->o->json) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "y", row->y);
+    cJSON *ap = cJSON_AddArrayToObject(o, "active_polygons");
+    cJSON *ae = cJSON_AddArrayToObject(o, "active_edges");
+    for (int i = 0; i < t->npairs; i++) {
+      cJSON *p = cJSON_CreateObject();
+      cJSON_AddNumberToObject(p, "id", t->pairs[i].id);
+      cJSON_AddNumberToObject(p, "dy", t->pairs[i].dy);
+      cJSON_AddItemToArray(ap, p);
+      cJSON_AddItemToArray(ae, json_pair(&t->pairs[i]));
+    }
+    cJSON *sp = cJSON_AddArrayToObject(o, "spans");
+    for (int i = 0; i < t->nspans; i++) {
+      cJSON *s = cJSON_CreateObject();
+      cJSON_AddNumberToObject(s, "x0", t->spans[i].x0);
+      cJSON_AddNumberToObject(s, "x1", t->spans[i].x1);
+      cJSON_AddNumberToObject(s, "id", t->spans[i].id);
+      cJSON_AddItemToArray(sp, s);
+    }
+    cJSON *ids = cJSON_AddArrayToObject(o, "ids");
+    cJSON *zs = cJSON_AddArrayToObject(o, "z");
+    cJSON *zv = cJSON_AddArrayToObject(o, "z_view");
+    for (int x = 0; x < w; x++) {
+      int bg = row->id[x] == ZS_ID_NONE;
+      cJSON_AddItemToArray(ids, cJSON_CreateNumber(bg ? 0 : (double)((row->id[x] + 1) & 0xFFFFFF)));
+      cJSON_AddItemToArray(zs, bg ? cJSON_CreateNull() : cJSON_CreateNumber(row->depth[x] / 4294967296.0));
+      cJSON_AddItemToArray(zv, cJSON_CreateNumber(view_z(t, row->depth[x])));
+    }
+    print_json(t, o);
+    return;
+  }
+  FILE *f = t->out;
+  fprintf(f, "scanline %d\n  active polygons:", row->y);
+  for (int i = 0; i < t->npairs; i++) fprintf(f, " %u (dy %d)", t->pairs[i].id, t->pairs[i].dy);
+  fprintf(f, "%s\n  active edges:\n", t->npairs ? "" : " none");
+  for (int i = 0; i < t->npairs; i++) {
+    const zs_trace_pair *p = &t->pairs[i];
+    char xl[64], xr[64], dxl[64], dxr[64];
+    fraction(xl, sizeof xl, p->xl, p->reml, p->dl);
+    fraction(xr, sizeof xr, p->xr, p->remr, p->dr);
+    slope(dxl, sizeof dxl, p->dxl_num, p->dl);
+    slope(dxr, sizeof dxr, p->dxr_num, p->dr);
+    fprintf(f, "    id %u: xl %s dxl %s dyl %d | xr %s dxr %s dyr %d | zl %.9f dzx %.9f dzy %.9f\n",
+            p->id, xl, dxl, p->dyl, xr, dxr, p->dyr, p->zl_real, p->dzx, p->dzy);
+    fprintf(f, "          fixed: first column %lld (rem %lld/%lld), past the last %lld (rem %lld/%lld), "
+               "zl %lld >> %d\n",
+            (long long)p->xl, (long long)p->reml, (long long)p->dl, (long long)p->xr,
+            (long long)p->remr, (long long)p->dr, (long long)p->zl, 32 + p->zshift);
+  }
+  fprintf(f, "  spans:");
+  for (int i = 0; i < t->nspans; i++)
+    fprintf(f, " [%d,%d] id %u", t->spans[i].x0, t->spans[i].x1, t->spans[i].id);
+  fprintf(f, "%s\n  ids:", t->nspans ? "" : " none");
+  for (int x = 0; x < w; x++)
+    fprintf(f, " %u", row->id[x] == ZS_ID_NONE ? 0u : (row->id[x] + 1) & 0xFFFFFF);
+  fprintf(f, "\n  z:  ");
+  for (int x = 0; x < w; x++) {
+    if (row->id[x] == ZS_ID_NONE) fprintf(f, " far");
+    else fprintf(f, " %.4f", row->depth[x] / 4294967296.0);
+  }
+  fprintf(f, "\n  z_view:");
+  for (int x = 0; x < w; x++) {
+    double z = view_z(t, row->depth[x]);
+    fprintf(f, " %.4g", fabs(z) < 1e-6 ? 0.0 : z); /* a depth quantum from 0 */
+  }
+  fprintf(f, "\n");
+}
+
+/* ---- step pictures ---- */
+
+static uint32_t id_colour(uint32_t id) {
+  if (id == ZS_ID_NONE) return 0x202020;
+  static const uint32_t pal[8] = {0x4E79A7, 0xF28E2B, 0x59A14F, 0xE15759,
+                                  0x76B7B2, 0xEDC948, 0xB07AA1, 0xFF9DA7};
+  return pal[id % 8];
+}
+
+static void rect(zs_image *im, int x0, int y0, int x1, int y1, uint32_t c, int filled) {
+  for (int y = y0; y < y1; y++)
+    for (int x = x0; x < x1; x++) {
+      if (x < 0 || y < 0 || x >= im->width || y >= im->height) continue;
+      if (filled || y == y0 || y == y1 - 1 || x == x0 || x == x1 - 1)
+        im->rgb[(size_t)y * (size_t)im->width + (size_t)x] = c;
+    }
+}
+
+static void write_picture(tracer *t, int y) {
+  const int w = t->o->view.width, h = t->o->view.height, s = t->o->scale;
+  zs_image im;
+  zs_error err;
+  zs_error_clear(&err);
+  /* left: the frame so far; right: the z-buffer as grey (near white) */
+  if (zs_image_alloc(&im, 2 * w * s + s, h * s, &err)) {
+    t->failed = 1;
+    t->err = err;
+    return;
+  }
+  for (int r = 0; r <= y; r++)
+    for (int x = 0; x < w; x++) {
+      size_t i = (size_t)r * (size_t)w + (size_t)x;
+      rect(&im, x * s, r * s, (x + 1) * s, (r + 1) * s, id_colour(t->ids[i]), 1);
+      uint32_t g = t->ids[i] == ZS_ID_NONE ? 0 : 255 - (t->depth[i] >> 24);
+      rect(&im, (w + 1 + x) * s, r * s, (w + 2 + x) * s, (r + 1) * s, g << 16 | g << 8 | g, 1);
+    }
+  /* the pixel grid, faint */
+  for (int r = 0; r < h; r++)
+    for (int x = 0; x < w; x++) rect(&im, x * s, r * s, (x + 1) * s, (r + 1) * s, 0x303030, 0);
+  /* the scanline, its spans, and the exact edge crossings at its centre */
+  rect(&im, 0, y * s, w * s, (y + 1) * s, 0xFFFF00, 0);
+  for (int i = 0; i < t->nspans; i++)
+    rect(&im, t->spans[i].x0 * s, y * s + 2, (t->spans[i].x1 + 1) * s, (y + 1) * s - 2, 0xFFFFFF, 0);
+  for (int i = 0; i < t->npairs; i++) {
+    int xl = (int)((t->pairs[i].xl_real + 0.5) * s), xr = (int)((t->pairs[i].xr_real + 0.5) * s);
+    rect(&im, xl - 1, y * s, xl + 2, (y + 1) * s, 0xFF3030, 1);
+    rect(&im, xr - 1, y * s, xr + 2, (y + 1) * s, 0x30A0FF, 1);
+  }
+  char path[4200];
+  snprintf(path, sizeof path, "%s/scanline-%04d.png", t->o->png_dir, y);
+  if (zs_png_write(path, &im, &err)) {
+    t->failed = 1;
+    t->err = err;
+  }
+  zs_image_free(&im);
+}
+
+static void on_sink(void *user, const zs_row *row) {
+  tracer *t = user;
+  if (t->ids) {
+    memcpy(t->ids + (size_t)row->y * (size_t)row->width, row->id, (size_t)row->width * 4);
+    memcpy(t->depth + (size_t)row->y * (size_t)row->width, row->depth, (size_t)row->width * 4);
+  }
+  if (!in_rows(t->o, row->y) || t->failed) return;
+  print_row(t, row);
+  if (t->o->png_dir) write_picture(t, row->y);
+}
+
+/* ---- the command ---- */
+
+static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
+  memset(o, 0, sizeof *o);
+  zs_view_opts_default(&o->view, 32, 24);
+  o->row0 = 0;
+  o->row1 = ZS_MAX_IMAGE_SIDE;
+  o->scale = 16;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = NULL;
+    int taken = zs_view_opts_parse(&o->view, argc, argv, &i, err);
+    if (taken < 0) return err->code;
+    if (taken) continue;
+    if (strcmp(a, "--rows") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      char *end;
+      long y0 = strtol(v, &end, 10), y1;
+      if (end == v || *end != ':')
+        return zs_error_set(err, ZS_ERR_ARG, "--rows: expected Y0:Y1, got '%s'", v);
+      const char *p = end + 1;
+      y1 = strtol(p, &end, 10);
+      if (end == p || *end || y0 < 0 || y1 < y0 || y1 >= ZS_MAX_IMAGE_SIDE)
+        return zs_error_set(err, ZS_ERR_ARG, "--rows: expected 0 <= Y0 <= Y1, got '%s'", v);
+      o->row0 = (int)y0;
+      o->row1 = (int)y1;
+    } else if (strcmp(a, "--format") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      if (strcmp(v, "json") == 0) o->json = 1;
+      else if (strcmp(v, "text") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--format: expected text or json, got '%s'", v);
+    } else if (strcmp(a, "--png-dir") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      o->png_dir = v;
+    } else if (strcmp(a, "--scale") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 64, &o->scale, err))
+        return err->code;
+    } else if (a[0] == '-' && a[1]) {
+      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan trace --help)", a);
+    } else if (!o->input) {
+      o->input = a;
+    } else {
+      return zs_error_set(err, ZS_ERR_ARG, "more than one INPUT: '%s' and '%s'", o->input, a);
+    }
+  }
+  if (!o->input) return zs_error_set(err, ZS_ERR_ARG, "missing INPUT (see zscan trace --help)");
+  if (o->png_dir) {
+    struct stat st;
+    if (stat(o->png_dir, &st) != 0 || !S_ISDIR(st.st_mode))
+      return zs_error_set(err, ZS_ERR_IO, "--png-dir %s: not a directory", o->png_dir);
+    if ((int64_t)o->view.width * o->view.height * o->scale * o->scale > (int64_t)1 << 26)
+      return zs_error_set(err, ZS_ERR_LIMIT,
+                          "--png-dir: %dx%d at scale %d makes pictures too large; lower --scale",
+                          o->view.width, o->view.height, o->scale);
+  }
+  return ZS_OK;
+}
+
+int zs_cmd_trace(int argc, char **argv) {
+  for (int i = 1; i < argc; i++)
+    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+      fputs(usage, stdout);
+      fputs(zs_view_opts_usage, stdout);
+      return 0;
+    }
+  trace_opts o;
+  zs_error err;
+  zs_error_clear(&err);
+  zs_model model;
+  zs_device *dev = NULL;
+  tracer t;
+  memset(&t, 0, sizeof t);
+  int have_model = 0;
+  if (parse(argc, argv, &o, &err)) goto fail;
+  if (zs_input_load(o.input, &model, &err)) goto fail;
+  have_model = 1;
+  double view[16], proj[16];
+  if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
+    goto fail;
+  zs_device_config cfg = {o.view.width, o.view.height, ZS_ALGO_SCANLINE, ZS_SHADE_ID,
+                          o.view.cull_back, 1, ZS_BACKGROUND_RGB};
+  if (zs_device_create(&cfg, &dev, &err)) goto fail;
+  t.o = &o;
+  t.out = stdout;
+  t.ortho = proj[14] == 0.0;
+  t.proj10 = proj[10];
+  t.proj11 = proj[11];
+  if (o.png_dir) {
+    size_t n = (size_t)o.view.width * (size_t)o.view.height;
+    t.ids = malloc(n * sizeof *t.ids);
+    t.depth = malloc(n * sizeof *t.depth);
+    if (!t.ids || !t.depth) {
+      zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
+      goto fail;
+    }
+  }
+  zs_trace_observer obs = {on_tables, on_row, &t};
+  zs_device_set_trace(dev, &obs);
+  zs_device_clear(dev);
+  zs_device_set_camera(dev, view, proj);
+  if (zs_device_draw(dev, &model.mesh, NULL, 0, ZS_RGB_MESH, &err)) goto fail;
+  if (zs_device_finish(dev, on_sink, &t, &err)) goto fail;
+  if (t.failed) {
+    if (t.err.code) err = t.err;
+    else zs_error_set(&err, ZS_ERR_NOMEM, "out of memory while tracing");
+    goto fail;
+  }
+  free(t.pairs);
+  free(t.spans);
+  free(t.ids);
+  free(t.depth);
+  zs_device_destroy(dev);
+  zs_model_free(&model);
+  return 0;
+fail:
+  fprintf(stderr, "zscan trace: %s\n", err.msg);
+  free(t.pairs);
+  free(t.spans);
+  free(t.ids);
+  free(t.depth);
+  zs_device_destroy(dev);
+  if (have_model) zs_model_free(&model);
+  return 1;
+}

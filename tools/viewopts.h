@@ -1,0 +1,26 @@
+/* zscan tools — the options that say what a frame sees, shared by every
+ * command that renders: --size, --eye, --target, --up, --fovy, --ortho,
+ * --near, --far, --cull-back. */
+#ifndef ZS_TOOLS_VIEWOPTS_H
+#define ZS_TOOLS_VIEWOPTS_H
+
+#include "raster/error.h"
+#include "scene/camera.h"
+
+typedef struct zs_view_opts {
+  int width, height;
+  zs_camera cam;
+  int cull_back;
+} zs_view_opts;
+
+/* width x height, a default camera (framed later from the input). */
+void zs_view_opts_default(zs_view_opts *o, int width, int height);
+
+/* When argv[*i] is a view option, takes it (and its value, advancing *i)
+ * and returns 1; returns 0 when it is not one, -1 on a bad value. */
+int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error *err);
+
+/* The usage lines of these options. */
+extern const char zs_view_opts_usage[];
+
+#endif
