@@ -7,6 +7,8 @@
  * out as soon as it is complete; the device then holds O(width) pixels.
  * Both walk with the same code and the same total order on (depth, id), so
  * their images are the same to the byte.
+ * depthsort mode collects the frame like scanline mode, then orders its
+ * faces (depthsort.c) and walks it with painter's depths.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -33,7 +35,7 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
   d->cfg = *cfg;
   size_t w = (size_t)cfg->width, px = w * (size_t)cfg->height;
   int ok = 1;
-  if (cfg->algo == ZS_ALGO_ZBUFFER) {
+  if (cfg->algo == ZS_ALGO_ZBUFFER) { /* else scanline or depthsort: one row */
     d->depth = alloc_u32(px);
     d->id = alloc_u32(px);
     d->rgb = alloc_u32(px);
@@ -80,6 +82,7 @@ void zs_device_destroy(zs_device *d) {
   free(d->row_out);
   zs_batch_free(&d->batch);
   zs_walk_scratch_free(&d->scratch);
+  zs_depthsort_free(&d->depthsort);
   free(d->clip);
   free(d->eyepos);
   free(d->outcode);
@@ -90,6 +93,11 @@ void zs_device_destroy(zs_device *d) {
 const zs_device_config *zs_device_config_of(const zs_device *d) { return &d->cfg; }
 const zs_raster_stats *zs_device_stats(const zs_device *d) { return &d->stats; }
 void zs_device_set_trace(zs_device *d, const zs_trace_observer *obs) { d->trace = obs; }
+const zs_depthsort_stats *zs_device_depthsort_stats(const zs_device *d) {
+  return &d->depthsort.stats;
+}
+double zs_device_depthsort_ms(const zs_device *d) { return d->depthsort.ms; }
+void zs_device_depthsort_reset(zs_device *d) { d->depthsort.has_prev = 0; }
 const uint32_t *zs_device_depth_buffer(const zs_device *d) { return d->depth; }
 const uint32_t *zs_device_id_buffer(const zs_device *d) { return d->id; }
 
@@ -121,6 +129,7 @@ void zs_device_clear(zs_device *d) {
   memset(&d->stats, 0, sizeof d->stats);
   zs_clock_reset(d);
   zs_batch_reset(&d->batch);
+  d->depthsort.nfaces = 0;
   if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
     size_t px = (size_t)d->cfg.width * (size_t)d->cfg.height;
     fill_u32(d->depth, px, ZS_DEPTH_FAR);
@@ -179,13 +188,15 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
   /* Transform: every vertex once, to eye space (for the normals of flat
    * shading) and to clip space, with its outcode. */
   const int flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
+  const int painter = d->cfg.algo == ZS_ALGO_DEPTHSORT;
+  const int need_eye = flat || painter;
   for (int32_t i = 0; i < mesh->nverts; i++) {
     const double *p = &mesh->pos[3 * i];
     double c[4];
     zs_mat_apply(mvp, p, c);
     d->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
     d->outcode[i] = zs_clip_outcode(&d->clip[i], d->gx, d->gy);
-    if (flat) {
+    if (need_eye) {
       double e[4];
       zs_mat_apply(mv, p, e);
       memcpy(&d->eyepos[3 * i], e, 3 * sizeof e[0]);
@@ -242,7 +253,18 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
       }
       poly = clipped;
     }
-    switch (zs_setup_polygon(&d->batch, &sp, poly, n)) {
+    zs_setup_result r = zs_setup_polygon(&d->batch, &sp, poly, n);
+    if (painter && r == ZS_SETUP_DRAWN) {
+      /* the sort key: distance along the view axis of the centroid of the
+       * face's vertices; every face in view is ordered, even one too small
+       * to cover a pixel centre */
+      int32_t nv = mesh->face_start[f + 1] - s;
+      double zsum = 0.0;
+      for (int i = 0; i < nv; i++) zsum += d->eyepos[3 * fv[i] + 2];
+      if (!zs_depthsort_note(&d->depthsort, sp.id, -zsum / nv))
+        return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    }
+    switch (r) {
       case ZS_SETUP_DRAWN: d->stats.polygons_rasterized++; break;
       case ZS_SETUP_BACK: d->stats.polygons_culled_back++; break;
       case ZS_SETUP_DEGENERATE: d->stats.polygons_degenerate++; break;
@@ -330,7 +352,9 @@ static void scanline_end_row(void *user, int y) {
 zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
                            zs_error *err) {
   const int w = d->cfg.width, h = d->cfg.height;
-  if (d->cfg.algo == ZS_ALGO_SCANLINE) {
+  if (d->cfg.algo != ZS_ALGO_ZBUFFER) {
+    if (d->cfg.algo == ZS_ALGO_DEPTHSORT && !zs_depthsort_order(&d->depthsort, &d->batch, d->view))
+      return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
     row_emit e = {d, sink, user};
     zs_row_hooks hooks = {scanline_begin_row, scanline_end_row, &e};
     zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w};

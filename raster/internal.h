@@ -163,6 +163,32 @@ void zs_shade_row(zs_shade shade, int width, const uint32_t *depth,
                   uint32_t background, double znear, double zfar,
                   int perspective, uint32_t *rgb_out);
 
+/* ---- depthsort.c ---- */
+typedef struct zs_depthsort {
+  uint32_t *face_ids;    /* this frame's faces in view, as drawn */
+  double *face_keys;     /* and their sort keys */
+  uint32_t nfaces, cap_faces;
+  /* per face id (dense, grown to the largest id seen) */
+  double *key_of, *prev_key;
+  int32_t *rank_of;      /* this frame's place, back to front */
+  uint32_t *seen;        /* frame stamp: present this frame */
+  uint32_t *was;         /* frame stamp: kept in this frame's old queue */
+  uint32_t cap_ids;
+  uint32_t *order, *prev_order, *tmp, *fresh;  /* ids */
+  uint32_t n_prev, cap_order;
+  uint32_t frame;
+  double prev_view[16];
+  int has_prev;
+  zs_depthsort_stats stats;
+  double ms;
+} zs_depthsort;
+
+/* Records a face in view (whether or not it covers a pixel centre). */
+int zs_depthsort_note(zs_depthsort *ds, uint32_t id, double key);
+/* Orders the batch's faces and gives each polygon its painter's depth. */
+int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]);
+void zs_depthsort_free(zs_depthsort *ds);
+
 /* ---- the device (device.c, query.c, clock.c) ---- */
 
 /* A query: its samples so far, and when the GPU finished its last command
@@ -207,6 +233,7 @@ struct zs_device {
   uint32_t nqueries, cap_queries;
   int query_open;                 /* a query is between begin and end */
   const zs_trace_observer *trace; /* scanline mode's observer, or NULL */
+  zs_depthsort depthsort;
   int last_was_query;             /* the GPU's last command was a query box */
 };
 

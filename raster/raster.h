@@ -83,7 +83,8 @@ typedef struct zs_mesh {
 
 typedef enum zs_algo {
   ZS_ALGO_ZBUFFER,  /* immediate mode: each draw into full-frame buffers */
-  ZS_ALGO_SCANLINE  /* the whole frame at once, one row of buffers */
+  ZS_ALGO_SCANLINE, /* the whole frame at once, one row of buffers */
+  ZS_ALGO_DEPTHSORT /* painter's algorithm with frame coherence (depthsort.c) */
 } zs_algo;
 
 typedef enum zs_shade {
@@ -263,6 +264,71 @@ void zs_device_cpu_work(zs_device *dev, zs_cpu_work kind, uint64_t count);
 const zs_clock_stats *zs_device_clock(const zs_device *dev);
 /* The frame's modelled time so far: the later of the two clocks. */
 int64_t zs_device_frame_ps(const zs_device *dev);
+
+/* ---- lines.c: hidden-line output ----
+ *
+ * The lecture's hidden-line removal on the z-buffer: after the faces are
+ * drawn (zbuffer mode), zs_device_fill_color paints the colour buffer with
+ * one colour (keeping depth and ids), and zs_device_draw_edges draws the
+ * edges of the front faces (V . N >= 0: the face turned to the eye) in a
+ * line colour wherever the edge is not behind the depth buffer.  An edge
+ * lies on its own face, so it is tested with a bias towards the eye, as
+ * glPolygonOffset(1, units) does: its face's largest depth slope per pixel
+ * (|dz/dx| or |dz/dy| in window depth) plus ZS_EDGE_DEPTH_UNITS units of
+ * 2^-32.  Edges are walked one pixel per step along their major axis,
+ * through the pixel the exact edge crosses at that column's (row's)
+ * centre. */
+enum { ZS_EDGE_DEPTH_UNITS = 1024 };
+void zs_device_fill_color(zs_device *dev, uint32_t rgb);
+zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh,
+                               const double model[16], uint32_t rgb, zs_error *err);
+
+/* ---- depthsort.c: the painter's algorithm with frame coherence ----
+ *
+ * In ZS_ALGO_DEPTHSORT the faces of a frame are ordered back to front by
+ * the key: the eye-space distance along the view axis of the centroid of
+ * the face's vertices (ties: the higher id first, so the lower id is
+ * painted last and wins, as in the z-buffer).  They are then painted in
+ * that order, without a depth test: the walk gives each polygon the
+ * constant depth n - 1 - rank, and its "less" test then keeps the face
+ * painted last.  The depth buffer therefore holds ranks in this mode.
+ *
+ * Frame coherence (the depth-sort paper): each face keeps its place from
+ * the previous frame.  The camera's motion between frames is classified
+ * from the two view matrices:
+ *   static, translation, roll about the view axis: depths are unchanged or
+ *     shift all by the same amount, so the old order is kept as it is;
+ *     only new faces are sorted and merged in;
+ *   slow rotation (about an axis off the view axis, under 2 degrees): the
+ *     old order is nearly right: re-sorted by insertion sort, fast on such
+ *     input, then the new faces merged in;
+ *   fast rotation, or more than half the faces new: a full sort.
+ * A kept face whose depth did not change as the camera's motion says (an
+ * object that moved) is taken out and sorted in as new. */
+typedef enum zs_motion_class {
+  ZS_MOTION_FIRST,        /* no previous frame */
+  ZS_MOTION_STATIC,
+  ZS_MOTION_TRANSLATE,    /* translation (any direction) */
+  ZS_MOTION_ROLL,         /* roll about the view axis (and translation) */
+  ZS_MOTION_SLOW_ROTATE,  /* slow pitch / yaw */
+  ZS_MOTION_FAST          /* anything else: a full sort */
+} zs_motion_class;
+
+typedef struct zs_depthsort_stats {
+  zs_motion_class motion;
+  uint64_t faces;         /* faces ordered this frame */
+  uint64_t reused;        /* kept their place from the last frame */
+  uint64_t inserted;      /* new (or moved) faces sorted in */
+  uint64_t comparisons;   /* key comparisons of the sort */
+  int full_sort;          /* whether the whole list was sorted */
+} zs_depthsort_stats;
+
+const zs_depthsort_stats *zs_device_depthsort_stats(const zs_device *dev);
+/* Wall time of the last frame's ordering, in ms (a measurement). */
+double zs_device_depthsort_ms(const zs_device *dev);
+/* Forget the previous frame's order: the next frame sorts from scratch. */
+void zs_device_depthsort_reset(zs_device *dev);
+const char *zs_motion_class_name(zs_motion_class m);
 
 /* ---- trace: watching the scanline walk (scanline.c) ----
  *

@@ -28,12 +28,17 @@ zs_status zs_frame_camera(const zs_model *model, const zs_camera *cam, int width
 }
 
 zs_status zs_frame_render_on(zs_device *dev, const zs_model *model,
-                             const double view[16], const double proj[16],
+                             const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err) {
   gather g = {out, depth};
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
   if (zs_device_draw(dev, &model->mesh, NULL, 0, ZS_RGB_MESH, err)) return err->code;
+  if (hidden_line) {
+    /* the faces stay in the depth buffer; the picture is their edges */
+    zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER);
+    if (zs_device_draw_edges(dev, &model->mesh, NULL, ZS_HIDDEN_LINE_INK, err)) return err->code;
+  }
   return zs_device_finish(dev, gather_row, &g, err);
 }
 
@@ -42,12 +47,14 @@ zs_status zs_frame_render(const zs_model *model, const zs_camera *cam,
                           zs_raster_stats *stats, zs_error *err) {
   double view[16], proj[16];
   if (zs_frame_camera(model, cam, o->width, o->height, view, proj, err)) return err->code;
+  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
+    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB};
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;
   zs_status st = zs_image_alloc(out, o->width, o->height, err);
-  if (st == ZS_OK) st = zs_frame_render_on(dev, model, view, proj, out, depth, err);
+  if (st == ZS_OK) st = zs_frame_render_on(dev, model, view, proj, o->hidden_line, out, depth, err);
   if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
   if (st != ZS_OK) zs_image_free(out);
   zs_device_destroy(dev);

@@ -10,11 +10,15 @@
 
 #define ZS_BACKGROUND_RGB 0x1E2228u /* flat shading's background */
 
+#define ZS_HIDDEN_LINE_PAPER 0xFFFFFFu /* hidden-line style: background */
+#define ZS_HIDDEN_LINE_INK 0x000000u   /* and the lines */
+
 typedef struct zs_frame_opts {
   int width, height;
   zs_algo algo;
   zs_shade shade;
   int cull_back, threads;
+  int hidden_line;  /* draw the visible edges of front faces, not the faces */
 } zs_frame_opts;
 
 /* Renders model seen by cam (completed from the model's bounds where it is
@@ -28,7 +32,7 @@ zs_status zs_frame_render(const zs_model *model, const zs_camera *cam,
 /* The same with a device made by the caller and kept across frames
  * (`--repeat`): the device's size and modes are used. */
 zs_status zs_frame_render_on(zs_device *dev, const zs_model *model,
-                             const double view[16], const double proj[16],
+                             const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err);
 
 /* The camera's matrices for the model at aspect w/h: cam completed from

@@ -21,8 +21,9 @@ static const char usage_head[] =
     "  INPUT               FILE.obj or builtin:NAME[?k=v] (default: the teapot field)\n"
     "  -o FILE.png         output image (default zscan.png)\n";
 static const char usage_tail[] =
-    "  --algo zbuffer|scanline   hidden-surface mode (default zbuffer)\n"
+    "  --algo zbuffer|scanline|depthsort   hidden-surface mode (default zbuffer)\n"
     "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
+    "  --style solid|hidden-line   faces, or the visible edges of front faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --threads N         render threads (default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
@@ -35,7 +36,7 @@ typedef struct render_opts {
   zs_view_opts view;
   zs_algo algo;
   zs_shade shade;
-  int threads, repeat, stats;
+  int threads, repeat, stats, hidden_line;
   zs_clock_params clock;
 } render_opts;
 
@@ -60,7 +61,9 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       VALUE();
       if (strcmp(v, "zbuffer") == 0) o->algo = ZS_ALGO_ZBUFFER;
       else if (strcmp(v, "scanline") == 0) o->algo = ZS_ALGO_SCANLINE;
-      else return zs_error_set(err, ZS_ERR_ARG, "--algo: expected zbuffer or scanline, got '%s'", v);
+      else if (strcmp(v, "depthsort") == 0) o->algo = ZS_ALGO_DEPTHSORT;
+      else return zs_error_set(err, ZS_ERR_ARG,
+                               "--algo: expected zbuffer, scanline or depthsort, got '%s'", v);
     } else if (strcmp(a, "--shade") == 0) {
       VALUE();
       if (strcmp(v, "flat") == 0) o->shade = ZS_SHADE_FLAT;
@@ -68,6 +71,11 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       else if (strcmp(v, "depth") == 0) o->shade = ZS_SHADE_DEPTH;
       else if (strcmp(v, "overdraw") == 0) o->shade = ZS_SHADE_OVERDRAW;
       else return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat, id, depth or overdraw, got '%s'", v);
+    } else if (strcmp(a, "--style") == 0) {
+      VALUE();
+      if (strcmp(v, "hidden-line") == 0) o->hidden_line = 1;
+      else if (strcmp(v, "solid") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--style: expected solid or hidden-line, got '%s'", v);
     } else if (strcmp(a, "--depth") == 0) {
       VALUE();
       o->out_pfm = v;
@@ -94,6 +102,8 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
     }
 #undef VALUE
   }
+  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
+    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
   return ZS_OK;
@@ -101,10 +111,10 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
 
 static void print_stats(const render_opts *o, const zs_model *m,
                         const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
-                        double ms, double load_ms) {
+                        double ms, double load_ms, int64_t diff_pixels) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
-         o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : "scanline");
+         o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : o->algo == ZS_ALGO_SCANLINE ? "scanline" : "depthsort");
   /* triangles: what the polygons would be as triangle fans */
   long long triangles = 0;
   for (int32_t f = 0; f < m->mesh.nfaces; f++)
@@ -122,6 +132,15 @@ static void print_stats(const render_opts *o, const zs_model *m,
          "\"image_hash\":\"%016llx\",",
          (unsigned long long)s->spans, (unsigned long long)s->pixels_tested,
          (unsigned long long)s->pixels_written, (unsigned long long)hash);
+  if (o->algo == ZS_ALGO_DEPTHSORT) {
+    const zs_depthsort_stats *ds = zs_device_depthsort_stats(dev);
+    printf("\"depthsort_motion\":\"%s\",\"depthsort_faces\":%llu,\"depthsort_reused\":%llu,"
+           "\"depthsort_inserted\":%llu,\"depthsort_comparisons\":%llu,\"diff_pixels\":%lld,"
+           "\"sort_ms\":%.3f,",
+           zs_motion_class_name(ds->motion), (unsigned long long)ds->faces,
+           (unsigned long long)ds->reused, (unsigned long long)ds->inserted,
+           (unsigned long long)ds->comparisons, (long long)diff_pixels, zs_device_depthsort_ms(dev));
+  }
   const zs_clock_stats *k = zs_device_clock(dev);
   printf("\"queries\":%llu,\"query_waits\":%llu,\"stalls\":%llu,\"stall_ms\":%.6f,"
          "\"sync_ms\":%.6f,\"gpu_ms\":%.6f,\"cpu_ms\":%.6f,\"modelled_ms\":%.6f,",
@@ -160,15 +179,34 @@ static zs_status run(const render_opts *o, zs_error *err) {
   }
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
-    if ((st = zs_frame_render_on(dev, &model, view, proj, &im, depth, err))) goto done;
+    if ((st = zs_frame_render_on(dev, &model, view, proj, o->hidden_line, &im, depth, err)))
+      goto done;
     times[k] = zs_wall_ms() - start;
   }
   double median = zs_median(times, o->repeat);
 
   if ((st = zs_png_write(o->out_png, &im, err))) goto done;
   if (depth && (st = zs_pfm_write(o->out_pfm, o->view.width, o->view.height, depth, err))) goto done;
+  int64_t diff_pixels = -1;
+  if (o->stats && o->algo == ZS_ALGO_DEPTHSORT) {
+    /* the painter's error: pixels whose face differs from the z-buffer's */
+    zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
+                         o->view.cull_back, 1, 0};
+    zs_frame_opts mine = ref;
+    mine.algo = ZS_ALGO_DEPTHSORT;
+    zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
+    if ((st = zs_frame_render(&model, &o->view.cam, &ref, &a, NULL, NULL, err)) == ZS_OK &&
+        (st = zs_frame_render(&model, &o->view.cam, &mine, &b, NULL, NULL, err)) == ZS_OK) {
+      diff_pixels = 0;
+      for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++) diff_pixels += a.rgb[i] != b.rgb[i];
+    }
+    zs_image_free(&a);
+    zs_image_free(&b);
+    if (st) goto done;
+  }
   if (o->stats)
-    print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms);
+    print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
+                diff_pixels);
 
 done:
   free(times);

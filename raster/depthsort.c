@@ -1,0 +1,241 @@
+/* The painter's algorithm with frame coherence (raster.h, "depthsort.c").
+ *
+ * Faces are identified across frames by id.  Per id the sorter keeps the
+ * key and place of the last frame; the list of the last frame's order is
+ * the "old queue" of the paper, and faces not in it (the paper's rank
+ * 65535) are the new ones. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "raster/internal.h"
+
+const char *zs_motion_class_name(zs_motion_class m) {
+  static const char *names[] = {"first", "static", "translate", "roll", "slow-rotate", "fast"};
+  return (unsigned)m < sizeof names / sizeof names[0] ? names[m] : "?";
+}
+
+void zs_depthsort_free(zs_depthsort *ds) {
+  free(ds->face_ids);
+  free(ds->face_keys);
+  free(ds->key_of);
+  free(ds->prev_key);
+  free(ds->rank_of);
+  free(ds->seen);
+  free(ds->was);
+  free(ds->order);
+  free(ds->prev_order);
+  free(ds->tmp);
+  free(ds->fresh);
+  memset(ds, 0, sizeof *ds);
+}
+
+int zs_depthsort_note(zs_depthsort *ds, uint32_t id, double key) {
+  if (ds->nfaces == ds->cap_faces) {
+    uint32_t cap = ds->cap_faces ? 2 * ds->cap_faces : 1024;
+    uint32_t *i = realloc(ds->face_ids, (size_t)cap * sizeof *i);
+    if (i) ds->face_ids = i;
+    double *k = realloc(ds->face_keys, (size_t)cap * sizeof *k);
+    if (k) ds->face_keys = k;
+    if (!i || !k) return 0;
+    ds->cap_faces = cap;
+  }
+  ds->face_ids[ds->nfaces] = id;
+  ds->face_keys[ds->nfaces++] = key;
+  return 1;
+}
+
+/* ---- ordering ---- */
+
+/* "a is painted before b": farther first; at equal keys the higher id
+ * first, so that the lower id is painted last and wins. */
+static inline int before(const zs_depthsort *ds, uint32_t a, uint32_t b, uint64_t *cmp) {
+  ++*cmp;
+  double ka = ds->key_of[a], kb = ds->key_of[b];
+  return ka > kb || (ka == kb && a > b);
+}
+
+/* Bottom-up merge sort of ids[0..n-1] (stable, O(n log n) comparisons). */
+static void merge_sort(const zs_depthsort *ds, uint32_t *ids, uint32_t *tmp, uint32_t n,
+                       uint64_t *cmp) {
+  uint32_t *src = ids, *dst = tmp;
+  for (uint32_t width = 1; width < n; width *= 2) {
+    for (uint32_t lo = 0; lo < n; lo += 2 * width) {
+      uint32_t mid = lo + width < n ? lo + width : n;
+      uint32_t hi = lo + 2 * width < n ? lo + 2 * width : n;
+      uint32_t i = lo, j = mid, k = lo;
+      while (i < mid && j < hi) dst[k++] = before(ds, src[j], src[i], cmp) ? src[j++] : src[i++];
+      while (i < mid) dst[k++] = src[i++];
+      while (j < hi) dst[k++] = src[j++];
+    }
+    uint32_t *t = src;
+    src = dst;
+    dst = t;
+  }
+  if (src != ids) memcpy(ids, src, (size_t)n * sizeof *ids);
+}
+
+/* Insertion sort: n - 1 comparisons on sorted input, one more per
+ * inversion: the sort for a nearly sorted old queue. */
+static void insertion_sort(const zs_depthsort *ds, uint32_t *ids, uint32_t n, uint64_t *cmp) {
+  for (uint32_t i = 1; i < n; i++) {
+    uint32_t v = ids[i], j = i;
+    while (j > 0 && before(ds, v, ids[j - 1], cmp)) {
+      ids[j] = ids[j - 1];
+      j--;
+    }
+    ids[j] = v;
+  }
+}
+
+/* Merges the sorted lists a (na) and b (nb) into out. */
+static void merge(const zs_depthsort *ds, const uint32_t *a, uint32_t na, const uint32_t *b,
+                  uint32_t nb, uint32_t *out, uint64_t *cmp) {
+  uint32_t i = 0, j = 0, k = 0;
+  while (i < na && j < nb) out[k++] = before(ds, b[j], a[i], cmp) ? b[j++] : a[i++];
+  while (i < na) out[k++] = a[i++];
+  while (j < nb) out[k++] = b[j++];
+}
+
+/* The camera's motion from the previous view to this one.  M = V V_prev^-1
+ * takes old eye coordinates to new ones: rotation R (3x3) and translation
+ * t.  Its depth shift (for the kept faces' check) is -t_z. */
+static zs_motion_class classify(const double prev[16], const double view[16], double *shift) {
+  /* R = Rv Rp^T; t = tv - R tp (both views are rigid). */
+  double R[9], t[3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double s = 0.0;
+      for (int k = 0; k < 3; k++) s += view[4 * i + k] * prev[4 * j + k];
+      R[3 * i + j] = s;
+    }
+  for (int i = 0; i < 3; i++)
+    t[i] = view[4 * i + 3] - (R[3 * i] * prev[3] + R[3 * i + 1] * prev[7] + R[3 * i + 2] * prev[11]);
+  *shift = -t[2];
+  double cosang = (R[0] + R[4] + R[8] - 1.0) / 2.0;
+  if (cosang > 1.0) cosang = 1.0;
+  const double eps = 1e-12;
+  int rotated = cosang < 1.0 - eps;
+  int moved = fabs(t[0]) > eps || fabs(t[1]) > eps || fabs(t[2]) > eps;
+  if (!rotated) return moved ? ZS_MOTION_TRANSLATE : ZS_MOTION_STATIC;
+  /* a rotation about the view axis leaves every z: R's third row is (0,0,1) */
+  if (fabs(R[6]) < 1e-9 && fabs(R[7]) < 1e-9) return ZS_MOTION_ROLL;
+  return cosang > cos(2.0 * ZS_PI / 180.0) ? ZS_MOTION_SLOW_ROTATE : ZS_MOTION_FAST;
+}
+
+static int reserve_ids(zs_depthsort *ds, uint32_t max_id) {
+  if (max_id < ds->cap_ids) return 1;
+  uint32_t cap = ds->cap_ids ? ds->cap_ids : 1024;
+  while (cap <= max_id) cap *= 2;
+  double *k = realloc(ds->key_of, (size_t)cap * sizeof *k);
+  if (k) ds->key_of = k;
+  double *pk = realloc(ds->prev_key, (size_t)cap * sizeof *pk);
+  if (pk) ds->prev_key = pk;
+  int32_t *r = realloc(ds->rank_of, (size_t)cap * sizeof *r);
+  if (r) ds->rank_of = r;
+  uint32_t *s = realloc(ds->seen, (size_t)cap * sizeof *s);
+  if (s) ds->seen = s;
+  uint32_t *w = realloc(ds->was, (size_t)cap * sizeof *w);
+  if (w) ds->was = w;
+  if (!k || !pk || !r || !s || !w) return 0;
+  /* new ids were never seen: stamp 0 is no frame (frames count from 1) */
+  memset(ds->seen + ds->cap_ids, 0, (size_t)(cap - ds->cap_ids) * sizeof *s);
+  memset(ds->was + ds->cap_ids, 0, (size_t)(cap - ds->cap_ids) * sizeof *w);
+  ds->cap_ids = cap;
+  return 1;
+}
+
+static int reserve_order(zs_depthsort *ds, uint32_t n) {
+  if (n <= ds->cap_order) return 1;
+  uint32_t cap = ds->cap_order ? ds->cap_order : 1024;
+  while (cap < n) cap *= 2;
+  uint32_t **lists[4] = {&ds->order, &ds->prev_order, &ds->tmp, &ds->fresh};
+  for (int i = 0; i < 4; i++) {
+    uint32_t *p = realloc(*lists[i], (size_t)cap * sizeof *p);
+    if (!p) return 0;
+    *lists[i] = p;
+  }
+  ds->cap_order = cap;
+  return 1;
+}
+
+int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
+  struct timespec t0, t1;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  zs_depthsort_stats st = {ZS_MOTION_FIRST, 0, 0, 0, 0, 0};
+  uint32_t max_id = 0;
+  for (uint32_t i = 0; i < ds->nfaces; i++)
+    if (ds->face_ids[i] > max_id) max_id = ds->face_ids[i];
+  if (!reserve_ids(ds, max_id) || !reserve_order(ds, ds->nfaces + 1)) return 0;
+  uint32_t frame = ++ds->frame;
+
+  /* The faces of this frame, each once, with its key. */
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < ds->nfaces; i++) {
+    uint32_t id = ds->face_ids[i];
+    if (ds->seen[id] == frame) continue;
+    ds->seen[id] = frame;
+    ds->key_of[id] = ds->face_keys[i];
+    ds->order[n++] = id; /* scratch: the faces in drawing order */
+  }
+  ds->nfaces = 0; /* the next frame notes its own */
+  st.faces = n;
+
+  double shift = 0.0;
+  if (ds->has_prev) st.motion = classify(ds->prev_view, view, &shift);
+  int keep_as_is = st.motion == ZS_MOTION_STATIC || st.motion == ZS_MOTION_TRANSLATE ||
+                   st.motion == ZS_MOTION_ROLL;
+  int coherent = keep_as_is || st.motion == ZS_MOTION_SLOW_ROTATE;
+
+  /* The old queue: last frame's order, less the faces gone, and (when the
+   * motion says depths are kept or shifted) less the faces that moved. */
+  uint32_t nold = 0, nfresh = 0;
+  if (coherent) {
+    for (uint32_t i = 0; i < ds->n_prev; i++) {
+      uint32_t id = ds->prev_order[i];
+      if (id > max_id || ds->seen[id] != frame) continue;
+      double expect = ds->prev_key[id] + shift;
+      if (keep_as_is && fabs(ds->key_of[id] - expect) > 1e-9 * (1.0 + fabs(expect))) continue;
+      ds->was[id] = frame; /* in the old queue */
+      ds->tmp[nold++] = id;
+    }
+    for (uint32_t i = 0; i < n; i++)
+      if (ds->was[ds->order[i]] != frame) ds->fresh[nfresh++] = ds->order[i];
+    /* Mostly new faces (fast motion): coherence has nothing to offer. */
+    if (2 * (uint64_t)nfresh > n) coherent = 0;
+  }
+  if (!coherent) {
+    st.full_sort = 1;
+    if (st.motion != ZS_MOTION_FIRST) st.motion = ZS_MOTION_FAST;
+    merge_sort(ds, ds->order, ds->tmp, n, &st.comparisons);
+    st.inserted = n;
+  } else {
+    if (!keep_as_is) insertion_sort(ds, ds->tmp, nold, &st.comparisons);
+    merge_sort(ds, ds->fresh, ds->prev_order, nfresh, &st.comparisons);
+    merge(ds, ds->tmp, nold, ds->fresh, nfresh, ds->order, &st.comparisons);
+    st.reused = nold;
+    st.inserted = nfresh;
+  }
+
+  /* Ranks, painter's depths, and the memory for the next frame. */
+  for (uint32_t i = 0; i < n; i++) {
+    uint32_t id = ds->order[i];
+    ds->rank_of[id] = (int32_t)i;
+    ds->prev_key[id] = ds->key_of[id];
+    ds->prev_order[i] = id;
+  }
+  ds->n_prev = n;
+  for (int32_t i = 0; i < b->npolys; i++) {
+    zs_poly *p = &b->polys[i];
+    p->zshift = 0;
+    p->dzdx = p->dzdy = 0;
+    p->zc = (int64_t)n - 1 - ds->rank_of[p->id];
+  }
+  memcpy(ds->prev_view, view, sizeof ds->prev_view);
+  ds->has_prev = 1;
+  ds->stats = st;
+  clock_gettime(CLOCK_MONOTONIC, &t1);
+  ds->ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
+  return 1;
+}

@@ -1,0 +1,143 @@
+/* Hidden-line output (raster.h, "lines.c"). */
+#include <math.h>
+#include <string.h>
+
+#include "raster/internal.h"
+
+void zs_device_fill_color(zs_device *d, uint32_t rgb) {
+  if (!d->rgb) return;
+  size_t n = (size_t)d->cfg.width * (size_t)d->cfg.height;
+  for (size_t i = 0; i < n; i++) d->rgb[i] = rgb;
+}
+
+/* Window position of a clip-space point: x, y in pixels (image y down),
+ * z the window depth. */
+static void to_window(const zs_device *d, const zs_clip_vert *v, double out[3]) {
+  out[0] = (v->x / v->w + 1.0) * 0.5 * d->cfg.width;
+  out[1] = d->cfg.height - (v->y / v->w + 1.0) * 0.5 * d->cfg.height;
+  out[2] = (v->z / v->w + 1.0) * 0.5;
+}
+
+/* Clips the segment a-b to the near and far planes and the guard band
+ * (Liang-Barsky in clip space); returns 0 when nothing is left. */
+static int clip_segment(const zs_device *d, zs_clip_vert *a, zs_clip_vert *b) {
+  double t0 = 0.0, t1 = 1.0;
+  const double gx = d->gx, gy = d->gy;
+  double da[6] = {a->z + a->w, a->w - a->z, gx * a->w + a->x, gx * a->w - a->x,
+                  gy * a->w + a->y, gy * a->w - a->y};
+  double db[6] = {b->z + b->w, b->w - b->z, gx * b->w + b->x, gx * b->w - b->x,
+                  gy * b->w + b->y, gy * b->w - b->y};
+  for (int p = 0; p < 6; p++) {
+    if (da[p] < 0 && db[p] < 0) return 0;
+    if (da[p] < 0) { double t = da[p] / (da[p] - db[p]); if (t > t0) t0 = t; }
+    else if (db[p] < 0) { double t = da[p] / (da[p] - db[p]); if (t < t1) t1 = t; }
+  }
+  if (t0 > t1) return 0;
+  zs_clip_vert A = *a, B = *b;
+  if (t0 > 0) *a = (zs_clip_vert){A.x + t0 * (B.x - A.x), A.y + t0 * (B.y - A.y),
+                                  A.z + t0 * (B.z - A.z), A.w + t0 * (B.w - A.w)};
+  if (t1 < 1) *b = (zs_clip_vert){A.x + t1 * (B.x - A.x), A.y + t1 * (B.y - A.y),
+                                  A.z + t1 * (B.z - A.z), A.w + t1 * (B.w - A.w)};
+  return 1;
+}
+
+/* Draws the segment p-q (window coordinates) with depth bias `bias`
+ * (window depth units): one pixel per column (or row) along the major axis,
+ * the pixel whose area holds the exact edge at that column's centre. */
+static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3], double bias,
+                             uint32_t rgb) {
+  const int w = d->cfg.width, h = d->cfg.height;
+  double dx = q[0] - p[0], dy = q[1] - p[1];
+  int major_x = fabs(dx) >= fabs(dy);
+  double a0 = major_x ? p[0] : p[1], a1 = major_x ? q[0] : q[1];
+  double len = a1 - a0;
+  if (len == 0.0) return 0;
+  int c0 = (int)ceil((a0 < a1 ? a0 : a1) - 0.5), c1 = (int)ceil((a0 < a1 ? a1 : a0) - 0.5) - 1;
+  int limit = major_x ? w - 1 : h - 1;
+  if (c0 < 0) c0 = 0;
+  if (c1 > limit) c1 = limit;
+  uint64_t written = 0;
+  for (int c = c0; c <= c1; c++) {
+    double t = (c + 0.5 - a0) / len;
+    double minor = major_x ? p[1] + t * dy : p[0] + t * dx;
+    int m = (int)floor(minor);
+    int x = major_x ? c : m, y = major_x ? m : c;
+    if (x < 0 || y < 0 || x >= w || y >= h) continue;
+    double z = p[2] + t * (q[2] - p[2]) - bias;
+    double zq = z * 4294967296.0;
+    uint32_t zd = zq <= 0 ? 0 : zq >= 4294967295.0 ? ZS_DEPTH_FAR : (uint32_t)zq;
+    size_t i = (size_t)y * (size_t)w + (size_t)x;
+    if (zd <= d->depth[i]) {
+      d->rgb[i] = rgb;
+      written++;
+    }
+  }
+  return written;
+}
+
+zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double model[16],
+                               uint32_t rgb, zs_error *err) {
+  if (d->cfg.algo != ZS_ALGO_ZBUFFER)
+    return zs_error_set(err, ZS_ERR_UNSUPPORTED, "hidden-line output needs the z-buffer mode");
+  double mv[16], mvp[16];
+  if (model) zs_mat_mul(mv, d->view, model);
+  else memcpy(mv, d->view, sizeof mv);
+  zs_mat_mul(mvp, d->proj, mv);
+  for (int32_t f = 0; f < mesh->nfaces; f++) {
+    int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
+    if (n < 3 || n > ZS_MAX_POLY_VERTS) continue;
+    const int32_t *fv = &mesh->face_vert[s];
+    double eye[ZS_MAX_POLY_VERTS][4], c[3] = {0, 0, 0}, nrm[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++) {
+      if (fv[i] < 0 || fv[i] >= mesh->nverts)
+        return zs_error_set(err, ZS_ERR_ARG, "edges: face %d uses vertex %d of %d", (int)f,
+                            (int)fv[i], (int)mesh->nverts);
+      zs_mat_apply(mv, &mesh->pos[3 * fv[i]], eye[i]);
+      for (int k = 0; k < 3; k++) c[k] += eye[i][k] / n;
+    }
+    for (int i = 0; i < n; i++) { /* Newell's normal, eye space */
+      const double *a = eye[i], *b = eye[(i + 1) % n];
+      nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    /* V . N >= 0, V from the face to the eye (at the origin): a front face */
+    if (-(c[0] * nrm[0] + c[1] * nrm[1] + c[2] * nrm[2]) < 0.0) continue;
+
+    /* The face's depth slope for the bias, from its first three vertices
+     * in window coordinates (when all are in front of the eye). */
+    double bias = ZS_EDGE_DEPTH_UNITS / 4294967296.0;
+    zs_clip_vert cv[3];
+    double wv[3][3];
+    int front = 1;
+    for (int i = 0; i < 3; i++) {
+      double o[4];
+      zs_mat_apply(mvp, &mesh->pos[3 * fv[i]], o);
+      cv[i] = (zs_clip_vert){o[0], o[1], o[2], o[3]};
+      front &= o[3] > 0.0;
+      if (front) to_window(d, &cv[i], wv[i]);
+    }
+    if (front) {
+      double ux = wv[1][0] - wv[0][0], uy = wv[1][1] - wv[0][1], uz = wv[1][2] - wv[0][2];
+      double vx = wv[2][0] - wv[0][0], vy = wv[2][1] - wv[0][1], vz = wv[2][2] - wv[0][2];
+      double det = ux * vy - vx * uy;
+      if (det != 0.0) {
+        double sx = fabs((uz * vy - vz * uy) / det), sy = fabs((ux * vz - vx * uz) / det);
+        bias += sx > sy ? sx : sy;
+      }
+    }
+    for (int i = 0; i < n; i++) {
+      double o[4];
+      zs_mat_apply(mvp, &mesh->pos[3 * fv[i]], o);
+      zs_clip_vert a = {o[0], o[1], o[2], o[3]};
+      zs_mat_apply(mvp, &mesh->pos[3 * fv[(i + 1) % n]], o);
+      zs_clip_vert b = {o[0], o[1], o[2], o[3]};
+      if (!clip_segment(d, &a, &b)) continue;
+      double p[3], q[3];
+      to_window(d, &a, p);
+      to_window(d, &b, q);
+      d->stats.pixels_written += draw_segment(d, p, q, bias, rgb);
+    }
+  }
+  return ZS_OK;
+}
