@@ -105,6 +105,7 @@ void zs_device_cpu_work(zs_device *d, zs_cpu_work kind, uint64_t count) {
 }
 
 const zs_clock_stats *zs_device_clock(const zs_device *d) { return &d->clock; }
+const zs_clock_params *zs_device_clock_params(const zs_device *d) { return &d->clock_params; }
 
 int64_t zs_device_frame_ps(const zs_device *d) {
   return d->clock.gpu_ps > d->clock.cpu_ps ? d->clock.gpu_ps : d->clock.cpu_ps;

@@ -262,6 +262,7 @@ zs_status zs_device_set_clock(zs_device *dev, const zs_clock_params *p,
                               zs_error *err);
 void zs_device_cpu_work(zs_device *dev, zs_cpu_work kind, uint64_t count);
 const zs_clock_stats *zs_device_clock(const zs_device *dev);
+const zs_clock_params *zs_device_clock_params(const zs_device *dev);
 /* The frame's modelled time so far: the later of the two clocks. */
 int64_t zs_device_frame_ps(const zs_device *dev);
 

@@ -94,7 +94,9 @@ zs_status zs_builtin_cubes(zs_model *m, int n, zs_error *err) {
   return ZS_OK;
 }
 
-zs_status zs_builtin_teapot_field(zs_model *m, int level, zs_error *err) {
+void zs_builtin_teapot_field_layout(
+    double place[ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE][16],
+    uint32_t rgb[ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE]) {
   const int side = ZS_BUILTIN_TEAPOTS_SIDE;
   const int count = side * side;
   const double spacing = 8.0;
@@ -110,30 +112,47 @@ zs_status zs_builtin_teapot_field(zs_model *m, int level, zs_error *err) {
 
   for (int t = 0; t < count; t++) {
     int row = t / side, col = t % side;
+    /* Whole degrees: a short, exact record of the angle. */
+    double yaw = (double)zs_rng_below(&rng, 360);
+    double rot[16], move[16];
+    zs_mat_rotate(rot, yaw, 0.0, 1.0, 0.0);
+    zs_mat_translate(move, spacing * (col - (side - 1) / 2.0), 0.0,
+                     spacing * (row - (side - 1) / 2.0));
+    zs_mat_mul(place[t], move, rot); /* turn first, then move */
+    rgb[t] = colours[t];
+  }
+}
+
+void zs_builtin_ground(double lo[3], double hi[3]) {
+  static const double ground_lo[3] = {-12.0, -0.25, -12.0};
+  static const double ground_hi[3] = {12.0, 0.0, 12.0};
+  for (int a = 0; a < 3; a++) {
+    lo[a] = ground_lo[a];
+    hi[a] = ground_hi[a];
+  }
+}
+
+zs_status zs_builtin_teapot_field(zs_model *m, int level, zs_error *err) {
+  const int count = ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE;
+  double place[ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE][16];
+  uint32_t colours[ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE];
+  zs_builtin_teapot_field_layout(place, colours);
+
+  for (int t = 0; t < count; t++) {
     char name[32];
     snprintf(name, sizeof name, "teapot_%d", t);
     int32_t obj = zs_model_object(m, name);
     if (obj < 0)
       return zs_error_set(err, ZS_ERR_NOMEM, "default scene: out of memory");
-
-    /* Whole degrees: a short, exact record of the angle. */
-    double yaw = (double)zs_rng_below(&rng, 360);
-    double rot[16], move[16], place[16];
-    zs_mat_rotate(rot, yaw, 0.0, 1.0, 0.0);
-    zs_mat_translate(move, spacing * (col - (side - 1) / 2.0), 0.0,
-                     spacing * (row - (side - 1) / 2.0));
-    zs_mat_mul(place, move, rot); /* turn first, then move */
-
-    zs_status st = zs_teapot_add(m, level, place,
-                                 colours[t], obj, err);
+    zs_status st = zs_teapot_add(m, level, place[t], colours[t], obj, err);
     if (st != ZS_OK) return st;
   }
 
   int32_t ground = zs_model_object(m, "ground");
   if (ground < 0)
     return zs_error_set(err, ZS_ERR_NOMEM, "default scene: out of memory");
-  const double lo[3] = {-12.0, -0.25, -12.0};
-  const double hi[3] = {12.0, 0.0, 12.0};
+  double lo[3], hi[3];
+  zs_builtin_ground(lo, hi);
   zs_status st = zs_builtin_box(m, lo, hi, ZS_BUILTIN_GROUND_RGB, ground);
   if (st != ZS_OK)
     return zs_error_set(err, st, "default scene: cannot add the ground");

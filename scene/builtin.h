@@ -64,6 +64,17 @@ zs_status zs_builtin_default(zs_model *m, zs_error *err);
  * patch quads, for benchmarks on more faces of the same picture. */
 zs_status zs_builtin_teapot_field(zs_model *m, int level, zs_error *err);
 
+/* The layout of the default scene's teapots, drawn from the rng exactly as
+ * zs_builtin_teapot_field draws it: for teapot t (0 .. 8), place[t] is its
+ * model matrix (the turn about +y, then the move) and rgb[t] its colour.
+ * scene/gen_default.c builds the same field from instances. */
+void zs_builtin_teapot_field_layout(
+    double place[ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE][16],
+    uint32_t rgb[ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE]);
+
+/* The default scene's ground slab, lo .. hi. */
+void zs_builtin_ground(double lo[3], double hi[3]);
+
 /* n x n x n cubes, see above.  Returns ZS_OK; ZS_ERR_ARG when n is not in
  * 1 .. ZS_BUILTIN_CUBES_MAX; ZS_ERR_NOMEM. */
 zs_status zs_builtin_cubes(zs_model *m, int n, zs_error *err);

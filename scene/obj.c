@@ -11,6 +11,7 @@
  * those numbers are replaced by the materials' colours.
  */
 #include "scene/obj.h"
+#include "scene/text.h"
 
 #include <errno.h>
 #include <math.h>
@@ -124,29 +125,6 @@ static char *rest_of_line(line_reader *r) {
 
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 
-/* Whether s is a decimal number: [+-] digits [. digits] [e [+-] digits],
- * with digits on at least one side of the point.  strtod would also take
- * hexadecimal, "nan" and "inf", which no OBJ writer produces. */
-static int is_decimal(const char *s) {
-  if (*s == '+' || *s == '-') s++;
-  const char *start = s;
-  while (is_digit(*s)) s++;
-  int digits = s > start;
-  if (*s == '.') {
-    const char *frac = ++s;
-    while (is_digit(*s)) s++;
-    digits |= s > frac;
-  }
-  if (!digits) return 0;
-  if (*s == 'e' || *s == 'E') {
-    s++;
-    if (*s == '+' || *s == '-') s++;
-    if (!is_digit(*s)) return 0;
-    while (is_digit(*s)) s++;
-  }
-  return *s == '\0';
-}
-
 /* Parses the word w (NULL: the line ended) as a finite number. */
 static zs_status parse_number(line_reader *r, const char *w, double *out) {
   if (!w) return line_error(r, ZS_ERR_PARSE, "expected a number");
@@ -156,7 +134,7 @@ static zs_status parse_number(line_reader *r, const char *w, double *out) {
     return line_error(r, ZS_ERR_PARSE, "expected a number, got '%.40s'", w);
   if (!isfinite(x))
     return line_error(r, ZS_ERR_PARSE, "not a finite number: '%.40s'", w);
-  if (!is_decimal(w))
+  if (!zs_text_is_decimal(w))
     return line_error(r, ZS_ERR_PARSE, "expected a number, got '%.40s'", w);
   *out = x;
   return ZS_OK;

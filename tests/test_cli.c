@@ -90,7 +90,7 @@ static const bad_option bad_options[] = {
     {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 256"},
     {{"render", "--repeat", NULL}, "--repeat: missing value"},
     {{"render", "a.obj", "b.obj", NULL}, "more than one INPUT"},
-    {{"render", "model.stl", NULL}, "unknown input format"},
+    {{"render", "/nonexistent-dir/model.stl", NULL}, "/nonexistent-dir/model.stl: "},
     {{"render", "builtin:nothing", NULL}, "unknown generated scene 'nothing'"},
     {{"render", "builtin:cubes?n=0", NULL}, "0 is outside 1 .. 64"},
     {{"render", "/nonexistent-dir/m.obj", NULL}, "/nonexistent-dir/m.obj: cannot open"},

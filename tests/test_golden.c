@@ -33,18 +33,18 @@ typedef struct golden_case {
 } golden_case;
 
 static const golden_case cases[] = {
-    {"default-flat", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
-    {"default-id", "builtin:default", 320, 240, ZS_SHADE_ID, 0, 0, {0}, {0}},
-    {"default-depth", "builtin:default", 320, 240, ZS_SHADE_DEPTH, 0, 0, {0}, {0}},
-    {"default-culled", "builtin:default", 200, 150, ZS_SHADE_ID, 1, 0, {0}, {0}},
-    {"default-close", "builtin:default", 256, 256, ZS_SHADE_FLAT, 0, 1, {1.5, 1.2, 2.0}, {0, 0.5, 0}},
-    {"cubes-4", "builtin:cubes?n=4", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
-    {"cubes-4-inside", "builtin:cubes?n=4", 160, 120, ZS_SHADE_ID, 0, 1, {3.1, 3.2, 3.3}, {0, 0, 0}},
-    {"cyclic", "tests/data/scenes/cyclic.obj", 160, 160, ZS_SHADE_ID, 0, 1, {0.3, 0.2, 8}, {0, 0, 0}},
-    {"interpenetrate", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
-    {"interpenetrate-depth", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_DEPTH, 0, 0, {0}, {0}},
-    {"sphere-ell", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}},
-    {"sphere-ell-overdraw", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_OVERDRAW, 0, 0, {0}, {0}},
+    {"default-flat", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0},
+    {"default-id", "builtin:default", 320, 240, ZS_SHADE_ID, 0, 0, {0}, {0}, 0},
+    {"default-depth", "builtin:default", 320, 240, ZS_SHADE_DEPTH, 0, 0, {0}, {0}, 0},
+    {"default-culled", "builtin:default", 200, 150, ZS_SHADE_ID, 1, 0, {0}, {0}, 0},
+    {"default-close", "builtin:default", 256, 256, ZS_SHADE_FLAT, 0, 1, {1.5, 1.2, 2.0}, {0, 0.5, 0}, 0},
+    {"cubes-4", "builtin:cubes?n=4", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0},
+    {"cubes-4-inside", "builtin:cubes?n=4", 160, 120, ZS_SHADE_ID, 0, 1, {3.1, 3.2, 3.3}, {0, 0, 0}, 0},
+    {"cyclic", "tests/data/scenes/cyclic.obj", 160, 160, ZS_SHADE_ID, 0, 1, {0.3, 0.2, 8}, {0, 0, 0}, 0},
+    {"interpenetrate", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0},
+    {"interpenetrate-depth", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_DEPTH, 0, 0, {0}, {0}, 0},
+    {"sphere-ell", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0},
+    {"sphere-ell-overdraw", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_OVERDRAW, 0, 0, {0}, {0}, 0},
     {"default-hidden-line", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 1, {12, 9, 16}, {0, 1, 0}, 1},
     {"cubes-3-hidden-line", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 1},
 };
@@ -69,16 +69,16 @@ static void load_hashes(void) {
   fclose(f);
 }
 
-static void load_input(const char *input, zs_model *m) {
+static void load_input(const char *input, zs_scene *s) {
   zs_error err;
   zs_error_clear(&err);
   const char *spec = strncmp(input, "builtin:", 8) == 0 ? input : zs_test_src(input);
   char path[4096];
   snprintf(path, sizeof path, "%s", spec);
-  ck_assert_msg(zs_input_load(path, m, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_msg(zs_input_load_scene(path, s, &err) == ZS_OK, "%s", err.msg);
 }
 
-static uint64_t render_case(const golden_case *c, const zs_model *m, zs_algo algo,
+static uint64_t render_case(const golden_case *c, const zs_scene *s, zs_algo algo,
                             zs_image *keep) {
   zs_camera cam;
   zs_camera_default(&cam);
@@ -91,37 +91,47 @@ static uint64_t render_case(const golden_case *c, const zs_model *m, zs_algo alg
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
-  ck_assert_msg(zs_frame_render(m, &cam, &o, &im, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_msg(zs_frame_render(s, &cam, &o, &im, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
   uint64_t h = zs_image_hash(&im);
   if (keep) *keep = im;
   else zs_image_free(&im);
   return h;
 }
 
-/* The same faces in a seeded random order, each keeping its id. */
-static void shuffle_faces(const zs_model *src, zs_model *dst, uint64_t seed) {
-  zs_model_init(dst);
-  for (int32_t v = 0; v < src->mesh.nverts; v++)
-    zs_model_add_vertex(dst, src->mesh.pos[3 * v], src->mesh.pos[3 * v + 1],
-                        src->mesh.pos[3 * v + 2]);
-  int32_t n = src->mesh.nfaces;
-  int32_t *perm = malloc((size_t)n * sizeof *perm);
-  for (int32_t i = 0; i < n; i++) perm[i] = i;
+/* The faces of every mesh in a seeded random order (each keeping its id
+ * and colour), and the instances drawn in a seeded random order. */
+static void shuffle_scene(zs_scene *s, uint64_t seed) {
   zs_rng rng;
   zs_rng_seed(&rng, seed);
-  zs_rng_shuffle(&rng, perm, (size_t)n, sizeof *perm);
-  for (int32_t i = 0; i < n; i++) {
-    int32_t f = perm[i], s = src->mesh.face_start[f];
-    int32_t k = src->mesh.face_start[f + 1] - s;
-    /* Mesh faces are convex and planar already, so each is stored whole;
-     * it then takes back the id of its source face. */
-    int32_t before = dst->mesh.nfaces;
-    ck_assert_int_eq(zs_model_add_polygon(dst, &src->mesh.face_vert[s], (int)k,
-                                          src->mesh.face_rgb[f], -1), ZS_OK);
-    ck_assert_int_eq(dst->mesh.nfaces, before + 1);
-    dst->mesh.face_id[before] = src->mesh.face_id[f];
+  for (int32_t k = 0; k < s->nmeshes; k++) {
+    zs_mesh *m = &s->meshes[k].mesh;
+    int32_t n = m->nfaces;
+    int32_t *perm = malloc((size_t)(n ? n : 1) * sizeof *perm);
+    int32_t *start = malloc((size_t)(n + 1) * sizeof *start);
+    int32_t *vert = malloc((size_t)(m->face_start[n] ? m->face_start[n] : 1) * sizeof *vert);
+    uint32_t *rgb = malloc((size_t)(n ? n : 1) * sizeof *rgb);
+    int32_t *id = malloc((size_t)(n ? n : 1) * sizeof *id);
+    for (int32_t i = 0; i < n; i++) perm[i] = i;
+    zs_rng_shuffle(&rng, perm, (size_t)n, sizeof *perm);
+    start[0] = 0;
+    for (int32_t i = 0; i < n; i++) {
+      int32_t f = perm[i], fs = m->face_start[f], len = m->face_start[f + 1] - fs;
+      memcpy(&vert[start[i]], &m->face_vert[fs], (size_t)len * sizeof *vert);
+      start[i + 1] = start[i] + len;
+      rgb[i] = m->face_rgb[f];
+      id[i] = m->face_id[f];
+    }
+    memcpy(m->face_start, start, (size_t)(n + 1) * sizeof *start);
+    memcpy(m->face_vert, vert, (size_t)start[n] * sizeof *vert);
+    memcpy(m->face_rgb, rgb, (size_t)n * sizeof *rgb);
+    memcpy(m->face_id, id, (size_t)n * sizeof *id);
+    free(perm);
+    free(start);
+    free(vert);
+    free(rgb);
+    free(id);
   }
-  free(perm);
+  zs_rng_shuffle(&rng, s->inst, (size_t)s->ninst, sizeof *s->inst);
 }
 
 static void write_artefacts(const golden_case *c, const zs_image *im) {
@@ -135,7 +145,7 @@ static void write_artefacts(const golden_case *c, const zs_image *im) {
 
 START_TEST(golden_case_matches) {
   const golden_case *c = &cases[_i];
-  zs_model m;
+  zs_scene m;
   load_input(c->input, &m);
   zs_image im;
   uint64_t hz = render_case(c, &m, ZS_ALGO_ZBUFFER, &im);
@@ -143,8 +153,9 @@ START_TEST(golden_case_matches) {
   uint64_t hs = c->hidden_line ? hz : render_case(c, &m, ZS_ALGO_SCANLINE, NULL);
   ck_assert_msg(hz == hs, "%s: zbuffer %016llx != scanline %016llx", c->name,
                 (unsigned long long)hz, (unsigned long long)hs);
-  zs_model shuffled;
-  shuffle_faces(&m, &shuffled, 1000 + (uint64_t)_i);
+  zs_scene shuffled;
+  load_input(c->input, &shuffled);
+  shuffle_scene(&shuffled, 1000 + (uint64_t)_i);
   uint64_t hsh = render_case(c, &shuffled, ZS_ALGO_ZBUFFER, NULL);
   ck_assert_msg(hz == hsh, "%s: shuffled faces give %016llx, not %016llx", c->name,
                 (unsigned long long)hsh, (unsigned long long)hz);
@@ -156,8 +167,8 @@ START_TEST(golden_case_matches) {
                   (unsigned long long)hz, (unsigned long long)expected[_i]);
   }
   zs_image_free(&im);
-  zs_model_free(&shuffled);
-  zs_model_free(&m);
+  zs_scene_free(&shuffled);
+  zs_scene_free(&m);
 }
 END_TEST
 

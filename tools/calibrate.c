@@ -27,7 +27,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
-#include "scene/builtin.h"
+#include "scene/generate.h"
 #include "scene/camera.h"
 #include "tools/clockfile.h"
 #include "tools/cli.h"
@@ -165,14 +165,14 @@ static zs_status synthetic_fn(zs_device *d, void *ctx, zs_error *err) {
 }
 
 typedef struct scene_run {
-  const zs_model *m;
+  const zs_scene *m;
   double view[16], proj[16];
 } scene_run;
 
 static zs_status scene_fn(zs_device *d, void *ctx, zs_error *err) {
   scene_run *r = ctx;
   zs_device_set_camera(d, r->view, r->proj);
-  return zs_device_draw(d, &r->m->mesh, NULL, 0, ZS_RGB_MESH, err);
+  return zs_frame_draw_scene(d, r->m, err);
 }
 
 static zs_status measure_synthetic(synthetic kind, int repeat, workload *w, zs_error *err) {
@@ -240,7 +240,7 @@ static zs_status measure_synthetic(synthetic kind, int repeat, workload *w, zs_e
   return st;
 }
 
-static zs_status measure_scene(const zs_model *m, int repeat, workload *w, zs_error *err) {
+static zs_status measure_scene(const zs_scene *m, int repeat, workload *w, zs_error *err) {
   zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
@@ -320,14 +320,14 @@ int zs_cmd_calibrate(int argc, char **argv) {
       {"cubes 10^3", {0}, 0},     {"teapot field L2", {0}, 0}};
   for (int k = 0; k < NSYNTHETIC; k++)
     if (measure_synthetic((synthetic)k, repeat, &w[k], &err)) goto fail;
-  static const int levels[3] = {6, 12, 2};
+  static const char *const scenes[4] = {"default", "default?level=12", "cubes?n=10",
+                                         "default?level=2"};
   for (int k = 0; k < 4; k++) {
-    zs_model m;
-    zs_model_init(&m);
-    zs_status st = k == 2 ? zs_builtin_cubes(&m, 10, &err)
-                          : zs_builtin_teapot_field(&m, levels[k == 3 ? 2 : k], &err);
-    if (st == ZS_OK) st = measure_scene(&m, repeat, &w[NSYNTHETIC + k], &err);
-    zs_model_free(&m);
+    zs_scene sc;
+    zs_scene_init(&sc);
+    zs_status st = zs_gen_scene(scenes[k], &sc, &err);
+    if (st == ZS_OK) st = measure_scene(&sc, repeat, &w[NSYNTHETIC + k], &err);
+    zs_scene_free(&sc);
     if (st) goto fail;
   }
   int nw = NSYNTHETIC + 4;

@@ -1,5 +1,7 @@
 #include "tools/cli.h"
 
+#include "scene/text.h"
+
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -12,8 +14,8 @@
 zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err) {
   char *end;
   errno = 0;
-  double v = strtod(s, &end);
-  if (end == s || *end != '\0' || !isfinite(v) || errno == ERANGE)
+  double v = zs_text_is_decimal(s) ? strtod(s, &end) : NAN;
+  if (!isfinite(v) || errno == ERANGE)
     return zs_error_set(err, ZS_ERR_ARG, "%s: expected a finite number, got '%s'", opt, s);
   *out = v;
   return ZS_OK;

@@ -17,36 +17,48 @@ static void gather_row(void *user, const zs_row *row) {
           row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
 }
 
-zs_status zs_frame_camera(const zs_model *model, const zs_camera *cam, int width,
+zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
                           int height, double view[16], double proj[16], zs_error *err) {
   zs_camera c = *cam;
-  double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
   double aspect = (double)width / height;
-  zs_model_bounds(model, lo, hi);
-  zs_camera_complete(&c, lo, hi, aspect);
+  zs_camera_complete(&c, scene->lo, scene->hi, aspect);
   return zs_camera_matrices(&c, aspect, view, proj, err);
 }
 
-zs_status zs_frame_render_on(zs_device *dev, const zs_model *model,
+zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err) {
+  for (int32_t i = 0; i < scene->ninst; i++) {
+    const zs_instance *in = &scene->inst[i];
+    if (zs_device_draw(dev, &scene->meshes[in->mesh].mesh, in->model, in->id_base, in->rgb, err))
+      return err->code;
+  }
+  return ZS_OK;
+}
+
+zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err) {
   gather g = {out, depth};
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
-  if (zs_device_draw(dev, &model->mesh, NULL, 0, ZS_RGB_MESH, err)) return err->code;
+  if (zs_frame_draw_scene(dev, scene, err)) return err->code;
   if (hidden_line) {
     /* the faces stay in the depth buffer; the picture is their edges */
     zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER);
-    if (zs_device_draw_edges(dev, &model->mesh, NULL, ZS_HIDDEN_LINE_INK, err)) return err->code;
+    for (int32_t i = 0; i < scene->ninst; i++) {
+      const zs_instance *in = &scene->inst[i];
+      if (zs_device_draw_edges(dev, &scene->meshes[in->mesh].mesh, in->model, ZS_HIDDEN_LINE_INK,
+                               err))
+        return err->code;
+    }
   }
   return zs_device_finish(dev, gather_row, &g, err);
 }
 
-zs_status zs_frame_render(const zs_model *model, const zs_camera *cam,
+zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           const zs_frame_opts *o, zs_image *out, float *depth,
                           zs_raster_stats *stats, zs_error *err) {
   double view[16], proj[16];
-  if (zs_frame_camera(model, cam, o->width, o->height, view, proj, err)) return err->code;
+  if (zs_frame_camera(scene, cam, o->width, o->height, view, proj, err)) return err->code;
   if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
@@ -54,7 +66,7 @@ zs_status zs_frame_render(const zs_model *model, const zs_camera *cam,
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;
   zs_status st = zs_image_alloc(out, o->width, o->height, err);
-  if (st == ZS_OK) st = zs_frame_render_on(dev, model, view, proj, o->hidden_line, out, depth, err);
+  if (st == ZS_OK) st = zs_frame_render_on(dev, scene, view, proj, o->hidden_line, out, depth, err);
   if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
   if (st != ZS_OK) zs_image_free(out);
   zs_device_destroy(dev);

@@ -1,11 +1,11 @@
-/* zscan tools — one frame of a model, into an image: the path shared by
+/* zscan tools — one frame of a scene, into an image: the path shared by
  * `zscan render`, the golden tests and the benchmarks. */
 #ifndef ZS_TOOLS_FRAME_H
 #define ZS_TOOLS_FRAME_H
 
 #include "raster/raster.h"
 #include "scene/camera.h"
-#include "scene/model.h"
+#include "scene/scene.h"
 #include "tools/image.h"
 
 #define ZS_BACKGROUND_RGB 0x1E2228u /* flat shading's background */
@@ -21,23 +21,26 @@ typedef struct zs_frame_opts {
   int hidden_line;  /* draw the visible edges of front faces, not the faces */
 } zs_frame_opts;
 
-/* Renders model seen by cam (completed from the model's bounds where it is
+/* Renders scene seen by cam (completed from the scene's bounds where it is
  * partial) into out (allocated here), and the window depth (1 = far) into
  * depth when it is not NULL (width * height floats, row 0 at the top).
  * stats, when not NULL, gets the frame's counters. */
-zs_status zs_frame_render(const zs_model *model, const zs_camera *cam,
+zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           const zs_frame_opts *o, zs_image *out, float *depth,
                           zs_raster_stats *stats, zs_error *err);
 
 /* The same with a device made by the caller and kept across frames
  * (`--repeat`): the device's size and modes are used. */
-zs_status zs_frame_render_on(zs_device *dev, const zs_model *model,
+zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err);
 
-/* The camera's matrices for the model at aspect w/h: cam completed from
- * the model's bounds, then checked. */
-zs_status zs_frame_camera(const zs_model *model, const zs_camera *cam, int width,
+/* Draws every instance of scene (no clear, no finish). */
+zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
+
+/* The camera's matrices for the scene at aspect w/h: cam completed from
+ * the scene's bounds, then checked. */
+zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
                           int height, double view[16], double proj[16], zs_error *err);
 
 #endif

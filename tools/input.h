@@ -1,17 +1,18 @@
-/* zscan tools — what INPUT names on the command line.
- *
- *   (none)                 the embedded default scene (a small teapot field)
- *   FILE.obj               a Wavefront OBJ file (scene/obj.h)
- *   builtin:NAME[?k=v&..]  a generated scene: builtin:default[?level=L]
- *                          (teapots tessellated at level L, default 6),
- *                          builtin:cubes?n=N (N x N x N unit cubes)
- */
+/* zscan tools — what INPUT names on the command line. */
 #ifndef ZS_TOOLS_INPUT_H
 #define ZS_TOOLS_INPUT_H
 
 #include "raster/error.h"
 #include "scene/model.h"
+#include "scene/scene.h"
 
-zs_status zs_input_load(const char *spec, zs_model *out, zs_error *err);
+/* INPUT as a scene (scene/scene.h), finished and ready to draw:
+ *   (none)                 the default generated scene
+ *   FILE.json              a scene file (scene/scenefile.h)
+ *   FILE.obj               one instance per object (o/g) of the file
+ *   FILE.ply, .stl, ...    through assimp, likewise
+ *   builtin:NAME[?k=v&..]  a generated scene (scene/generate.h): default,
+ *                          teapots, spheres, city, plant, cubes */
+zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err);
 
 #endif

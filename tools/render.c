@@ -18,7 +18,9 @@
 
 static const char usage_head[] =
     "usage: zscan render [INPUT] [options]\n"
-    "  INPUT               FILE.obj or builtin:NAME[?k=v] (default: the teapot field)\n"
+    "  INPUT               FILE.obj, FILE.json (a scene), another model format\n"
+    "                      (through assimp), or builtin:NAME[?k=v]: default, teapots,\n"
+    "                      spheres, city, plant, cubes (default: the teapot field)\n"
     "  -o FILE.png         output image (default zscan.png)\n";
 static const char usage_tail[] =
     "  --algo zbuffer|scanline|depthsort   hidden-surface mode (default zbuffer)\n"
@@ -109,18 +111,21 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   return ZS_OK;
 }
 
-static void print_stats(const render_opts *o, const zs_model *m,
+static void print_stats(const render_opts *o, const zs_scene *sc,
                         const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
                         double ms, double load_ms, int64_t diff_pixels) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
          o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : o->algo == ZS_ALGO_SCANLINE ? "scanline" : "depthsort");
   /* triangles: what the polygons would be as triangle fans */
-  long long triangles = 0;
-  for (int32_t f = 0; f < m->mesh.nfaces; f++)
-    triangles += m->mesh.face_start[f + 1] - m->mesh.face_start[f] - 2;
-  printf("\"objects\":%d,\"faces\":%d,\"triangles\":%lld,\"vertices\":%d,\"draws\":%llu,",
-         (int)m->nobjects, (int)m->nsource_faces, triangles, (int)m->mesh.nverts,
+  long long triangles = 0, vertices = 0;
+  for (int32_t i = 0; i < sc->ninst; i++) {
+    const zs_mesh *m = &sc->meshes[sc->inst[i].mesh].mesh;
+    triangles += m->face_start[m->nfaces] - 2LL * m->nfaces;
+    vertices += m->nverts;
+  }
+  printf("\"objects\":%d,\"faces\":%llu,\"triangles\":%lld,\"vertices\":%lld,\"draws\":%llu,",
+         (int)sc->ninst, (unsigned long long)zs_scene_faces(sc), triangles, vertices,
          (unsigned long long)s->draws);
   printf("\"polygons_in\":%llu,\"polygons_outside\":%llu,\"polygons_clipped\":%llu,"
          "\"polygons_culled_back\":%llu,\"polygons_degenerate\":%llu,"
@@ -152,9 +157,9 @@ static void print_stats(const render_opts *o, const zs_model *m,
 }
 
 static zs_status run(const render_opts *o, zs_error *err) {
-  zs_model model;
+  zs_scene model;
   double t0 = zs_wall_ms();
-  if (zs_input_load(o->input, &model, err)) return err->code;
+  if (zs_input_load_scene(o->input, &model, err)) return err->code;
   double load_ms = zs_wall_ms() - t0;
 
   zs_status st = ZS_OK;
@@ -213,7 +218,7 @@ done:
   free(depth);
   zs_image_free(&im);
   zs_device_destroy(dev);
-  zs_model_free(&model);
+  zs_scene_free(&model);
   return st;
 }
 

@@ -460,13 +460,13 @@ int zs_cmd_trace(int argc, char **argv) {
   trace_opts o;
   zs_error err;
   zs_error_clear(&err);
-  zs_model model;
+  zs_scene model;
   zs_device *dev = NULL;
   tracer t;
   memset(&t, 0, sizeof t);
   int have_model = 0;
   if (parse(argc, argv, &o, &err)) goto fail;
-  if (zs_input_load(o.input, &model, &err)) goto fail;
+  if (zs_input_load_scene(o.input, &model, &err)) goto fail;
   have_model = 1;
   double view[16], proj[16];
   if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
@@ -492,7 +492,7 @@ int zs_cmd_trace(int argc, char **argv) {
   zs_device_set_trace(dev, &obs);
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
-  if (zs_device_draw(dev, &model.mesh, NULL, 0, ZS_RGB_MESH, &err)) goto fail;
+  if (zs_frame_draw_scene(dev, &model, &err)) goto fail;
   if (zs_device_finish(dev, on_sink, &t, &err)) goto fail;
   if (t.failed) {
     if (t.err.code) err = t.err;
@@ -504,7 +504,7 @@ int zs_cmd_trace(int argc, char **argv) {
   free(t.ids);
   free(t.depth);
   zs_device_destroy(dev);
-  zs_model_free(&model);
+  zs_scene_free(&model);
   return 0;
 fail:
   fprintf(stderr, "zscan trace: %s\n", err.msg);
@@ -513,6 +513,6 @@ fail:
   free(t.ids);
   free(t.depth);
   zs_device_destroy(dev);
-  if (have_model) zs_model_free(&model);
+  if (have_model) zs_scene_free(&model);
   return 1;
 }

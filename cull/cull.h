@@ -1,0 +1,115 @@
+/* zscan cull — visibility culling methods over the loose octree.
+ *
+ * Every method walks the same octree of the scene's instances, draws on
+ * the same device and reports the same counters, so their costs can be
+ * compared in the device's modelled time:
+ *
+ *   none      draw every instance: the reference image.
+ *   vfc       hierarchical view-frustum culling of the nodes' tight boxes,
+ *             with plane masking and p/n-vertex tests; objects of a node
+ *             that crosses the frustum are tested one by one.
+ *   vfc-box   the conservative-visibility paper: an instance is drawn when
+ *             its centre lies in the view box around the frustum (six
+ *             comparisons after transforming the centre alone); faces whose
+ *             screen box misses the window are dropped by the device.
+ *             Approximate: instances whose centre lies outside are lost.
+ *   hsw       hierarchical stop-and-wait: front to back, every node in the
+ *             frustum is queried and its result waited for before going on.
+ *   chc       coherent hierarchical culling (Bittner, Wimmer, Piringer,
+ *             Purgathofer 2004): a traversal queue (front to back) and a
+ *             query queue; only the termination nodes are queried (nodes
+ *             that were visible leaves, and nodes that were invisible),
+ *             previously visible nodes are opened without a query, visible
+ *             leaves are drawn without waiting for their query, results are
+ *             taken when ready or when there is nothing else to do, and
+ *             visibility is pulled up the tree.
+ *   chc-prob  the cost-model paper: chc, but a termination node is queried
+ *             only when  Cr > P(V) Cr + Cq   (formulas 2, 3), with
+ *               Cr = N Ttri                              (6)
+ *               S  = h^2 (Abb / 6) / (2 Dis tan(theta/2))^2   (9)
+ *               Cq = T + S rho Tq                        (10)
+ *               P_t(V) = w1 P_{t-1}(V) + (1 - w2)(1 - P_{t-1}(V))   (11)
+ *             N the polygons under the node, Abb its tight box's surface
+ *             area, Dis the distance from the eye to the box's centre, theta
+ *             the vertical field of view, h the viewport height; a node not
+ *             queried is drawn as if visible.
+ *   ideal     an oracle: draws exactly the instances that own a pixel of
+ *             the final image (found by a separate full render that the
+ *             clock does not see) and issues no query: the lower bound.
+ *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
+ *             queries, and plain vfc for frames after which a whole frame
+ *             of queries found nothing hidden (probing again every 8th
+ *             frame): a scene without occlusion pays no query cost.
+ *
+ * Exactness.  Every method but vfc-box gives the image of none: a node is
+ * skipped only when its tight box (which holds its content) has no sample
+ * passing the less-or-equal test against a depth buffer that only gets
+ * nearer; boxes that the near plane could cut are never queried but taken
+ * as visible.
+ */
+#ifndef ZS_CULL_CULL_H
+#define ZS_CULL_CULL_H
+
+#include <stdint.h>
+
+#include "cull/octree.h"
+#include "raster/raster.h"
+#include "scene/scene.h"
+
+typedef enum zs_cull_method {
+  ZS_CULL_NONE,
+  ZS_CULL_VFC,
+  ZS_CULL_VFC_BOX,
+  ZS_CULL_HSW,
+  ZS_CULL_CHC,
+  ZS_CULL_CHC_PROB,
+  ZS_CULL_IDEAL,
+  ZS_CULL_AUTO,
+  ZS_CULL_METHODS
+} zs_cull_method;
+
+/* "none", "vfc", ...; and back (-1 for an unknown name). */
+const char *zs_cull_method_name(zs_cull_method m);
+int zs_cull_method_parse(const char *name);
+
+/* The cost model's parameters (chc-prob, auto).  Negative values take the
+ * device clock's: Ttri = per_polygon, T = per_call + cpu_per_query (the
+ * work a query costs; its latency is what the query queue hides),
+ * Tq = per_query_pixel. */
+typedef struct zs_cost_params {
+  double w1, w2;        /* P(stays visible), P(stays invisible) */
+  double ttri_ns, t_ns, tq_ns;
+  double rho;           /* pixels per unit of S: 1, S is in pixels */
+} zs_cost_params;
+
+void zs_cost_params_default(zs_cost_params *p);
+
+/* What a method did in one frame. */
+typedef struct zs_cull_stats {
+  uint64_t nodes_visited;   /* nodes taken from the traversal queue */
+  uint64_t frustum_tests;   /* box-plane tests */
+  uint64_t queries;         /* occlusion queries issued */
+  uint64_t queries_hidden;  /* of those, with no sample */
+  uint64_t objects_drawn;
+  uint64_t faces_drawn;     /* polygons submitted by the draws */
+  uint64_t cost_evals;      /* cost-model evaluations */
+  zs_cull_method chosen;    /* auto: what it ran this frame */
+} zs_cull_stats;
+
+typedef struct zs_culler zs_culler;
+
+/* A culler keeps its per-node state from frame to frame: one per method
+ * and walk.  The octree must outlive it. */
+zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_culler **out,
+                           zs_error *err);
+void zs_culler_destroy(zs_culler *c);
+
+/* Draws one frame of scene s (organised in tree t) on dev with the camera
+ * view/proj: clears the device, sets the camera, and issues draws and
+ * queries.  The caller then calls zs_device_finish.  dev must be in zbuffer
+ * mode for the methods that query. */
+zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const zs_octree *t,
+                          const double view[16], const double proj[16], zs_cull_stats *st,
+                          zs_error *err);
+
+#endif

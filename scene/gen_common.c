@@ -1,0 +1,218 @@
+/* What the generators share: exact-to-the-bit trigonometry, matrices,
+ * adding meshes and instances, cameras and paths.  See gen_internal.h. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/raster.h"
+#include "scene/gen_internal.h"
+
+/* ---- trigonometry ------------------------------------------------------ */
+
+/* Taylor series of sin and cos on |x| <= pi/4, where the first omitted
+ * terms (x^19/19!, x^18/18!) are below 2^-60.  Horner's rule, so only
+ * + and *: the same bits under every compiler and C library. */
+static double sin_poly(double x) {
+  double x2 = x * x;
+  double t = 1.0 / 355687428096000.0;                  /* 1/17! */
+  t = 1.0 / 1307674368000.0 - x2 * t;                  /* 1/15! */
+  t = 1.0 / 6227020800.0 - x2 * t;                     /* 1/13! */
+  t = 1.0 / 39916800.0 - x2 * t;                       /* 1/11! */
+  t = 1.0 / 362880.0 - x2 * t;                         /* 1/9!  */
+  t = 1.0 / 5040.0 - x2 * t;                           /* 1/7!  */
+  t = 1.0 / 120.0 - x2 * t;                            /* 1/5!  */
+  t = 1.0 / 6.0 - x2 * t;                              /* 1/3!  */
+  return x - x * x2 * t;
+}
+
+static double cos_poly(double x) {
+  double x2 = x * x;
+  double t = 1.0 / 6402373705728000.0;                 /* 1/18! */
+  t = 1.0 / 20922789888000.0 - x2 * t;                 /* 1/16! */
+  t = 1.0 / 87178291200.0 - x2 * t;                    /* 1/14! */
+  t = 1.0 / 479001600.0 - x2 * t;                      /* 1/12! */
+  t = 1.0 / 3628800.0 - x2 * t;                        /* 1/10! */
+  t = 1.0 / 40320.0 - x2 * t;                          /* 1/8!  */
+  t = 1.0 / 720.0 - x2 * t;                            /* 1/6!  */
+  t = 1.0 / 24.0 - x2 * t;                             /* 1/4!  */
+  t = 0.5 - x2 * t;                                    /* 1/2!  */
+  return 1.0 - x2 * t;
+}
+
+void zs_gen_sincos(double turns, double *s, double *c) {
+  /* Reduce to the nearest quarter turn q and a remainder r in
+   * [-1/8, 1/8] turn; then sin(q/4 + r) by the quadrant's symmetry. */
+  double t = turns - floor(turns);       /* [0, 1) */
+  double q = floor(4.0 * t + 0.5);       /* 0 .. 4 */
+  double r = (t - 0.25 * q) * (2.0 * ZS_PI);
+  double sr = sin_poly(r), cr = cos_poly(r);
+  switch ((int)q & 3) {
+    case 0: *s = sr;  *c = cr;  break;
+    case 1: *s = cr;  *c = -sr; break;
+    case 2: *s = -sr; *c = -cr; break;
+    default: *s = -cr; *c = sr; break;
+  }
+  /* -0.0 would make the bytes of a matrix depend on the path taken. */
+  if (*s == 0.0) *s = 0.0;
+  if (*c == 0.0) *c = 0.0;
+}
+
+/* ---- matrices ---------------------------------------------------------- */
+
+void zs_gen_rotate(double m[16], double turns, double x, double y, double z) {
+  double s, c;
+  zs_gen_sincos(turns, &s, &c);
+  double k = 1.0 - c;
+  zs_mat_identity(m);
+  m[0] = x * x * k + c;     m[1] = x * y * k - z * s; m[2] = x * z * k + y * s;
+  m[4] = y * x * k + z * s; m[5] = y * y * k + c;     m[6] = y * z * k - x * s;
+  m[8] = x * z * k - y * s; m[9] = y * z * k + x * s; m[10] = z * z * k + c;
+}
+
+void zs_gen_random_rotation(zs_rng *rng, double m[16]) {
+  double u1 = zs_rng_uniform(rng);
+  double u2 = zs_rng_uniform(rng);
+  double u3 = zs_rng_uniform(rng);
+  double a = sqrt(1.0 - u1), b = sqrt(u1);
+  double s2, c2, s3, c3;
+  zs_gen_sincos(u2, &s2, &c2);
+  zs_gen_sincos(u3, &s3, &c3);
+  double x = a * s2, y = a * c2, z = b * s3, w = b * c3;
+  zs_mat_identity(m);
+  m[0] = 1.0 - 2.0 * (y * y + z * z);
+  m[1] = 2.0 * (x * y - z * w);
+  m[2] = 2.0 * (x * z + y * w);
+  m[4] = 2.0 * (x * y + z * w);
+  m[5] = 1.0 - 2.0 * (x * x + z * z);
+  m[6] = 2.0 * (y * z - x * w);
+  m[8] = 2.0 * (x * z - y * w);
+  m[9] = 2.0 * (y * z + x * w);
+  m[10] = 1.0 - 2.0 * (x * x + y * y);
+}
+
+void zs_gen_mul3(double out[16], const double a[16], const double b[16],
+                 const double c[16]) {
+  double bc[16];
+  zs_mat_mul(bc, b, c);
+  zs_mat_mul(out, a, bc);
+}
+
+void zs_gen_frame(double m[16], const double ax[3], const double ay[3],
+                  const double az[3], const double o[3]) {
+  zs_mat_identity(m);
+  for (int r = 0; r < 3; r++) {
+    m[4 * r + 0] = ax[r];
+    m[4 * r + 1] = ay[r];
+    m[4 * r + 2] = az[r];
+    m[4 * r + 3] = o[r];
+  }
+}
+
+void zs_gen_apply(const double m[16], const double p[3], double out[3]) {
+  for (int r = 0; r < 3; r++)
+    out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+}
+
+/* ---- scenes ------------------------------------------------------------ */
+
+int32_t zs_gen_add_mesh(zs_scene *s, zs_model *m, zs_error *err) {
+  int32_t i = zs_scene_add_mesh(s, m);
+  if (i < 0) {
+    zs_model_free(m);
+    ZS_GEN_NOMEM(err, "generated scene");
+  }
+  return i;
+}
+
+int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
+                            uint32_t rgb, zs_error *err, const char *fmt, ...) {
+  char name[96];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(name, sizeof name, fmt, ap);
+  va_end(ap);
+  int32_t i = zs_scene_add_instance(s, mesh, model, rgb, name);
+  if (i < 0) ZS_GEN_NOMEM(err, name);
+  return i;
+}
+
+int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err) {
+  zs_model_init(m);
+  int32_t obj = zs_model_object(m, name);
+  if (obj < 0) ZS_GEN_NOMEM(err, name);
+  return obj;
+}
+
+void zs_gen_camera(zs_scene *s, const double eye[3], const double target[3],
+                   double znear, double zfar) {
+  zs_camera_default(&s->camera);
+  memcpy(s->camera.eye, eye, sizeof s->camera.eye);
+  memcpy(s->camera.target, target, sizeof s->camera.target);
+  s->camera.znear = znear;
+  s->camera.zfar = zfar;
+  s->camera.has_eye = s->camera.has_target = 1;
+  s->camera.has_near = s->camera.has_far = 1;
+  s->width = 1024;
+  s->height = 768;
+}
+
+static double dist3(const double a[3], const double b[3]) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; k++) d2 += (a[k] - b[k]) * (a[k] - b[k]);
+  return sqrt(d2);
+}
+
+zs_status zs_gen_path(zs_scene *s, const zs_gen_key *keys, int nkeys, int frames,
+                      zs_error *err) {
+  if (nkeys < 2 || frames < nkeys)
+    return zs_error_set(err, ZS_ERR_ARG, "path: %d frames for %d keys", frames, nkeys);
+  for (int k = 0; k < nkeys; k++)
+    for (int a = 0; a < 3; a++)
+      if (!isfinite(keys[k].eye[a]) || !isfinite(keys[k].target[a]))
+        return zs_error_set(err, ZS_ERR_ARG, "path: key %d is not finite", k);
+  zs_keyframe *kf = calloc((size_t)nkeys, sizeof *kf);
+  double *along = calloc((size_t)nkeys, sizeof *along);
+  if (!kf || !along) {
+    free(kf);
+    free(along);
+    return ZS_GEN_NOMEM(err, "path");
+  }
+  for (int k = 1; k < nkeys; k++)
+    along[k] = along[k - 1] + dist3(keys[k].eye, keys[k - 1].eye) +
+               0.25 * dist3(keys[k].target, keys[k - 1].target);
+  double total = along[nkeys - 1] > 0.0 ? along[nkeys - 1] : 1.0;
+  for (int k = 0; k < nkeys; k++) {
+    kf[k].frame = (int32_t)floor(along[k] / total * (frames - 1) + 0.5);
+    if (k > 0 && kf[k].frame <= kf[k - 1].frame) kf[k].frame = kf[k - 1].frame + 1;
+  }
+  /* From the end back: the last key at frames - 1, room for the others. */
+  kf[nkeys - 1].frame = frames - 1;
+  for (int k = nkeys - 2; k >= 0; k--)
+    if (kf[k].frame >= kf[k + 1].frame) kf[k].frame = kf[k + 1].frame - 1;
+  for (int k = 0; k < nkeys; k++) {
+    memcpy(kf[k].eye, keys[k].eye, sizeof kf[k].eye);
+    memcpy(kf[k].target, keys[k].target, sizeof kf[k].target);
+    kf[k].up[0] = 0.0;
+    kf[k].up[1] = 1.0;
+    kf[k].up[2] = 0.0;
+  }
+  free(along);
+  free(s->path.keys);
+  s->path.keys = kf;
+  s->path.nkeys = nkeys;
+  s->path.frames = frames;
+  return ZS_OK;
+}
+
+void zs_gen_bounds(zs_scene *s, const double lo[3], const double hi[3]) {
+  memcpy(s->lo, lo, sizeof s->lo);
+  memcpy(s->hi, hi, sizeof s->hi);
+  s->has_bounds = 1;
+}
+
+int zs_gen_segments(double base, double detail, int min) {
+  int n = (int)floor(base * detail + 0.5);
+  return n < min ? min : n;
+}

@@ -1,0 +1,131 @@
+/* zscan scene — what the generators share (scene/gen_*.c), not a public
+ * interface: the parameter tables the spec parser reads, and helpers for
+ * matrices, meshes, instances and camera paths. */
+#ifndef ZS_SCENE_GEN_INTERNAL_H
+#define ZS_SCENE_GEN_INTERNAL_H
+
+#include <stdint.h>
+
+#include "raster/error.h"
+#include "raster/rng.h"
+#include "scene/generate.h"
+#include "scene/model.h"
+#include "scene/scene.h"
+
+enum { ZS_GEN_MAX_PARAMS = 12 };
+
+/* ---- parameters -------------------------------------------------------- */
+
+typedef enum zs_gen_kind {
+  ZS_GEN_INT,   /* a whole number in lo .. hi */
+  ZS_GEN_REAL,  /* a real number in lo .. hi */
+  ZS_GEN_SEED   /* 0 .. 2^64 - 1, default ZS_GEN_DEFAULT_SEED */
+} zs_gen_kind;
+
+typedef struct zs_gen_param {
+  const char *key;
+  zs_gen_kind kind;
+  double lo, hi, def; /* range and default (not for seeds) */
+} zs_gen_param;
+
+struct zs_gen_args;
+
+/* A generated thing: its name, its parameters, and the function that
+ * builds it from parsed arguments (a scene or a mesh, by the table). */
+typedef struct zs_gen_def {
+  const char *name;
+  const zs_gen_param *params;
+  int nparams;
+  zs_status (*scene)(const struct zs_gen_args *a, zs_scene *s, zs_error *err);
+  zs_status (*mesh)(const struct zs_gen_args *a, zs_model *m, zs_error *err);
+} zs_gen_def;
+
+/* The parsed values of a spec, defaults filled in. */
+typedef struct zs_gen_args {
+  const char *spec;             /* as given, for messages */
+  const zs_gen_def *def;
+  double value[ZS_GEN_MAX_PARAMS];
+  int given[ZS_GEN_MAX_PARAMS];
+  uint64_t seed;
+} zs_gen_args;
+
+/* The value of parameter key (which must be in the table). */
+int zs_gen_int(const zs_gen_args *a, const char *key);
+double zs_gen_real(const zs_gen_args *a, const char *key);
+/* Whether key was given in the spec. */
+int zs_gen_given(const zs_gen_args *a, const char *key);
+
+extern const zs_gen_def zs_gen_teapots_def, zs_gen_spheres_def,
+    zs_gen_city_def, zs_gen_plant_def, zs_gen_cubes_def, zs_gen_default_def;
+
+/* Mesh specs (scene/gen_mesh.c). */
+extern const zs_gen_def zs_gen_mesh_defs[];
+extern const int zs_gen_mesh_ndefs;
+
+/* ---- matrices (raster.h conventions; angles through zs_gen_sincos) ----- */
+
+/* Rotation by turns about the unit axis (x, y, z), right-handed (the
+ * matrix of glRotate). */
+void zs_gen_rotate(double m[16], double turns, double x, double y, double z);
+
+/* A uniformly random rotation (Shoemake's method: a uniform unit
+ * quaternion from three uniform numbers). */
+void zs_gen_random_rotation(zs_rng *rng, double m[16]);
+
+/* out = a * b * c (apply c first). */
+void zs_gen_mul3(double out[16], const double a[16], const double b[16],
+                 const double c[16]);
+
+/* The affine map taking the local axes x, y, z to the columns ax, ay, az
+ * and the origin to o (no normalisation: lengths are scales). */
+void zs_gen_frame(double m[16], const double ax[3], const double ay[3],
+                  const double az[3], const double o[3]);
+
+/* p' = m p for an affine m. */
+void zs_gen_apply(const double m[16], const double p[3], double out[3]);
+
+/* ---- scene building ---------------------------------------------------- */
+
+/* Adds *m (consumed) to s; returns its index or -1 after setting err. */
+int32_t zs_gen_add_mesh(zs_scene *s, zs_model *m, zs_error *err);
+
+/* Adds an instance named printf(fmt, ...); -1 after setting err. */
+int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
+                            uint32_t rgb, zs_error *err, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 6, 7)))
+#endif
+    ;
+
+/* A fresh model with one object named name; -1 (err set) when out of memory,
+ * else the object index 0. */
+int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
+
+/* Sets the scene's camera to look from eye at target (up +y), fovy 45,
+ * near/far as given, image 1024 x 768. */
+void zs_gen_camera(zs_scene *s, const double eye[3], const double target[3],
+                   double znear, double zfar);
+
+/* A path through the keys (eye and target each), frames frames long
+ * (frames >= nkeys): key k is placed at a frame proportional to the
+ * distance travelled so far (eye moves plus a quarter of target moves),
+ * the first at 0 and the last at frames - 1, each at least one frame
+ * after the one before.  up is +y. */
+typedef struct zs_gen_key {
+  double eye[3], target[3];
+} zs_gen_key;
+
+zs_status zs_gen_path(zs_scene *s, const zs_gen_key *keys, int nkeys,
+                      int frames, zs_error *err);
+
+/* Sets the scene's bounds. */
+void zs_gen_bounds(zs_scene *s, const double lo[3], const double hi[3]);
+
+/* The number of segments for a base count at a detail: round(base *
+ * detail), at least min. */
+int zs_gen_segments(double base, double detail, int min);
+
+#define ZS_GEN_NOMEM(err, what) \
+  zs_error_set((err), ZS_ERR_NOMEM, "%s: out of memory", (what))
+
+#endif

@@ -1,0 +1,986 @@
+/* zscan scene — scene files (see scenefile.h for the format).
+ *
+ * The text is parsed whole by cJSON, then walked with a "reader" that
+ * knows the JSON path of the value in hand (instances[3].transform.scale)
+ * and the name of the file, so every message can say where it points.
+ * Every object's keys are checked against what it may hold before its
+ * values are read, so a misspelt key is reported as such rather than as
+ * a missing one.
+ */
+#include "scene/scenefile.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "raster/raster.h"
+#include "scene/assimp_load.h"
+#include "scene/generate.h"
+#include "scene/obj.h"
+#include "scene/paths.h"
+
+#if defined(__GNUC__)
+#define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
+#else
+#define PRINTF_LIKE(f, a)
+#endif
+
+enum {
+  PATH_MAX_CHARS = 256, /* of a JSON path in messages */
+  MAX_FREE_KEYS = 64    /* of a generator mesh's object */
+};
+
+/* ---- the reader: file name, JSON path, errors ------------------------- */
+
+/* Sets err to the message with every control character written as a
+ * space, so that a newline inside a JSON string or key, echoed back,
+ * cannot break the message into two lines. */
+static zs_status PRINTF_LIKE(3, 4) set_error(zs_error *err, zs_status code, const char *fmt, ...) {
+  char msg[ZS_ERROR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  for (char *c = msg; *c; c++)
+    if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = ' ';
+  return zs_error_set(err, code, "%s", msg);
+}
+
+typedef struct reader {
+  const char *name; /* the scene file, for messages */
+  const char *dir;  /* mesh files are relative to it */
+  char path[PATH_MAX_CHARS];
+  size_t plen;
+  zs_error *err;
+} reader;
+
+/* Sets err to "NAME: PATH: reason" ("NAME: reason" at the top level). */
+static zs_status PRINTF_LIKE(3, 4) fail(reader *r, zs_status code, const char *fmt, ...) {
+  char why[ZS_ERROR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  if (r->plen == 0) return set_error(r->err, code, "%s: %s", r->name, why);
+  return set_error(r->err, code, "%s: %s: %s", r->name, r->path, why);
+}
+
+/* Appends ".key" (or "key" at the top) to the path; returns the length to
+ * go back to with pop(). */
+static size_t push_key(reader *r, const char *key) {
+  size_t mark = r->plen;
+  int n = snprintf(r->path + r->plen, sizeof r->path - r->plen, "%s%s", r->plen ? "." : "", key);
+  if (n > 0)
+    r->plen += (size_t)n < sizeof r->path - r->plen ? (size_t)n : sizeof r->path - r->plen - 1;
+  return mark;
+}
+
+static size_t push_index(reader *r, int i) {
+  size_t mark = r->plen;
+  int n = snprintf(r->path + r->plen, sizeof r->path - r->plen, "[%d]", i);
+  if (n > 0)
+    r->plen += (size_t)n < sizeof r->path - r->plen ? (size_t)n : sizeof r->path - r->plen - 1;
+  return mark;
+}
+
+static void pop(reader *r, size_t mark) {
+  r->plen = mark;
+  r->path[mark] = '\0';
+}
+
+/* ---- values ----------------------------------------------------------- */
+
+/* Checks that obj is an object whose keys are all in allowed (NULL-ended;
+ * allowed NULL: any key) and none repeated. */
+static zs_status check_object(reader *r, const cJSON *obj, const char *const *allowed) {
+  if (!cJSON_IsObject(obj)) return fail(r, ZS_ERR_PARSE, "expected object");
+  /* With a list, every earlier key is a distinct allowed one, so the
+   * search for repeats is short; without one, the count is bounded. */
+  if (!allowed && cJSON_GetArraySize(obj) > MAX_FREE_KEYS)
+    return fail(r, ZS_ERR_LIMIT, "more than %d keys", MAX_FREE_KEYS);
+  for (const cJSON *c = obj->child; c; c = c->next) {
+    size_t mark = push_key(r, c->string);
+    int known = allowed == NULL;
+    for (const char *const *a = allowed; a && *a && !known; a++) known = strcmp(*a, c->string) == 0;
+    if (!known) return fail(r, ZS_ERR_PARSE, "unknown key");
+    for (const cJSON *d = obj->child; d != c; d = d->next)
+      if (strcmp(d->string, c->string) == 0) return fail(r, ZS_ERR_PARSE, "duplicate key");
+    pop(r, mark);
+  }
+  return ZS_OK;
+}
+
+static const cJSON *member(const cJSON *obj, const char *key) {
+  return cJSON_GetObjectItemCaseSensitive(obj, key);
+}
+
+static zs_status read_number(reader *r, const cJSON *v, double *out) {
+  if (!cJSON_IsNumber(v)) return fail(r, ZS_ERR_PARSE, "expected number");
+  if (!isfinite(v->valuedouble)) return fail(r, ZS_ERR_PARSE, "not a finite number");
+  *out = v->valuedouble;
+  return ZS_OK;
+}
+
+/* A whole number in lo .. hi. */
+static zs_status read_int(reader *r, const cJSON *v, double lo, double hi, int32_t *out) {
+  double x = 0.0;
+  zs_status st = read_number(r, v, &x);
+  if (st != ZS_OK) return st;
+  if (x != floor(x)) return fail(r, ZS_ERR_PARSE, "expected a whole number, got %g", x);
+  if (x < lo || x > hi) return fail(r, ZS_ERR_PARSE, "%.0f is outside %.0f .. %.0f", x, lo, hi);
+  *out = (int32_t)x;
+  return ZS_OK;
+}
+
+/* An array of exactly n finite numbers. */
+static zs_status read_numbers(reader *r, const cJSON *v, int n, double *out) {
+  if (!cJSON_IsArray(v)) return fail(r, ZS_ERR_PARSE, "expected array of %d numbers", n);
+  int size = cJSON_GetArraySize(v);
+  if (size != n) return fail(r, ZS_ERR_PARSE, "expected %d numbers, got %d", n, size);
+  int i = 0;
+  for (const cJSON *c = v->child; c; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    zs_status st = read_number(r, c, &out[i]);
+    if (st != ZS_OK) return st;
+    pop(r, mark);
+  }
+  return ZS_OK;
+}
+
+/* A non-empty string. */
+static zs_status read_string(reader *r, const cJSON *v, const char **out) {
+  if (!cJSON_IsString(v) || !v->valuestring) return fail(r, ZS_ERR_PARSE, "expected string");
+  if (!*v->valuestring) return fail(r, ZS_ERR_PARSE, "expected a non-empty string");
+  *out = v->valuestring;
+  return ZS_OK;
+}
+
+static int is_zero3(const double v[3]) { return v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0; }
+
+/* The member key of obj, NULL when absent (an error, "missing \"key\"",
+ * when required). */
+static zs_status get_member(reader *r, const cJSON *obj, const char *key, int required,
+                            const cJSON **v) {
+  *v = member(obj, key);
+  if (!*v && required) return fail(r, ZS_ERR_PARSE, "missing \"%s\"", key);
+  return ZS_OK;
+}
+
+/* The get_ functions read the member key of obj with the path set to it;
+ * *given (when not NULL) says whether it was there. */
+static zs_status get_number(reader *r, const cJSON *obj, const char *key, int required, double *out,
+                            int *given) {
+  const cJSON *v;
+  zs_status st = get_member(r, obj, key, required, &v);
+  if (given) *given = v != NULL;
+  if (st != ZS_OK || !v) return st;
+  size_t mark = push_key(r, key);
+  st = read_number(r, v, out);
+  if (st == ZS_OK) pop(r, mark);
+  return st;
+}
+
+static zs_status get_vec3(reader *r, const cJSON *obj, const char *key, int required, double out[3],
+                          int *given) {
+  const cJSON *v;
+  zs_status st = get_member(r, obj, key, required, &v);
+  if (given) *given = v != NULL;
+  if (st != ZS_OK || !v) return st;
+  size_t mark = push_key(r, key);
+  st = read_numbers(r, v, 3, out);
+  if (st == ZS_OK) pop(r, mark);
+  return st;
+}
+
+static zs_status get_int(reader *r, const cJSON *obj, const char *key, int required, double lo,
+                         double hi, int32_t *out, int *given) {
+  const cJSON *v;
+  zs_status st = get_member(r, obj, key, required, &v);
+  if (given) *given = v != NULL;
+  if (st != ZS_OK || !v) return st;
+  size_t mark = push_key(r, key);
+  st = read_int(r, v, lo, hi, out);
+  if (st == ZS_OK) pop(r, mark);
+  return st;
+}
+
+static zs_status get_string(reader *r, const cJSON *obj, const char *key, int required,
+                            const char **out) {
+  const cJSON *v;
+  zs_status st = get_member(r, obj, key, required, &v);
+  if (st != ZS_OK || !v) return st;
+  size_t mark = push_key(r, key);
+  st = read_string(r, v, out);
+  if (st == ZS_OK) pop(r, mark);
+  return st;
+}
+
+/* Fails with the path set to member key of the object at the path. */
+static zs_status PRINTF_LIKE(4, 5)
+    fail_at(reader *r, const char *key, zs_status code, const char *fmt, ...) {
+  char why[ZS_ERROR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  push_key(r, key);
+  return fail(r, code, "%s", why);
+}
+
+/* ---- names ------------------------------------------------------------ */
+
+/* A set of names with an index each (open addressing, FNV-1a). */
+typedef struct name_table {
+  const char **names;
+  int32_t *index;
+  size_t cap, count;
+} name_table;
+
+static uint64_t hash_name(const char *s) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (; *s; s++) h = (h ^ (unsigned char)*s) * 0x100000001b3ull;
+  return h;
+}
+
+static int table_init(name_table *t, size_t n) {
+  t->cap = 16;
+  while (t->cap < 2 * n + 2) t->cap *= 2;
+  t->count = 0;
+  t->names = calloc(t->cap, sizeof *t->names);
+  t->index = calloc(t->cap, sizeof *t->index);
+  return t->names && t->index;
+}
+
+static void table_free(name_table *t) {
+  free(t->names);
+  free(t->index);
+}
+
+/* The slot of name: where it is, or the empty slot where it would go. */
+static size_t table_slot(const name_table *t, const char *name) {
+  size_t i = (size_t)hash_name(name) & (t->cap - 1);
+  while (t->names[i] && strcmp(t->names[i], name) != 0) i = (i + 1) & (t->cap - 1);
+  return i;
+}
+
+static int32_t table_find(const name_table *t, const char *name) {
+  size_t i = table_slot(t, name);
+  return t->names[i] ? t->index[i] : -1;
+}
+
+/* Adds name (not copied; it must outlive the table) unless present; returns
+ * 0 when it was there already.  The table never fills: it was made for at
+ * most n names. */
+static int table_add(name_table *t, const char *name, int32_t index) {
+  size_t i = table_slot(t, name);
+  if (t->names[i]) return 0;
+  t->names[i] = name;
+  t->index[i] = index;
+  t->count++;
+  return 1;
+}
+
+/* ---- files ------------------------------------------------------------ */
+
+/* Reads a whole file of at most ZS_SCENEFILE_MAX_BYTES; on failure err is
+ * set to "SHOWN: reason" (SHOWN is prefix and path as to be printed). */
+static zs_status read_whole_file(const char *path, const char *shown, char **data, size_t *len,
+                                 zs_error *err) {
+  *data = NULL;
+  *len = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return set_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(errno));
+  struct stat st;
+  zs_status res = ZS_OK;
+  if (fstat(fileno(f), &st) != 0)
+    res = set_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(errno));
+  else if (!S_ISREG(st.st_mode)) res = set_error(err, ZS_ERR_IO, "%s: not a regular file", shown);
+  else if ((long long)st.st_size > ZS_SCENEFILE_MAX_BYTES)
+    res = set_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", shown,
+                    ZS_SCENEFILE_MAX_BYTES >> 20);
+  char *buf = NULL;
+  size_t n = 0;
+  if (res == ZS_OK) {
+    /* read one byte more than the size, so a file that grew is noticed */
+    size_t cap = (size_t)st.st_size + 1;
+    buf = malloc(cap + 1);
+    if (!buf) res = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", shown);
+    else n = fread(buf, 1, cap, f);
+    if (res == ZS_OK && ferror(f))
+      res = set_error(err, ZS_ERR_IO, "%s: read error: %s", shown, strerror(errno));
+    else if (res == ZS_OK && n > (size_t)st.st_size)
+      res = set_error(err, ZS_ERR_IO, "%s: changed while being read", shown);
+  }
+  fclose(f);
+  if (res != ZS_OK) {
+    free(buf);
+    return res;
+  }
+  *data = buf;
+  *len = n;
+  return ZS_OK;
+}
+
+/* The size of the file at path, or -1 when it cannot be found out (the
+ * loader then says why it cannot open it). */
+static long long file_size(const char *path) {
+  struct stat st;
+  return stat(path, &st) == 0 ? (long long)st.st_size : -1;
+}
+
+static int has_obj_extension(const char *path) {
+  size_t n = strlen(path);
+  if (n < 4) return 0;
+  const char *e = path + n - 4;
+  return e[0] == '.' && (e[1] | 32) == 'o' && (e[2] | 32) == 'b' && (e[3] | 32) == 'j';
+}
+
+/* ---- meshes ----------------------------------------------------------- */
+
+static zs_status load_mesh_file(reader *r, const char *file, zs_model *m) {
+  char full[4096];
+  const char *dir = r->dir ? r->dir : "";
+  int n = file[0] == '/' || !*dir ? snprintf(full, sizeof full, "%s", file)
+                                  : snprintf(full, sizeof full, "%s/%s", dir, file);
+  if (n < 0 || (size_t)n >= sizeof full) return fail(r, ZS_ERR_LIMIT, "path too long");
+  long long size = file_size(full);
+  if (size > ZS_SCENEFILE_MAX_BYTES)
+    return fail(r, ZS_ERR_LIMIT, "%s: larger than %lld MiB", full, ZS_SCENEFILE_MAX_BYTES >> 20);
+  zs_error inner;
+  zs_error_clear(&inner);
+  zs_status st =
+      has_obj_extension(full) ? zs_obj_load(full, m, &inner) : zs_assimp_load(full, m, &inner);
+  if (st != ZS_OK) return fail(r, st, "%s", inner.msg);
+  if (m->nsource_faces == 0) return fail(r, ZS_ERR_PARSE, "%s: no faces", full);
+  return ZS_OK;
+}
+
+/* The shortest decimal text of x that reads back as x, without exponent
+ * when one of at most 30 decimals does (generator specs take plain
+ * decimals). */
+static void format_number(double x, char *buf, size_t cap) {
+  if (x == floor(x) && fabs(x) < 9007199254740992.0) {
+    snprintf(buf, cap, "%.0f", x);
+    return;
+  }
+  for (int p = 1; p <= 30; p++) {
+    snprintf(buf, cap, "%.*f", p, x);
+    if (strtod(buf, NULL) == x) return;
+  }
+  snprintf(buf, cap, "%.17g", x);
+}
+
+/* The spec "GENERATOR?key=value&..." of a generator mesh object. */
+static zs_status generator_spec(reader *r, const cJSON *obj, const char *gen, char *spec,
+                                size_t cap) {
+  size_t n = strlen(gen);
+  if (n >= cap) return fail_at(r, "generator", ZS_ERR_LIMIT, "generator spec too long");
+  memcpy(spec, gen, n + 1);
+  char sep = '?';
+  for (const cJSON *c = obj->child; c; c = c->next) {
+    if (strcmp(c->string, "name") == 0 || strcmp(c->string, "generator") == 0) continue;
+    size_t mark = push_key(r, c->string);
+    char value[64];
+    if (cJSON_IsNumber(c)) {
+      double x = 0.0;
+      zs_status st = read_number(r, c, &x);
+      if (st != ZS_OK) return st;
+      format_number(x, value, sizeof value);
+    } else if (cJSON_IsString(c) && c->valuestring) {
+      if (strpbrk(c->valuestring, "&=?# \t\r\n") || !*c->valuestring)
+        return fail(r, ZS_ERR_PARSE, "expected a word without '&', '=', '?', '#' or blanks");
+      if (strlen(c->valuestring) >= sizeof value) return fail(r, ZS_ERR_LIMIT, "value too long");
+      snprintf(value, sizeof value, "%s", c->valuestring);
+    } else {
+      return fail(r, ZS_ERR_PARSE, "expected number or string");
+    }
+    if (strpbrk(c->string, "&=?# \t\r\n") || !*c->string)
+      return fail(r, ZS_ERR_PARSE, "not a generator parameter name");
+    int k = snprintf(spec + n, cap - n, "%c%s=%s", sep, c->string, value);
+    if (k < 0 || (size_t)k >= cap - n) return fail(r, ZS_ERR_LIMIT, "generator spec too long");
+    n += (size_t)k;
+    sep = '&';
+    pop(r, mark);
+  }
+  return ZS_OK;
+}
+
+static zs_status load_generated_mesh(reader *r, const cJSON *obj, const char *gen, zs_model *m) {
+  char spec[ZS_GEN_SPEC_MAX + 1];
+  zs_status st = generator_spec(r, obj, gen, spec, sizeof spec);
+  if (st != ZS_OK) return st;
+  size_t mark = push_key(r, "generator");
+  zs_error inner;
+  zs_error_clear(&inner);
+  st = zs_gen_mesh(spec, m, &inner);
+  if (st != ZS_OK) return fail(r, st, "%s", inner.msg);
+  pop(r, mark);
+  return ZS_OK;
+}
+
+static zs_status read_mesh(reader *r, const cJSON *obj, zs_scene *s, name_table *names) {
+  if (!cJSON_IsObject(obj)) return fail(r, ZS_ERR_PARSE, "expected object");
+  const cJSON *fv = member(obj, "file"), *gv = member(obj, "generator");
+  if (fv && gv) return fail_at(r, "generator", ZS_ERR_PARSE, "cannot be combined with \"file\"");
+  if (!fv && !gv) return fail(r, ZS_ERR_PARSE, "expected \"file\" or \"generator\"");
+  /* a generator's object holds its parameters: any key */
+  static const char *const file_keys[] = {"name", "file", NULL};
+  zs_status st = check_object(r, obj, gv ? NULL : file_keys);
+  const char *name = NULL, *what = NULL;
+  if (st == ZS_OK) st = get_string(r, obj, "name", 1, &name);
+  if (st == ZS_OK) st = get_string(r, obj, fv ? "file" : "generator", 1, &what);
+  if (st != ZS_OK) return st;
+  if (table_find(names, name) >= 0)
+    return fail_at(r, "name", ZS_ERR_PARSE, "duplicate mesh name '%s'", name);
+  zs_model m;
+  zs_model_init(&m);
+  if (fv) {
+    size_t mark = push_key(r, "file");
+    st = load_mesh_file(r, what, &m);
+    if (st == ZS_OK) pop(r, mark);
+  } else {
+    st = load_generated_mesh(r, obj, what, &m);
+  }
+  int32_t index = st == ZS_OK ? zs_scene_add_mesh(s, &m) : -1;
+  zs_model_free(&m);
+  if (st != ZS_OK) return st;
+  if (index < 0) return fail(r, ZS_ERR_NOMEM, "out of memory");
+  table_add(names, name, index);
+  return ZS_OK;
+}
+
+static zs_status read_meshes(reader *r, const cJSON *arr, zs_scene *s, name_table *names) {
+  if (!cJSON_IsArray(arr)) return fail(r, ZS_ERR_PARSE, "expected array");
+  int n = cJSON_GetArraySize(arr);
+  if (n > ZS_SCENEFILE_MAX_MESHES)
+    return fail(r, ZS_ERR_LIMIT, "%d meshes, more than %d", n, ZS_SCENEFILE_MAX_MESHES);
+  if (!table_init(names, (size_t)n)) return fail(r, ZS_ERR_NOMEM, "out of memory");
+  int i = 0;
+  for (const cJSON *c = arr->child; c; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    zs_status st = read_mesh(r, c, s, names);
+    if (st != ZS_OK) return st;
+    pop(r, mark);
+  }
+  return ZS_OK;
+}
+
+/* ---- instances -------------------------------------------------------- */
+
+/* One rotation [deg, ax, ay, az], multiplied onto the left of m. */
+static zs_status read_rotation(reader *r, const cJSON *v, double m[16]) {
+  double q[4];
+  zs_status st = read_numbers(r, v, 4, q);
+  if (st != ZS_OK) return st;
+  if (q[1] == 0.0 && q[2] == 0.0 && q[3] == 0.0)
+    return fail(r, ZS_ERR_PARSE, "rotation axis must not be zero");
+  double rot[16], t[16];
+  zs_mat_rotate(rot, q[0], q[1], q[2], q[3]);
+  zs_mat_mul(t, rot, m);
+  memcpy(m, t, sizeof t);
+  return ZS_OK;
+}
+
+/* [deg, ax, ay, az] or a list of them, the first applied first. */
+static zs_status read_rotate(reader *r, const cJSON *v, double m[16]) {
+  zs_mat_identity(m);
+  if (!cJSON_IsArray(v) || !v->child || !cJSON_IsArray(v->child)) return read_rotation(r, v, m);
+  int i = 0;
+  for (const cJSON *c = v->child; c; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    zs_status st = read_rotation(r, c, m);
+    if (st != ZS_OK) return st;
+    pop(r, mark);
+  }
+  return ZS_OK;
+}
+
+static zs_status read_scale(reader *r, const cJSON *v, double sc[3]) {
+  zs_status st;
+  if (cJSON_IsNumber(v)) {
+    st = read_number(r, v, &sc[0]);
+    sc[1] = sc[2] = sc[0];
+  } else if (cJSON_IsArray(v)) {
+    st = read_numbers(r, v, 3, sc);
+  } else {
+    return fail(r, ZS_ERR_PARSE, "expected number or array of 3 numbers");
+  }
+  if (st != ZS_OK) return st;
+  if (sc[0] == 0.0 || sc[1] == 0.0 || sc[2] == 0.0)
+    return fail(r, ZS_ERR_PARSE, "scale must not be zero");
+  return ZS_OK;
+}
+
+/* {"translate", "rotate", "scale"} as T * R * S. */
+static zs_status read_transform(reader *r, const cJSON *obj, double model[16]) {
+  static const char *const keys[] = {"translate", "rotate", "scale", NULL};
+  zs_status st = check_object(r, obj, keys);
+  double t[3] = {0, 0, 0}, sc[3] = {1, 1, 1}, rot[16];
+  zs_mat_identity(rot);
+  if (st == ZS_OK) st = get_vec3(r, obj, "translate", 0, t, NULL);
+  const cJSON *v;
+  if (st == ZS_OK && (v = member(obj, "rotate"))) {
+    size_t mark = push_key(r, "rotate");
+    st = read_rotate(r, v, rot);
+    if (st == ZS_OK) pop(r, mark);
+  }
+  if (st == ZS_OK && (v = member(obj, "scale"))) {
+    size_t mark = push_key(r, "scale");
+    st = read_scale(r, v, sc);
+    if (st == ZS_OK) pop(r, mark);
+  }
+  if (st != ZS_OK) return st;
+  double tm[16], sm[16], rs[16];
+  zs_mat_translate(tm, t[0], t[1], t[2]);
+  zs_mat_scale(sm, sc[0], sc[1], sc[2]);
+  zs_mat_mul(rs, rot, sm);
+  zs_mat_mul(model, tm, rs);
+  return ZS_OK;
+}
+
+/* 16 numbers, row-major, affine and not singular. */
+static zs_status read_matrix(reader *r, const cJSON *v, double m[16]) {
+  zs_status st = read_numbers(r, v, 16, m);
+  if (st != ZS_OK) return st;
+  if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0)
+    return fail(r, ZS_ERR_PARSE, "the last row must be 0 0 0 1");
+  double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+               m[2] * (m[4] * m[9] - m[5] * m[8]);
+  if (det == 0.0 || !isfinite(det)) return fail(r, ZS_ERR_PARSE, "singular matrix");
+  return ZS_OK;
+}
+
+static int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+/* [r, g, b] each 0 .. 1, or "#rrggbb". */
+static zs_status read_color(reader *r, const cJSON *v, uint32_t *rgb) {
+  if (cJSON_IsString(v) && v->valuestring) {
+    const char *s = v->valuestring;
+    uint32_t x = 0;
+    int ok = strlen(s) == 7 && s[0] == '#';
+    for (int i = 1; ok && i < 7; i++) {
+      ok = hex_digit(s[i]) >= 0;
+      x = x << 4 | (uint32_t)(ok ? hex_digit(s[i]) : 0);
+    }
+    if (!ok) return fail(r, ZS_ERR_PARSE, "expected \"#rrggbb\", got \"%.20s\"", s);
+    *rgb = x;
+    return ZS_OK;
+  }
+  if (!cJSON_IsArray(v)) return fail(r, ZS_ERR_PARSE, "expected [r, g, b] or \"#rrggbb\"");
+  double c[3];
+  zs_status st = read_numbers(r, v, 3, c);
+  if (st != ZS_OK) return st;
+  *rgb = 0;
+  for (int i = 0; i < 3; i++) {
+    if (c[i] < 0.0 || c[i] > 1.0) {
+      push_index(r, i);
+      return fail(r, ZS_ERR_PARSE, "%g is outside 0 .. 1", c[i]);
+    }
+    *rgb = *rgb << 8 | (uint32_t)lround(c[i] * 255.0);
+  }
+  return ZS_OK;
+}
+
+static zs_status read_motion(reader *r, const cJSON *obj, zs_motion *m) {
+  static const char *const keys[] = {"axis", "speed", NULL};
+  zs_status st = check_object(r, obj, keys);
+  if (st == ZS_OK) st = get_vec3(r, obj, "axis", 1, m->axis, NULL);
+  if (st == ZS_OK && is_zero3(m->axis)) return fail_at(r, "axis", ZS_ERR_PARSE, "must not be zero");
+  if (st == ZS_OK) st = get_number(r, obj, "speed", 1, &m->speed, NULL);
+  m->moving = st == ZS_OK && m->speed != 0.0;
+  return st;
+}
+
+static zs_status read_instance(reader *r, const cJSON *obj, int index, zs_scene *s,
+                               const name_table *meshes, name_table *names) {
+  static const char *const keys[] = {"mesh",  "name",   "transform", "matrix",
+                                     "color", "motion", NULL};
+  zs_status st = check_object(r, obj, keys);
+  const char *mesh = NULL, *name = NULL;
+  if (st == ZS_OK) st = get_string(r, obj, "mesh", 1, &mesh);
+  if (st != ZS_OK) return st;
+  int32_t mi = table_find(meshes, mesh);
+  if (mi < 0) return fail_at(r, "mesh", ZS_ERR_PARSE, "unknown mesh '%s'", mesh);
+  st = get_string(r, obj, "name", 0, &name);
+  if (st != ZS_OK) return st;
+
+  double model[16];
+  zs_mat_identity(model);
+  const cJSON *tv = member(obj, "transform"), *mv = member(obj, "matrix"), *v;
+  if (tv && mv) return fail_at(r, "matrix", ZS_ERR_PARSE, "cannot be combined with \"transform\"");
+  size_t mark = push_key(r, tv ? "transform" : "matrix");
+  if (tv) st = read_transform(r, tv, model);
+  else if (mv) st = read_matrix(r, mv, model);
+  if (st != ZS_OK) return st;
+  pop(r, mark);
+
+  uint32_t rgb = ZS_RGB_MESH;
+  if ((v = member(obj, "color"))) {
+    mark = push_key(r, "color");
+    if ((st = read_color(r, v, &rgb)) != ZS_OK) return st;
+    pop(r, mark);
+  }
+  zs_motion motion = {0, {0, 0, 0}, 0.0};
+  if ((v = member(obj, "motion"))) {
+    mark = push_key(r, "motion");
+    if ((st = read_motion(r, v, &motion)) != ZS_OK) return st;
+    pop(r, mark);
+  }
+
+  char fallback[PATH_MAX_CHARS + 16];
+  if (!name) snprintf(fallback, sizeof fallback, "%.*s_%d", PATH_MAX_CHARS, mesh, index);
+  int32_t ii = zs_scene_add_instance(s, mi, model, rgb, name ? name : fallback);
+  if (ii < 0) return fail(r, ZS_ERR_NOMEM, "out of memory");
+  s->inst[ii].motion = motion;
+  /* the scene's copy of the name outlives the table */
+  if (!table_add(names, s->inst[ii].name, ii)) {
+    if (name) return fail_at(r, "name", ZS_ERR_PARSE, "duplicate instance name '%s'", name);
+    return fail(r, ZS_ERR_PARSE, "default name '%s' is taken by another instance", fallback);
+  }
+  return ZS_OK;
+}
+
+static zs_status read_instances(reader *r, const cJSON *arr, zs_scene *s,
+                                const name_table *meshes) {
+  if (!cJSON_IsArray(arr)) return fail(r, ZS_ERR_PARSE, "expected array");
+  int n = cJSON_GetArraySize(arr);
+  if (n == 0) return fail(r, ZS_ERR_PARSE, "expected at least one instance");
+  if (n > ZS_SCENEFILE_MAX_INSTANCES)
+    return fail(r, ZS_ERR_LIMIT, "%d instances, more than %d", n, ZS_SCENEFILE_MAX_INSTANCES);
+  name_table names;
+  zs_status st = table_init(&names, (size_t)n) ? ZS_OK : fail(r, ZS_ERR_NOMEM, "out of memory");
+  int i = 0;
+  for (const cJSON *c = arr->child; c && st == ZS_OK; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    st = read_instance(r, c, i, s, meshes, &names);
+    if (st == ZS_OK) pop(r, mark);
+  }
+  table_free(&names);
+  return st;
+}
+
+/* ---- camera, bounds, path --------------------------------------------- */
+
+/* Whether up is zero or (nearly) along the view from eye to target, the
+ * cases gluLookAt cannot handle. */
+static int up_along_view(const double eye[3], const double target[3], const double up[3]) {
+  double d[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+  double c[3] = {d[1] * up[2] - d[2] * up[1], d[2] * up[0] - d[0] * up[2],
+                 d[0] * up[1] - d[1] * up[0]};
+  double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  double ul = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+  return !(cl > 1e-12 * dl * ul);
+}
+
+static zs_status read_size(reader *r, const cJSON *v, zs_scene *s) {
+  if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 2)
+    return fail(r, ZS_ERR_PARSE, "expected [width, height]");
+  int32_t wh[2];
+  int i = 0;
+  for (const cJSON *c = v->child; c; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    zs_status st = read_int(r, c, 1, ZS_MAX_IMAGE_SIDE, &wh[i]);
+    if (st != ZS_OK) return st;
+    pop(r, mark);
+  }
+  s->width = wh[0];
+  s->height = wh[1];
+  return ZS_OK;
+}
+
+/* The keys given replace those of s->camera one by one. */
+static zs_status read_camera(reader *r, const cJSON *obj, zs_scene *s) {
+  static const char *const keys[] = {"eye", "target", "up", "fovy", "near", "far", "size", NULL};
+  zs_status st = check_object(r, obj, keys);
+  if (st != ZS_OK) return st;
+  zs_camera *c = &s->camera;
+  int given;
+  if ((st = get_vec3(r, obj, "eye", 0, c->eye, &given)) != ZS_OK) return st;
+  c->has_eye |= given;
+  if ((st = get_vec3(r, obj, "target", 0, c->target, &given)) != ZS_OK) return st;
+  c->has_target |= given;
+  if ((st = get_vec3(r, obj, "up", 0, c->up, &given)) != ZS_OK) return st;
+  c->has_up |= given;
+  if (given && is_zero3(c->up)) return fail_at(r, "up", ZS_ERR_PARSE, "must not be zero");
+  if ((st = get_number(r, obj, "fovy", 0, &c->fovy, &given)) != ZS_OK) return st;
+  if (given && !(c->fovy > 0.0 && c->fovy < 180.0))
+    return fail_at(r, "fovy", ZS_ERR_PARSE, "%g: must be between 0 and 180 degrees", c->fovy);
+  if ((st = get_number(r, obj, "near", 0, &c->znear, &given)) != ZS_OK) return st;
+  c->has_near |= given;
+  if (given && !(c->znear > 0.0))
+    return fail_at(r, "near", ZS_ERR_PARSE, "%g: must be greater than 0", c->znear);
+  if ((st = get_number(r, obj, "far", 0, &c->zfar, &given)) != ZS_OK) return st;
+  c->has_far |= given;
+  if (given && !(c->zfar > 0.0))
+    return fail_at(r, "far", ZS_ERR_PARSE, "%g: must be greater than 0", c->zfar);
+  if (c->has_near && c->has_far && !(c->znear < c->zfar))
+    return fail_at(r, "far", ZS_ERR_PARSE, "%g: must be greater than near (%g)", c->zfar, c->znear);
+  if (c->has_eye && c->has_target && memcmp(c->eye, c->target, sizeof c->eye) == 0)
+    return fail_at(r, "target", ZS_ERR_PARSE, "the same point as the eye");
+  if (c->has_eye && c->has_target && up_along_view(c->eye, c->target, c->up))
+    return fail_at(r, "up", ZS_ERR_PARSE, "parallel to the view direction");
+  const cJSON *v = member(obj, "size");
+  if (v) {
+    size_t mark = push_key(r, "size");
+    if ((st = read_size(r, v, s)) != ZS_OK) return st;
+    pop(r, mark);
+  }
+  return ZS_OK;
+}
+
+static zs_status read_bounds(reader *r, const cJSON *obj, zs_scene *s) {
+  static const char *const keys[] = {"min", "max", NULL};
+  double lo[3], hi[3];
+  zs_status st = check_object(r, obj, keys);
+  if (st == ZS_OK) st = get_vec3(r, obj, "min", 1, lo, NULL);
+  if (st == ZS_OK) st = get_vec3(r, obj, "max", 1, hi, NULL);
+  if (st != ZS_OK) return st;
+  for (int k = 0; k < 3; k++)
+    if (lo[k] > hi[k]) return fail_at(r, "max", ZS_ERR_PARSE, "below min on the %c axis", "xyz"[k]);
+  memcpy(s->lo, lo, sizeof lo);
+  memcpy(s->hi, hi, sizeof hi);
+  s->has_bounds = 1;
+  return ZS_OK;
+}
+
+static zs_status read_key(reader *r, const cJSON *obj, int32_t frames, int32_t prev,
+                          const double up[3], zs_keyframe *k) {
+  static const char *const keys[] = {"frame", "eye", "target", "up", NULL};
+  zs_status st = check_object(r, obj, keys);
+  if (st == ZS_OK) st = get_int(r, obj, "frame", 1, 0, frames - 1, &k->frame, NULL);
+  if (st != ZS_OK) return st;
+  if (k->frame <= prev)
+    return fail_at(r, "frame", ZS_ERR_PARSE, "%d is not after the previous key's frame %d",
+                   (int)k->frame, (int)prev);
+  memcpy(k->up, up, sizeof k->up);
+  int given;
+  if ((st = get_vec3(r, obj, "eye", 1, k->eye, NULL)) != ZS_OK) return st;
+  if ((st = get_vec3(r, obj, "target", 1, k->target, NULL)) != ZS_OK) return st;
+  if ((st = get_vec3(r, obj, "up", 0, k->up, &given)) != ZS_OK) return st;
+  if (memcmp(k->eye, k->target, sizeof k->eye) == 0)
+    return fail_at(r, "target", ZS_ERR_PARSE, "the same point as the eye");
+  if (up_along_view(k->eye, k->target, k->up))
+    return given ? fail_at(r, "up", ZS_ERR_PARSE, "zero or parallel to the view direction")
+                 : fail(r, ZS_ERR_PARSE, "the camera's up is parallel to this key's view");
+  return ZS_OK;
+}
+
+static zs_status read_keys(reader *r, const cJSON *arr, int32_t frames, zs_scene *s) {
+  if (!cJSON_IsArray(arr)) return fail(r, ZS_ERR_PARSE, "expected array");
+  int n = cJSON_GetArraySize(arr);
+  if (n == 0) return fail(r, ZS_ERR_PARSE, "expected at least one key");
+  if (n > frames) return fail(r, ZS_ERR_PARSE, "%d keys for %d frames", n, (int)frames);
+  zs_keyframe *keys = malloc((size_t)n * sizeof *keys);
+  if (!keys) return fail(r, ZS_ERR_NOMEM, "out of memory");
+  zs_status st = ZS_OK;
+  int i = 0;
+  for (const cJSON *c = arr->child; c && st == ZS_OK; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    st = read_key(r, c, frames, i > 0 ? keys[i - 1].frame : -1, s->camera.up, &keys[i]);
+    if (st == ZS_OK) pop(r, mark);
+  }
+  if (st != ZS_OK) {
+    free(keys);
+    return st;
+  }
+  zs_path_free(&s->path);
+  s->path.keys = keys;
+  s->path.nkeys = n;
+  s->path.frames = frames;
+  return ZS_OK;
+}
+
+/* A named path waits for the scene's bounds (see read_scene). */
+typedef struct named_path {
+  const char *name;
+  int32_t frames;
+} named_path;
+
+static zs_status read_path(reader *r, const cJSON *obj, zs_scene *s, named_path *named) {
+  static const char *const keys[] = {"frames", "keys", "named", NULL};
+  int32_t frames;
+  zs_status st = check_object(r, obj, keys);
+  if (st == ZS_OK) st = get_int(r, obj, "frames", 1, 1, ZS_PATH_MAX_FRAMES, &frames, NULL);
+  if (st != ZS_OK) return st;
+  const cJSON *kv = member(obj, "keys"), *nv = member(obj, "named");
+  if (kv && nv) return fail_at(r, "named", ZS_ERR_PARSE, "cannot be combined with \"keys\"");
+  if (!kv && !nv) return fail(r, ZS_ERR_PARSE, "expected \"keys\" or \"named\"");
+  if (nv) {
+    named->frames = frames;
+    return get_string(r, obj, "named", 1, &named->name);
+  }
+  size_t mark = push_key(r, "keys");
+  st = read_keys(r, kv, frames, s);
+  if (st == ZS_OK) pop(r, mark);
+  return st;
+}
+
+/* The named path from the camera completed from the scene's bounds. */
+static zs_status make_named_path(reader *r, const named_path *named, zs_scene *s) {
+  zs_camera base = s->camera;
+  double aspect = s->width > 0 && s->height > 0 ? (double)s->width / s->height : 1.0;
+  zs_camera_complete(&base, s->lo, s->hi, aspect);
+  zs_path p;
+  zs_error inner;
+  zs_error_clear(&inner);
+  if (zs_path_named(named->name, &base, named->frames, &p, &inner) != ZS_OK) {
+    push_key(r, "path");
+    return fail_at(r, "named", inner.code, "%s", inner.msg);
+  }
+  zs_path_free(&s->path);
+  s->path = p;
+  return ZS_OK;
+}
+
+/* ---- the scene -------------------------------------------------------- */
+
+static zs_status read_generated_scene(reader *r, const cJSON *root, zs_scene *s) {
+  if (member(root, "meshes") || member(root, "instances"))
+    return fail_at(r, "generator", ZS_ERR_PARSE,
+                   "cannot be combined with \"meshes\" or \"instances\"");
+  const char *spec;
+  zs_status st = get_string(r, root, "generator", 1, &spec);
+  if (st != ZS_OK) return st;
+  zs_error inner;
+  zs_error_clear(&inner);
+  zs_scene_free(s);
+  if (zs_gen_scene(spec, s, &inner) != ZS_OK)
+    return fail_at(r, "generator", inner.code, "%s", inner.msg);
+  return ZS_OK;
+}
+
+static zs_status read_objects(reader *r, const cJSON *root, zs_scene *s) {
+  const cJSON *mv = member(root, "meshes"), *iv = member(root, "instances");
+  if (!iv) return fail(r, ZS_ERR_PARSE, "missing \"instances\" (or a \"generator\")");
+  name_table meshes = {NULL, NULL, 0, 0};
+  zs_status st = ZS_OK;
+  if (mv) {
+    size_t mark = push_key(r, "meshes");
+    st = read_meshes(r, mv, s, &meshes);
+    if (st == ZS_OK) pop(r, mark);
+  } else if (!table_init(&meshes, 0)) {
+    st = fail(r, ZS_ERR_NOMEM, "out of memory");
+  }
+  if (st == ZS_OK) {
+    size_t mark = push_key(r, "instances");
+    st = read_instances(r, iv, s, &meshes);
+    if (st == ZS_OK) pop(r, mark);
+  }
+  table_free(&meshes);
+  return st;
+}
+
+/* Reads a member object with fn, the path set to it. */
+static zs_status read_part(reader *r, const cJSON *root, const char *key, zs_scene *s,
+                           zs_status (*fn)(reader *, const cJSON *, zs_scene *)) {
+  const cJSON *v = member(root, key);
+  if (!v) return ZS_OK;
+  size_t mark = push_key(r, key);
+  zs_status st = fn(r, v, s);
+  if (st == ZS_OK) pop(r, mark);
+  return st;
+}
+
+static zs_status read_scene(reader *r, const cJSON *root, zs_scene *s) {
+  static const char *const keys[] = {"description", "meshes", "instances", "generator",
+                                     "camera",      "path",   "bounds",    NULL};
+  zs_status st = check_object(r, root, keys);
+  if (st != ZS_OK) return st;
+  const cJSON *dv = member(root, "description");
+  if (dv && !cJSON_IsString(dv)) return fail_at(r, "description", ZS_ERR_PARSE, "expected string");
+  st = member(root, "generator") ? read_generated_scene(r, root, s) : read_objects(r, root, s);
+  if (st == ZS_OK) st = read_part(r, root, "camera", s, read_camera);
+  if (st == ZS_OK) st = read_part(r, root, "bounds", s, read_bounds);
+  named_path named = {NULL, 0};
+  const cJSON *pv = member(root, "path");
+  if (st == ZS_OK && pv) {
+    size_t mark = push_key(r, "path");
+    st = read_path(r, pv, s, &named);
+    if (st == ZS_OK) pop(r, mark);
+  }
+  if (st != ZS_OK) return st;
+  zs_error inner;
+  zs_error_clear(&inner);
+  if (zs_scene_finish(s, &inner) != ZS_OK) return fail(r, inner.code, "%s", inner.msg);
+  return named.name ? make_named_path(r, &named, s) : ZS_OK;
+}
+
+/* Line and column (from 1, in bytes) of offset pos in text. */
+static void line_col(const char *text, size_t pos, long *line, long *col) {
+  *line = 1;
+  size_t start = 0;
+  for (size_t i = 0; i < pos; i++)
+    if (text[i] == '\n') {
+      (*line)++;
+      start = i + 1;
+    }
+  *col = (long)(pos - start) + 1;
+}
+
+zs_status zs_scenefile_parse(const char *text, size_t len, const char *name, const char *dir,
+                             zs_scene *out, zs_error *err) {
+  zs_scene_init(out);
+  if ((unsigned long long)len > (unsigned long long)ZS_SCENEFILE_MAX_BYTES)
+    return set_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", name,
+                     ZS_SCENEFILE_MAX_BYTES >> 20);
+  long line, col;
+  const char *nul = memchr(text, '\0', len);
+  if (nul) {
+    line_col(text, (size_t)(nul - text), &line, &col);
+    return set_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: NUL byte", name, line, col);
+  }
+  char *buf = malloc(len + 1);
+  if (!buf) return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", name);
+  memcpy(buf, text, len);
+  buf[len] = '\0';
+  const char *end = NULL;
+  cJSON *root = cJSON_ParseWithOpts(buf, &end, 1);
+  zs_status st;
+  if (!root) {
+    size_t pos = end && end >= buf && end <= buf + len ? (size_t)(end - buf) : len;
+    line_col(buf, pos, &line, &col);
+    st = set_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: invalid JSON", name, line, col);
+  } else {
+    reader r = {name, dir, "", 0, err};
+    st = read_scene(&r, root, out);
+  }
+  cJSON_Delete(root);
+  free(buf);
+  if (st != ZS_OK) zs_scene_free(out);
+  return st;
+}
+
+zs_status zs_scenefile_load(const char *path, zs_scene *out, zs_error *err) {
+  zs_scene_init(out);
+  char *text;
+  size_t len;
+  zs_status st = read_whole_file(path, path, &text, &len, err);
+  if (st != ZS_OK) return st;
+  /* mesh files live next to the scene file: dir is path up to its last
+   * '/' ("/" for a file in the root, "" for a bare file name) */
+  const char *slash = strrchr(path, '/');
+  size_t dlen = slash ? (size_t)(slash - path) + (slash == path) : 0;
+  char *dir = malloc(dlen + 1);
+  if (!dir) {
+    st = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
+  } else {
+    memcpy(dir, path, dlen);
+    dir[dlen] = '\0';
+    st = zs_scenefile_parse(text, len, path, dir, out, err);
+  }
+  free(dir);
+  free(text);
+  return st;
+}

@@ -1,0 +1,109 @@
+#include "tools/plot.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+int zs_plot_available(void) {
+  const char *path = getenv("PATH");
+  if (!path) return 0;
+  char buf[4096];
+  snprintf(buf, sizeof buf, "%s", path);
+  for (char *dir = strtok(buf, ":"); dir; dir = strtok(NULL, ":")) {
+    char exe[4200];
+    snprintf(exe, sizeof exe, "%s/gnuplot", dir);
+    if (access(exe, X_OK) == 0) return 1;
+  }
+  return 0;
+}
+
+/* s as a gnuplot single-quoted string: quotes doubled. */
+static void quoted(FILE *f, const char *s) {
+  fputc('\'', f);
+  for (; *s; s++) {
+    if (*s == '\'') fputc('\'', f);
+    fputc(*s, f);
+  }
+  fputc('\'', f);
+}
+
+zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
+  if (!zs_plot_available())
+    return zs_error_set(err, ZS_ERR_IO, "%s: gnuplot is not installed (apt-get install gnuplot-nox)",
+                        png);
+  char tmp_png[4200], tmp_gp[4200];
+  snprintf(tmp_png, sizeof tmp_png, "%s.tmp.png", png);
+  snprintf(tmp_gp, sizeof tmp_gp, "%s.tmp.gp", png);
+  FILE *f = fopen(tmp_gp, "w");
+  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", tmp_gp, strerror(errno));
+  fputs("OUT = ", f);
+  quoted(f, tmp_png);
+  fputs("\n", f);
+  fputs(script, f);
+  if (fclose(f) != 0) {
+    unlink(tmp_gp);
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write", tmp_gp);
+  }
+  char *args[] = {"gnuplot", tmp_gp, NULL};
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid;
+  int rc = posix_spawnp(&pid, "gnuplot", &fa, NULL, args, environ);
+  posix_spawn_file_actions_destroy(&fa);
+  int status = 0;
+  if (rc == 0) waitpid(pid, &status, 0);
+  unlink(tmp_gp);
+  if (rc != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    unlink(tmp_png);
+    return zs_error_set(err, ZS_ERR_IO, "%s: gnuplot failed", png);
+  }
+  if (rename(tmp_png, png) != 0) {
+    unlink(tmp_png);
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", png, strerror(errno));
+  }
+  return ZS_OK;
+}
+
+zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
+                         const char *ylabel, const double *y, int n, int nseries,
+                         const char *const *names, zs_error *err) {
+  char dat[4200];
+  snprintf(dat, sizeof dat, "%s.tmp.dat", png);
+  FILE *f = fopen(dat, "w");
+  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", dat, strerror(errno));
+  for (int i = 0; i < n; i++) {
+    fprintf(f, "%d", i);
+    for (int j = 0; j < nseries; j++) fprintf(f, " %.9g", y[(size_t)i * (size_t)nseries + (size_t)j]);
+    fputc('\n', f);
+  }
+  fclose(f);
+  size_t cap = 4096 + (size_t)nseries * 256;
+  char *script = malloc(cap);
+  if (!script) {
+    unlink(dat);
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  int len = snprintf(script, cap,
+                     "set terminal pngcairo size 1000,560 noenhanced\n"
+                     "set output OUT\nset title '%s'\nset xlabel '%s'\nset ylabel '%s'\n"
+                     "set key outside right\nset grid\nplot ",
+                     title, xlabel, ylabel);
+  for (int j = 0; j < nseries && len > 0 && (size_t)len < cap; j++)
+    len += snprintf(script + len, cap - (size_t)len, "%s'%s' using 1:%d with lines lw 2 title '%s'",
+                    j ? ", " : "", dat, j + 2, names[j]);
+  if (len > 0 && (size_t)len < cap) snprintf(script + len, cap - (size_t)len, "\n");
+  zs_status st = zs_plot_run(png, script, err);
+  free(script);
+  unlink(dat);
+  return st;
+}

@@ -1,0 +1,24 @@
+/* zscan tools — plots through gnuplot (Debian's gnuplot-nox).
+ *
+ * The data go to a temporary file, gnuplot draws a PNG to a temporary name
+ * in the target's directory, and the PNG is renamed over the target only
+ * when gnuplot succeeded: no half-written plot is ever left. */
+#ifndef ZS_TOOLS_PLOT_H
+#define ZS_TOOLS_PLOT_H
+
+#include "raster/error.h"
+
+/* Whether gnuplot can be run (found on PATH). */
+int zs_plot_available(void);
+
+/* Lines: y[i * nseries + j] is series j at x = i (i = 0 .. n-1). */
+zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
+                         const char *ylabel, const double *y, int n, int nseries,
+                         const char *const *names, zs_error *err);
+
+/* Runs gnuplot on script, which must `set output` to the path it is given
+ * as its %s-free variable OUT (the temporary PNG): the script text is
+ * prefixed with `OUT = '...'`.  Renames the result over png. */
+zs_status zs_plot_run(const char *png, const char *script, zs_error *err);
+
+#endif

@@ -1,0 +1,345 @@
+/* `zscan walk SCENE --cull M1,M2,... [options]`: every culling method over
+ * the scene's camera path, with its moving objects, frame by frame.
+ *
+ * The methods run in lockstep: each frame the scene moves once, the octree
+ * is brought up to date once, and then every method draws that frame on a
+ * device of its own (each keeps its culler's state from frame to frame).
+ * Each method's face ids are compared with those of `none` in the same
+ * frame: diff_pixels.  The modelled times come from the device clock and
+ * are the same on every run; wall times are measured and are not.
+ */
+#include "tools/walk.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cull/cull.h"
+#include "cull/octree.h"
+#include "raster/raster.h"
+#include "scene/scene.h"
+#include "tools/cli.h"
+#include "tools/clockfile.h"
+#include "tools/frame.h"
+#include "tools/image.h"
+#include "tools/input.h"
+#include "tools/plot.h"
+
+static const char usage[] =
+    "usage: zscan walk SCENE --cull M1,M2,... [options]\n"
+    "  SCENE               FILE.json, FILE.obj, or builtin:NAME[?k=v]\n"
+    "  --cull LIST         methods: none vfc vfc-box hsw chc chc-prob ideal auto\n"
+    "                      (none is always run: it is the reference)\n"
+    "  --frames N          frames of the walk (default: the scene's path)\n"
+    "  --size WxH          image size (default: the scene's, else 1024x768)\n"
+    "  --csv FILE          one row per frame and method\n"
+    "  --plot FILE.png     modelled frame time per frame, one line per method\n"
+    "  --frames-dir DIR    each method's image of every frame\n"
+    "  --clock FILE.json   the device clock's constants\n"
+    "  --clock-set K=V     set one clock constant, ns\n"
+    "  --latency-frames X  query latency as X times none's mean frame time\n"
+    "  --depth D --looseness K   the loose octree (default 4, 2)\n"
+    "  --quiet             no progress on stderr\n";
+
+typedef struct walk_opts {
+  const char *scene, *csv, *plot, *frames_dir;
+  int methods[ZS_CULL_METHODS], nmethods;
+  int frames, width, height, quiet, depth;
+  double looseness, latency_frames;
+  zs_clock_params clock;
+} walk_opts;
+
+/* Per method, the sums over the walk. */
+typedef struct method_run {
+  zs_cull_method m;
+  zs_culler *culler;
+  zs_device *dev;
+  double modelled_ms, stall_ms, wall_ms, queries, faces, objects, nodes;
+  uint64_t diff_pixels, frames_with_diff;
+  uint64_t chose_queries; /* auto: frames it ran with queries */
+} method_run;
+
+static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
+  memset(o, 0, sizeof *o);
+  o->depth = ZS_OCTREE_DEFAULT_DEPTH;
+  o->looseness = ZS_OCTREE_DEFAULT_LOOSENESS;
+  o->latency_frames = -1;
+  zs_clock_params_default(&o->clock);
+  o->methods[o->nmethods++] = ZS_CULL_NONE;
+  int have_cull = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = NULL;
+#define VALUE() \
+  if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
+    if (strcmp(a, "--cull") == 0) {
+      VALUE();
+      have_cull = 1;
+      char buf[256];
+      snprintf(buf, sizeof buf, "%s", v);
+      for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        int m = zs_cull_method_parse(tok);
+        if (m < 0)
+          return zs_error_set(err, ZS_ERR_ARG,
+                              "--cull: unknown method '%s' (none vfc vfc-box hsw chc chc-prob "
+                              "ideal auto)", tok);
+        int dup = 0;
+        for (int k = 0; k < o->nmethods; k++) dup |= o->methods[k] == m;
+        if (!dup) o->methods[o->nmethods++] = m;
+      }
+    } else if (strcmp(a, "--frames") == 0) {
+      VALUE();
+      if (zs_cli_int(a, v, 1, 1000000, &o->frames, err)) return err->code;
+    } else if (strcmp(a, "--size") == 0) {
+      VALUE();
+      if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
+    } else if (strcmp(a, "--csv") == 0) {
+      VALUE();
+      o->csv = v;
+      if (zs_cli_output_path(a, v, err)) return err->code;
+    } else if (strcmp(a, "--plot") == 0) {
+      VALUE();
+      o->plot = v;
+      if (zs_cli_output_path(a, v, err)) return err->code;
+    } else if (strcmp(a, "--frames-dir") == 0) {
+      VALUE();
+      o->frames_dir = v;
+      char probe[4200];
+      snprintf(probe, sizeof probe, "%s/x", v);
+      if (zs_cli_output_path(a, probe, err)) return err->code;
+    } else if (strcmp(a, "--clock") == 0) {
+      VALUE();
+      if (zs_clockfile_load(v, &o->clock, err)) return err->code;
+    } else if (strcmp(a, "--clock-set") == 0) {
+      VALUE();
+      if (zs_clock_set(v, &o->clock, err)) return err->code;
+    } else if (strcmp(a, "--latency-frames") == 0) {
+      VALUE();
+      if (zs_cli_double(a, v, &o->latency_frames, err)) return err->code;
+      if (o->latency_frames < 0 || o->latency_frames > 100)
+        return zs_error_set(err, ZS_ERR_ARG, "--latency-frames: expected 0 to 100, got %s", v);
+    } else if (strcmp(a, "--depth") == 0) {
+      VALUE();
+      if (zs_cli_int(a, v, 0, ZS_OCTREE_MAX_DEPTH, &o->depth, err)) return err->code;
+    } else if (strcmp(a, "--looseness") == 0) {
+      VALUE();
+      if (zs_cli_double(a, v, &o->looseness, err)) return err->code;
+    } else if (strcmp(a, "--quiet") == 0) {
+      o->quiet = 1;
+    } else if (a[0] == '-' && a[1]) {
+      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan walk --help)", a);
+    } else if (!o->scene) {
+      o->scene = a;
+    } else {
+      return zs_error_set(err, ZS_ERR_ARG, "more than one SCENE: '%s' and '%s'", o->scene, a);
+    }
+#undef VALUE
+  }
+  if (!o->scene) return zs_error_set(err, ZS_ERR_ARG, "missing SCENE (see zscan walk --help)");
+  if (!have_cull) return zs_error_set(err, ZS_ERR_ARG, "missing --cull (see zscan walk --help)");
+  return ZS_OK;
+}
+
+/* The camera of frame f: the scene's path, or its camera when it has none. */
+static zs_status frame_camera(const zs_scene *s, int32_t f, int w, int h, double view[16],
+                              double proj[16], zs_error *err) {
+  zs_camera cam = s->camera;
+  if (s->path.nkeys > 0) zs_path_camera(s, f % (s->path.frames > 0 ? s->path.frames : 1), &cam);
+  double aspect = (double)w / h;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++) {
+    lo[k] = s->lo[k];
+    hi[k] = s->hi[k];
+  }
+  zs_camera_complete(&cam, lo, hi, aspect);
+  return zs_camera_matrices(&cam, aspect, view, proj, err);
+}
+
+static void progress(const walk_opts *o, int f, int frames) {
+  if (o->quiet || !isatty(2)) return;
+  int width = 40, done = (int)((int64_t)(f + 1) * width / frames);
+  fprintf(stderr, "\r[%.*s%*s] frame %d/%d", done, "########################################",
+          width - done, "", f + 1, frames);
+  if (f + 1 == frames) fputc('\n', stderr);
+}
+
+static zs_status write_frame(const walk_opts *o, const method_run *r, int f, zs_error *err) {
+  /* the id image: face id + 1 as 24-bit RGB, like --shade id */
+  const zs_device_config *cfg = zs_device_config_of(r->dev);
+  zs_image im;
+  if (zs_image_alloc(&im, cfg->width, cfg->height, err)) return err->code;
+  const uint32_t *ids = zs_device_id_buffer(r->dev);
+  for (size_t i = 0; i < (size_t)cfg->width * (size_t)cfg->height; i++)
+    im.rgb[i] = ids[i] == ZS_ID_NONE ? 0 : (ids[i] + 1) & 0xFFFFFF;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/%s-%05d.png", o->frames_dir, zs_cull_method_name(r->m), f);
+  zs_status st = zs_png_write(path, &im, err);
+  zs_image_free(&im);
+  return st;
+}
+
+static zs_status run(const walk_opts *o, zs_error *err) {
+  zs_scene s;
+  if (zs_input_load_scene(o->scene, &s, err)) return err->code;
+  zs_status st = ZS_OK;
+  zs_octree tree;
+  memset(&tree, 0, sizeof tree);
+  method_run runs[ZS_CULL_METHODS];
+  memset(runs, 0, sizeof runs);
+  FILE *csv = NULL;
+  char csv_tmp[4200] = "";
+  uint32_t *ref_ids = NULL;
+  double *frame_ms = NULL; /* per frame and method, for the plot */
+
+  int w = o->width ? o->width : s.width ? s.width : 1024;
+  int h = o->height ? o->height : s.height ? s.height : 768;
+  int frames = o->frames ? o->frames : s.path.frames > 0 ? s.path.frames : 1;
+
+  zs_octree_params tp;
+  zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
+  tp.max_depth = o->depth;
+  tp.looseness = o->looseness;
+  if ((st = zs_octree_build(&tree, &s, &tp, err))) goto done;
+
+  zs_clock_params clock = o->clock;
+  for (int k = 0; k < o->nmethods; k++) {
+    method_run *r = &runs[k];
+    r->m = (zs_cull_method)o->methods[k];
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+    if ((st = zs_device_create(&cfg, &r->dev, err))) goto done;
+    if ((st = zs_culler_create(r->m, NULL, &r->culler, err))) goto done;
+    if ((st = zs_device_set_clock(r->dev, &clock, err))) goto done;
+  }
+  if (o->latency_frames >= 0) {
+    /* latency in frames: of none's modelled time of the first frame */
+    double view[16], proj[16];
+    zs_cull_stats cs;
+    if ((st = frame_camera(&s, 0, w, h, view, proj, err)) ||
+        (st = zs_culler_frame(runs[0].culler, runs[0].dev, &s, &tree, view, proj, &cs, err)) ||
+        (st = zs_device_finish(runs[0].dev, NULL, NULL, err)))
+      goto done;
+    clock.query_latency_ns = o->latency_frames * (double)zs_device_frame_ps(runs[0].dev) * 1e-3;
+    for (int k = 0; k < o->nmethods; k++)
+      if ((st = zs_device_set_clock(runs[k].dev, &clock, err))) goto done;
+    printf("query latency: %.3f ms (%.2f frames of none)\n", clock.query_latency_ns * 1e-6,
+           o->latency_frames);
+  }
+  if (!(ref_ids = malloc((size_t)w * (size_t)h * sizeof *ref_ids)) ||
+      !(frame_ms = calloc((size_t)frames * (size_t)o->nmethods, sizeof *frame_ms))) {
+    st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+    goto done;
+  }
+  if (o->csv) {
+    snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp", o->csv);
+    if (!(csv = fopen(csv_tmp, "w"))) {
+      st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write", o->csv);
+      goto done;
+    }
+    fprintf(csv, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
+                 "faces_drawn,objects_drawn,nodes_visited,diff_pixels\n");
+  }
+
+  for (int f = 0; f < frames && st == ZS_OK; f++) {
+    if (f > 0) {
+      zs_scene_advance(&s);
+      if ((st = zs_octree_update(&tree, &s, NULL, err))) break;
+    }
+    double view[16], proj[16];
+    if ((st = frame_camera(&s, f, w, h, view, proj, err))) break;
+    for (int k = 0; k < o->nmethods && st == ZS_OK; k++) {
+      method_run *r = &runs[k];
+      zs_cull_stats cs;
+      double t0 = zs_wall_ms();
+      if ((st = zs_culler_frame(r->culler, r->dev, &s, &tree, view, proj, &cs, err))) break;
+      if ((st = zs_device_finish(r->dev, NULL, NULL, err))) break;
+      double wall = zs_wall_ms() - t0;
+      const zs_clock_stats *ck = zs_device_clock(r->dev);
+      double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
+      const uint32_t *ids = zs_device_id_buffer(r->dev);
+      uint64_t diff = 0;
+      if (k == 0) memcpy(ref_ids, ids, (size_t)w * (size_t)h * sizeof *ids);
+      else
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++) diff += ids[i] != ref_ids[i];
+      r->modelled_ms += modelled;
+      r->stall_ms += stall;
+      r->wall_ms += wall;
+      r->queries += (double)cs.queries;
+      r->faces += (double)cs.faces_drawn;
+      r->objects += (double)cs.objects_drawn;
+      r->nodes += (double)cs.nodes_visited;
+      r->diff_pixels += diff;
+      r->frames_with_diff += diff > 0;
+      r->chose_queries += cs.chosen == ZS_CULL_CHC_PROB;
+      frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
+      if (csv)
+        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu\n", f,
+                zs_cull_method_name(r->m), zs_cull_method_name(cs.chosen), modelled, stall, wall,
+                (unsigned long long)cs.queries, (unsigned long long)cs.queries_hidden,
+                (unsigned long long)cs.faces_drawn, (unsigned long long)cs.objects_drawn,
+                (unsigned long long)cs.nodes_visited, (unsigned long long)diff);
+      if (o->frames_dir && (st = write_frame(o, r, f, err))) break;
+    }
+    progress(o, f, frames);
+  }
+  if (st) goto done;
+  if (csv) {
+    if (fclose(csv) != 0 || rename(csv_tmp, o->csv) != 0) {
+      csv = NULL;
+      st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write", o->csv);
+      goto done;
+    }
+    csv = NULL;
+  }
+
+  /* The paper's Table 2, per frame on average. */
+  printf("%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
+         (unsigned long long)zs_scene_faces(&s));
+  printf("%-9s %9s %12s %9s %10s %10s %9s %9s %11s\n", "method", "queries", "faces_drawn",
+         "objects", "model_ms", "model_fps", "stall_ms", "wall_ms", "diff_pixels");
+  for (int k = 0; k < o->nmethods; k++) {
+    const method_run *r = &runs[k];
+    double n = frames;
+    printf("%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n", zs_cull_method_name(r->m),
+           r->queries / n, r->faces / n, r->objects / n, r->modelled_ms / n,
+           r->modelled_ms > 0 ? 1000.0 * n / r->modelled_ms : 0.0, r->stall_ms / n, r->wall_ms / n,
+           (unsigned long long)r->diff_pixels);
+  }
+  if (o->plot) {
+    const char *names[ZS_CULL_METHODS];
+    for (int k = 0; k < o->nmethods; k++) names[k] = zs_cull_method_name(runs[k].m);
+    st = zs_plot_series(o->plot, "modelled frame time per frame", "frame", "modelled ms",
+                        frame_ms, frames, o->nmethods, names, err);
+  }
+
+done:
+  if (csv) {
+    fclose(csv);
+    unlink(csv_tmp);
+  }
+  free(ref_ids);
+  free(frame_ms);
+  for (int k = 0; k < ZS_CULL_METHODS; k++) {
+    zs_culler_destroy(runs[k].culler);
+    zs_device_destroy(runs[k].dev);
+  }
+  zs_octree_free(&tree);
+  zs_scene_free(&s);
+  return st;
+}
+
+int zs_cmd_walk(int argc, char **argv) {
+  for (int i = 1; i < argc; i++)
+    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+      fputs(usage, stdout);
+      return 0;
+    }
+  walk_opts o;
+  zs_error err;
+  zs_error_clear(&err);
+  if (parse(argc, argv, &o, &err) || run(&o, &err)) {
+    fprintf(stderr, "zscan walk: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}
