@@ -31,28 +31,38 @@ int zs_cull_method_parse(const char *name) {
 }
 
 void zs_cost_params_default(zs_cost_params *p) {
-  *p = (zs_cost_params){0.95, 0.9, -1.0, -1.0, -1.0, 1.0};
+  /* w1, w2: the transition rates auto measured over 20 frames of the plant
+   * walk (builtin:plant?detail=1), rounded */
+  *p = (zs_cost_params){0.93, 0.97, -1.0, -1.0, -1.0, -1.0, 1.0};
 }
 
-/* Across frames, per octree node. */
-typedef struct node_state {
+/* The hierarchy the methods walk: the octree's nodes, with each object as
+ * a leaf of the node that holds it (so a visible object does not drag its
+ * neighbours in, and a hidden one is culled on its own).  An element is a
+ * node n >= 0 or an object i, encoded as -(i + 2). */
+typedef int32_t elem;
+static inline int is_object(elem e) { return e <= -2; }
+static inline int32_t object_of(elem e) { return -e - 2; }
+static inline elem object_elem(int32_t i) { return -i - 2; }
+
+/* Across frames, per element. */
+typedef struct elem_state {
   uint32_t last_visited;   /* frame (frames count from 1) */
-  uint32_t rendered;       /* frame its own objects were drawn */
-  uint32_t traversed;      /* frame its children were pushed */
+  uint32_t done;           /* frame it was rendered (object) or opened (node) */
   uint8_t visible;
   double pv;               /* P(V) for the next frame */
-} node_state;
+} elem_state;
 
 typedef struct heap_entry {
   double key;
-  int32_t node;
+  elem e;
   unsigned mask;           /* frustum planes still to test */
 } heap_entry;
 
 typedef struct query_entry {
-  int32_t node;
+  elem e;
   zs_query q;
-  unsigned mask;           /* frustum planes its children still test */
+  unsigned mask;           /* frustum planes its content still tests */
   uint8_t was_visible;     /* its state before this frame (auto's learning) */
 } query_entry;
 
@@ -60,8 +70,8 @@ struct zs_culler {
   zs_cull_method method;
   zs_cost_params cost;
   uint32_t frame;
-  node_state *ns;
-  int32_t cap_ns, init_ns; /* slots allocated, slots initialised */
+  elem_state *ns, *os;     /* nodes, objects */
+  int32_t cap_ns, init_ns, cap_os, init_os;
   heap_entry *heap;
   int32_t nheap, cap_heap;
   query_entry *qq;
@@ -90,7 +100,7 @@ typedef struct frame_ctx {
   double eye[3];
   double near_reach;       /* farthest a near-plane corner lies from the eye */
   double tan_half_fovy, height;
-  double ttri, tq, tquery; /* cost model constants, ns */
+  double ttri, tcall, tq, tquery; /* cost model constants, ns */
   zs_cull_stats *st;
   uint64_t hidden_objects; /* auto: objects drawn that wrote no pixel */
   zs_error *err;
@@ -124,6 +134,7 @@ zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_cull
 void zs_culler_destroy(zs_culler *c) {
   if (!c) return;
   free(c->ns);
+  free(c->os);
   free(c->heap);
   free(c->qq);
   free(c->polys);
@@ -131,6 +142,36 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->owner);
   zs_device_destroy(c->oracle);
   free(c);
+}
+
+/* ---- elements ---- */
+
+static elem_state *state(frame_ctx *f, elem e) {
+  return is_object(e) ? &f->c->os[object_of(e)] : &f->c->ns[e];
+}
+
+/* The box of an element: a node's tight box, an object's own box. */
+static void elem_box(const frame_ctx *f, elem e, const double **lo, const double **hi) {
+  if (is_object(e)) {
+    *lo = f->t->olo[object_of(e)];
+    *hi = f->t->ohi[object_of(e)];
+  } else {
+    *lo = f->t->node[e].tlo;
+    *hi = f->t->node[e].thi;
+  }
+}
+
+static elem parent_of(const frame_ctx *f, elem e) {
+  return is_object(e) ? f->t->home[object_of(e)] : f->t->node[e].parent;
+}
+
+static double box_distance2(const double eye[3], const double *lo, const double *hi) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    double v = eye[k] < lo[k] ? lo[k] - eye[k] : eye[k] > hi[k] ? eye[k] - hi[k] : 0.0;
+    d2 += v * v;
+  }
+  return d2;
 }
 
 /* ---- drawing ---- */
@@ -146,45 +187,24 @@ static void draw_instance(frame_ctx *f, int32_t i) {
   if (zs_device_stats(f->dev)->pixels_written == before) f->hidden_objects++;
 }
 
-/* Draws the objects node n holds (once per frame), each if its own box
- * meets the frustum. */
-static void render_node(frame_ctx *f, int32_t n, unsigned mask) {
-  node_state *ns = &f->c->ns[n];
-  if (ns->rendered == f->c->frame) return;
-  ns->rendered = f->c->frame;
-  const zs_octree *t = f->t;
-  for (int32_t o = t->node[n].first; o != ZS_OCTREE_NONE; o = t->next[o]) {
-    unsigned m = mask;
-    if (m && zs_frustum_test_box(&f->frustum, t->olo[o], t->ohi[o], &m, &f->st->frustum_tests) ==
-                 ZS_FRUSTUM_OUTSIDE)
-      continue;
-    draw_instance(f, o);
-  }
-}
-
-/* ---- the traversal queue: a min-heap on (distance, node) ---- */
+/* ---- the traversal queue: a min-heap on (distance, element) ---- */
 
 static int heap_less(const heap_entry *a, const heap_entry *b) {
-  return a->key < b->key || (a->key == b->key && a->node < b->node);
+  return a->key < b->key || (a->key == b->key && a->e < b->e);
 }
 
-static int heap_push(frame_ctx *f, int32_t node, unsigned mask) {
+static int heap_push(frame_ctx *f, elem e, unsigned mask) {
   zs_culler *c = f->c;
   if (!grow((void **)&c->heap, &c->cap_heap, c->nheap + 1, sizeof *c->heap)) return 0;
-  const zs_octnode *nd = &f->t->node[node];
-  double d2 = 0.0; /* squared distance from the eye to the tight box */
-  for (int k = 0; k < 3; k++) {
-    double v = f->eye[k] < nd->tlo[k] ? nd->tlo[k] - f->eye[k]
-               : f->eye[k] > nd->thi[k] ? f->eye[k] - nd->thi[k] : 0.0;
-    d2 += v * v;
-  }
+  const double *lo, *hi;
+  elem_box(f, e, &lo, &hi);
   int32_t i = c->nheap++;
-  heap_entry e = {d2, node, mask};
-  while (i > 0 && heap_less(&e, &c->heap[(i - 1) / 2])) {
+  heap_entry h = {box_distance2(f->eye, lo, hi), e, mask};
+  while (i > 0 && heap_less(&h, &c->heap[(i - 1) / 2])) {
     c->heap[i] = c->heap[(i - 1) / 2];
     i = (i - 1) / 2;
   }
-  c->heap[i] = e;
+  c->heap[i] = h;
   return 1;
 }
 
@@ -204,58 +224,59 @@ static heap_entry heap_pop(zs_culler *c) {
   return top;
 }
 
-/* TraverseNode of the paper: draw the node's own objects, push its
- * children (once per frame). */
-static void traverse_node(frame_ctx *f, int32_t n, unsigned mask) {
-  render_node(f, n, mask);
-  node_state *ns = &f->c->ns[n];
-  if (ns->traversed == f->c->frame) return;
-  ns->traversed = f->c->frame;
-  for (int o = 0; o < 8; o++) {
-    int32_t ch = f->t->node[n].child[o];
-    if (ch != ZS_OCTREE_NONE && !f->t->node[ch].empty && !heap_push(f, ch, mask))
-      f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+/* TraverseNode of the paper, once per frame per element: an object is
+ * rendered; a node pushes its children and its objects. */
+static void traverse(frame_ctx *f, elem e, unsigned mask) {
+  elem_state *es = state(f, e);
+  if (es->done == f->c->frame) return;
+  es->done = f->c->frame;
+  if (is_object(e)) {
+    draw_instance(f, object_of(e));
+    return;
   }
+  const zs_octnode *nd = &f->t->node[e];
+  int ok = 1;
+  for (int o = 0; o < 8 && ok; o++) {
+    int32_t ch = nd->child[o];
+    if (ch != ZS_OCTREE_NONE && !f->t->node[ch].empty) ok = heap_push(f, ch, mask);
+  }
+  for (int32_t i = nd->first; i != ZS_OCTREE_NONE && ok; i = f->t->next[i])
+    ok = heap_push(f, object_elem(i), mask);
+  if (!ok) f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
 }
 
-static void pull_up_visibility(frame_ctx *f, int32_t n) {
-  while (n != ZS_OCTREE_NONE && !f->c->ns[n].visible) {
-    f->c->ns[n].visible = 1;
-    n = f->t->node[n].parent;
+static void pull_up_visibility(frame_ctx *f, elem e) {
+  while (e != ZS_OCTREE_NONE && !state(f, e)->visible) {
+    state(f, e)->visible = 1;
+    e = parent_of(f, e);
   }
-}
-
-static int is_leaf(const zs_octree *t, int32_t n) {
-  for (int o = 0; o < 8; o++)
-    if (t->node[n].child[o] != ZS_OCTREE_NONE) return 0;
-  return 1;
 }
 
 /* A box that the near plane could cut, or that holds the eye: its query
  * would miss what lies before the plane, so it is not asked. */
-static int too_close(const frame_ctx *f, const zs_octnode *nd) {
-  double d2 = 0.0;
-  for (int k = 0; k < 3; k++) {
-    double v = f->eye[k] < nd->tlo[k] ? nd->tlo[k] - f->eye[k]
-               : f->eye[k] > nd->thi[k] ? f->eye[k] - nd->thi[k] : 0.0;
-    d2 += v * v;
-  }
-  return d2 <= f->near_reach * f->near_reach;
+static int too_close(const frame_ctx *f, elem e) {
+  const double *lo, *hi;
+  elem_box(f, e, &lo, &hi);
+  return box_distance2(f->eye, lo, hi) <= f->near_reach * f->near_reach;
 }
 
 /* ---- the cost model (chc-prob, auto) ---- */
 
-/* Formulas 2, 3, 6, 9, 10: whether querying n pays, given P(V) = pv. */
-static int query_pays(frame_ctx *f, int32_t n, double pv) {
-  const zs_octnode *nd = &f->t->node[n];
+/* Formulas 2, 3, 6, 9, 10: whether querying e pays, given P(V) = pv. */
+static int query_pays(frame_ctx *f, elem e, double pv) {
+  const double *lo, *hi;
+  elem_box(f, e, &lo, &hi);
   f->st->cost_evals++;
   zs_device_cpu_work(f->dev, ZS_CPU_COST_EVAL, 1);
-  double cr = (double)f->c->polys[n] * f->ttri;                   /* (6) */
-  double dx = nd->thi[0] - nd->tlo[0], dy = nd->thi[1] - nd->tlo[1], dz = nd->thi[2] - nd->tlo[2];
+  int64_t n = is_object(e) ? f->s->meshes[f->s->inst[object_of(e)].mesh].mesh.nfaces
+                           : f->c->polys[e];
+  int64_t calls = is_object(e) ? 1 : f->t->node[e].count;
+  double cr = (double)n * f->ttri + (double)calls * f->tcall;          /* (6) */
+  double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
   double abb = 2.0 * (dx * dy + dy * dz + dz * dx);
   double dis = 0.0;
   for (int k = 0; k < 3; k++) {
-    double v = 0.5 * (nd->tlo[k] + nd->thi[k]) - f->eye[k];
+    double v = 0.5 * (lo[k] + hi[k]) - f->eye[k];
     dis += v * v;
   }
   dis = sqrt(dis);
@@ -265,46 +286,45 @@ static int query_pays(frame_ctx *f, int32_t n, double pv) {
   return cr > pv * cr + cq;                                                          /* (2), (3) */
 }
 
-/* (11): the chance that n is visible this frame, from its state. */
-static double predict(const node_state *ns, double w1, double w2) {
-  return w1 * ns->pv + (1.0 - w2) * (1.0 - ns->pv);
+/* (11): the chance that an element is visible this frame, from its state. */
+static double predict(const elem_state *es, double w1, double w2) {
+  return w1 * es->pv + (1.0 - w2) * (1.0 - es->pv);
 }
 
 /* ---- the methods ---- */
 
-static void query_node(frame_ctx *f, int32_t n, unsigned mask, unsigned char was_visible) {
+static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible) {
   zs_culler *c = f->c;
   if (!grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
   zs_query q;
-  const zs_octnode *nd = &f->t->node[n];
+  const double *lo, *hi;
+  elem_box(f, e, &lo, &hi);
   if ((f->status = zs_device_query_begin(f->dev, &q, f->err)) ||
-      (f->status = zs_device_query_box(f->dev, nd->tlo, nd->thi, f->err)) ||
+      (f->status = zs_device_query_box(f->dev, lo, hi, f->err)) ||
       (f->status = zs_device_query_end(f->dev, f->err)))
     return;
   f->st->queries++;
-  c->qq[c->qtail++] = (query_entry){n, q, mask, was_visible};
+  c->qq[c->qtail++] = (query_entry){e, q, mask, was_visible};
 }
 
 /* Takes the answer of the query at the head of the queue (waiting for it
  * if need be) and acts on it. */
 static void take_result(frame_ctx *f) {
   zs_culler *c = f->c;
-  query_entry e = c->qq[c->qhead++];
-  uint64_t samples = zs_device_query_result(f->dev, e.q);
-  node_state *ns = &c->ns[e.node];
-  int visible = samples > 0;
-  ns->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
-  if (e.was_visible) visible ? c->vv++ : c->vh++;
+  query_entry q = c->qq[c->qhead++];
+  int visible = zs_device_query_result(f->dev, q.q) > 0;
+  state(f, q.e)->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
+  if (q.was_visible) visible ? c->vv++ : c->vh++;
   else visible ? c->hv++ : c->hh++;
   if (!visible) {
     f->st->queries_hidden++;
     return;
   }
-  pull_up_visibility(f, e.node);
-  traverse_node(f, e.node, e.mask);
+  pull_up_visibility(f, q.e);
+  traverse(f, q.e, q.mask);
 }
 
 static void walk_tree(frame_ctx *f, zs_cull_method m) {
@@ -320,7 +340,6 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
   c->qhead = c->qtail = 0;
   if (!t->node[ZS_OCTREE_ROOT].empty && !heap_push(f, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES))
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
-  const int chc_like = m == ZS_CULL_CHC || m == ZS_CULL_CHC_PROB || m == ZS_CULL_AUTO;
 
   while (f->status == ZS_OK && (c->nheap > 0 || c->qhead < c->qtail)) {
     /* Part 1: results that are ready, or any when nothing else is left. */
@@ -329,63 +348,60 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
       take_result(f);
     if (c->nheap == 0 || f->status != ZS_OK) continue;
 
-    /* Part 2: the nearest node waiting. */
-    heap_entry e = heap_pop(c);
-    int32_t n = e.node;
-    const zs_octnode *nd = &t->node[n];
-    node_state *ns = &c->ns[n];
+    /* Part 2: the nearest element waiting. */
+    heap_entry h = heap_pop(c);
+    elem e = h.e;
+    elem_state *es = state(f, e);
     f->st->nodes_visited++;
     zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
-    unsigned mask = e.mask;
+    unsigned mask = h.mask;
+    const double *lo, *hi;
+    elem_box(f, e, &lo, &hi);
     uint64_t tests = f->st->frustum_tests;
-    zs_frustum_result fr = mask ? zs_frustum_test_box(&f->frustum, nd->tlo, nd->thi, &mask,
-                                                      &f->st->frustum_tests)
-                                : ZS_FRUSTUM_INSIDE;
+    zs_frustum_result fr =
+        mask ? zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests)
+             : ZS_FRUSTUM_INSIDE;
     zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
     if (fr == ZS_FRUSTUM_OUTSIDE) continue;
 
     if (m == ZS_CULL_VFC) {
-      ns->visible = 1;
-      ns->last_visited = frame;
-      traverse_node(f, n, mask);
+      es->visible = 1;
+      es->last_visited = frame;
+      traverse(f, e, mask);
       continue;
     }
     if (m == ZS_CULL_HSW) {
-      if (too_close(f, nd)) {
-        traverse_node(f, n, mask);
-        continue;
+      if (too_close(f, e)) traverse(f, e, mask);
+      else {
+        issue_query(f, e, mask, 0);
+        if (f->status == ZS_OK) take_result(f); /* stop and wait */
       }
-      query_node(f, n, mask, 0);
-      if (f->status == ZS_OK) take_result(f); /* stop and wait */
       continue;
     }
-    if (!chc_like) continue;
 
-    int was_visible = ns->visible && ns->last_visited == frame - 1;
-    int leaf = is_leaf(t, n);
-    double pv = predict(ns, w1, w2);
-    ns->visible = 0;
-    ns->last_visited = frame;
-    if (too_close(f, nd)) { /* cannot be asked: taken as visible */
-      ns->pv = 1.0;
-      pull_up_visibility(f, n);
-      traverse_node(f, n, mask);
+    /* chc, chc-prob, auto */
+    int was_visible = es->visible && es->last_visited == frame - 1;
+    double pv = predict(es, w1, w2);
+    es->visible = 0;
+    es->last_visited = frame;
+    if (too_close(f, e)) { /* cannot be asked: taken as visible */
+      es->pv = 1.0;
+      pull_up_visibility(f, e);
+      traverse(f, e, mask);
       continue;
     }
-    int termination = !was_visible || leaf;
-    if (termination) {
-      int ask = 1;
-      if (m != ZS_CULL_CHC) ask = query_pays(f, n, pv);
-      if (ask) {
-        query_node(f, n, mask, (unsigned char)was_visible);
-      } else { /* drawn as if visible; its P(V) carries the prediction */
-        ns->pv = pv;
-        pull_up_visibility(f, n);
-        traverse_node(f, n, mask);
+    /* termination elements: objects (the leaves), and nodes that were
+     * hidden; nodes that were visible are opened without a query */
+    if (is_object(e) || !was_visible) {
+      if (m != ZS_CULL_CHC && !query_pays(f, e, pv)) {
+        es->pv = pv; /* drawn as if visible; P(V) carries the prediction */
+        pull_up_visibility(f, e);
+        traverse(f, e, mask);
         continue;
       }
+      issue_query(f, e, mask, (unsigned char)was_visible);
     }
-    if (was_visible) traverse_node(f, n, mask);
+    if (was_visible) traverse(f, e, mask);
   }
 }
 
@@ -508,10 +524,13 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   /* the tree methods */
   if (!grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
-  /* Slots new to the culler start unseen, P(V) 1/2.  (A slot the octree
-   * frees and reuses keeps its state: at worst a node is drawn without a
-   * query once, which costs time, never pixels.) */
-  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (node_state){0, 0, 0, 0, 0.5};
+  if (!grow((void **)&c->os, &c->cap_os, s->ninst, sizeof *c->os))
+    return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
+  /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
+   * octree frees and reuses keeps its state: at worst a node is opened
+   * without a query once, which costs time, never pixels.) */
+  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){0, 0, 0, 0.5};
+  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){0, 0, 0, 0.5};
   /* The near plane's corners lie at most near * sqrt(1 + tx^2 + ty^2) from
    * the eye (tx, ty the tangents of the half fields of view). */
   const zs_device_config *cfg = zs_device_config_of(dev);
@@ -524,7 +543,9 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   f.height = cfg->height;
   const zs_clock_params *k = zs_device_clock_params(dev);
   f.ttri = c->cost.ttri_ns >= 0 ? c->cost.ttri_ns : k->per_polygon_ns;
-  f.tquery = c->cost.t_ns >= 0 ? c->cost.t_ns : k->per_call_ns + k->cpu_per_query_ns;
+  f.tcall = c->cost.tcall_ns >= 0 ? c->cost.tcall_ns : k->per_call_ns + k->cpu_per_call_ns;
+  f.tquery = c->cost.t_ns >= 0 ? c->cost.t_ns
+                                : k->per_call_ns + 2.0 * k->cpu_per_query_ns + 2.0 * k->switch_ns;
   f.tq = c->cost.tq_ns >= 0 ? c->cost.tq_ns : k->per_query_pixel_ns;
 
   zs_cull_method m = c->method;

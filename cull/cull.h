@@ -25,11 +25,15 @@
  *             visibility is pulled up the tree.
  *   chc-prob  the cost-model paper: chc, but a termination node is queried
  *             only when  Cr > P(V) Cr + Cq   (formulas 2, 3), with
- *               Cr = N Ttri                              (6)
+ *               Cr = N Ttri + M Tcall                    (6, extended)
  *               S  = h^2 (Abb / 6) / (2 Dis tan(theta/2))^2   (9)
  *               Cq = T + S rho Tq                        (10)
  *               P_t(V) = w1 P_{t-1}(V) + (1 - w2)(1 - P_{t-1}(V))   (11)
- *             N the polygons under the node, Abb its tight box's surface
+ *             N the polygons and M the objects under the node (Tcall the
+ *             cost of a draw call: the paper's (6) leaves it out, as its
+ *             GPU was vertex-bound; with Tcall = 0 this is (6) exactly;
+ *             zscan's device charges every call, so the default is the
+ *             clock's), Abb its tight box's surface
  *             area, Dis the distance from the eye to the box's centre, theta
  *             the vertical field of view, h the viewport height; a node not
  *             queried is drawn as if visible.
@@ -73,12 +77,14 @@ const char *zs_cull_method_name(zs_cull_method m);
 int zs_cull_method_parse(const char *name);
 
 /* The cost model's parameters (chc-prob, auto).  Negative values take the
- * device clock's: Ttri = per_polygon, T = per_call + cpu_per_query (the
- * work a query costs; its latency is what the query queue hides),
+ * device clock's: Ttri = per_polygon, Tcall = per_call + cpu_per_call,
+ * T = per_call + 2 cpu_per_query + 2 switch (the work a query costs: its
+ * box, its begin/end, and the change to querying and back that a query
+ * between draws makes; its latency is what the query queue hides),
  * Tq = per_query_pixel. */
 typedef struct zs_cost_params {
   double w1, w2;        /* P(stays visible), P(stays invisible) */
-  double ttri_ns, t_ns, tq_ns;
+  double ttri_ns, tcall_ns, t_ns, tq_ns;
   double rho;           /* pixels per unit of S: 1, S is in pixels */
 } zs_cost_params;
 

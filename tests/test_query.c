@@ -257,6 +257,7 @@ static uint64_t workload_clock_hash(void) {
     draw(d, &b, (uint32_t)i);
     zs_device_cpu_work(d, ZS_CPU_FRUSTUM_TEST, 3);
     if (i % 3 == 0) zs_device_query_result(d, q);
+    mb_free(&b);
   }
   zs_clock_stats c = *zs_device_clock(d);
   zs_raster_stats s = *zs_device_stats(d);

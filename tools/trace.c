@@ -149,8 +149,8 @@ static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
     t->failed = 1;
     return;
   }
-  memcpy(p, polys, (size_t)npolys * sizeof *p);
-  memcpy(e, edges, (size_t)nedges * sizeof *e);
+  if (npolys) memcpy(p, polys, (size_t)npolys * sizeof *p);
+  if (nedges) memcpy(e, edges, (size_t)nedges * sizeof *e);
   /* insertion sort: stable, and the tables of a teaching scene are short */
   for (int i = 1; i < npolys; i++)
     for (int j = i; j > 0 && cmp_row0_poly(&p[j - 1], &p[j]) > 0; j--) {
@@ -211,8 +211,10 @@ static void on_row(void *user, const zs_trace_row *row) {
     }
     t->cap = cap;
   }
-  memcpy(t->pairs, row->pairs, (size_t)row->npairs * sizeof *row->pairs);
-  memcpy(t->spans, row->spans, (size_t)row->nspans * sizeof *row->spans);
+  /* (memcpy from NULL is undefined even for 0 bytes: rows with nothing
+   * active hand over no arrays) */
+  if (row->npairs) memcpy(t->pairs, row->pairs, (size_t)row->npairs * sizeof *row->pairs);
+  if (row->nspans) memcpy(t->spans, row->spans, (size_t)row->nspans * sizeof *row->spans);
   t->npairs = row->npairs;
   t->nspans = row->nspans;
 }
