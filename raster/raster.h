@@ -301,8 +301,9 @@ zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh,
  *     shift all by the same amount, so the old order is kept as it is;
  *     only new faces are sorted and merged in;
  *   slow rotation (about an axis off the view axis, under 2 degrees): the
- *     old order is nearly right: re-sorted by insertion sort, fast on such
- *     input, then the new faces merged in;
+ *     old order is nearly right: re-sorted by insertion sort with a
+ *     galloping search (O(log d) comparisons for a face d places out),
+ *     then the new faces merged in;
  *   fast rotation, or more than half the faces new: a full sort.
  * A kept face whose depth did not change as the camera's motion says (an
  * object that moved) is taken out and sorted in as new. */

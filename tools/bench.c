@@ -5,11 +5,13 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "tools/bench_depthsort.h"
 #include "tools/bench_octree.h"
 
 static const char usage[] =
     "usage: zscan bench WHAT [options]\n"
-    "  octree      loose vs plain octree update with moving spheres (zscan bench octree --help)\n";
+    "  octree      loose vs plain octree update with moving spheres (zscan bench octree --help)\n"
+    "  depthsort   depth sort with and without frame coherence, four camera motions\n";
 
 int zs_cmd_bench(int argc, char **argv) {
   if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
@@ -17,6 +19,7 @@ int zs_cmd_bench(int argc, char **argv) {
     return argc < 2 ? 2 : 0;
   }
   if (strcmp(argv[1], "octree") == 0) return zs_cmd_bench_octree(argc - 1, argv + 1);
+  if (strcmp(argv[1], "depthsort") == 0) return zs_cmd_bench_depthsort(argc - 1, argv + 1);
   fprintf(stderr, "zscan bench: unknown benchmark '%s'\n%s", argv[1], usage);
   return 2;
 }

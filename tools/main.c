@@ -6,6 +6,7 @@
 #include "tools/calibrate.h"
 #include "tools/diff.h"
 #include "tools/path.h"
+#include "tools/query.h"
 #include "tools/render.h"
 #include "tools/trace.h"
 #include "tools/walk.h"
@@ -18,8 +19,9 @@ static const char usage[] =
     "  trace INPUT      the scanline z-buffer's tables, scanline by scanline\n"
     "  walk SCENE       culling methods over the scene's camera path\n"
     "  path SCENE       the cameras of the scene's walk, one line per frame\n"
+    "  query INPUT      per object: pixels owned and bounding-box samples\n"
     "  calibrate        measure the device clock's constants on this machine\n"
-    "  bench WHAT       benchmarks: octree\n";
+    "  bench WHAT       benchmarks: octree, depthsort\n";
 
 int main(int argc, char **argv) {
   if (argc < 2) {
@@ -29,6 +31,7 @@ int main(int argc, char **argv) {
   const char *cmd = argv[1];
   if (strcmp(cmd, "render") == 0) return zs_cmd_render(argc - 1, argv + 1);
   if (strcmp(cmd, "diff") == 0) return zs_cmd_diff(argc - 1, argv + 1);
+  if (strcmp(cmd, "query") == 0) return zs_cmd_query(argc - 1, argv + 1);
   if (strcmp(cmd, "path") == 0) return zs_cmd_path(argc - 1, argv + 1);
   if (strcmp(cmd, "walk") == 0) return zs_cmd_walk(argc - 1, argv + 1);
   if (strcmp(cmd, "trace") == 0) return zs_cmd_trace(argc - 1, argv + 1);
