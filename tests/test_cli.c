@@ -148,6 +148,24 @@ START_TEST(render_writes_png_and_stats) {
 }
 END_TEST
 
+START_TEST(query_counts_owned_pixels_and_box_samples) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/query/squares.obj"));
+  const char *args[] = {"query", path, "--ortho", "0,200,0,200", "--eye", "0,0,0", "--target",
+                        "0,0,-1", "--near", "0.5", "--far", "20", "--size", "200x200", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  /* in order of first face; the group without faces is no object; the
+   * wall owns what the squares leave, and its box samples are only those
+   * pixels (the squares are nearer) */
+  ck_assert_str_eq(out,
+                   "object front visible=2500 bbox=2500\n"
+                   "object back visible=7500 bbox=7500\n"
+                   "object wall_behind visible=30000 bbox=30000\n"
+                   "total objects=3 visible=40000 bbox=40000 pixels=40000\n");
+}
+END_TEST
+
 START_TEST(unknown_command) {
   const char *args[] = {"paint", NULL};
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
@@ -164,6 +182,7 @@ int main(void) {
   tcase_add_loop_test(tc, bad_option_refused, 0, sizeof bad_options / sizeof bad_options[0]);
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, unknown_command);
+  tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

@@ -11,6 +11,7 @@
 #include "cull/octree.h"
 #include "scene/generate.h"
 #include "scene/scene.h"
+#include "scene/scenefile.h"
 #include "tests/testutil.h"
 
 enum { W = 160, H = 120 };
@@ -151,6 +152,49 @@ START_TEST(counters_identical_every_run) {
 }
 END_TEST
 
+START_TEST(auto_costs_nothing_without_occlusion) {
+  /* A single open layer of objects: nothing is hidden, so auto must not be
+   * slower than vfc in modelled time (it runs vfc, and queries nothing). */
+  zs_scene s;
+  zs_error_clear(&err);
+  char path[4096];
+  snprintf(path, sizeof path, "%s", zs_test_src("scene/examples/open_layer.json"));
+  ck_assert_msg(zs_scenefile_load(path, &s, &err) == ZS_OK, "%s", err.msg);
+  zs_octree t;
+  ck_assert_int_eq(zs_octree_build(&t, &s, NULL, &err), ZS_OK);
+  const zs_cull_method m[3] = {ZS_CULL_VFC, ZS_CULL_AUTO, ZS_CULL_CHC};
+  int64_t total[3] = {0, 0, 0};
+  uint64_t queries[3] = {0, 0, 0};
+  for (int k = 0; k < 3; k++) {
+    zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+    zs_device *d;
+    zs_culler *c;
+    ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+    ck_assert_int_eq(zs_culler_create(m[k], NULL, &c, &err), ZS_OK);
+    for (int f = 0; f < s.path.frames; f++) {
+      zs_camera cam = s.camera;
+      zs_path_camera(&s, f, &cam);
+      zs_camera_complete(&cam, s.lo, s.hi, (double)W / H);
+      double view[16], proj[16];
+      ck_assert_int_eq(zs_camera_matrices(&cam, (double)W / H, view, proj, &err), ZS_OK);
+      zs_cull_stats st;
+      ck_assert_int_eq(zs_culler_frame(c, d, &s, &t, view, proj, &st, &err), ZS_OK);
+      ck_assert_int_eq(zs_device_finish(d, NULL, NULL, &err), ZS_OK);
+      total[k] += zs_device_frame_ps(d);
+      queries[k] += st.queries;
+    }
+    zs_culler_destroy(c);
+    zs_device_destroy(d);
+  }
+  ck_assert_int_le(total[1], total[0]);
+  ck_assert_uint_eq(queries[1], 0);
+  ck_assert_uint_gt(queries[2], 0); /* chc does pay for queries here */
+  ck_assert_int_gt(total[2], total[0]);
+  zs_octree_free(&t);
+  zs_scene_free(&s);
+}
+END_TEST
+
 START_TEST(frustum_planes_and_masking) {
   double view[16], proj[16];
   zs_mat_look_at(view, (double[3]){0, 0, 0}, (double[3]){0, 0, -1}, (double[3]){0, 1, 0});
@@ -188,6 +232,7 @@ int main(void) {
   tcase_add_test(tc, query_ordering_on_the_plant);
   tcase_add_test(tc, counters_identical_every_run);
   tcase_add_test(tc, frustum_planes_and_masking);
+  tcase_add_test(tc, auto_costs_nothing_without_occlusion);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }
