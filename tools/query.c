@@ -46,6 +46,9 @@ static zs_status run(const char *input, const zs_view_opts *v, zs_error *err) {
   int32_t *owner = NULL;
   double view[16], proj[16];
   if (!lines) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  zs_view_opts eff = *v; /* the scene's camera and size where v says nothing */
+  zs_view_opts_for_scene(v, &s, &eff.cam, &eff.width, &eff.height);
+  v = &eff;
   if (st == ZS_OK) st = zs_frame_camera(&s, &v->cam, v->width, v->height, view, proj, err);
   zs_device_config cfg = {v->width, v->height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, v->cull_back, 1, 0};
   if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);

@@ -161,6 +161,10 @@ static zs_status run(const render_opts *o, zs_error *err) {
   double t0 = zs_wall_ms();
   if (zs_input_load_scene(o->input, &model, err)) return err->code;
   double load_ms = zs_wall_ms() - t0;
+  /* the scene's own camera and size, where the options say nothing */
+  render_opts eff = *o;
+  zs_view_opts_for_scene(&o->view, &model, &eff.view.cam, &eff.view.width, &eff.view.height);
+  o = &eff;
 
   zs_status st = ZS_OK;
   zs_device *dev = NULL;

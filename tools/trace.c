@@ -470,6 +470,8 @@ int zs_cmd_trace(int argc, char **argv) {
   if (parse(argc, argv, &o, &err)) goto fail;
   if (zs_input_load_scene(o.input, &model, &err)) goto fail;
   have_model = 1;
+  zs_view_opts asked = o.view; /* (the result must not alias what is read) */
+  zs_view_opts_for_scene(&asked, &model, &o.view.cam, &o.view.width, &o.view.height);
   double view[16], proj[16];
   if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
     goto fail;

@@ -59,6 +59,7 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
   zs_status st = ZS_OK;
   if (strcmp(a, "--size") == 0) {
     st = zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err);
+    o->size_given = 1;
   } else if (strcmp(a, "--eye") == 0) {
     st = zs_cli_vec3(a, v, c->eye, err);
     c->has_eye = 1;
@@ -70,6 +71,7 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
     c->has_up = 1;
   } else if (strcmp(a, "--fovy") == 0) {
     st = zs_cli_double(a, v, &c->fovy, err);
+    o->fovy_given = 1;
   } else if (strcmp(a, "--ortho") == 0) {
     st = parse4(a, v, c->extent, err);
     c->ortho = 1;
@@ -81,4 +83,28 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
     c->has_far = 1;
   }
   return st == ZS_OK ? 1 : -1;
+}
+
+void zs_view_opts_for_scene(const zs_view_opts *o, const zs_scene *s, zs_camera *cam, int *width,
+                            int *height) {
+  const zs_camera *u = &o->cam;
+  *cam = s->camera;
+  if (u->has_eye) memcpy(cam->eye, u->eye, sizeof cam->eye), cam->has_eye = 1;
+  if (u->has_target) memcpy(cam->target, u->target, sizeof cam->target), cam->has_target = 1;
+  if (u->has_up) memcpy(cam->up, u->up, sizeof cam->up), cam->has_up = 1;
+  if (u->has_near) cam->znear = u->znear, cam->has_near = 1;
+  if (u->has_far) cam->zfar = u->zfar, cam->has_far = 1;
+  if (o->fovy_given) cam->fovy = u->fovy;
+  if (u->ortho) {
+    cam->ortho = 1;
+    memcpy(cam->extent, u->extent, sizeof cam->extent);
+  }
+  /* an eye of the user's own with the scene's target would look somewhere
+   * the user did not ask: the target then comes from the bounds */
+  if (u->has_eye && !u->has_target) cam->has_target = 0;
+  /* and the scene's near and far planes belong to the scene's eye */
+  if (u->has_eye && !u->has_near) cam->has_near = 0;
+  if (u->has_eye && !u->has_far) cam->has_far = 0;
+  *width = o->size_given || !s->width ? o->width : s->width;
+  *height = o->size_given || !s->height ? o->height : s->height;
 }
