@@ -76,13 +76,13 @@ zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
 
 zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
                          const char *ylabel, const double *y, int n, int nseries,
-                         const char *const *names, zs_error *err) {
+                         const char *const *names, double x0, double dx, int logy, zs_error *err) {
   char dat[4200];
   snprintf(dat, sizeof dat, "%s.tmp.dat", png);
   FILE *f = fopen(dat, "w");
   if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", dat, strerror(errno));
   for (int i = 0; i < n; i++) {
-    fprintf(f, "%d", i);
+    fprintf(f, "%.9g", x0 + i * dx);
     for (int j = 0; j < nseries; j++) fprintf(f, " %.9g", y[(size_t)i * (size_t)nseries + (size_t)j]);
     fputc('\n', f);
   }
@@ -96,8 +96,8 @@ zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
   int len = snprintf(script, cap,
                      "set terminal pngcairo size 1000,560 noenhanced\n"
                      "set output OUT\nset title '%s'\nset xlabel '%s'\nset ylabel '%s'\n"
-                     "set key outside right\nset grid\nplot ",
-                     title, xlabel, ylabel);
+                     "set key outside right\nset grid\n%splot ",
+                     title, xlabel, ylabel, logy ? "set logscale y\n" : "");
   for (int j = 0; j < nseries && len > 0 && (size_t)len < cap; j++)
     len += snprintf(script + len, cap - (size_t)len, "%s'%s' using 1:%d with lines lw 2 title '%s'",
                     j ? ", " : "", dat, j + 2, names[j]);

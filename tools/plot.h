@@ -11,10 +11,11 @@
 /* Whether gnuplot can be run (found on PATH). */
 int zs_plot_available(void);
 
-/* Lines: y[i * nseries + j] is series j at x = i (i = 0 .. n-1). */
+/* Lines: y[i * nseries + j] is series j at x = x0 + i dx (i = 0 .. n-1);
+ * logy: a logarithmic y axis. */
 zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
                          const char *ylabel, const double *y, int n, int nseries,
-                         const char *const *names, zs_error *err);
+                         const char *const *names, double x0, double dx, int logy, zs_error *err);
 
 /* Runs gnuplot on script, which must `set output` to the path it is given
  * as its %s-free variable OUT (the temporary PNG): the script text is

@@ -33,6 +33,7 @@ static const char usage[] =
     "  --cull LIST         methods: none vfc vfc-box hsw chc chc-prob ideal auto\n"
     "                      (none is always run: it is the reference)\n"
     "  --frames N          frames of the walk (default: the scene's path)\n"
+    "  --step K            every K-th frame of the path (objects move K steps)\n"
     "  --size WxH          image size (default: the scene's, else 1024x768)\n"
     "  --csv FILE          one row per frame and method\n"
     "  --plot FILE.png     modelled frame time per frame, one line per method\n"
@@ -46,7 +47,7 @@ static const char usage[] =
 typedef struct walk_opts {
   const char *scene, *csv, *plot, *frames_dir;
   int methods[ZS_CULL_METHODS], nmethods;
-  int frames, width, height, quiet, depth;
+  int frames, width, height, quiet, depth, step;
   double looseness, latency_frames;
   zs_clock_params clock;
 } walk_opts;
@@ -66,6 +67,7 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   o->depth = ZS_OCTREE_DEFAULT_DEPTH;
   o->looseness = ZS_OCTREE_DEFAULT_LOOSENESS;
   o->latency_frames = -1;
+  o->step = 1;
   zs_clock_params_default(&o->clock);
   o->methods[o->nmethods++] = ZS_CULL_NONE;
   int have_cull = 0;
@@ -91,6 +93,9 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     } else if (strcmp(a, "--frames") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 1000000, &o->frames, err)) return err->code;
+    } else if (strcmp(a, "--step") == 0) {
+      VALUE();
+      if (zs_cli_int(a, v, 1, 10000, &o->step, err)) return err->code;
     } else if (strcmp(a, "--size") == 0) {
       VALUE();
       if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
@@ -194,7 +199,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
 
   int w = o->width ? o->width : s.width ? s.width : 1024;
   int h = o->height ? o->height : s.height ? s.height : 768;
-  int frames = o->frames ? o->frames : s.path.frames > 0 ? s.path.frames : 1;
+  int frames = o->frames ? o->frames
+               : s.path.frames > 0 ? (s.path.frames + o->step - 1) / o->step : 1;
 
   zs_octree_params tp;
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
@@ -242,11 +248,11 @@ static zs_status run(const walk_opts *o, zs_error *err) {
 
   for (int f = 0; f < frames && st == ZS_OK; f++) {
     if (f > 0) {
-      zs_scene_advance(&s);
+      for (int k = 0; k < o->step; k++) zs_scene_advance(&s);
       if ((st = zs_octree_update(&tree, &s, NULL, err))) break;
     }
     double view[16], proj[16];
-    if ((st = frame_camera(&s, f, w, h, view, proj, err))) break;
+    if ((st = frame_camera(&s, f * o->step, w, h, view, proj, err))) break;
     for (int k = 0; k < o->nmethods && st == ZS_OK; k++) {
       method_run *r = &runs[k];
       zs_cull_stats cs;
@@ -273,7 +279,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       r->chose_queries += cs.chosen == ZS_CULL_CHC_PROB;
       frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
       if (csv)
-        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu\n", f,
+        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu\n", f * o->step,
                 zs_cull_method_name(r->m), zs_cull_method_name(cs.chosen), modelled, stall, wall,
                 (unsigned long long)cs.queries, (unsigned long long)cs.queries_hidden,
                 (unsigned long long)cs.faces_drawn, (unsigned long long)cs.objects_drawn,
@@ -308,8 +314,10 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   if (o->plot) {
     const char *names[ZS_CULL_METHODS];
     for (int k = 0; k < o->nmethods; k++) names[k] = zs_cull_method_name(runs[k].m);
-    st = zs_plot_series(o->plot, "modelled frame time per frame", "frame", "modelled ms",
-                        frame_ms, frames, o->nmethods, names, err);
+    char title[512];
+    snprintf(title, sizeof title, "%s: modelled frame time (log scale)", o->scene);
+    st = zs_plot_series(o->plot, title, "frame of the path", "modelled ms", frame_ms, frames,
+                        o->nmethods, names, 0, o->step, 1, err);
   }
 
 done:
