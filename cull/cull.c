@@ -78,6 +78,8 @@ struct zs_culler {
   int32_t qhead, qtail, cap_qq;
   int64_t *polys;          /* polygons under each node, this frame */
   int32_t cap_polys;
+  uint8_t *decision;       /* zs_node_decision per node, this frame */
+  int32_t cap_decision, ndecision;
   /* ideal */
   zs_device *oracle;
   uint8_t *owns_pixel;
@@ -138,10 +140,16 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->heap);
   free(c->qq);
   free(c->polys);
+  free(c->decision);
   free(c->owns_pixel);
   free(c->owner);
   zs_device_destroy(c->oracle);
   free(c);
+}
+
+const uint8_t *zs_culler_decisions(const zs_culler *c, int32_t *n) {
+  *n = c->ndecision;
+  return c->decision;
 }
 
 /* ---- elements ---- */
@@ -159,6 +167,10 @@ static void elem_box(const frame_ctx *f, elem e, const double **lo, const double
     *lo = f->t->node[e].tlo;
     *hi = f->t->node[e].thi;
   }
+}
+
+static void decide(frame_ctx *f, elem e, zs_node_decision d) {
+  if (!is_object(e) && e < f->c->ndecision) f->c->decision[e] = (uint8_t)d;
 }
 
 static elem parent_of(const frame_ctx *f, elem e) {
@@ -319,6 +331,7 @@ static void take_result(frame_ctx *f) {
   state(f, q.e)->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
   if (q.was_visible) visible ? c->vv++ : c->vh++;
   else visible ? c->hv++ : c->hh++;
+  decide(f, q.e, visible ? ZS_NODE_QUERIED_VISIBLE : ZS_NODE_QUERIED_HIDDEN);
   if (!visible) {
     f->st->queries_hidden++;
     return;
@@ -362,7 +375,11 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
         mask ? zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests)
              : ZS_FRUSTUM_INSIDE;
     zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
-    if (fr == ZS_FRUSTUM_OUTSIDE) continue;
+    if (fr == ZS_FRUSTUM_OUTSIDE) {
+      decide(f, e, ZS_NODE_OUTSIDE);
+      continue;
+    }
+    decide(f, e, ZS_NODE_NO_QUERY); /* until a query says otherwise */
 
     if (m == ZS_CULL_VFC) {
       es->visible = 1;
@@ -555,6 +572,10 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   }
   if ((m == ZS_CULL_CHC_PROB || c->method == ZS_CULL_AUTO) && !count_polygons(&f))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
+  if (!grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
+    return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
+  c->ndecision = t->nslots;
+  memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
   walk_tree(&f, m);
   if (c->method == ZS_CULL_AUTO && f.status == ZS_OK) {
     /* Queries pay when the draws show hidden objects (vfc frames), or

@@ -104,6 +104,20 @@ typedef struct zs_cull_stats {
 
 typedef struct zs_culler zs_culler;
 
+/* What a method decided for an octree node in the last frame (for
+ * pictures: zscan render --overlay culling). */
+typedef enum zs_node_decision {
+  ZS_NODE_NOT_REACHED = 0,  /* below a node culled, or not walked */
+  ZS_NODE_OUTSIDE,          /* outside the frustum */
+  ZS_NODE_QUERIED_HIDDEN,   /* queried, no sample */
+  ZS_NODE_QUERIED_VISIBLE,  /* queried, visible */
+  ZS_NODE_NO_QUERY          /* entered without a query */
+} zs_node_decision;
+
+/* The decisions of the last frame, one per octree node slot (*n slots);
+ * NULL before the first frame of a tree method. */
+const uint8_t *zs_culler_decisions(const zs_culler *c, int32_t *n);
+
 /* A culler keeps its per-node state from frame to frame: one per method
  * and walk.  The octree must outlive it. */
 zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_culler **out,

@@ -45,7 +45,7 @@ static int clip_segment(const zs_device *d, zs_clip_vert *a, zs_clip_vert *b) {
  * (window depth units): one pixel per column (or row) along the major axis,
  * the pixel whose area holds the exact edge at that column's centre. */
 static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3], double bias,
-                             uint32_t rgb) {
+                             uint32_t rgb, int depth_test) {
   const int w = d->cfg.width, h = d->cfg.height;
   double dx = q[0] - p[0], dy = q[1] - p[1];
   int major_x = fabs(dx) >= fabs(dy);
@@ -67,7 +67,7 @@ static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3],
     double zq = z * 4294967296.0;
     uint32_t zd = zq <= 0 ? 0 : zq >= 4294967295.0 ? ZS_DEPTH_FAR : (uint32_t)zq;
     size_t i = (size_t)y * (size_t)w + (size_t)x;
-    if (zd <= d->depth[i]) {
+    if (!depth_test || zd <= d->depth[i]) {
       d->rgb[i] = rgb;
       written++;
     }
@@ -136,8 +136,38 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
       double p[3], q[3];
       to_window(d, &a, p);
       to_window(d, &b, q);
-      d->stats.pixels_written += draw_segment(d, p, q, bias, rgb);
+      d->stats.pixels_written += draw_segment(d, p, q, bias, rgb, 1);
     }
   }
+  return ZS_OK;
+}
+
+zs_status zs_device_draw_box_lines(zs_device *d, const double lo[3], const double hi[3],
+                                   uint32_t rgb, zs_error *err) {
+  if (d->cfg.algo != ZS_ALGO_ZBUFFER)
+    return zs_error_set(err, ZS_ERR_UNSUPPORTED, "box outlines need the z-buffer mode");
+  double mvp[16];
+  zs_mat_mul(mvp, d->proj, d->view);
+  /* corner b: bit 0 picks x, bit 1 y, bit 2 z; an edge joins corners one
+   * bit apart */
+  for (int a = 0; a < 8; a++)
+    for (int bit = 1; bit < 8; bit <<= 1) {
+      int b = a | bit;
+      if (b == a) continue;
+      double pa[3], pb[3], o[4];
+      for (int k = 0; k < 3; k++) {
+        pa[k] = (a >> k) & 1 ? hi[k] : lo[k];
+        pb[k] = (b >> k) & 1 ? hi[k] : lo[k];
+      }
+      zs_mat_apply(mvp, pa, o);
+      zs_clip_vert va = {o[0], o[1], o[2], o[3]};
+      zs_mat_apply(mvp, pb, o);
+      zs_clip_vert vb = {o[0], o[1], o[2], o[3]};
+      if (!clip_segment(d, &va, &vb)) continue;
+      double p[3], q[3];
+      to_window(d, &va, p);
+      to_window(d, &vb, q);
+      draw_segment(d, p, q, 0.0, rgb, 0);
+    }
   return ZS_OK;
 }

@@ -281,6 +281,10 @@ int64_t zs_device_frame_ps(const zs_device *dev);
  * centre. */
 enum { ZS_EDGE_DEPTH_UNITS = 1024 };
 void zs_device_fill_color(zs_device *dev, uint32_t rgb);
+/* The twelve edges of the world box lo..hi in colour rgb, over everything
+ * (no depth test): for pictures of bounding volumes. */
+zs_status zs_device_draw_box_lines(zs_device *dev, const double lo[3], const double hi[3],
+                                   uint32_t rgb, zs_error *err);
 zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh,
                                const double model[16], uint32_t rgb, zs_error *err);
 

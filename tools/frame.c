@@ -54,6 +54,11 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
   return zs_device_finish(dev, gather_row, &g, err);
 }
 
+zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err) {
+  gather g = {out, depth};
+  return zs_device_finish(dev, gather_row, &g, err);
+}
+
 zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           const zs_frame_opts *o, zs_image *out, float *depth,
                           zs_raster_stats *stats, zs_error *err) {

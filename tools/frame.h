@@ -35,6 +35,9 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err);
 
+/* Ends the device's frame into out (and depth, when not NULL). */
+zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err);
+
 /* Draws every instance of scene (no clear, no finish). */
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
 

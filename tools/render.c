@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cull/cull.h"
+#include "cull/octree.h"
 #include "raster/raster.h"
 #include "scene/camera.h"
 #include "scene/model.h"
@@ -30,6 +32,10 @@ static const char usage_tail[] =
     "  --threads N         render threads (default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
     "  --stats             print the frame's counters as one JSON line\n"
+    "  --cull METHOD       draw through a culling method (vfc, hsw, chc, chc-prob, ...)\n"
+    "  --overlay culling   with --cull: the octree's boxes, coloured by decision:\n"
+    "                      grey outside, red queried hidden, green queried visible,\n"
+    "                      blue entered without a query\n"
     "  --clock FILE.json   the device clock's constants (zscan calibrate writes one)\n"
     "  --clock-set K=V     set one clock constant, in ns (e.g. query_latency_ns=0)\n";
 
@@ -38,7 +44,7 @@ typedef struct render_opts {
   zs_view_opts view;
   zs_algo algo;
   zs_shade shade;
-  int threads, repeat, stats, hidden_line;
+  int threads, repeat, stats, hidden_line, cull, overlay;
   zs_clock_params clock;
 } render_opts;
 
@@ -48,6 +54,7 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   zs_view_opts_default(&o->view, 1024, 768);
   o->threads = 1;
   o->repeat = 1;
+  o->cull = -1;
   zs_clock_params_default(&o->clock);
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
@@ -73,6 +80,16 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       else if (strcmp(v, "depth") == 0) o->shade = ZS_SHADE_DEPTH;
       else if (strcmp(v, "overdraw") == 0) o->shade = ZS_SHADE_OVERDRAW;
       else return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat, id, depth or overdraw, got '%s'", v);
+    } else if (strcmp(a, "--cull") == 0) {
+      VALUE();
+      if ((o->cull = zs_cull_method_parse(v)) < 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--cull: unknown method '%s' (none vfc vfc-box hsw chc "
+                                             "chc-prob ideal auto)", v);
+    } else if (strcmp(a, "--overlay") == 0) {
+      VALUE();
+      if (strcmp(v, "culling") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--overlay: expected culling, got '%s'", v);
+      o->overlay = 1;
     } else if (strcmp(a, "--style") == 0) {
       VALUE();
       if (strcmp(v, "hidden-line") == 0) o->hidden_line = 1;
@@ -106,6 +123,10 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   }
   if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
+  if (o->overlay && o->cull < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
+  if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))
+    return zs_error_set(err, ZS_ERR_ARG, "--cull needs --algo zbuffer and --style solid");
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
   return ZS_OK;
@@ -156,6 +177,19 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
          o->repeat, ms, load_ms);
 }
 
+/* The octree's node boxes (tight), coloured by the culler's decision. */
+static zs_status draw_overlay(zs_device *dev, const zs_culler *c, const zs_octree *t,
+                             zs_error *err) {
+  static const uint32_t colour[] = {0, 0x909090, 0xE03030, 0x30C040, 0x3070F0};
+  int32_t n;
+  const uint8_t *d = zs_culler_decisions(c, &n);
+  for (int32_t i = 0; d && i < n; i++)
+    if (d[i] != ZS_NODE_NOT_REACHED && t->node[i].level >= 0 && !t->node[i].empty &&
+        zs_device_draw_box_lines(dev, t->node[i].tlo, t->node[i].thi, colour[d[i]], err))
+      return err->code;
+  return ZS_OK;
+}
+
 static zs_status run(const render_opts *o, zs_error *err) {
   zs_scene model;
   double t0 = zs_wall_ms();
@@ -168,6 +202,9 @@ static zs_status run(const render_opts *o, zs_error *err) {
 
   zs_status st = ZS_OK;
   zs_device *dev = NULL;
+  zs_culler *culler = NULL;
+  zs_octree tree;
+  int have_tree = 0;
   zs_image im = {0, 0, NULL};
   float *depth = NULL;
   double *times = NULL;
@@ -186,10 +223,28 @@ static zs_status run(const render_opts *o, zs_error *err) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
     goto done;
   }
+  if (o->cull >= 0) {
+    if ((st = zs_octree_build(&tree, &model, NULL, err)) ||
+        (st = zs_culler_create((zs_cull_method)o->cull, NULL, &culler, err)))
+      goto done;
+    have_tree = 1;
+  }
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
-    if ((st = zs_frame_render_on(dev, &model, view, proj, o->hidden_line, &im, depth, err)))
+    if (culler) {
+      /* each repeat is a fresh first frame: the culler starts again */
+      zs_culler_destroy(culler);
+      culler = NULL;
+      zs_cull_stats cs;
+      if ((st = zs_culler_create((zs_cull_method)o->cull, NULL, &culler, err)) ||
+          (st = zs_culler_frame(culler, dev, &model, &tree, view, proj, &cs, err)))
+        goto done;
+      if (o->overlay && (st = draw_overlay(dev, culler, &tree, err))) goto done;
+      if ((st = zs_frame_finish(dev, &im, depth, err))) goto done;
+    } else if ((st = zs_frame_render_on(dev, &model, view, proj, o->hidden_line, &im, depth,
+                                        err))) {
       goto done;
+    }
     times[k] = zs_wall_ms() - start;
   }
   double median = zs_median(times, o->repeat);
@@ -218,6 +273,8 @@ static zs_status run(const render_opts *o, zs_error *err) {
                 diff_pixels);
 
 done:
+  zs_culler_destroy(culler);
+  if (have_tree) zs_octree_free(&tree);
   free(times);
   free(depth);
   zs_image_free(&im);
