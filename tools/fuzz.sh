@@ -14,7 +14,11 @@ build=${ZS_FUZZ_BUILD:-"$root/build-fuzz"}
 corpus=${ZS_FUZZ_DIR:-"$build/corpus"}
 CC=clang cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DZS_FUZZ=ON \
   -DZS_SANITIZE=ON -DZS_TESTS=OFF -DZS_WERROR=ON >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_obj fuzz_scene fuzz_render
+if ! cmake --build "$build" -j "$(nproc)" --target fuzz_obj fuzz_scene fuzz_render \
+  >"$build/build.log" 2>&1; then
+  cat "$build/build.log" >&2
+  exit 1
+fi
 mkdir -p "$corpus/obj" "$corpus/scene" "$corpus/render"
 cp "$root"/tests/data/*/*.obj "$corpus/obj/"
 cp "$root"/tests/data/*/*.obj "$corpus/render/"
