@@ -29,9 +29,10 @@
  *                up_f = u.  Depths change a little per frame (paper:
  *                81.83 % old).
  *   "fast"       fast horizontal translation: eye and target move together
- *                along right by 20 % of the viewing distance every frame,
- *                in a zigzag that keeps the eye within 40 % of the
- *                distance from its start: s_f = 0.2 dist w(f) with w = 0,
+ *                along right by the viewing distance every frame (about
+ *                the width of the view at the target: a 45-degree lens at
+ *                4:3 sees 1.1 dist across), in a zigzag that keeps the eye
+ *                within 2 dist of its start: s_f = dist w(f) with w = 0,
  *                1, 2, 1, 0, -1, -2, -1 repeating (period 8), up_f = u.
  *                Most of the picture changes every frame (paper: 11.91 %
  *                old).
@@ -53,7 +54,7 @@ enum { ZS_PATH_MAX_FRAMES = 1000000 };
 #define ZS_PATH_TRANSLATE_STEP 0.005 /* of the viewing distance, per frame */
 #define ZS_PATH_ROLL_DEG 2.0         /* degrees per frame */
 #define ZS_PATH_YAW_DEG 0.5          /* degrees per frame */
-#define ZS_PATH_FAST_STEP 0.2        /* of the viewing distance, per frame */
+#define ZS_PATH_FAST_STEP 1.0        /* of the viewing distance, per frame */
 
 /* The names zs_path_named knows, for messages: "static, translate, roll,
  * yaw, fast". */

@@ -694,8 +694,9 @@ START_TEST(named_fast) {
   sub3(p.keys[0].target, p.keys[0].eye, d0);
   for (int f = 1; f < 64; f++) {
     const zs_keyframe *k = &p.keys[f];
-    ck_assert_double_le(fabs(dist3(k->eye, p.keys[f - 1].eye) - 0.2 * base_dist()), 1e-12);
-    ck_assert_double_le(dist3(k->eye, base_camera.eye), 0.4 * base_dist() + 1e-12);
+    ck_assert_double_le(fabs(dist3(k->eye, p.keys[f - 1].eye) - ZS_PATH_FAST_STEP * base_dist()),
+                        1e-12 * base_dist());
+    ck_assert_double_le(dist3(k->eye, base_camera.eye), 2 * ZS_PATH_FAST_STEP * base_dist() + 1e-12);
     double d[3];
     sub3(k->target, k->eye, d);
     ck_assert_double_le(dist3(d, d0), 1e-12 * len3(d0));
