@@ -57,6 +57,43 @@ START_TEST(bad_obj_files_refused_with_file_and_line) {
 }
 END_TEST
 
+/* Every file of a directory of broken inputs through `zscan render`: exit 1,
+ * one line "zscan render: PATH...: reason", no image. */
+static void refuse_every_file(const char *rel, const char *suffix) {
+  char dirbuf[4096];
+  snprintf(dirbuf, sizeof dirbuf, "%s", zs_test_src(rel));
+  DIR *d = opendir(dirbuf);
+  ck_assert_ptr_nonnull(d);
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-bad-file.png", ZS_BINARY_DIR);
+  int files = 0;
+  struct dirent *e;
+  while ((e = readdir(d))) {
+    size_t n = strlen(e->d_name), k = strlen(suffix);
+    if (e->d_name[0] == '.' || n < k || strcmp(e->d_name + n - k, suffix) != 0) continue;
+    char path[8192], prefix[8300];
+    snprintf(path, sizeof path, "%s/%s", dirbuf, e->d_name);
+    unlink(png);
+    const char *args[] = {"render", path, "-o", png, "--size", "32x24", NULL};
+    int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+    ck_assert_msg(rc == 1, "%s: exit %d (stderr: %s)", e->d_name, rc, err);
+    snprintf(prefix, sizeof prefix, "zscan render: %s", path);
+    ck_assert_msg(strncmp(err, prefix, strlen(prefix)) == 0 && err[strlen(prefix)] == ':',
+                  "%s: message '%s'", e->d_name, err);
+    ck_assert_msg(one_line(err), "%s: not one line: '%s'", e->d_name, err);
+    ck_assert_msg(!zs_test_exists(png), "%s: an image was written", e->d_name);
+    files++;
+  }
+  closedir(d);
+  ck_assert_int_ge(files, 10);
+}
+
+START_TEST(bad_scene_files_refused) { refuse_every_file("tests/data/bad_scene", ".json"); }
+END_TEST
+
+START_TEST(bad_model_files_refused) { refuse_every_file("tests/data/bad_models", ""); }
+END_TEST
+
 typedef struct bad_option {
   const char *args[12];
   const char *message; /* a part of the one-line message */
@@ -182,6 +219,8 @@ int main(void) {
   TCase *tc = tcase_create("errors");
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, bad_obj_files_refused_with_file_and_line);
+  tcase_add_test(tc, bad_scene_files_refused);
+  tcase_add_test(tc, bad_model_files_refused);
   tcase_add_loop_test(tc, bad_option_refused, 0, sizeof bad_options / sizeof bad_options[0]);
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, unknown_command);
