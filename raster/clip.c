@@ -13,6 +13,13 @@
  * Watertightness: an edge shared by two faces is clipped by both.  The
  * intersection is always computed from the inside vertex towards the
  * outside one, so both faces get the very same point, bit for bit.
+ *
+ * Precision: the point lies on the plane, so its coordinate across the
+ * plane is set from the plane (y = gy w on the top plane, z = -w on the
+ * near plane, ...) rather than interpolated.  Interpolating it between two
+ * vertices 1e30 apart would subtract numbers of 1e30 to get one of 1e3,
+ * and lose every digit (a triangle with vertices at 1e30 came out half its
+ * size before this).
  */
 #include "raster/internal.h"
 
@@ -41,15 +48,25 @@ unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double gy) {
 }
 
 /* The point where the edge from `in` (d_in >= 0) to `out` (d_out < 0)
- * crosses the plane. */
+ * crosses plane p, with its coordinate across the plane taken from the
+ * plane itself. */
 static zs_clip_vert intersect(const zs_clip_vert *in, double d_in,
-                              const zs_clip_vert *out, double d_out) {
+                              const zs_clip_vert *out, double d_out, int p,
+                              double gx, double gy) {
   double t = d_in / (d_in - d_out);
   zs_clip_vert r;
   r.x = in->x + t * (out->x - in->x);
   r.y = in->y + t * (out->y - in->y);
   r.z = in->z + t * (out->z - in->z);
   r.w = in->w + t * (out->w - in->w);
+  switch (p) {
+    case CLIP_NEAR: r.z = -r.w; break;
+    case CLIP_FAR: r.z = r.w; break;
+    case CLIP_LEFT: r.x = -gx * r.w; break;
+    case CLIP_RIGHT: r.x = gx * r.w; break;
+    case CLIP_BOTTOM: r.y = -gy * r.w; break;
+    default: r.y = gy * r.w; break;
+  }
   return r;
 }
 
@@ -72,8 +89,8 @@ int zs_clip_polygon(const zs_clip_vert *in, int n, unsigned mask, double gx,
        * that is not convex in clip space could come near this bound. */
       if (m + 2 > ZS_CLIP_MAX_VERTS) return 0;
       if (ain) dst[m++] = *a;
-      if (ain && !bin) dst[m++] = intersect(a, da, b, db);
-      else if (!ain && bin) dst[m++] = intersect(b, db, a, da);
+      if (ain && !bin) dst[m++] = intersect(a, da, b, db, p, gx, gy);
+      else if (!ain && bin) dst[m++] = intersect(b, db, a, da, p, gx, gy);
     }
     count = m;
     src = dst;
