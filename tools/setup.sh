@@ -22,8 +22,9 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   libassimp-dev               model formats beyond OBJ (PLY, STL, OFF, glTF...)
 #   assimp-testmodels           real and deliberately broken models for the tests
 #   gnuplot-nox                 the benchmark plots
+#   libosmesa6-dev              Mesa's llvmpipe, for the cross-check test
 zs_packages=(cmake gcc make pkg-config libpng-dev check clang libcjson-dev
-             libassimp-dev assimp-testmodels gnuplot-nox)
+             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do
