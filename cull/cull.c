@@ -16,9 +16,11 @@
 #include <string.h>
 
 #include "cull/frustum.h"
+#include "raster/rng.h"
 
-static const char *const method_names[ZS_CULL_METHODS] = {"none", "vfc",      "vfc-box", "hsw",
-                                                          "chc",  "chc-prob", "ideal",   "auto"};
+static const char *const method_names[ZS_CULL_METHODS] = {
+    "none", "vfc", "vfc-box", "hsw", "chc", "chc-prob", "ideal", "auto",
+    "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti"};
 
 const char *zs_cull_method_name(zs_cull_method m) {
   return (unsigned)m < ZS_CULL_METHODS ? method_names[m] : "?";
@@ -51,7 +53,16 @@ typedef struct elem_state {
   uint32_t done;           /* frame it was rendered (object) or opened (node) */
   uint8_t visible;
   double pv;               /* P(V) for the next frame */
+  uint32_t next_query;     /* chcpp: the frame a visible object is asked again */
+  uint32_t hidden_frames;  /* chcpp: frames found hidden in a row */
 } elem_state;
+
+/* chcpp: an element waiting for its query to be issued. */
+typedef struct pending {
+  elem e;
+  unsigned mask;
+  uint8_t was_visible;
+} pending;
 
 typedef struct heap_entry {
   double key;
@@ -64,6 +75,7 @@ typedef struct query_entry {
   zs_query q;
   unsigned mask;           /* frustum planes its content still tests */
   uint8_t was_visible;     /* its state before this frame (auto's learning) */
+  int32_t group, ngroup;   /* chcpp multiquery: members gm[group ..], 0: single */
 } query_entry;
 
 struct zs_culler {
@@ -89,6 +101,12 @@ struct zs_culler {
   /* auto: transitions seen by its queries, and the mode of the next frame */
   uint64_t vv, vh, hv, hh;
   int use_queries;
+  /* chcpp: the queue of invisible elements to batch, of visible objects
+   * whose query is due; the rng of the first visible intervals */
+  pending *iq, *vq, *gm;   /* gm: the members of this frame's multiqueries */
+  int32_t ni, nv, ngm, cap_iq, cap_vq, cap_gm;
+  int multi;               /* multiqueries on */
+  zs_rng rng;
 };
 
 /* ---- the frame's context ---- */
@@ -127,6 +145,7 @@ zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_cull
   zs_culler *c = calloc(1, sizeof *c);
   if (!c) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   c->method = m;
+  zs_rng_seed(&c->rng, 0xC4C); /* chcpp's first visible intervals: a fixed seed */
   if (cost) c->cost = *cost;
   else zs_cost_params_default(&c->cost);
   *out = c;
@@ -141,6 +160,9 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->qq);
   free(c->polys);
   free(c->decision);
+  free(c->iq);
+  free(c->vq);
+  free(c->gm);
   free(c->owns_pixel);
   free(c->owner);
   zs_device_destroy(c->oracle);
@@ -319,25 +341,209 @@ static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_v
       (f->status = zs_device_query_end(f->dev, f->err)))
     return;
   f->st->queries++;
-  c->qq[c->qtail++] = (query_entry){e, q, mask, was_visible};
+  c->qq[c->qtail++] = (query_entry){e, q, mask, was_visible, 0, 0};
 }
 
 /* Takes the answer of the query at the head of the queue (waiting for it
  * if need be) and acts on it. */
+static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible);
+
 static void take_result(frame_ctx *f) {
   zs_culler *c = f->c;
   query_entry q = c->qq[c->qhead++];
   int visible = zs_device_query_result(f->dev, q.q) > 0;
+  if (q.ngroup > 0) { /* a multiquery */
+    if (visible) { /* someone is visible: ask each on its own */
+      for (int32_t i = 0; i < q.ngroup && f->status == ZS_OK; i++)
+        issue_query(f, c->gm[q.group + i].e, c->gm[q.group + i].mask, c->gm[q.group + i].was_visible);
+      return;
+    }
+    for (int32_t i = 0; i < q.ngroup; i++) { /* all hidden, with one query */
+      elem e = c->gm[q.group + i].e;
+      state(f, e)->pv = 0.0;
+      state(f, e)->hidden_frames++;
+      decide(f, e, ZS_NODE_QUERIED_HIDDEN);
+      f->st->queries_hidden++;
+    }
+    return;
+  }
   state(f, q.e)->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
   if (q.was_visible) visible ? c->vv++ : c->vh++;
   else visible ? c->hv++ : c->hh++;
   decide(f, q.e, visible ? ZS_NODE_QUERIED_VISIBLE : ZS_NODE_QUERIED_HIDDEN);
   if (!visible) {
+    state(f, q.e)->hidden_frames++;
     f->st->queries_hidden++;
     return;
   }
+  state(f, q.e)->hidden_frames = 0;
+  if (is_object(q.e)) { /* chcpp: asked again in a while; at first, at random */
+    elem_state *es = state(f, q.e);
+    es->next_query = c->frame + (q.was_visible ? (uint32_t)ZS_CHCPP_VISIBLE_FRAMES
+                                               : 1 + (uint32_t)zs_rng_below(&c->rng, ZS_CHCPP_VISIBLE_FRAMES));
+  }
   pull_up_visibility(f, q.e);
   traverse(f, q.e, q.mask);
+}
+
+/* Takes the nearest element of the traversal queue and tests it against
+ * the frustum (the planes its parent left in its mask); 0 when outside. */
+static int next_in_frustum(frame_ctx *f, elem *e, unsigned *mask) {
+  heap_entry h = heap_pop(f->c);
+  *e = h.e;
+  *mask = h.mask;
+  f->st->nodes_visited++;
+  zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
+  const double *lo, *hi;
+  elem_box(f, *e, &lo, &hi);
+  uint64_t tests = f->st->frustum_tests;
+  zs_frustum_result fr =
+      *mask ? zs_frustum_test_box(&f->frustum, lo, hi, mask, &f->st->frustum_tests)
+            : ZS_FRUSTUM_INSIDE;
+  zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
+  decide(f, *e, fr == ZS_FRUSTUM_OUTSIDE ? ZS_NODE_OUTSIDE : ZS_NODE_NO_QUERY);
+  return fr != ZS_FRUSTUM_OUTSIDE;
+}
+
+/* ---- CHC++ ---- */
+
+static int push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem e, unsigned mask,
+                        uint8_t was_visible) {
+  if (!grow((void **)q, cap, *n + 1, sizeof **q)) {
+    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+    return 0;
+  }
+  (*q)[(*n)++] = (pending){e, mask, was_visible};
+  return 1;
+}
+
+/* The chance that an element hidden i frames in a row stays hidden. */
+static double keep_hidden(uint32_t i) { return 0.99 - 0.7 * exp(-(double)i); }
+
+/* One query over the boxes of members gm[first .. first + n - 1]. */
+static void issue_multiquery(frame_ctx *f, int32_t first, int32_t n) {
+  zs_culler *c = f->c;
+  if (!grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
+    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+    return;
+  }
+  zs_query q;
+  double(*lo)[3] = malloc((size_t)n * sizeof *lo), (*hi)[3] = malloc((size_t)n * sizeof *hi);
+  if (!lo || !hi) {
+    free(lo);
+    free(hi);
+    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+    return;
+  }
+  for (int32_t i = 0; i < n; i++) {
+    const double *l, *h;
+    elem_box(f, c->gm[first + i].e, &l, &h);
+    memcpy(lo[i], l, sizeof lo[i]);
+    memcpy(hi[i], h, sizeof hi[i]);
+  }
+  /* the boxes of a multiquery: one draw call */
+  if (!(f->status = zs_device_query_begin(f->dev, &q, f->err)) &&
+      !(f->status = zs_device_query_boxes(f->dev, (const double(*)[3])lo, (const double(*)[3])hi, n,
+                                          f->err)))
+    f->status = zs_device_query_end(f->dev, f->err);
+  free(lo);
+  free(hi);
+  if (f->status) return;
+  f->st->queries++;
+  c->qq[c->qtail++] = (query_entry){c->gm[first].e, q, c->gm[first].mask, 0, first, n};
+}
+
+/* Issues every query of the invisible queue, one after the other: one
+ * change from drawing to querying for the whole batch; with multiqueries,
+ * in groups that grow while their expected saving grows. */
+static void flush_invisible(frame_ctx *f) {
+  zs_culler *c = f->c;
+  int32_t i = 0;
+  while (i < c->ni && f->status == ZS_OK) {
+    int32_t k = 1;
+    double p = keep_hidden(state(f, c->iq[i].e)->hidden_frames);
+    while (c->multi && i + k < c->ni) {
+      double p2 = p * keep_hidden(state(f, c->iq[i + k].e)->hidden_frames);
+      double now = k / (1.0 + (1.0 - p) * k), next = (k + 1) / (1.0 + (1.0 - p2) * (k + 1));
+      if (!(next > now)) break;
+      p = p2;
+      k++;
+    }
+    if (k == 1) {
+      issue_query(f, c->iq[i].e, c->iq[i].mask, c->iq[i].was_visible);
+    } else {
+      if (!grow((void **)&c->gm, &c->cap_gm, c->ngm + k, sizeof *c->gm)) {
+        f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+        return;
+      }
+      memcpy(c->gm + c->ngm, c->iq + i, (size_t)k * sizeof *c->gm);
+      issue_multiquery(f, c->ngm, k);
+      c->ngm += k;
+    }
+    i += k;
+  }
+  c->ni = 0;
+}
+
+/* Issues the oldest due query of a visible object (filling idle time). */
+static void issue_one_visible(frame_ctx *f) {
+  zs_culler *c = f->c;
+  pending p = c->vq[0];
+  memmove(c->vq, c->vq + 1, (size_t)(--c->nv) * sizeof *c->vq);
+  issue_query(f, p.e, p.mask, p.was_visible);
+}
+
+static void walk_chcpp(frame_ctx *f, int batch, int defer) {
+  zs_culler *c = f->c;
+  const uint32_t frame = c->frame;
+  c->nheap = 0;
+  c->qhead = c->qtail = 0;
+  c->ni = c->nv = c->ngm = 0;
+  if (!f->t->node[ZS_OCTREE_ROOT].empty && !heap_push(f, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES))
+    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+  while (f->status == ZS_OK &&
+         (c->nheap > 0 || c->qhead < c->qtail || c->ni > 0 || c->nv > 0)) {
+    /* Results: take the ready ones; with nothing to traverse, fill the
+     * wait with due visible queries, then the batch, then wait. */
+    while (f->status == ZS_OK && c->qhead < c->qtail) {
+      if (zs_device_query_ready(f->dev, c->qq[c->qhead].q)) take_result(f);
+      else if (c->nheap > 0) break;
+      else if (c->nv > 0) issue_one_visible(f);
+      else if (c->ni > 0) flush_invisible(f);
+      else take_result(f);
+    }
+    if (f->status != ZS_OK) break;
+    if (c->nheap == 0) {
+      if (c->ni > 0) flush_invisible(f);
+      else if (c->nv > 0) issue_one_visible(f);
+      continue;
+    }
+
+    elem e;
+    unsigned mask;
+    if (!next_in_frustum(f, &e, &mask)) continue;
+    elem_state *es = state(f, e);
+    int was_visible = es->visible && es->last_visited == frame - 1;
+    es->visible = 0;
+    es->last_visited = frame;
+    if (too_close(f, e)) {
+      pull_up_visibility(f, e);
+      traverse(f, e, mask);
+      continue;
+    }
+    if (!was_visible) { /* a termination element that was hidden: ask */
+      if (!batch) issue_query(f, e, mask, 0);
+      else if (push_pending(f, &c->iq, &c->ni, &c->cap_iq, e, mask, 0) && c->ni >= ZS_CHCPP_BATCH)
+        flush_invisible(f);
+      continue;
+    }
+    if (is_object(e)) { /* a visible leaf: drawn now, asked when due */
+      if (!defer) issue_query(f, e, mask, 1);
+      else if (es->next_query <= frame) push_pending(f, &c->vq, &c->nv, &c->cap_vq, e, mask, 1);
+      else pull_up_visibility(f, e); /* assumed visible this frame */
+    }
+    traverse(f, e, mask);
+  }
 }
 
 static void walk_tree(frame_ctx *f, zs_cull_method m) {
@@ -362,24 +568,10 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
     if (c->nheap == 0 || f->status != ZS_OK) continue;
 
     /* Part 2: the nearest element waiting. */
-    heap_entry h = heap_pop(c);
-    elem e = h.e;
+    elem e;
+    unsigned mask;
+    if (!next_in_frustum(f, &e, &mask)) continue;
     elem_state *es = state(f, e);
-    f->st->nodes_visited++;
-    zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
-    unsigned mask = h.mask;
-    const double *lo, *hi;
-    elem_box(f, e, &lo, &hi);
-    uint64_t tests = f->st->frustum_tests;
-    zs_frustum_result fr =
-        mask ? zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests)
-             : ZS_FRUSTUM_INSIDE;
-    zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
-    if (fr == ZS_FRUSTUM_OUTSIDE) {
-      decide(f, e, ZS_NODE_OUTSIDE);
-      continue;
-    }
-    decide(f, e, ZS_NODE_NO_QUERY); /* until a query says otherwise */
 
     if (m == ZS_CULL_VFC) {
       es->visible = 1;
@@ -546,8 +738,8 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
    * octree frees and reuses keeps its state: at worst a node is opened
    * without a query once, which costs time, never pixels.) */
-  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){0, 0, 0, 0.5};
-  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){0, 0, 0, 0.5};
+  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){0, 0, 0, 0.5, 0, 0};
+  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){0, 0, 0, 0.5, 0, 0};
   /* The near plane's corners lie at most near * sqrt(1 + tx^2 + ty^2) from
    * the eye (tx, ty the tangents of the half fields of view). */
   const zs_device_config *cfg = zs_device_config_of(dev);
@@ -566,6 +758,16 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   f.tq = c->cost.tq_ns >= 0 ? c->cost.tq_ns : k->per_query_pixel_ns;
 
   zs_cull_method m = c->method;
+  if (m == ZS_CULL_CHCPP || m == ZS_CULL_CHCPP_NOBATCH || m == ZS_CULL_CHCPP_NODEFER ||
+      m == ZS_CULL_CHCPP_NOMULTI) {
+    c->multi = m != ZS_CULL_CHCPP_NOMULTI;
+    if (!grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
+      return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
+    c->ndecision = t->nslots;
+    memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
+    walk_chcpp(&f, m != ZS_CULL_CHCPP_NOBATCH, m != ZS_CULL_CHCPP_NODEFER);
+    return f.status;
+  }
   if (m == ZS_CULL_AUTO) {
     st->chosen = c->use_queries ? ZS_CULL_CHC_PROB : ZS_CULL_VFC;
     if (!c->use_queries) m = ZS_CULL_VFC;

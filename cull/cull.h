@@ -40,6 +40,25 @@
  *   ideal     an oracle: draws exactly the instances that own a pixel of
  *             the final image (found by a separate full render that the
  *             clock does not see) and issues no query: the lower bound.
+ *   chcpp     CHC++ (Mattausch, Bittner, Wimmer 2008), its first two
+ *             features: queries of previously invisible elements wait in a
+ *             queue and are issued in batches of ZS_CHCPP_BATCH (one switch
+ *             from drawing to querying per batch, not per query); a visible
+ *             object is assumed visible for ZS_CHCPP_VISIBLE_FRAMES frames
+ *             (the first interval drawn at random, so that the queries do
+ *             not all fall due in the same frame), and the queries that do
+ *             fall due wait in a second queue, issued when the culler would
+ *             otherwise wait for a result.  Multiqueries: a batch is cut
+ *             into groups asked under one query each; an element hidden i
+ *             frames in a row stays hidden with probability
+ *               p(i) = 0.99 - 0.7 e^-i
+ *             and a group grows while its expected saving
+ *               k / (1 + (1 - P) k)   (P = the product of its p(i))
+ *             grows; a group with no sample hides all its members, else
+ *             each is asked again on its own.  chcpp-nobatch,
+ *             chcpp-nodefer and chcpp-nomulti switch one feature off
+ *             (ablation).  The tight boxes of the octree are CHC++'s
+ *             tighter bounds.
  *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
  *             queries, and plain vfc for frames after which a whole frame
  *             of queries found nothing hidden (probing again every 8th
@@ -69,8 +88,14 @@ typedef enum zs_cull_method {
   ZS_CULL_CHC_PROB,
   ZS_CULL_IDEAL,
   ZS_CULL_AUTO,
+  ZS_CULL_CHCPP,          /* CHC++: batched and deferred queries */
+  ZS_CULL_CHCPP_NOBATCH,  /* ablation: without batching */
+  ZS_CULL_CHCPP_NODEFER,  /* ablation: without deferred visible queries */
+  ZS_CULL_CHCPP_NOMULTI,  /* ablation: without multiqueries */
   ZS_CULL_METHODS
 } zs_cull_method;
+
+enum { ZS_CHCPP_BATCH = 50, ZS_CHCPP_VISIBLE_FRAMES = 5 };
 
 /* "none", "vfc", ...; and back (-1 for an unknown name). */
 const char *zs_cull_method_name(zs_cull_method m);

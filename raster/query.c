@@ -42,45 +42,63 @@ static void corner(const double lo[3], const double hi[3], int b, double *out) {
   out[2] = (b & 4) ? hi[2] : lo[2];
 }
 
-zs_status zs_device_query_box(zs_device *d, const double lo[3], const double hi[3],
-                              zs_error *err) {
+zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const double (*hi)[3],
+                                int n, zs_error *err) {
   if (!d->query_open) return zs_error_set(err, ZS_ERR_ARG, "query_box: no query is open");
+  if (n < 1) return ZS_OK;
   /* The faces as seen from outside, counter-clockwise; face 2a is the low
    * side of axis a, 2a+1 the high side. */
   static const int32_t faces[6][4] = {
       {0, 4, 6, 2}, {1, 3, 7, 5},  /* x low, x high */
       {0, 1, 5, 4}, {2, 6, 7, 3},  /* y low, y high */
       {0, 2, 3, 1}, {4, 5, 7, 6}}; /* z low, z high */
-  double pos[24];
-  for (int b = 0; b < 8; b++) corner(lo, hi, b, &pos[3 * b]);
-  int32_t start[7], vert[24], nf = 0;
-  int inside = 1;
-  for (int a = 0; a < 3; a++)
-    if (d->eye[a] < lo[a] || d->eye[a] > hi[a]) inside = 0;
-  /* Only the faces turned to the eye: over a convex box they cover each
-   * pixel of its outline once.  From inside, every face, seen from within. */
-  for (int f = 0; f < 6; f++) {
-    int a = f / 2;
-    int facing = (f % 2) ? d->eye[a] > hi[a] : d->eye[a] < lo[a];
-    if (!facing && !inside) continue;
-    start[nf] = 4 * nf;
-    for (int k = 0; k < 4; k++) vert[4 * nf + k] = faces[f][inside ? 3 - k : k];
-    nf++;
+  double *pos = malloc((size_t)n * 24 * sizeof *pos);
+  int32_t *start = malloc(((size_t)n * 6 + 1) * sizeof *start);
+  int32_t *vert = malloc((size_t)n * 24 * sizeof *vert);
+  if (!pos || !start || !vert) {
+    free(pos);
+    free(start);
+    free(vert);
+    return zs_error_set(err, ZS_ERR_NOMEM, "query_box: out of memory");
+  }
+  int32_t nf = 0;
+  for (int i = 0; i < n; i++) {
+    for (int b = 0; b < 8; b++) corner(lo[i], hi[i], b, &pos[24 * i + 3 * b]);
+    int inside = 1;
+    for (int a = 0; a < 3; a++)
+      if (d->eye[a] < lo[i][a] || d->eye[a] > hi[i][a]) inside = 0;
+    /* Only the faces turned to the eye: over a convex box they cover each
+     * pixel of its outline once.  From inside, every face, seen from within. */
+    for (int f = 0; f < 6; f++) {
+      int a = f / 2;
+      int facing = (f % 2) ? d->eye[a] > hi[i][a] : d->eye[a] < lo[i][a];
+      if (!facing && !inside) continue;
+      start[nf] = 4 * nf;
+      for (int k = 0; k < 4; k++) vert[4 * nf + k] = 8 * i + faces[f][inside ? 3 - k : k];
+      nf++;
+    }
   }
   start[nf] = 4 * nf;
-  zs_mesh box = {pos, 8, start, vert, nf, NULL, NULL};
+  zs_mesh boxes = {pos, 8 * n, start, vert, nf, NULL, NULL};
   uint64_t polygons = d->stats.polygons_rasterized;
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_query);
-  zs_status st = zs_device_draw_with(d, &box, NULL, 0, 0, ZS_KERNEL_QUERY, &c, err);
+  zs_status st = zs_device_draw_with(d, &boxes, NULL, 0, 0, ZS_KERNEL_QUERY, &c, err);
+  free(pos);
+  free(start);
+  free(vert);
   if (st != ZS_OK) return st;
   d->clock.query_pixels += c.tested;
-  int64_t cost = zs_clock_command_cost(d, box.nverts, d->stats.polygons_rasterized - polygons,
-                                       &c, 1);
+  int64_t cost = zs_clock_command_cost(d, 8 * n, d->stats.polygons_rasterized - polygons, &c, 1);
   zs_query_rec *q = &d->queries[d->nqueries - 1];
   q->gpu_end_ps = zs_clock_gpu_command(d, cost, 1);
   q->samples += c.written;
   return ZS_OK;
+}
+
+zs_status zs_device_query_box(zs_device *d, const double lo[3], const double hi[3],
+                              zs_error *err) {
+  return zs_device_query_boxes(d, (const double(*)[3])lo, (const double(*)[3])hi, 1, err);
 }
 
 int zs_device_query_ready(const zs_device *d, zs_query q) {

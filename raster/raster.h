@@ -192,6 +192,9 @@ zs_status zs_device_query_begin(zs_device *dev, zs_query *q, zs_error *err);
 zs_status zs_device_query_end(zs_device *dev, zs_error *err);
 zs_status zs_device_query_box(zs_device *dev, const double lo[3],
                               const double hi[3], zs_error *err);
+/* n boxes (lo[i], hi[i]) as one draw call, as a multiquery draws them. */
+zs_status zs_device_query_boxes(zs_device *dev, const double (*lo)[3],
+                                const double (*hi)[3], int n, zs_error *err);
 /* Whether the result of q is available at the CPU's current modelled time
  * (never advances the clock). */
 int zs_device_query_ready(const zs_device *dev, zs_query q);

@@ -80,8 +80,10 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
   zs_scene_free(&s);
 }
 
-static const zs_cull_method exact[] = {ZS_CULL_NONE, ZS_CULL_VFC,      ZS_CULL_HSW,  ZS_CULL_CHC,
-                                       ZS_CULL_CHC_PROB, ZS_CULL_IDEAL, ZS_CULL_AUTO};
+static const zs_cull_method exact[] = {ZS_CULL_NONE,  ZS_CULL_VFC,           ZS_CULL_HSW,
+                                       ZS_CULL_CHC,   ZS_CULL_CHC_PROB,      ZS_CULL_IDEAL,
+                                       ZS_CULL_AUTO,  ZS_CULL_CHCPP,         ZS_CULL_CHCPP_NOBATCH,
+                                       ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI};
 enum { NEXACT = sizeof exact / sizeof exact[0] };
 
 /* The generated scenes, small, with their own walks and moving objects. */
@@ -105,15 +107,16 @@ END_TEST
 
 START_TEST(exact_at_every_latency) {
   /* latency from 0 to 3 frames' worth of none's modelled time */
-  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_HSW, ZS_CULL_CHC, ZS_CULL_CHC_PROB, ZS_CULL_AUTO};
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_HSW, ZS_CULL_CHC, ZS_CULL_CHC_PROB, ZS_CULL_AUTO,
+                              ZS_CULL_CHCPP};
   walk_result base;
   walk("plant?detail=0.05", 1, 1, m, 1, -1, &base);
   double frame_ns = (double)base.modelled_ps[0] / 1000.0;
   const double fractions[] = {0.0, 0.01, 0.1, 0.5, 1.0, 2.0, 3.0};
   for (size_t i = 0; i < sizeof fractions / sizeof fractions[0]; i++) {
     walk_result r;
-    walk("plant?detail=0.05", 6, 11, m, 5, fractions[i] * frame_ns, &r);
-    for (int k = 1; k < 5; k++)
+    walk("plant?detail=0.05", 6, 11, m, 6, fractions[i] * frame_ns, &r);
+    for (int k = 1; k < 6; k++)
       ck_assert_msg(r.diff[k] == 0, "latency %.2f frames: %s differs in %llu pixels", fractions[i],
                     zs_cull_method_name(m[k]), (unsigned long long)r.diff[k]);
   }
@@ -141,6 +144,22 @@ START_TEST(query_ordering_on_the_plant) {
   ck_assert_uint_lt(r.queries[2], r.queries[1]);
   /* hsw waits for every answer: the slowest of them */
   ck_assert_int_gt(r.modelled_ps[1], r.modelled_ps[2]);
+}
+END_TEST
+
+START_TEST(chcpp_features_each_pay_on_the_plant) {
+  /* CHC++ with all its features is faster in modelled time than with any
+   * one of them off, and than CHC, on the plant walk */
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_CHC, ZS_CULL_CHCPP, ZS_CULL_CHCPP_NOBATCH,
+                              ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI};
+  walk_result r;
+  walk("plant?detail=0.25", 12, 8, m, 6, -1, &r);
+  for (int k = 1; k < 6; k++) {
+    ck_assert_uint_eq(r.diff[k], 0);
+    if (k != 2)
+      ck_assert_msg(r.modelled_ps[2] < r.modelled_ps[k], "chcpp %lld ps, %s %lld ps",
+                    (long long)r.modelled_ps[2], zs_cull_method_name(m[k]), (long long)r.modelled_ps[k]);
+  }
 }
 END_TEST
 
@@ -231,6 +250,7 @@ int main(void) {
   tcase_add_test(tc, vfc_box_reports_its_error);
   tcase_add_test(tc, query_ordering_on_the_plant);
   tcase_add_test(tc, counters_identical_every_run);
+  tcase_add_test(tc, chcpp_features_each_pay_on_the_plant);
   tcase_add_test(tc, frustum_planes_and_masking);
   tcase_add_test(tc, auto_costs_nothing_without_occlusion);
   suite_add_tcase(s, tc);
