@@ -48,4 +48,9 @@ ZS_BUILD_TYPE=${ZS_BUILD_TYPE:-Release}
 # shellcheck disable=SC2086
 cmake -S "$zs_root" -B "$ZS_BUILD_DIR" -DCMAKE_BUILD_TYPE="$ZS_BUILD_TYPE" \
   -DZS_WERROR=ON ${ZS_CMAKE_ARGS:-} >/dev/null
-cmake --build "$ZS_BUILD_DIR" -j "$(nproc)"
+echo "setup: building in $ZS_BUILD_DIR" >&2
+if ! cmake --build "$ZS_BUILD_DIR" -j "$(nproc)" >"$ZS_BUILD_DIR/build.log" 2>&1; then
+  cat "$ZS_BUILD_DIR/build.log" >&2
+  echo "setup: the build failed (log: $ZS_BUILD_DIR/build.log)" >&2
+  exit 1
+fi
