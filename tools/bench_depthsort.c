@@ -24,8 +24,9 @@
 #include "tools/input.h"
 
 static const char usage[] =
-    "usage: zscan bench depthsort [SCENE] [--frames N] [--size WxH] [--csv FILE]\n"
-    "  SCENE  default builtin:city (the paper's city walk)\n";
+    "usage: zscan bench depthsort [SCENE] [--frames N] [--size WxH] [--far F] [--csv FILE]\n"
+    "  SCENE   default builtin:city (the paper's city walk)\n"
+    "  --far F the back clipping plane (default: the scene's, which may hold it all)\n";
 
 static const char *const motions[4] = {"translate", "roll", "yaw", "fast"};
 
@@ -53,14 +54,19 @@ static void keep_ids(void *user, const zs_row *row) {
 }
 
 static zs_status run_motion(const zs_scene *s, const char *motion, int frames, int w, int h,
-                            motion_row *out, zs_error *err) {
+                            double far, motion_row *out, zs_error *err) {
   memset(out, 0, sizeof *out);
   /* the motions start where the scene's own walk starts (the city's at
    * street level, as the paper's), else from its camera */
   zs_camera base = s->camera;
   if (s->path.nkeys > 0) zs_path_camera(s, 0, &base);
   double aspect = (double)w / h;
+  if (far > 0) {
+    base.zfar = far;
+    base.has_far = 1;
+  }
   zs_camera_complete(&base, s->lo, s->hi, aspect);
+  if (far > 0 && base.znear >= far) base.znear = far * 1e-3;
   zs_path path;
   if (zs_path_named(motion, &base, frames, &path, err)) return err->code;
   zs_device *full = NULL, *coherent = NULL, *zbuf = NULL;
@@ -130,6 +136,7 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
 int zs_cmd_bench_depthsort(int argc, char **argv) {
   const char *spec = "builtin:city", *csv_path = NULL;
   int frames = 60, w = 1024, h = 768;
+  double far = 0;
   zs_error err;
   zs_error_clear(&err);
   for (int i = 1; i < argc; i++) {
@@ -144,6 +151,12 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
       if (zs_cli_value(argc, argv, &i, &v, &err) ||
           zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &w, &h, &err))
         goto fail;
+    } else if (strcmp(a, "--far") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_double(a, v, &far, &err)) goto fail;
+      if (!(far > 0)) {
+        zs_error_set(&err, ZS_ERR_ARG, "--far: must be greater than 0");
+        goto fail;
+      }
     } else if (strcmp(a, "--csv") == 0) {
       if (zs_cli_value(argc, argv, &i, &csv_path, &err) ||
           zs_cli_output_path(a, csv_path, &err))
@@ -159,7 +172,7 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   if (zs_input_load_scene(spec, &s, &err)) goto fail;
   motion_row rows[4];
   for (int m = 0; m < 4; m++)
-    if (run_motion(&s, motions[m], frames, w, h, &rows[m], &err)) {
+    if (run_motion(&s, motions[m], frames, w, h, far, &rows[m], &err)) {
       zs_scene_free(&s);
       goto fail;
     }
