@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "raster/internal.h"
+#include "raster/pool.h"
 
 #define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
 
@@ -28,8 +29,8 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
     return zs_error_set(err, ZS_ERR_LIMIT,
                         "image size %dx%d: each side must be 1 to %d",
                         cfg->width, cfg->height, ZS_MAX_IMAGE_SIDE);
-  if (cfg->threads < 1)
-    return zs_error_set(err, ZS_ERR_ARG, "threads must be at least 1");
+  if (cfg->threads < 1 || cfg->threads > 64)
+    return zs_error_set(err, ZS_ERR_ARG, "threads must be 1 to 64");
   zs_device *d = calloc(1, sizeof *d);
   if (!d) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   d->cfg = *cfg;
@@ -54,6 +55,15 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
     return zs_error_set(err, ZS_ERR_NOMEM,
                         "image size %dx%d: not enough memory for the buffers",
                         cfg->width, cfg->height);
+  }
+  if (ok && cfg->threads > 1 && cfg->algo == ZS_ALGO_ZBUFFER) {
+    d->pool = zs_pool_create(cfg->threads);
+    d->band_scratch = calloc((size_t)cfg->threads, sizeof *d->band_scratch);
+    ok = d->pool && d->band_scratch;
+    if (!ok) {
+      zs_device_destroy(d);
+      return zs_error_set(err, ZS_ERR_NOMEM, "threads: cannot start %d threads", cfg->threads);
+    }
   }
   d->gx = 1.0 + (double)(1 << 15) / cfg->width;
   d->gy = 1.0 + (double)(1 << 15) / cfg->height;
@@ -83,6 +93,10 @@ void zs_device_destroy(zs_device *d) {
   zs_batch_free(&d->batch);
   zs_walk_scratch_free(&d->scratch);
   zs_depthsort_free(&d->depthsort);
+  zs_pool_destroy(d->pool);
+  if (d->band_scratch)
+    for (int i = 0; i < d->cfg.threads; i++) zs_walk_scratch_free(&d->band_scratch[i]);
+  free(d->band_scratch);
   free(d->clip);
   free(d->eyepos);
   free(d->outcode);
@@ -161,6 +175,52 @@ static zs_kernel draw_kernel(const zs_device *d) {
 static zs_target full_frame_target(zs_device *d) {
   zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width};
   return t;
+}
+
+/* A batch walked in bands of rows, one per thread: each band writes only
+ * its rows and counts into its own counters; they are summed in band
+ * order, so images, counters and modelled times are the same for every
+ * number of threads. */
+typedef struct band_job {
+  zs_device *d;
+  zs_kernel k;
+  zs_target t;
+  zs_walk_counts counts[64];
+  int ok[64];
+  int nbands;
+} band_job;
+
+static void walk_band(void *ctx, int band) {
+  band_job *j = ctx;
+  int h = j->d->cfg.height;
+  int y0 = (int)((int64_t)h * band / j->nbands), y1 = (int)((int64_t)h * (band + 1) / j->nbands);
+  j->counts[band] = (zs_walk_counts){0, 0, 0};
+  j->ok[band] = zs_scan_batch(&j->d->batch, j->k, &j->t, y0, y1, NULL, NULL,
+                              &j->d->band_scratch[band], &j->counts[band]);
+}
+
+/* Walks the batch into the full frame; in bands when threads pay. */
+static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
+  zs_target t = full_frame_target(d);
+  int nbands = d->cfg.threads < 64 ? d->cfg.threads : 64;
+  /* below a few hundred polygons, starting the threads costs more */
+  if (!d->pool || d->batch.npolys < 256)
+    return zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
+  band_job j;
+  j.d = d;
+  j.k = k;
+  j.t = t;
+  j.nbands = nbands;
+  zs_pool_run(d->pool, walk_band, &j, nbands);
+  *out = (zs_walk_counts){0, 0, 0};
+  int ok = 1;
+  for (int b = 0; b < nbands; b++) {
+    ok &= j.ok[b];
+    out->spans += j.counts[b].spans;
+    out->tested += j.counts[b].tested;
+    out->written += j.counts[b].written;
+  }
+  return ok;
 }
 
 static void add_counts(zs_device *d, const zs_walk_counts *c) {
@@ -274,9 +334,7 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
 
   *out = (zs_walk_counts){0, 0, 0};
   if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
-    zs_target t = full_frame_target(d);
-    if (!zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out))
-      return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    if (!walk_full_frame(d, k, out)) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
     d->stats.spans += out->spans;
     if (k == ZS_KERNEL_DRAW || k == ZS_KERNEL_OVERDRAW) {
       d->stats.pixels_tested += out->tested;

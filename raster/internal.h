@@ -138,6 +138,7 @@ typedef struct zs_walk_scratch {
   int32_t cap_active;
   zs_trace_pair *trace_pairs;   /* a traced row (trace.c) */
   zs_trace_span *trace_spans;
+  int64_t *cross;               /* polygons begun above a band, to order */
 } zs_walk_scratch;
 
 /* trace.c: the sorted tables handed to obs; one active entry as a pair. */
@@ -234,6 +235,9 @@ struct zs_device {
   int query_open;                 /* a query is between begin and end */
   const zs_trace_observer *trace; /* scanline mode's observer, or NULL */
   zs_depthsort depthsort;
+  /* threads: zbuffer mode walks large batches in bands of rows */
+  struct zs_pool *pool;
+  zs_walk_scratch *band_scratch;  /* one per band */
   int last_was_query;             /* the GPU's last command was a query box */
 };
 

@@ -101,6 +101,11 @@ static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
   *written += w;
 }
 
+static int cmp_int64(const void *a, const void *b) {
+  int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+  return (x > y) - (x < y);
+}
+
 static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
   if (rows > s->cap_rows) {
     int32_t *p = realloc(s->bucket_head, (size_t)rows * sizeof *p);
@@ -115,6 +120,9 @@ static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
     zs_active *a = realloc(s->active, (size_t)polys * sizeof *a);
     if (!a) return 0;
     s->active = a;
+    int64_t *c = realloc(s->cross, (size_t)polys * sizeof *c);
+    if (!c) return 0;
+    s->cross = c;
     s->cap_polys = polys;
     s->cap_active = polys;
   }
@@ -127,6 +135,7 @@ void zs_walk_scratch_free(zs_walk_scratch *s) {
   free(s->active);
   free(s->trace_pairs);
   free(s->trace_spans);
+  free(s->cross);
   memset(s, 0, sizeof *s);
 }
 
@@ -140,19 +149,36 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
   zs_active *act = s->active;
   const int width = t->width;
 
-  /* The sorted polygon table: bucket each polygon under the first row of
-   * the walk it meets; walking the batch backwards keeps each bucket in
-   * batch order. */
+  /* The sorted polygon table: bucket each polygon under its first row;
+   * walking the batch backwards keeps each bucket in batch order. */
   int32_t nrows = row_end - row_begin;
   for (int32_t i = 0; i < nrows; i++) head[i] = -1;
-  int32_t first_bucket = nrows;
+  int32_t first_bucket = nrows, ncross = 0;
   for (int32_t i = b->npolys - 1; i >= 0; i--) {
     const zs_poly *p = &polys[i];
     if (p->row1 < row_begin || p->row0 >= row_end) continue;
-    int32_t r = (p->row0 > row_begin ? p->row0 : row_begin) - row_begin;
+    if (p->row0 < row_begin) { /* begun above the walk: ordered below */
+      s->cross[ncross++] = (int64_t)p->row0 * ((int64_t)1 << 32) + i;
+      continue;
+    }
+    int32_t r = p->row0 - row_begin;
     next[i] = head[r];
     head[r] = i;
     if (r < first_bucket) first_bucket = r;
+  }
+  if (ncross > 0) {
+    /* A walk that starts mid-frame (a band of rows) activates first the
+     * polygons begun above it, in the order a walk from the top would hold
+     * them: by first row, then batch order.  The spans of a row are then
+     * filled in the same order in every band layout, and so are counters
+     * that depend on it (pixels written, overwrites included). */
+    qsort(s->cross, (size_t)ncross, sizeof *s->cross, cmp_int64);
+    for (int32_t k = ncross - 1; k >= 0; k--) {
+      int32_t i = (int32_t)(s->cross[k] & 0xFFFFFFFF);
+      next[i] = head[0];
+      head[0] = i;
+    }
+    first_bucket = 0;
   }
 
   if (obs) zs_trace_tables(b, obs);

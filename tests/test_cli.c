@@ -127,7 +127,7 @@ static const bad_option bad_options[] = {
     {{"render", "--style", "hidden-line", "--algo", "scanline", NULL},
      "--style hidden-line needs --algo zbuffer and --shade flat"},
     {{"render", "--shade", "pink", NULL}, "--shade: expected flat, id, depth or overdraw"},
-    {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 256"},
+    {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 64"},
     {{"render", "--repeat", NULL}, "--repeat: missing value"},
     {{"render", "a.obj", "b.obj", NULL}, "more than one INPUT"},
     {{"render", "/nonexistent-dir/model.stl", NULL}, "/nonexistent-dir/model.stl: "},

@@ -78,8 +78,8 @@ static void load_input(const char *input, zs_scene *s) {
   ck_assert_msg(zs_input_load_scene(path, s, &err) == ZS_OK, "%s", err.msg);
 }
 
-static uint64_t render_case(const golden_case *c, const zs_scene *s, zs_algo algo,
-                            zs_image *keep) {
+static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_algo algo,
+                                    int threads, zs_image *keep, zs_raster_stats *stats) {
   zs_camera cam;
   zs_camera_default(&cam);
   if (c->has_eye) {
@@ -87,15 +87,20 @@ static uint64_t render_case(const golden_case *c, const zs_scene *s, zs_algo alg
     memcpy(cam.target, c->target, sizeof cam.target);
     cam.has_eye = cam.has_target = 1;
   }
-  zs_frame_opts o = {c->width, c->height, algo, c->shade, c->cull_back, 1, c->hidden_line};
+  zs_frame_opts o = {c->width, c->height, algo, c->shade, c->cull_back, threads, c->hidden_line};
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
-  ck_assert_msg(zs_frame_render(s, &cam, &o, &im, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_msg(zs_frame_render(s, &cam, &o, &im, NULL, stats, &err) == ZS_OK, "%s", err.msg);
   uint64_t h = zs_image_hash(&im);
   if (keep) *keep = im;
   else zs_image_free(&im);
   return h;
+}
+
+static uint64_t render_case(const golden_case *c, const zs_scene *s, zs_algo algo,
+                            zs_image *keep) {
+  return render_case_threads(c, s, algo, 1, keep, NULL);
 }
 
 /* The faces of every mesh in a seeded random order (each keeping its id
@@ -159,6 +164,16 @@ START_TEST(golden_case_matches) {
   uint64_t hsh = render_case(c, &shuffled, ZS_ALGO_ZBUFFER, NULL);
   ck_assert_msg(hz == hsh, "%s: shuffled faces give %016llx, not %016llx", c->name,
                 (unsigned long long)hsh, (unsigned long long)hz);
+  /* the same bytes and the same counters for every number of threads */
+  zs_raster_stats one, many;
+  render_case_threads(c, &m, ZS_ALGO_ZBUFFER, 1, NULL, &one);
+  for (int threads = 2; threads <= 4; threads++) {
+    uint64_t ht = render_case_threads(c, &m, ZS_ALGO_ZBUFFER, threads, NULL, &many);
+    ck_assert_msg(hz == ht, "%s: %d threads give %016llx, not %016llx", c->name, threads,
+                  (unsigned long long)ht, (unsigned long long)hz);
+    ck_assert_msg(memcmp(&one, &many, sizeof one) == 0, "%s: %d threads change the counters",
+                  c->name, threads);
+  }
   got_hash[_i] = hz;
   if (!updating) {
     ck_assert_msg(have_expected[_i], "%s: no golden hash (run with ZS_GOLDEN_UPDATE=1)", c->name);

@@ -29,7 +29,7 @@ static const char usage_tail[] =
     "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
     "  --style solid|hidden-line   faces, or the visible edges of front faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
-    "  --threads N         render threads (default 1)\n"
+    "  --threads N         render threads, 1 to 64 (zbuffer mode; default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
     "  --stats             print the frame's counters as one JSON line\n"
     "  --cull METHOD       draw through a culling method (vfc, hsw, chc, chc-prob, ...)\n"
@@ -100,7 +100,7 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       o->out_pfm = v;
     } else if (strcmp(a, "--threads") == 0) {
       VALUE();
-      if (zs_cli_int(a, v, 1, 256, &o->threads, err)) return err->code;
+      if (zs_cli_int(a, v, 1, 64, &o->threads, err)) return err->code;
     } else if (strcmp(a, "--repeat") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 100000, &o->repeat, err)) return err->code;
