@@ -90,6 +90,7 @@ static const cross_case cases[] = {
     {"tests/data/scenes/centres.obj", 0.0, 1}, /* the edge rule itself: no pixel may differ */
     {"builtin:cubes?n=6", 1.0, 0},         {"builtin:spheres?count=300", 1.0, 0},
     {"tests/data/scenes/sphere_ell.obj", 1.0, 0}, {"tests/data/scenes/interpenetrate.obj", 1.0, 0},
+    {"tests/data/scenes/cyclic.obj", 1.0, 0},
     {"builtin:city", 5.0, 0},              {"builtin:plant?detail=0.25", 5.0, 0},
     {"builtin:default", 5.0, 0},           {"builtin:teapots?count=300", 5.0, 0},
 };
