@@ -58,7 +58,7 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
   }
   if (ok && cfg->threads > 1 && cfg->algo == ZS_ALGO_ZBUFFER) {
     d->pool = zs_pool_create(cfg->threads);
-    d->band_scratch = calloc((size_t)cfg->threads, sizeof *d->band_scratch);
+    d->band_scratch = calloc(64, sizeof *d->band_scratch); /* one per band */
     ok = d->pool && d->band_scratch;
     if (!ok) {
       zs_device_destroy(d);
@@ -95,7 +95,7 @@ void zs_device_destroy(zs_device *d) {
   zs_depthsort_free(&d->depthsort);
   zs_pool_destroy(d->pool);
   if (d->band_scratch)
-    for (int i = 0; i < d->cfg.threads; i++) zs_walk_scratch_free(&d->band_scratch[i]);
+    for (int i = 0; i < 64; i++) zs_walk_scratch_free(&d->band_scratch[i]);
   free(d->band_scratch);
   free(d->clip);
   free(d->eyepos);
@@ -202,7 +202,9 @@ static void walk_band(void *ctx, int band) {
 /* Walks the batch into the full frame; in bands when threads pay. */
 static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
   zs_target t = full_frame_target(d);
-  int nbands = d->cfg.threads < 64 ? d->cfg.threads : 64;
+  /* four bands a thread, taken in turn: the rows of a picture do not hold
+   * equal work (the objects sit where they sit) */
+  int nbands = 4 * d->cfg.threads < 64 ? 4 * d->cfg.threads : 64;
   /* below a few hundred polygons, starting the threads costs more */
   if (!d->pool || d->batch.npolys < 256)
     return zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
