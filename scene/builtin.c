@@ -31,21 +31,13 @@ _Static_assert(ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE <=
 
 uint32_t zs_builtin_palette(int i) { return palette[i]; }
 
-zs_status zs_builtin_box(zs_model *m, const double lo[3], const double hi[3],
-                         uint32_t rgb, int32_t obj) {
-  for (int a = 0; a < 3; a++)
-    if (!(lo[a] <= hi[a])) return ZS_ERR_ARG;
-
+zs_status zs_builtin_hexahedron(zs_model *m, const double c[8][3], uint32_t rgb, int32_t obj) {
   int32_t first = m->mesh.nverts;
-  for (int b = 0; b < 8; b++) {
-    double x = (b & 1) ? hi[0] : lo[0];
-    double y = (b & 2) ? hi[1] : lo[1];
-    double z = (b & 4) ? hi[2] : lo[2];
-    if (zs_model_add_vertex(m, x, y, z) < 0) return ZS_ERR_NOMEM;
-  }
-
-  /* Corner numbers as above; each quad runs counter-clockwise seen from
-   * outside, e.g. -x: 0 -> 4 is +z, 4 -> 6 is +y, and z x y = -x. */
+  for (int b = 0; b < 8; b++)
+    if (zs_model_add_vertex(m, c[b][0], c[b][1], c[b][2]) < 0) return ZS_ERR_NOMEM;
+  /* Corner b: bit 0 the +x side, bit 1 +y, bit 2 +z.  Each quad runs
+   * counter-clockwise seen from outside, e.g. -x: 0 -> 4 is +z, 4 -> 6 is
+   * +y, and z x y = -x. */
   static const int quads[6][4] = {
       {0, 4, 6, 2}, /* -x */
       {1, 3, 7, 5}, /* +x */
@@ -61,6 +53,19 @@ zs_status zs_builtin_box(zs_model *m, const double lo[3], const double hi[3],
     if (st != ZS_OK) return st;
   }
   return ZS_OK;
+}
+
+zs_status zs_builtin_box(zs_model *m, const double lo[3], const double hi[3],
+                         uint32_t rgb, int32_t obj) {
+  for (int a = 0; a < 3; a++)
+    if (!(lo[a] <= hi[a])) return ZS_ERR_ARG;
+  double c[8][3];
+  for (int b = 0; b < 8; b++) {
+    c[b][0] = (b & 1) ? hi[0] : lo[0];
+    c[b][1] = (b & 2) ? hi[1] : lo[1];
+    c[b][2] = (b & 4) ? hi[2] : lo[2];
+  }
+  return zs_builtin_hexahedron(m, c, rgb, obj);
 }
 
 zs_status zs_builtin_cubes(zs_model *m, int n, zs_error *err) {

@@ -85,6 +85,12 @@ zs_status zs_builtin_cubes(zs_model *m, int n, zs_error *err);
  * rgb, in object obj (-1: none).  Returns ZS_OK; ZS_ERR_ARG when lo > hi on
  * some axis (or a bound is NaN), adding nothing; ZS_ERR_NOMEM.  lo == hi on
  * an axis is allowed (the faces across it have zero area). */
+/* A six-sided solid from its 8 corners, numbered as the box's (corner b:
+ * bit 0 the +x side, bit 1 +y, bit 2 +z), with the box's 6 quads,
+ * counter-clockwise outward: right for any convex hexahedron of that shape
+ * (a box with a narrower top, say). */
+zs_status zs_builtin_hexahedron(zs_model *m, const double c[8][3], uint32_t rgb, int32_t obj);
+
 zs_status zs_builtin_box(zs_model *m, const double lo[3], const double hi[3],
                          uint32_t rgb, int32_t obj);
 

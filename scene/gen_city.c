@@ -65,24 +65,6 @@ static const uint32_t FACADES[8] = {0xC9B79Cu, 0xA65E46u, 0xD8D2C4u, 0x8C8C8Cu,
 #define LAMP_RGB 0xF2E6B8u
 #define TYRE_RGB 0x222222u
 
-/* A six-sided solid from its 8 corners, numbered as the box's (bit 0: +x
- * side, bit 1: +y, bit 2: +z), with the box's quads: right for any convex
- * hexahedron of that shape (a box whose top is narrower, say). */
-static zs_status hexahedron(zs_model *m, const double c[8][3], uint32_t rgb, int32_t obj) {
-  int32_t first = m->mesh.nverts;
-  for (int b = 0; b < 8; b++)
-    if (zs_model_add_vertex(m, c[b][0], c[b][1], c[b][2]) < 0) return ZS_ERR_NOMEM;
-  static const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (int f = 0; f < 6; f++) {
-    int32_t idx[4];
-    for (int k = 0; k < 4; k++) idx[k] = first + quads[f][k];
-    zs_status st = zs_model_add_polygon(m, idx, 4, rgb, obj);
-    if (st != ZS_OK) return st;
-  }
-  return ZS_OK;
-}
-
 static zs_status box(zs_model *m, double x0, double y0, double z0, double x1, double y1,
                      double z1, uint32_t rgb) {
   const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
@@ -172,7 +154,7 @@ static zs_status car(zs_model *m, uint32_t paint) {
     c[b][1] = lo[1];
     c[b][2] = (b & 4) ? hi[2] : lo[2];
   }
-  if (st == ZS_OK) st = hexahedron(m, c, GLASS_RGB, 0);
+  if (st == ZS_OK) st = zs_builtin_hexahedron(m, c, GLASS_RGB, 0);
   /* Wheels: cylinders turned from +y onto +z. */
   for (int w = 0; w < 4 && st == ZS_OK; w++) {
     double x = (w & 1) ? 1.35 : -1.35, z = (w & 2) ? 0.62 : -0.86;

@@ -8,6 +8,7 @@
 
 #include "raster/raster.h"
 #include "scene/gen_internal.h"
+#include "scene/teapot.h"
 
 /* ---- trigonometry ------------------------------------------------------ */
 
@@ -215,4 +216,15 @@ void zs_gen_bounds(zs_scene *s, const double lo[3], const double hi[3]) {
 int zs_gen_segments(double base, double detail, int min) {
   int n = (int)floor(base * detail + 0.5);
   return n < min ? min : n;
+}
+
+int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err) {
+  zs_model teapot;
+  int32_t obj = zs_gen_model(&teapot, "teapot", err);
+  if (obj < 0) return -1;
+  if (zs_teapot_add(&teapot, level, NULL, ZS_GREY, obj, err)) {
+    zs_model_free(&teapot);
+    return -1;
+  }
+  return zs_gen_add_mesh(s, &teapot, err);
 }

@@ -12,14 +12,8 @@
 enum { FIELD = ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE };
 
 static zs_status build_default(const zs_gen_args *a, zs_scene *s, zs_error *err) {
-  zs_model teapot, ground;
-  int32_t obj = zs_gen_model(&teapot, "teapot", err);
-  if (obj < 0) return err->code;
-  if (zs_teapot_add(&teapot, zs_gen_int(a, "level"), NULL, ZS_GREY, obj, err)) {
-    zs_model_free(&teapot);
-    return err->code;
-  }
-  int32_t teapot_mesh = zs_gen_add_mesh(s, &teapot, err);
+  zs_model ground;
+  int32_t obj, teapot_mesh = zs_gen_teapot_mesh(s, zs_gen_int(a, "level"), err);
   if (teapot_mesh < 0) return err->code;
 
   double lo[3], hi[3];

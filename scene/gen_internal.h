@@ -101,6 +101,10 @@ int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
  * else the object index 0. */
 int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
 
+/* Adds one teapot mesh (object "teapot", grey, tessellated at level) to
+ * s; returns its mesh index, or -1 with err set. */
+int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err);
+
 /* Sets the scene's camera to look from eye at target (up +y), fovy 45,
  * near/far as given, image 1024 x 768. */
 void zs_gen_camera(zs_scene *s, const double eye[3], const double target[3],

@@ -10,6 +10,7 @@
  * directed edge is used once.  The torus is the same construction with the
  * arc in place of the profile and the tube's circle in place of the ring. */
 #include <math.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "raster/raster.h"
@@ -33,21 +34,13 @@ zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
                      const double xform[16], uint32_t rgb, int32_t obj) {
   for (int a = 0; a < 3; a++)
     if (!(lo[a] <= hi[a])) return ZS_ERR_ARG;
-  int32_t first = m->mesh.nverts;
-  for (int b = 0; b < 8; b++)
-    if (put(m, xform, (b & 1) ? hi[0] : lo[0], (b & 2) ? hi[1] : lo[1],
-            (b & 4) ? hi[2] : lo[2]) < 0)
-      return ZS_ERR_NOMEM;
-  /* The quads of zs_builtin_box: -x, +x, -y, +y, -z, +z. */
-  static const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (int f = 0; f < 6; f++) {
-    int32_t idx[4];
-    for (int k = 0; k < 4; k++) idx[k] = first + quads[f][k];
-    zs_status st = poly(m, idx, 4, rgb, obj);
-    if (st != ZS_OK) return st;
+  double c[8][3];
+  for (int b = 0; b < 8; b++) {
+    double p[3] = {(b & 1) ? hi[0] : lo[0], (b & 2) ? hi[1] : lo[1], (b & 4) ? hi[2] : lo[2]};
+    if (xform) zs_gen_apply(xform, p, c[b]);
+    else memcpy(c[b], p, sizeof p);
   }
-  return ZS_OK;
+  return zs_builtin_hexahedron(m, c, rgb, obj);
 }
 
 /* Closes a ring of n vertices ring[0 .. n-1] (counter-clockwise about the

@@ -218,37 +218,9 @@ END_TEST
 
 /* A closed, convex mesh: a UV sphere.  With back faces culled, every pixel
  * of its silhouette is covered exactly once; without, exactly twice. */
-static void sphere(mesh_buf *b, double cx, double cy, double cz, double r,
-                   int slices, int stacks) {
-  int32_t base = b->m.nverts;
-  int32_t top = mb_vert(b, cx, cy + r, cz);
-  for (int i = 1; i < stacks; i++) {
-    double phi = ZS_PI * i / stacks;
-    for (int j = 0; j < slices; j++) {
-      double th = 2 * ZS_PI * j / slices;
-      mb_vert(b, cx + r * sin(phi) * cos(th), cy + r * cos(phi), cz + r * sin(phi) * sin(th));
-    }
-  }
-  int32_t bottom = mb_vert(b, cx, cy - r, cz);
-  (void)base;
-#define RING(i, j) (top + 1 + (i) * slices + ((j) % slices))
-  for (int j = 0; j < slices; j++) {
-    int32_t t[3] = {top, RING(0, j + 1), RING(0, j)};
-    mb_face(b, t, 3, 0xFFFFFF);
-    int32_t u[3] = {bottom, RING(stacks - 2, j), RING(stacks - 2, j + 1)};
-    mb_face(b, u, 3, 0xFFFFFF);
-  }
-  for (int i = 0; i + 1 < stacks - 1; i++)
-    for (int j = 0; j < slices; j++) {
-      int32_t q[4] = {RING(i, j), RING(i, j + 1), RING(i + 1, j + 1), RING(i + 1, j)};
-      mb_face(b, q, 4, 0xFFFFFF);
-    }
-#undef RING
-}
-
 START_TEST(closed_mesh_covers_once_front_twice_both) {
   mesh_buf b = {0};
-  sphere(&b, 0, 0, -6, 1.7, 48, 32);
+  mb_sphere(&b, 0, 0, -6, 1.7, 48, 32, 0);
   double view[16], proj[16];
   zs_mat_look_at(view, (double[3]){0.3, 0.2, 0}, (double[3]){0, 0, -6}, (double[3]){0, 1, 0});
   zs_mat_perspective(proj, 40, 4.0 / 3.0, 0.5, 20);

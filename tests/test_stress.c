@@ -64,37 +64,6 @@ static void ortho(double view[16], double proj[16]) {
   zs_mat_ortho(proj, 0, W, 0, H, -10, 10);
 }
 
-/* A UV sphere (closed, counter-clockwise outward). */
-static void sphere(mesh_buf *b, double r, int slices, int stacks, int inward) {
-  int32_t top = mb_vert(b, 0, r, 0);
-  for (int i = 1; i < stacks; i++)
-    for (int j = 0; j < slices; j++) {
-      double phi = ZS_PI * i / stacks, th = 2 * ZS_PI * j / slices;
-      mb_vert(b, r * sin(phi) * cos(th), r * cos(phi), r * sin(phi) * sin(th));
-    }
-  int32_t bottom = mb_vert(b, 0, -r, 0);
-#define RING(i, j) (top + 1 + (i) * slices + ((j) % slices))
-  for (int j = 0; j < slices; j++) {
-    int32_t t[3] = {top, RING(0, j + 1), RING(0, j)};
-    int32_t u[3] = {bottom, RING(stacks - 2, j), RING(stacks - 2, j + 1)};
-    if (inward) {
-      int32_t s = t[1]; t[1] = t[2]; t[2] = s;
-      s = u[1]; u[1] = u[2]; u[2] = s;
-    }
-    mb_face(b, t, 3, 0xFFFFFF);
-    mb_face(b, u, 3, 0xFFFFFF);
-  }
-  for (int i = 0; i + 1 < stacks - 1; i++)
-    for (int j = 0; j < slices; j++) {
-      int32_t q[4] = {RING(i, j), RING(i, j + 1), RING(i + 1, j + 1), RING(i + 1, j)};
-      if (inward) {
-        int32_t s = q[1]; q[1] = q[3]; q[3] = s;
-      }
-      mb_face(b, q, 4, 0xFFFFFF);
-    }
-#undef RING
-}
-
 /* ---- watertightness ---- */
 
 START_TEST(fan_of_100000_slivers) {
@@ -173,7 +142,7 @@ START_TEST(far_from_the_origin) {
   /* A closed sphere a million units out, the camera beside it: its outline
    * covered exactly once with back faces culled, twice without. */
   mesh_buf b = {0};
-  sphere(&b, 1.0, 40, 24, 0);
+  mb_sphere(&b, 0, 0, 0, 1.0, 40, 24, 0);
   double model[16], view[16], proj[16];
   zs_mat_translate(model, 1e6, -1e6, 1e6);
   zs_mat_look_at(view, (double[3]){1e6 + 0.2, -1e6 + 0.3, 1e6 + 4.5}, (double[3]){1e6, -1e6, 1e6},
@@ -191,7 +160,7 @@ END_TEST
 
 START_TEST(rotated_in_small_steps) {
   mesh_buf b = {0};
-  sphere(&b, 1.0, 32, 20, 0);
+  mb_sphere(&b, 0, 0, 0, 1.0, 32, 20, 0);
   double view[16], proj[16];
   zs_mat_look_at(view, (double[3]){0, 0, 4}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
   zs_mat_perspective(proj, 50, (double)W / H, 1, 10);
@@ -212,7 +181,7 @@ START_TEST(camera_inside_a_closed_object) {
   /* From inside a closed convex mesh every view ray meets it once: with
    * its faces turned inward, every pixel is covered exactly once. */
   mesh_buf b = {0};
-  sphere(&b, 5.0, 48, 32, 1);
+  mb_sphere(&b, 0, 0, 0, 5.0, 48, 32, 1);
   double view[16], proj[16];
   zs_mat_look_at(view, (double[3]){0.3, -0.2, 0.1}, (double[3]){1, 0.2, -3}, (double[3]){0, 1, 0});
   zs_mat_perspective(proj, 70, (double)W / H, 0.1, 20);

@@ -1,5 +1,7 @@
 #include "tests/testutil.h"
 
+#include <math.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -127,3 +129,40 @@ void mb_free(mesh_buf *b) {
   memset(b, 0, sizeof *b);
 }
 
+
+void mb_sphere(mesh_buf *b, double cx, double cy, double cz, double r, int slices, int stacks,
+               int inward) {
+  int32_t top = mb_vert(b, cx, cy + r, cz);
+  for (int i = 1; i < stacks; i++)
+    for (int j = 0; j < slices; j++) {
+      double phi = ZS_PI * i / stacks, th = 2 * ZS_PI * j / slices;
+      mb_vert(b, cx + r * sin(phi) * cos(th), cy + r * cos(phi), cz + r * sin(phi) * sin(th));
+    }
+  int32_t bottom = mb_vert(b, cx, cy - r, cz);
+#define RING(i, j) (top + 1 + (i) * slices + ((j) % slices))
+  for (int j = 0; j < slices; j++) {
+    int32_t t[3] = {top, RING(0, j + 1), RING(0, j)};
+    int32_t u[3] = {bottom, RING(stacks - 2, j), RING(stacks - 2, j + 1)};
+    if (inward) {
+      int32_t s = t[1];
+      t[1] = t[2];
+      t[2] = s;
+      s = u[1];
+      u[1] = u[2];
+      u[2] = s;
+    }
+    mb_face(b, t, 3, 0xFFFFFF);
+    mb_face(b, u, 3, 0xFFFFFF);
+  }
+  for (int i = 0; i + 1 < stacks - 1; i++)
+    for (int j = 0; j < slices; j++) {
+      int32_t q[4] = {RING(i, j), RING(i, j + 1), RING(i + 1, j + 1), RING(i + 1, j)};
+      if (inward) {
+        int32_t s = q[1];
+        q[1] = q[3];
+        q[3] = s;
+      }
+      mb_face(b, q, 4, 0xFFFFFF);
+    }
+#undef RING
+}

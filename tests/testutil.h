@@ -36,5 +36,10 @@ typedef struct mesh_buf {
 int32_t mb_vert(mesh_buf *b, double x, double y, double z);
 void mb_face(mesh_buf *b, const int32_t *v, int n, uint32_t rgb);
 void mb_free(mesh_buf *b);
+/* A closed UV sphere of radius r around (cx, cy, cz): triangles at the
+ * poles, quads between; counter-clockwise seen from outside, or from
+ * inside when inward. */
+void mb_sphere(mesh_buf *b, double cx, double cy, double cz, double r, int slices, int stacks,
+               int inward);
 
 #endif
