@@ -17,6 +17,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -251,7 +252,9 @@ static zs_status parse_mtl(const char *text, size_t len, const char *name,
   return st;
 }
 
-typedef enum read_result { READ_OK, READ_NO_OPEN, READ_FAILED, READ_NOMEM } read_result;
+typedef enum read_result {
+  READ_OK, READ_NO_OPEN, READ_FAILED, READ_NOMEM, READ_TOO_LARGE
+} read_result;
 
 /* Reads the whole file at path into a malloc'd buffer (*errnum: errno). */
 static read_result read_file(const char *path, char **data, size_t *len,
@@ -263,11 +266,22 @@ static read_result read_file(const char *path, char **data, size_t *len,
     *errnum = errno;
     return READ_NO_OPEN;
   }
+  /* a regular file says its size: refuse it before allocating anything */
+  struct stat st;
+  if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) &&
+      (uint64_t)st.st_size > (uint64_t)ZS_OBJ_MAX_BYTES) {
+    fclose(f);
+    return READ_TOO_LARGE;
+  }
   size_t cap = 1 << 16, n = 0;
   char *buf = malloc(cap);
   read_result res = buf ? READ_OK : READ_NOMEM;
   while (res == READ_OK) {
     if (n == cap) {
+      if (cap >= ZS_OBJ_MAX_BYTES) { /* a pipe that goes on and on */
+        res = READ_TOO_LARGE;
+        break;
+      }
       char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, 2 * cap) : NULL;
       if (!bigger) {
         res = READ_NOMEM;
@@ -430,6 +444,10 @@ static zs_status load_mtl(obj_parser *p, const char *file) {
   case READ_NOMEM:
     st = out_of_memory(p);
     break;
+  case READ_TOO_LARGE:
+    st = zs_error_set(p->r.err, ZS_ERR_LIMIT, "%s: larger than %zu MiB", path,
+                      ZS_OBJ_MAX_BYTES >> 20);
+    break;
   }
   free(path);
   return st;
@@ -518,6 +536,9 @@ zs_status zs_obj_load(const char *path, zs_model *out, zs_error *err) {
                         strerror(errnum));
   case READ_NOMEM:
     return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
+  case READ_TOO_LARGE:
+    return zs_error_set(err, ZS_ERR_LIMIT, "%s: larger than %zu MiB", path,
+                        ZS_OBJ_MAX_BYTES >> 20);
   }
   /* Material libraries live next to the file: dir is path up to its last
    * '/' ("/" for a file in the root, "" for a bare file name). */

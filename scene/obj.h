@@ -38,6 +38,9 @@
 #include "scene/model.h"
 
 enum { ZS_OBJ_LINE_MAX = 65536 }; /* bytes per line, without "\r\n" */
+/* The largest OBJ file read (1 GiB): a larger one is refused before
+ * anything is allocated for it ("FILE: larger than 1024 MiB"). */
+#define ZS_OBJ_MAX_BYTES ((size_t)1 << 30)
 
 /* Reads the OBJ file at path into out, which is initialised here (any
  * previous content is not freed).  Material libraries are looked up in the

@@ -165,6 +165,24 @@ START_TEST(bad_option_refused) {
 }
 END_TEST
 
+START_TEST(huge_obj_refused_before_reading) {
+  /* a sparse file one byte over the limit: refused at once */
+  char path[4096];
+  snprintf(path, sizeof path, "%s/cli-huge.obj", ZS_BINARY_DIR);
+  FILE *f = fopen(path, "w");
+  ck_assert_ptr_nonnull(f);
+  fclose(f);
+  ck_assert_int_eq(truncate(path, ((off_t)1 << 30) + 1), 0);
+  const char *args[] = {"render", path, "-o", "/tmp/zscan-huge.png", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  char want[8300];
+  snprintf(want, sizeof want, "zscan render: %s: larger than 1024 MiB\n", path);
+  ck_assert_int_eq(rc, 1);
+  ck_assert_str_eq(err, want);
+  unlink(path);
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -223,6 +241,7 @@ int main(void) {
   tcase_add_test(tc, bad_model_files_refused);
   tcase_add_loop_test(tc, bad_option_refused, 0, sizeof bad_options / sizeof bad_options[0]);
   tcase_add_test(tc, render_writes_png_and_stats);
+  tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
   suite_add_tcase(s, tc);
