@@ -20,7 +20,7 @@
 
 static const char *const method_names[ZS_CULL_METHODS] = {
     "none", "vfc", "vfc-box", "hsw", "chc", "chc-prob", "ideal", "auto",
-    "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti"};
+    "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti", "chcpp-prob"};
 
 const char *zs_cull_method_name(zs_cull_method m) {
   return (unsigned)m < ZS_CULL_METHODS ? method_names[m] : "?";
@@ -493,7 +493,17 @@ static void issue_one_visible(frame_ctx *f) {
   issue_query(f, p.e, p.mask, p.was_visible);
 }
 
-static void walk_chcpp(frame_ctx *f, int batch, int defer) {
+/* Draws e as if visible without asking (chcpp-prob, when the query does
+ * not pay); its P(V) carries the prediction to the next frame. */
+static void draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv) {
+  state(f, e)->pv = pv;
+  pull_up_visibility(f, e);
+  traverse(f, e, mask);
+}
+
+/* prob: chcpp-prob, the cost model's test (formulas 2, 3) before every
+ * query CHC++ would issue. */
+static void walk_chcpp(frame_ctx *f, int batch, int defer, int prob) {
   zs_culler *c = f->c;
   const uint32_t frame = c->frame;
   c->nheap = 0;
@@ -524,23 +534,29 @@ static void walk_chcpp(frame_ctx *f, int batch, int defer) {
     if (!next_in_frustum(f, &e, &mask)) continue;
     elem_state *es = state(f, e);
     int was_visible = es->visible && es->last_visited == frame - 1;
+    double pv = predict(es, c->cost.w1, c->cost.w2);
     es->visible = 0;
     es->last_visited = frame;
     if (too_close(f, e)) {
+      es->pv = 1.0;
       pull_up_visibility(f, e);
       traverse(f, e, mask);
       continue;
     }
     if (!was_visible) { /* a termination element that was hidden: ask */
-      if (!batch) issue_query(f, e, mask, 0);
+      if (prob && !query_pays(f, e, pv)) draw_unasked(f, e, mask, pv);
+      else if (!batch) issue_query(f, e, mask, 0);
       else if (push_pending(f, &c->iq, &c->ni, &c->cap_iq, e, mask, 0) && c->ni >= ZS_CHCPP_BATCH)
         flush_invisible(f);
       continue;
     }
     if (is_object(e)) { /* a visible leaf: drawn now, asked when due */
       if (!defer) issue_query(f, e, mask, 1);
-      else if (es->next_query <= frame) push_pending(f, &c->vq, &c->nv, &c->cap_vq, e, mask, 1);
-      else pull_up_visibility(f, e); /* assumed visible this frame */
+      else if (es->next_query > frame) pull_up_visibility(f, e); /* assumed visible this frame */
+      else if (prob && !query_pays(f, e, pv)) { /* due, but not worth asking */
+        es->pv = pv;
+        pull_up_visibility(f, e);
+      } else push_pending(f, &c->vq, &c->nv, &c->cap_vq, e, mask, 1);
     }
     traverse(f, e, mask);
   }
@@ -603,9 +619,7 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
      * hidden; nodes that were visible are opened without a query */
     if (is_object(e) || !was_visible) {
       if (m != ZS_CULL_CHC && !query_pays(f, e, pv)) {
-        es->pv = pv; /* drawn as if visible; P(V) carries the prediction */
-        pull_up_visibility(f, e);
-        traverse(f, e, mask);
+        draw_unasked(f, e, mask, pv);
         continue;
       }
       issue_query(f, e, mask, (unsigned char)was_visible);
@@ -759,13 +773,15 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
 
   zs_cull_method m = c->method;
   if (m == ZS_CULL_CHCPP || m == ZS_CULL_CHCPP_NOBATCH || m == ZS_CULL_CHCPP_NODEFER ||
-      m == ZS_CULL_CHCPP_NOMULTI) {
+      m == ZS_CULL_CHCPP_NOMULTI || m == ZS_CULL_CHCPP_PROB) {
     c->multi = m != ZS_CULL_CHCPP_NOMULTI;
+    if (m == ZS_CULL_CHCPP_PROB && !count_polygons(&f))
+      return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
     if (!grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
       return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
     c->ndecision = t->nslots;
     memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
-    walk_chcpp(&f, m != ZS_CULL_CHCPP_NOBATCH, m != ZS_CULL_CHCPP_NODEFER);
+    walk_chcpp(&f, m != ZS_CULL_CHCPP_NOBATCH, m != ZS_CULL_CHCPP_NODEFER, m == ZS_CULL_CHCPP_PROB);
     return f.status;
   }
   if (m == ZS_CULL_AUTO) {

@@ -59,6 +59,11 @@
  *             chcpp-nodefer and chcpp-nomulti switch one feature off
  *             (ablation).  The tight boxes of the octree are CHC++'s
  *             tighter bounds.
+ *   chcpp-prob  chcpp with chc-prob's test (formulas 2, 3, 6, 9, 10)
+ *             before each query chcpp would issue, of a hidden element or
+ *             of a visible object that falls due: when the query does not
+ *             pay, the element is drawn unasked and its P(V) follows (11).
+ *             The combination neither paper tried.
  *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
  *             queries, and plain vfc for frames after which a whole frame
  *             of queries found nothing hidden (probing again every 8th
@@ -92,10 +97,17 @@ typedef enum zs_cull_method {
   ZS_CULL_CHCPP_NOBATCH,  /* ablation: without batching */
   ZS_CULL_CHCPP_NODEFER,  /* ablation: without deferred visible queries */
   ZS_CULL_CHCPP_NOMULTI,  /* ablation: without multiqueries */
+  ZS_CULL_CHCPP_PROB,     /* CHC++ with chc-prob's test before each query */
   ZS_CULL_METHODS
 } zs_cull_method;
 
 enum { ZS_CHCPP_BATCH = 50, ZS_CHCPP_VISIBLE_FRAMES = 5 };
+
+/* The method names, in enum order, for usage lines and error messages
+ * (test_cull checks them against zs_cull_method_name). */
+#define ZS_CULL_METHOD_LIST                                                                   \
+  "none vfc vfc-box hsw chc chc-prob ideal auto chcpp chcpp-nobatch chcpp-nodefer chcpp-nomulti " \
+  "chcpp-prob"
 
 /* "none", "vfc", ...; and back (-1 for an unknown name). */
 const char *zs_cull_method_name(zs_cull_method m);

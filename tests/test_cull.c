@@ -83,7 +83,7 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
 static const zs_cull_method exact[] = {ZS_CULL_NONE,  ZS_CULL_VFC,           ZS_CULL_HSW,
                                        ZS_CULL_CHC,   ZS_CULL_CHC_PROB,      ZS_CULL_IDEAL,
                                        ZS_CULL_AUTO,  ZS_CULL_CHCPP,         ZS_CULL_CHCPP_NOBATCH,
-                                       ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI};
+                                       ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI, ZS_CULL_CHCPP_PROB};
 enum { NEXACT = sizeof exact / sizeof exact[0] };
 
 /* The generated scenes, small, with their own walks and moving objects. */
@@ -108,15 +108,16 @@ END_TEST
 START_TEST(exact_at_every_latency) {
   /* latency from 0 to 3 frames' worth of none's modelled time */
   const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_HSW, ZS_CULL_CHC, ZS_CULL_CHC_PROB, ZS_CULL_AUTO,
-                              ZS_CULL_CHCPP};
+                              ZS_CULL_CHCPP, ZS_CULL_CHCPP_PROB};
+  enum { NM = sizeof m / sizeof m[0] };
   walk_result base;
   walk("plant?detail=0.05", 1, 1, m, 1, -1, &base);
   double frame_ns = (double)base.modelled_ps[0] / 1000.0;
   const double fractions[] = {0.0, 0.01, 0.1, 0.5, 1.0, 2.0, 3.0};
   for (size_t i = 0; i < sizeof fractions / sizeof fractions[0]; i++) {
     walk_result r;
-    walk("plant?detail=0.05", 6, 11, m, 6, fractions[i] * frame_ns, &r);
-    for (int k = 1; k < 6; k++)
+    walk("plant?detail=0.05", 6, 11, m, NM, fractions[i] * frame_ns, &r);
+    for (int k = 1; k < NM; k++)
       ck_assert_msg(r.diff[k] == 0, "latency %.2f frames: %s differs in %llu pixels", fractions[i],
                     zs_cull_method_name(m[k]), (unsigned long long)r.diff[k]);
   }
@@ -160,6 +161,33 @@ START_TEST(chcpp_features_each_pay_on_the_plant) {
       ck_assert_msg(r.modelled_ps[2] < r.modelled_ps[k], "chcpp %lld ps, %s %lld ps",
                     (long long)r.modelled_ps[2], zs_cull_method_name(m[k]), (long long)r.modelled_ps[k]);
   }
+}
+END_TEST
+
+START_TEST(method_list_names_every_method) {
+  /* the list that usage lines and errors print is the names, in order */
+  char list[512] = "";
+  for (int m = 0; m < ZS_CULL_METHODS; m++) {
+    if (m) strcat(list, " ");
+    strcat(list, zs_cull_method_name((zs_cull_method)m));
+  }
+  ck_assert_str_eq(list, ZS_CULL_METHOD_LIST);
+  for (int m = 0; m < ZS_CULL_METHODS; m++)
+    ck_assert_int_eq(zs_cull_method_parse(zs_cull_method_name((zs_cull_method)m)), m);
+  ck_assert_int_eq(zs_cull_method_parse("chcpp-magic"), -1);
+}
+END_TEST
+
+START_TEST(chcpp_prob_asks_least_on_the_plant) {
+  /* the cost model's test before CHC++'s queries: fewer queries than
+   * either parent method, the same pixels */
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_CHC_PROB, ZS_CULL_CHCPP, ZS_CULL_CHCPP_PROB};
+  walk_result r;
+  walk("plant?detail=0.25", 12, 8, m, 4, -1, &r);
+  ck_assert_uint_eq(r.diff[3], 0);
+  ck_assert_uint_gt(r.queries[3], 0);
+  ck_assert_uint_lt(r.queries[3], r.queries[1]);
+  ck_assert_uint_lt(r.queries[3], r.queries[2]);
 }
 END_TEST
 
@@ -251,6 +279,8 @@ int main(void) {
   tcase_add_test(tc, query_ordering_on_the_plant);
   tcase_add_test(tc, counters_identical_every_run);
   tcase_add_test(tc, chcpp_features_each_pay_on_the_plant);
+  tcase_add_test(tc, chcpp_prob_asks_least_on_the_plant);
+  tcase_add_test(tc, method_list_names_every_method);
   tcase_add_test(tc, frustum_planes_and_masking);
   tcase_add_test(tc, auto_costs_nothing_without_occlusion);
   suite_add_tcase(s, tc);

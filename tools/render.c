@@ -83,8 +83,7 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
     } else if (strcmp(a, "--cull") == 0) {
       VALUE();
       if ((o->cull = zs_cull_method_parse(v)) < 0)
-        return zs_error_set(err, ZS_ERR_ARG, "--cull: unknown method '%s' (none vfc vfc-box hsw chc "
-                                             "chc-prob ideal auto)", v);
+        return zs_error_set(err, ZS_ERR_ARG, "--cull: unknown method '%s' (" ZS_CULL_METHOD_LIST ")", v);
     } else if (strcmp(a, "--overlay") == 0) {
       VALUE();
       if (strcmp(v, "culling") != 0)

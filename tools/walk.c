@@ -30,8 +30,9 @@
 static const char usage[] =
     "usage: zscan walk SCENE --cull M1,M2,... [options]\n"
     "  SCENE               FILE.json, FILE.obj, or builtin:NAME[?k=v]\n"
-    "  --cull LIST         methods: none vfc vfc-box hsw chc chc-prob ideal auto\n"
-    "                      (none is always run: it is the reference)\n"
+    "  --cull LIST         methods, comma-separated; none is always run: it is\n"
+    "                      the reference.  The methods:\n"
+    "                      " ZS_CULL_METHOD_LIST "\n"
     "  --frames N          frames of the walk (default: the scene's path)\n"
     "  --step K            every K-th frame of the path (objects move K steps)\n"
     "  --size WxH          image size (default: the scene's, else 1024x768)\n"
@@ -84,8 +85,7 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
         int m = zs_cull_method_parse(tok);
         if (m < 0)
           return zs_error_set(err, ZS_ERR_ARG,
-                              "--cull: unknown method '%s' (none vfc vfc-box hsw chc chc-prob "
-                              "ideal auto)", tok);
+                              "--cull: unknown method '%s' (" ZS_CULL_METHOD_LIST ")", tok);
         int dup = 0;
         for (int k = 0; k < o->nmethods; k++) dup |= o->methods[k] == m;
         if (!dup) o->methods[o->nmethods++] = m;
