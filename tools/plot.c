@@ -98,9 +98,15 @@ zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
                      "set output OUT\nset title '%s'\nset xlabel '%s'\nset ylabel '%s'\n"
                      "set key outside right\nset grid\n%splot ",
                      title, xlabel, ylabel, logy ? "set logscale y\n" : "");
+  /* gnuplot's own palette has 8 colours and repeats them; walks compare
+   * more methods than that.  12 distinct colours, then dashes. */
+  static const char *const colour[12] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                                         "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+                                         "#bcbd22", "#17becf", "#000000", "#aec7e8"};
   for (int j = 0; j < nseries && len > 0 && (size_t)len < cap; j++)
-    len += snprintf(script + len, cap - (size_t)len, "%s'%s' using 1:%d with lines lw 2 title '%s'",
-                    j ? ", " : "", dat, j + 2, names[j]);
+    len += snprintf(script + len, cap - (size_t)len,
+                    "%s'%s' using 1:%d with lines lw 2 lc rgb '%s' dt %d title '%s'",
+                    j ? ", " : "", dat, j + 2, colour[j % 12], 1 + j / 12, names[j]);
   if (len > 0 && (size_t)len < cap) snprintf(script + len, cap - (size_t)len, "\n");
   zs_status st = zs_plot_run(png, script, err);
   free(script);
