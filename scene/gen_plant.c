@@ -266,6 +266,17 @@ static int line_to(profile *pr, double r, double y, int steps) {
   return 1;
 }
 
+/* The upper dished head of a vessel of radius 1: a quarter ellipse in head
+ * steps from the shell's top at y to the axis at y + 0.5. */
+static int upper_head(profile *pr, int head, double y) {
+  for (int i = 1; i <= head; i++) {
+    double s, c;
+    zs_gen_sincos(0.25 * (1.0 - (double)i / head), &s, &c);
+    if (!pt(pr, i == head ? 0.0 : s, y + 0.5 * c)) return 0;
+  }
+  return 1;
+}
+
 static zs_status lathe(zs_model *m, profile *pr, int around, int caps, const double *xf,
                        uint32_t rgb) {
   zs_status st = pr->n ? zs_gen_lathe(m, pr->pt, pr->n, around, caps, xf, rgb, 0) : ZS_ERR_NOMEM;
@@ -317,11 +328,7 @@ static zs_status mesh_boiler(const plant *p, zs_model *m) {
     ok = pt(&pr, s, 1.0 - 0.5 * c);
   }
   ok = ok && line_to(&pr, 1.0, 5.5, shell);
-  for (int i = 1; i <= head && ok; i++) {
-    double s, c;
-    zs_gen_sincos(0.25 * (1.0 - (double)i / head), &s, &c);
-    ok = pt(&pr, i == head ? 0.0 : s, 5.5 + 0.5 * c);
-  }
+  ok = ok && upper_head(&pr, head, 5.5);
   if (!ok) {
     free(pr.pt);
     return ZS_ERR_NOMEM;
@@ -329,7 +336,7 @@ static zs_status mesh_boiler(const plant *p, zs_model *m) {
   TRY(lathe(m, &pr, around, 0, NULL, BOILER_RGB));
   for (int k = 0; k < 5; k++)
     TRY(ring_y(m, 1.02, 0.035, 1.8 + 0.8 * k, around, seg(p, 16, 4), NULL, BOILER_RGB));
-  /* Manways: short stubs out of the shell at two heights, four sides. */
+  /* Manways: short nozzles out of the shell at two heights, four sides. */
   for (int k = 0; k < 8; k++) {
     double sa, ca;
     zs_gen_sincos(0.125 * k + (k >= 4 ? 0.0625 : 0.0), &sa, &ca);
@@ -460,11 +467,7 @@ static zs_status mesh_hx(const plant *p, zs_model *m) {
   ok = ok && line_to(&pr, 1.0, 0.9, 1) && pt(&pr, 1.12, 0.9) && pt(&pr, 1.12, 1.05) &&
        pt(&pr, 1.0, 1.05) && line_to(&pr, 1.0, 4.95, shell) && pt(&pr, 1.12, 4.95) &&
        pt(&pr, 1.12, 5.1) && pt(&pr, 1.0, 5.1) && line_to(&pr, 1.0, 5.5, 1);
-  for (int i = 1; i <= head && ok; i++) {
-    double s, c;
-    zs_gen_sincos(0.25 * (1.0 - (double)i / head), &s, &c);
-    ok = pt(&pr, i == head ? 0.0 : s, 5.5 + 0.5 * c);
-  }
+  ok = ok && upper_head(&pr, head, 5.5);
   if (!ok) {
     free(pr.pt);
     return ZS_ERR_NOMEM;
