@@ -141,6 +141,29 @@ static const bad_option bad_options[] = {
     {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open"},
 };
 
+/* Help comes first, even beside an option the command does not know. */
+static const char *const help_commands[][3] = {
+    {"render", NULL}, {"walk", NULL}, {"trace", NULL}, {"query", NULL}, {"path", NULL},
+    {"bench", "octree"}, {"bench", "depthsort"}, {"calibrate", NULL}};
+
+START_TEST(help_before_anything_else) {
+  const char *const *c = help_commands[_i];
+  const char *args[6];
+  int n = 0;
+  args[n++] = c[0];
+  if (c[1]) args[n++] = c[1];
+  args[n++] = "--frobnicate";
+  args[n++] = "-h";
+  args[n] = NULL;
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "%s: exit %d, stderr '%s'", c[0], rc, err);
+  char want[64];
+  snprintf(want, sizeof want, "usage: zscan %s%s%s", c[0], c[1] ? " " : "", c[1] ? c[1] : "");
+  ck_assert_msg(strncmp(out, want, strlen(want)) == 0, "%s: '%.60s'", c[0], out);
+  ck_assert_str_eq(err, "");
+}
+END_TEST
+
 START_TEST(bad_option_refused) {
   const bad_option *b = &bad_options[_i];
   char png[4096];
@@ -240,6 +263,8 @@ int main(void) {
   tcase_add_test(tc, bad_scene_files_refused);
   tcase_add_test(tc, bad_model_files_refused);
   tcase_add_loop_test(tc, bad_option_refused, 0, sizeof bad_options / sizeof bad_options[0]);
+  tcase_add_loop_test(tc, help_before_anything_else, 0,
+                      sizeof help_commands / sizeof help_commands[0]);
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, unknown_command);

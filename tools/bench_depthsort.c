@@ -134,6 +134,10 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
 }
 
 int zs_cmd_bench_depthsort(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    return 0;
+  }
   const char *spec = "builtin:city", *csv_path = NULL;
   int frames = 60, w = 1024, h = 768;
   double far = 0;
@@ -141,10 +145,7 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   zs_error_clear(&err);
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v;
-    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(usage, stdout);
-      return 0;
-    } else if (strcmp(a, "--frames") == 0) {
+    if (strcmp(a, "--frames") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 2, 100000, &frames, &err))
         goto fail;
     } else if (strcmp(a, "--size") == 0) {

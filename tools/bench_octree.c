@@ -248,6 +248,10 @@ static zs_status write_plot(const char *path, const bench_row *rows, int n, cons
 /* ---- the command ------------------------------------------------------------ */
 
 int zs_cmd_bench_octree(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    return 0;
+  }
   bench_opts o = {ZS_GEN_SPHERES_MAX, 50, ZS_OCTREE_DEFAULT_DEPTH, 0,
                   ZS_OCTREE_DEFAULT_LOOSENESS, NULL, NULL};
   bench_row rows[STEPS];
@@ -256,10 +260,6 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     const char *v;
     const char *a = argv[i];
-    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(usage, stdout);
-      return 0;
-    }
     if (strcmp(a, "--csv") == 0 || strcmp(a, "--plot") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err)) goto fail;
       *(a[2] == 'c' ? &o.csv : &o.plot) = v;

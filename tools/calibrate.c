@@ -291,6 +291,10 @@ static int fit(const workload *w, int nw, const int use[NTERMS], double x[NTERMS
 }
 
 int zs_cmd_calibrate(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    puts("usage: zscan calibrate [-o clock.json] [--repeat K]");
+    return 0;
+  }
   const char *out = "clock.json";
   int repeat = 9;
   zs_error err;
@@ -303,9 +307,6 @@ int zs_cmd_calibrate(int argc, char **argv) {
     } else if (strcmp(argv[i], "--repeat") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int("--repeat", v, 1, 1000, &repeat, &err))
         goto fail;
-    } else if (strcmp(argv[i], "--help") == 0) {
-      puts("usage: zscan calibrate [-o clock.json] [--repeat K]");
-      return 0;
     } else {
       zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s'", argv[i]);
       goto fail;

@@ -23,6 +23,10 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
  * written, before any work is done. */
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
 
+/* 1 when any argument after the command is --help or -h: help is given
+ * before anything else is parsed, so it works beside a bad option too. */
+int zs_cli_help_asked(int argc, char **argv);
+
 /* The median of v[0..n-1], n > 0 (sorts v). */
 double zs_median(double *v, int n);
 

@@ -17,6 +17,10 @@ static const char usage[] =
     "usage: zscan path SCENE [--frames N] [--named static|translate|roll|yaw|fast] [--size WxH]\n";
 
 int zs_cmd_path(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    return 0;
+  }
   const char *spec = NULL, *named = NULL;
   int frames = 0, w = 0, h = 0;
   zs_error err;
@@ -25,10 +29,7 @@ int zs_cmd_path(int argc, char **argv) {
   int loaded = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v;
-    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-      fputs(usage, stdout);
-      return 0;
-    } else if (strcmp(a, "--frames") == 0) {
+    if (strcmp(a, "--frames") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 1, 1000000, &frames, &err))
         goto fail;
     } else if (strcmp(a, "--named") == 0) {

@@ -110,17 +110,17 @@ static zs_status run(const char *input, const zs_view_opts *v, zs_error *err) {
 }
 
 int zs_cmd_query(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    fputs(zs_view_opts_usage, stdout);
+    return 0;
+  }
   const char *input = NULL;
   zs_view_opts v;
   zs_view_opts_default(&v, 1024, 768);
   zs_error err;
   zs_error_clear(&err);
   for (int i = 1; i < argc; i++) {
-    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      fputs(usage, stdout);
-      fputs(zs_view_opts_usage, stdout);
-      return 0;
-    }
     int taken = zs_view_opts_parse(&v, argc, argv, &i, &err);
     if (taken < 0) goto fail;
     if (taken) continue;

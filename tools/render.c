@@ -283,13 +283,12 @@ done:
 }
 
 int zs_cmd_render(int argc, char **argv) {
-  for (int i = 1; i < argc; i++)
-    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      fputs(usage_head, stdout);
-      fputs(zs_view_opts_usage, stdout);
-      fputs(usage_tail, stdout);
-      return 0;
-    }
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage_head, stdout);
+    fputs(zs_view_opts_usage, stdout);
+    fputs(usage_tail, stdout);
+    return 0;
+  }
   render_opts o;
   zs_error err;
   zs_error_clear(&err);

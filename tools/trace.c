@@ -453,12 +453,11 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
 }
 
 int zs_cmd_trace(int argc, char **argv) {
-  for (int i = 1; i < argc; i++)
-    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      fputs(usage, stdout);
-      fputs(zs_view_opts_usage, stdout);
-      return 0;
-    }
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    fputs(zs_view_opts_usage, stdout);
+    return 0;
+  }
   trace_opts o;
   zs_error err;
   zs_error_clear(&err);

@@ -337,11 +337,10 @@ done:
 }
 
 int zs_cmd_walk(int argc, char **argv) {
-  for (int i = 1; i < argc; i++)
-    if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      fputs(usage, stdout);
-      return 0;
-    }
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    return 0;
+  }
   walk_opts o;
   zs_error err;
   zs_error_clear(&err);
