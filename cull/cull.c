@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "cull/frustum.h"
+#include "raster/grow.h"
 #include "raster/rng.h"
 
 static const char *const method_names[ZS_CULL_METHODS] = {
@@ -127,16 +128,6 @@ typedef struct frame_ctx {
   zs_status status;
 } frame_ctx;
 
-static int grow(void **p, int32_t *cap, int32_t need, size_t size) {
-  if (need <= *cap) return 1;
-  int32_t n = *cap ? *cap : 64;
-  while (n < need) n *= 2;
-  void *q = realloc(*p, (size_t)n * size);
-  if (!q) return 0;
-  *p = q;
-  *cap = n;
-  return 1;
-}
 
 zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_culler **out,
                            zs_error *err) {
@@ -229,7 +220,7 @@ static int heap_less(const heap_entry *a, const heap_entry *b) {
 
 static int heap_push(frame_ctx *f, elem e, unsigned mask) {
   zs_culler *c = f->c;
-  if (!grow((void **)&c->heap, &c->cap_heap, c->nheap + 1, sizeof *c->heap)) return 0;
+  if (!zs_grow((void **)&c->heap, &c->cap_heap, c->nheap + 1, sizeof *c->heap)) return 0;
   const double *lo, *hi;
   elem_box(f, e, &lo, &hi);
   int32_t i = c->nheap++;
@@ -329,7 +320,7 @@ static double predict(const elem_state *es, double w1, double w2) {
 
 static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible) {
   zs_culler *c = f->c;
-  if (!grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
+  if (!zs_grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
@@ -409,7 +400,7 @@ static int next_in_frustum(frame_ctx *f, elem *e, unsigned *mask) {
 
 static int push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem e, unsigned mask,
                         uint8_t was_visible) {
-  if (!grow((void **)q, cap, *n + 1, sizeof **q)) {
+  if (!zs_grow((void **)q, cap, *n + 1, sizeof **q)) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return 0;
   }
@@ -423,7 +414,7 @@ static double keep_hidden(uint32_t i) { return 0.99 - 0.7 * exp(-(double)i); }
 /* One query over the boxes of members gm[first .. first + n - 1]. */
 static void issue_multiquery(frame_ctx *f, int32_t first, int32_t n) {
   zs_culler *c = f->c;
-  if (!grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
+  if (!zs_grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
@@ -472,7 +463,7 @@ static void flush_invisible(frame_ctx *f) {
     if (k == 1) {
       issue_query(f, c->iq[i].e, c->iq[i].mask, c->iq[i].was_visible);
     } else {
-      if (!grow((void **)&c->gm, &c->cap_gm, c->ngm + k, sizeof *c->gm)) {
+      if (!zs_grow((void **)&c->gm, &c->cap_gm, c->ngm + k, sizeof *c->gm)) {
         f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
         return;
       }
@@ -632,7 +623,7 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
 static int count_polygons(frame_ctx *f) {
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
-  if (!grow((void **)&c->polys, &c->cap_polys, t->nslots, sizeof *c->polys)) return 0;
+  if (!zs_grow((void **)&c->polys, &c->cap_polys, t->nslots, sizeof *c->polys)) return 0;
   /* children have larger levels: sum level by level, deepest first */
   int deepest = 0;
   for (int32_t n = 0; n < t->nslots; n++) {
@@ -659,7 +650,7 @@ static void ideal_frame(frame_ctx *f, const double view[16], const double proj[1
     oc.shade = ZS_SHADE_ID;
     if ((f->status = zs_device_create(&oc, &c->oracle, f->err))) return;
   }
-  if (!grow((void **)&c->owns_pixel, &c->cap_inst, f->s->ninst, 1)) {
+  if (!zs_grow((void **)&c->owns_pixel, &c->cap_inst, f->s->ninst, 1)) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
@@ -745,9 +736,9 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   }
 
   /* the tree methods */
-  if (!grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns))
+  if (!zs_grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
-  if (!grow((void **)&c->os, &c->cap_os, s->ninst, sizeof *c->os))
+  if (!zs_grow((void **)&c->os, &c->cap_os, s->ninst, sizeof *c->os))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
   /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
    * octree frees and reuses keeps its state: at worst a node is opened
@@ -777,7 +768,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
     c->multi = m != ZS_CULL_CHCPP_NOMULTI;
     if (m == ZS_CULL_CHCPP_PROB && !count_polygons(&f))
       return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
-    if (!grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
+    if (!zs_grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
       return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
     c->ndecision = t->nslots;
     memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
@@ -790,7 +781,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   }
   if ((m == ZS_CULL_CHC_PROB || c->method == ZS_CULL_AUTO) && !count_polygons(&f))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
-  if (!grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
+  if (!zs_grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
   c->ndecision = t->nslots;
   memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);

@@ -25,6 +25,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "raster/grow.h"
 #include "raster/internal.h"
 
 static int32_t floordiv256(int64_t v) {
@@ -47,23 +48,8 @@ void zs_batch_free(zs_batch *b) {
 }
 
 static int reserve(zs_batch *b, int polys, int edges) {
-  if (b->npolys + polys > b->cap_polys) {
-    int32_t cap = b->cap_polys ? b->cap_polys * 2 : 1024;
-    while (cap < b->npolys + polys) cap *= 2;
-    zs_poly *p = realloc(b->polys, (size_t)cap * sizeof *p);
-    if (!p) return 0;
-    b->polys = p;
-    b->cap_polys = cap;
-  }
-  if (b->nedges + edges > b->cap_edges) {
-    int32_t cap = b->cap_edges ? b->cap_edges * 2 : 4096;
-    while (cap < b->nedges + edges) cap *= 2;
-    zs_edge *e = realloc(b->edges, (size_t)cap * sizeof *e);
-    if (!e) return 0;
-    b->edges = e;
-    b->cap_edges = cap;
-  }
-  return 1;
+  return zs_grow((void **)&b->polys, &b->cap_polys, (int64_t)b->npolys + polys, sizeof *b->polys) &&
+         zs_grow((void **)&b->edges, &b->cap_edges, (int64_t)b->nedges + edges, sizeof *b->edges);
 }
 
 typedef struct plane {

@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
+#include "raster/grow.h"
 #include "scene/generate.h"
 #include "scene/camera.h"
 #include "tools/clockfile.h"
@@ -48,30 +49,17 @@ typedef struct workload {
  * synthetic workloads. */
 typedef struct gen_mesh {
   zs_mesh m;
-  int32_t cap_v, cap_f;
+  int32_t cap_pos, cap_fv, cap_fs;
 } gen_mesh;
 
 static int gm_poly(gen_mesh *g, const double *xyz, int n) {
-  if (g->m.nverts + n > g->cap_v) {
-    int32_t cap = g->cap_v ? 2 * g->cap_v : 1024;
-    while (cap < g->m.nverts + n) cap *= 2;
-    double *p = realloc(g->m.pos, (size_t)cap * 3 * sizeof *p);
-    int32_t *fv = realloc(g->m.face_vert, (size_t)cap * sizeof *fv);
-    if (!p || !fv) {
-      free(p ? p : NULL);
-      return 0;
-    }
-    g->m.pos = p;
-    g->m.face_vert = fv;
-    g->cap_v = cap;
-  }
-  if (g->m.nfaces + 2 > g->cap_f) {
-    int32_t cap = g->cap_f ? 2 * g->cap_f : 1024;
-    int32_t *fs = realloc(g->m.face_start, (size_t)cap * sizeof *fs);
-    if (!fs) return 0;
-    g->m.face_start = fs;
-    g->cap_f = cap;
-  }
+  /* each array its own capacity: a failed growth leaves the mesh whole */
+  if (!zs_grow((void **)&g->m.pos, &g->cap_pos, (int64_t)g->m.nverts + n, 3 * sizeof *g->m.pos) ||
+      !zs_grow((void **)&g->m.face_vert, &g->cap_fv, (int64_t)g->m.nverts + n,
+               sizeof *g->m.face_vert) ||
+      !zs_grow((void **)&g->m.face_start, &g->cap_fs, (int64_t)g->m.nfaces + 2,
+               sizeof *g->m.face_start))
+    return 0;
   if (g->m.nfaces == 0) g->m.face_start[0] = 0;
   for (int i = 0; i < n; i++) {
     memcpy(&g->m.pos[3 * (g->m.nverts + i)], &xyz[3 * i], 3 * sizeof(double));
