@@ -16,12 +16,14 @@
 #include <string.h>
 
 #include "cull/frustum.h"
+#include "cull/parts.h"
 #include "raster/grow.h"
 #include "raster/rng.h"
 
 static const char *const method_names[ZS_CULL_METHODS] = {
     "none", "vfc", "vfc-box", "hsw", "chc", "chc-prob", "ideal", "auto",
-    "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti", "chcpp-prob"};
+    "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti", "chcpp-prob", "nohc",
+    "ideal-box"};
 
 const char *zs_cull_method_name(zs_cull_method m) {
   return (unsigned)m < ZS_CULL_METHODS ? method_names[m] : "?";
@@ -54,8 +56,11 @@ typedef struct elem_state {
   uint32_t done;           /* frame it was rendered (object) or opened (node) */
   uint8_t visible;
   double pv;               /* P(V) for the next frame */
-  uint32_t next_query;     /* chcpp: the frame a visible object is asked again */
+  uint32_t next_query;     /* chcpp: the frame a visible object is asked again;
+                            * nohc: the frame its draw is measured again */
   uint32_t hidden_frames;  /* chcpp: frames found hidden in a row */
+  uint32_t samples;        /* nohc: pixels its last draw wrote */
+  int32_t asked_class;     /* nohc: history class its query was decided on, or -1 */
 } elem_state;
 
 /* chcpp: an element waiting for its query to be issued. */
@@ -64,6 +69,21 @@ typedef struct pending {
   unsigned mask;
   uint8_t was_visible;
 } pending;
+
+/* nohc: coverage cells of NOHC_CELL pixels; the share of its box's
+ * rectangle a mesh fills, for the coverage it adds; the classes of
+ * history (unseen; hidden 1 .. NOHC_HIDDEN frames in a row; visible, by
+ * log2(s + 1) of the pixels s it wrote) times NOHC_BUCKETS of coverage. */
+enum {
+  NOHC_CELL = 16,
+  NOHC_MEASURE = 4,
+  NOHC_HIDDEN = 8,
+  NOHC_WROTE = 24,
+  NOHC_HISTORIES = 1 + NOHC_HIDDEN + NOHC_WROTE,
+  NOHC_BUCKETS = 10,
+  NOHC_CLASSES = NOHC_HISTORIES * NOHC_BUCKETS
+};
+static const double nohc_fill = 0.5;
 
 typedef struct heap_entry {
   double key;
@@ -108,6 +128,15 @@ struct zs_culler {
   int32_t ni, nv, ngm, cap_iq, cap_vq, cap_gm;
   int multi;               /* multiqueries on */
   zs_rng rng;
+  /* nohc: the coverage grid of this frame; per history class, how often an
+   * object asked about was found visible and hidden */
+  double *cov;
+  int32_t cov_w, cov_h, cap_cov;
+  /* the boxes of the query being issued; the objects' parts (NULL: boxes) */
+  double (*qlo)[3], (*qhi)[3];
+  int32_t cap_qlo, cap_qhi;
+  zs_parts *parts;
+  uint32_t class_visible[NOHC_CLASSES], class_hidden[NOHC_CLASSES];
 };
 
 /* ---- the frame's context ---- */
@@ -120,8 +149,9 @@ typedef struct frame_ctx {
   zs_frustum frustum;
   double eye[3];
   double near_reach;       /* farthest a near-plane corner lies from the eye */
-  double tan_half_fovy, height;
+  double tan_half_fovy, width, height;
   double ttri, tcall, tq, tquery; /* cost model constants, ns */
+  double mvp[16];          /* world to clip (nohc's rectangles) */
   zs_cull_stats *st;
   uint64_t hidden_objects; /* auto: objects drawn that wrote no pixel */
   zs_error *err;
@@ -139,7 +169,28 @@ zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_cull
   zs_rng_seed(&c->rng, 0xC4C); /* chcpp's first visible intervals: a fixed seed */
   if (cost) c->cost = *cost;
   else zs_cost_params_default(&c->cost);
+  if (!(c->parts = zs_parts_create())) {
+    free(c);
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
   *out = c;
+  return ZS_OK;
+}
+
+int zs_query_bounds_parse(const char *name) {
+  return strcmp(name, "parts") == 0 ? ZS_BOUNDS_PARTS : strcmp(name, "box") == 0 ? ZS_BOUNDS_BOX : -1;
+}
+
+zs_status zs_culler_set_bounds(zs_culler *c, zs_query_bounds b, zs_error *err) {
+  if (b != ZS_BOUNDS_PARTS && b != ZS_BOUNDS_BOX)
+    return zs_error_set(err, ZS_ERR_ARG, "unknown query bounds");
+  if (c->frame > 0) return zs_error_set(err, ZS_ERR_ARG, "query bounds: set before the first frame");
+  if (b == ZS_BOUNDS_BOX) {
+    zs_parts_destroy(c->parts);
+    c->parts = NULL;
+  } else if (!c->parts && !(c->parts = zs_parts_create())) {
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
   return ZS_OK;
 }
 
@@ -156,6 +207,10 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->gm);
   free(c->owns_pixel);
   free(c->owner);
+  free(c->cov);
+  free(c->qlo);
+  free(c->qhi);
+  zs_parts_destroy(c->parts);
   zs_device_destroy(c->oracle);
   free(c);
 }
@@ -199,17 +254,91 @@ static double box_distance2(const double eye[3], const double *lo, const double 
   return d2;
 }
 
+/* ---- nohc's screen estimates ---- */
+
+/* The window rectangle x0, y0, x1, y1 of a box's projection, clamped to
+ * the image; the whole image when a corner lies behind the eye. */
+static void box_rect(const frame_ctx *f, const double *lo, const double *hi, double r[4]) {
+  const double *m = f->mvp;
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (int b = 0; b < 8; b++) {
+    double p[3] = {(b & 1) ? hi[0] : lo[0], (b & 2) ? hi[1] : lo[1], (b & 4) ? hi[2] : lo[2]};
+    double cw = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
+    if (!(cw > 1e-9)) {
+      r[0] = r[1] = 0.0, r[2] = f->width, r[3] = f->height;
+      return;
+    }
+    double x = 0.5 * ((m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) / cw + 1.0) * f->width;
+    double y = 0.5 * ((m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) / cw + 1.0) * f->height;
+    x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+  }
+  r[0] = fmax(x0, 0.0), r[1] = fmax(y0, 0.0), r[2] = fmin(x1, f->width), r[3] = fmin(y1, f->height);
+}
+
+/* Runs body for every coverage cell that rectangle r meets, with cell
+ * pointing at its coverage and overlap the pixels they share. */
+#define FOR_EACH_CELL(f, r, cell, overlap, body)                                             \
+  for (int32_t cy_ = (int32_t)((r)[1] / NOHC_CELL); cy_ * NOHC_CELL < (r)[3]; cy_++)          \
+    for (int32_t cx_ = (int32_t)((r)[0] / NOHC_CELL); cx_ * NOHC_CELL < (r)[2]; cx_++) {      \
+      double *cell = &(f)->c->cov[cy_ * (f)->c->cov_w + cx_];                                 \
+      double overlap = (fmin((r)[2], (cx_ + 1) * NOHC_CELL) - fmax((r)[0], cx_ * NOHC_CELL)) * \
+                       (fmin((r)[3], (cy_ + 1) * NOHC_CELL) - fmax((r)[1], cy_ * NOHC_CELL));   \
+      body                                                                                    \
+    }
+
+/* A drawn object covers about nohc_fill of its box's rectangle. */
+static void add_coverage(frame_ctx *f, int32_t i) {
+  double r[4];
+  box_rect(f, f->t->olo[i], f->t->ohi[i], r);
+  zs_device_cpu_work(f->dev, ZS_CPU_COST_EVAL, 1);
+  FOR_EACH_CELL(f, r, cell, overlap, { *cell += nohc_fill * overlap / (NOHC_CELL * NOHC_CELL); })
+}
+
+/* The chance that what is drawn so far covers all of rectangle r: every
+ * cell it meets covered, each with probability 1 - e^-d. */
+static double covered(frame_ctx *f, const double r[4]) {
+  double p = 1.0;
+  FOR_EACH_CELL(f, r, cell, overlap, {
+    (void)overlap;
+    p *= 1.0 - exp(-*cell);
+    if (p < 1e-9) return 0.0;
+  })
+  return p;
+}
+
 /* ---- drawing ---- */
 
 static void draw_instance(frame_ctx *f, int32_t i) {
   if (f->status != ZS_OK) return;
   const zs_instance *in = &f->s->inst[i];
   const zs_mesh *m = &f->s->meshes[in->mesh].mesh;
+  elem_state *es = &f->c->os[i];
+  const int nohc = f->c->method == ZS_CULL_NOHC;
+  /* nohc measures an object it draws every NOHC_MEASURE frames (the first
+   * time at random, so that the measurements spread over the frames): it
+   * draws it inside a query, whose count of written pixels is its history
+   * from the next frame on, when a GPU's answer would long be there (the
+   * device's count is the query's). */
+  const int measure = nohc && f->c->frame >= es->next_query;
   uint64_t before = zs_device_stats(f->dev)->pixels_written;
+  zs_query q;
+  if (measure && (f->status = zs_device_query_begin(f->dev, &q, f->err))) return;
   f->status = zs_device_draw(f->dev, m, in->model, in->id_base, in->rgb, f->err);
+  if (measure && f->status == ZS_OK) f->status = zs_device_query_end(f->dev, f->err);
   f->st->objects_drawn++;
   f->st->faces_drawn += (uint64_t)m->nfaces;
-  if (zs_device_stats(f->dev)->pixels_written == before) f->hidden_objects++;
+  uint64_t written = zs_device_stats(f->dev)->pixels_written - before;
+  if (written == 0) f->hidden_objects++;
+  if (measure) {
+    es->samples = written > UINT32_MAX ? UINT32_MAX : (uint32_t)written;
+    es->next_query = f->c->frame + (es->next_query == 0
+                                        ? 1 + (uint32_t)zs_rng_below(&f->c->rng, NOHC_MEASURE)
+                                        : (uint32_t)NOHC_MEASURE);
+  }
+  if (nohc) {
+    es->hidden_frames = 0;
+    add_coverage(f, i);
+  }
 }
 
 /* ---- the traversal queue: a min-heap on (distance, element) ---- */
@@ -318,26 +447,56 @@ static double predict(const elem_state *es, double w1, double w2) {
 
 /* ---- the methods ---- */
 
-static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible) {
+/* Appends the boxes a query over element e draws: a node's tight box; an
+ * object's parts (parts.h) or its box. */
+static int add_query_boxes(frame_ctx *f, elem e, int32_t *n) {
   zs_culler *c = f->c;
-  if (!zs_grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
+  const double(*plo)[3], (*phi)[3];
+  const double *lo, *hi;
+  int k = 1;
+  if (is_object(e) && c->parts) {
+    if (!zs_parts_of(c->parts, f->s, object_of(e), &plo, &phi, &k)) return 0;
+  } else {
+    elem_box(f, e, &lo, &hi);
+    plo = (const double(*)[3])lo;
+    phi = (const double(*)[3])hi;
+  }
+  if (!zs_grow((void **)&c->qlo, &c->cap_qlo, *n + k, sizeof *c->qlo) ||
+      !zs_grow((void **)&c->qhi, &c->cap_qhi, *n + k, sizeof *c->qhi))
+    return 0;
+  memcpy(c->qlo + *n, plo, (size_t)k * sizeof *c->qlo);
+  memcpy(c->qhi + *n, phi, (size_t)k * sizeof *c->qhi);
+  *n += k;
+  return 1;
+}
+
+/* One query over the boxes of members[0 .. n-1], as one draw call, queued
+ * as entry qe. */
+static void query_elements(frame_ctx *f, const pending *members, int32_t n, query_entry qe) {
+  zs_culler *c = f->c;
+  int32_t nbox = 0;
+  int ok = zs_grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq);
+  for (int32_t i = 0; i < n && ok; i++) ok = add_query_boxes(f, members[i].e, &nbox);
+  if (!ok) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
-  zs_query q;
-  const double *lo, *hi;
-  elem_box(f, e, &lo, &hi);
-  if ((f->status = zs_device_query_begin(f->dev, &q, f->err)) ||
-      (f->status = zs_device_query_box(f->dev, lo, hi, f->err)) ||
+  if ((f->status = zs_device_query_begin(f->dev, &qe.q, f->err)) ||
+      (f->status = zs_device_query_boxes(f->dev, (const double(*)[3])c->qlo,
+                                         (const double(*)[3])c->qhi, nbox, f->err)) ||
       (f->status = zs_device_query_end(f->dev, f->err)))
     return;
   f->st->queries++;
-  c->qq[c->qtail++] = (query_entry){e, q, mask, was_visible, 0, 0};
+  c->qq[c->qtail++] = qe;
+}
+
+static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible) {
+  pending one = {e, mask, was_visible};
+  query_elements(f, &one, 1, (query_entry){e, 0, mask, was_visible, 0, 0});
 }
 
 /* Takes the answer of the query at the head of the queue (waiting for it
  * if need be) and acts on it. */
-static void issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible);
 
 static void take_result(frame_ctx *f) {
   zs_culler *c = f->c;
@@ -359,6 +518,11 @@ static void take_result(frame_ctx *f) {
     return;
   }
   state(f, q.e)->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
+  int32_t k = state(f, q.e)->asked_class;
+  if (k >= 0) { /* nohc: how its history class turned out */
+    visible ? c->class_visible[k]++ : c->class_hidden[k]++;
+    state(f, q.e)->asked_class = -1;
+  }
   if (q.was_visible) visible ? c->vv++ : c->vh++;
   else visible ? c->hv++ : c->hh++;
   decide(f, q.e, visible ? ZS_NODE_QUERIED_VISIBLE : ZS_NODE_QUERIED_HIDDEN);
@@ -414,34 +578,7 @@ static double keep_hidden(uint32_t i) { return 0.99 - 0.7 * exp(-(double)i); }
 /* One query over the boxes of members gm[first .. first + n - 1]. */
 static void issue_multiquery(frame_ctx *f, int32_t first, int32_t n) {
   zs_culler *c = f->c;
-  if (!zs_grow((void **)&c->qq, &c->cap_qq, c->qtail + 1, sizeof *c->qq)) {
-    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
-    return;
-  }
-  zs_query q;
-  double(*lo)[3] = malloc((size_t)n * sizeof *lo), (*hi)[3] = malloc((size_t)n * sizeof *hi);
-  if (!lo || !hi) {
-    free(lo);
-    free(hi);
-    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
-    return;
-  }
-  for (int32_t i = 0; i < n; i++) {
-    const double *l, *h;
-    elem_box(f, c->gm[first + i].e, &l, &h);
-    memcpy(lo[i], l, sizeof lo[i]);
-    memcpy(hi[i], h, sizeof hi[i]);
-  }
-  /* the boxes of a multiquery: one draw call */
-  if (!(f->status = zs_device_query_begin(f->dev, &q, f->err)) &&
-      !(f->status = zs_device_query_boxes(f->dev, (const double(*)[3])lo, (const double(*)[3])hi, n,
-                                          f->err)))
-    f->status = zs_device_query_end(f->dev, f->err);
-  free(lo);
-  free(hi);
-  if (f->status) return;
-  f->st->queries++;
-  c->qq[c->qtail++] = (query_entry){c->gm[first].e, q, c->gm[first].mask, 0, first, n};
+  query_elements(f, c->gm + first, n, (query_entry){c->gm[first].e, 0, c->gm[first].mask, 0, first, n});
 }
 
 /* Issues every query of the invisible queue, one after the other: one
@@ -553,6 +690,57 @@ static void walk_chcpp(frame_ctx *f, int batch, int defer, int prob) {
   }
 }
 
+/* ---- nohc ---- */
+
+/* The history of an element: 0 unseen (not in last frame's walk), 1 .. 8
+ * hidden that many frames in a row, then an object visible that wrote s
+ * pixels in its class log2(s + 1). */
+static int32_t history_of(const elem_state *es, int was_visible, int seen_last, int object) {
+  if (was_visible && object) {
+    int32_t k = 0;
+    for (uint32_t s = es->samples; s > 0 && k < NOHC_WROTE - 1; s >>= 1) k++;
+    return 1 + NOHC_HIDDEN + k;
+  }
+  if (seen_last && !was_visible)
+    return es->hidden_frames < 1 ? 1 : es->hidden_frames > NOHC_HIDDEN ? NOHC_HIDDEN
+                                                                       : (int32_t)es->hidden_frames;
+  return 0;
+}
+
+/* A termination element of nohc: P(V) from its history and this frame's
+ * coverage, then query-and-wait or draw (open, for a node). */
+static void nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int seen_last) {
+  zs_culler *c = f->c;
+  elem_state *es = state(f, e);
+  const double *lo, *hi;
+  elem_box(f, e, &lo, &hi);
+  double r[4];
+  box_rect(f, lo, hi, r);
+  f->st->cost_evals++;
+  zs_device_cpu_work(f->dev, ZS_CPU_COST_EVAL, 1);
+  /* P(V): the rate at which elements of its class (history, coverage)
+   * were found visible, starting from a prior worth two outcomes: for
+   * the hidden, chcpp's 1 - p(i); else the coverage's 1 - P(covered). */
+  double cov = covered(f, r);
+  int32_t h = history_of(es, was_visible, seen_last, is_object(e));
+  int32_t k = h * NOHC_BUCKETS + (int32_t)fmin(cov * NOHC_BUCKETS, NOHC_BUCKETS - 1);
+  double prior = h >= 1 && h <= NOHC_HIDDEN ? 1.0 - keep_hidden((uint32_t)h) : 1.0 - cov;
+  double pv = (c->class_visible[k] + 2.0 * prior) / (c->class_visible[k] + c->class_hidden[k] + 2.0);
+  double area = fmax(r[2] - r[0], 0.0) * fmax(r[3] - r[1], 0.0);
+  int64_t n = is_object(e) ? f->s->meshes[f->s->inst[object_of(e)].mesh].mesh.nfaces : c->polys[e];
+  int64_t calls = is_object(e) ? 1 : f->t->node[e].count;
+  double cr = (double)n * f->ttri + (double)calls * f->tcall; /* (6) */
+  double cq = f->tquery + area * f->tq;                       /* (10), S measured */
+  if (cr > pv * cr + cq) {                                    /* (2), (3) */
+    es->asked_class = k;
+    issue_query(f, e, mask, (unsigned char)was_visible);
+    return;
+  }
+  es->pv = pv;
+  pull_up_visibility(f, e);
+  traverse(f, e, mask);
+}
+
 static void walk_tree(frame_ctx *f, zs_cull_method m) {
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
@@ -595,8 +783,9 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
       continue;
     }
 
-    /* chc, chc-prob, auto */
-    int was_visible = es->visible && es->last_visited == frame - 1;
+    /* chc, chc-prob, auto, nohc */
+    int seen_last = es->last_visited == frame - 1;
+    int was_visible = es->visible && seen_last;
     double pv = predict(es, w1, w2);
     es->visible = 0;
     es->last_visited = frame;
@@ -608,6 +797,10 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
     }
     /* termination elements: objects (the leaves), and nodes that were
      * hidden; nodes that were visible are opened without a query */
+    if (m == ZS_CULL_NOHC && (is_object(e) || !was_visible)) {
+      nohc_visit(f, e, mask, was_visible, seen_last);
+      continue;
+    }
     if (is_object(e) || !was_visible) {
       if (m != ZS_CULL_CHC && !query_pays(f, e, pv)) {
         draw_unasked(f, e, mask, pv);
@@ -640,8 +833,11 @@ static int count_polygons(frame_ctx *f) {
   return 1;
 }
 
-/* The oracle of ideal: which instances own a pixel of the full image. */
-static void ideal_frame(frame_ctx *f, const double view[16], const double proj[16]) {
+/* The oracle of ideal: which instances own a pixel of the full image; with
+ * boxes (ideal-box), also which instances' tight boxes have a sample
+ * against its depth buffer (a box holds its instance, so every owner is
+ * one of them). */
+static void ideal_frame(frame_ctx *f, const double view[16], const double proj[16], int boxes) {
   zs_culler *c = f->c;
   const zs_device_config *cfg = zs_device_config_of(f->dev);
   if (!c->oracle) {
@@ -688,6 +884,21 @@ static void ideal_frame(frame_ctx *f, const double view[16], const double proj[1
   size_t npx = (size_t)cfg->width * (size_t)cfg->height;
   for (size_t p = 0; p < npx; p++)
     if (ids[p] < c->nowner) c->owns_pixel[c->owner[ids[p]]] = 1;
+  for (int32_t i = 0; boxes && i < f->s->ninst && f->status == ZS_OK; i++) {
+    zs_query q;
+    if (c->owns_pixel[i]) continue;
+    int32_t nbox = 0;
+    if (!add_query_boxes(f, object_elem(i), &nbox)) {
+      f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+      return;
+    }
+    if ((f->status = zs_device_query_begin(c->oracle, &q, f->err)) ||
+        (f->status = zs_device_query_boxes(c->oracle, (const double(*)[3])c->qlo,
+                                           (const double(*)[3])c->qhi, nbox, f->err)) ||
+        (f->status = zs_device_query_end(c->oracle, f->err)))
+      return;
+    c->owns_pixel[i] = zs_device_query_result(c->oracle, q) > 0;
+  }
   for (int32_t i = 0; i < f->s->ninst; i++)
     if (c->owns_pixel[i]) draw_instance(f, i);
 }
@@ -729,7 +940,8 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
       return f.status;
     }
     case ZS_CULL_IDEAL:
-      ideal_frame(&f, view, proj);
+    case ZS_CULL_IDEAL_BOX:
+      ideal_frame(&f, view, proj, c->method == ZS_CULL_IDEAL_BOX);
       return f.status;
     default:
       break;
@@ -743,8 +955,8 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
    * octree frees and reuses keeps its state: at worst a node is opened
    * without a query once, which costs time, never pixels.) */
-  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){0, 0, 0, 0.5, 0, 0};
-  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){0, 0, 0, 0.5, 0, 0};
+  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){0, 0, 0, 0.5, 0, 0, 0, -1};
+  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){0, 0, 0, 0.5, 0, 0, 0, -1};
   /* The near plane's corners lie at most near * sqrt(1 + tx^2 + ty^2) from
    * the eye (tx, ty the tangents of the half fields of view). */
   const zs_device_config *cfg = zs_device_config_of(dev);
@@ -754,6 +966,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   /* orthographic: the near plane may cut any box; ask none (exact, as vfc) */
   f.near_reach = proj[14] != 0.0 ? 1.0001 * znear * sqrt(1.0 + tx * tx + ty * ty) : INFINITY;
   f.tan_half_fovy = ty;
+  f.width = cfg->width;
   f.height = cfg->height;
   const zs_clock_params *k = zs_device_clock_params(dev);
   f.ttri = c->cost.ttri_ns >= 0 ? c->cost.ttri_ns : k->per_polygon_ns;
@@ -779,8 +992,17 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
     st->chosen = c->use_queries ? ZS_CULL_CHC_PROB : ZS_CULL_VFC;
     if (!c->use_queries) m = ZS_CULL_VFC;
   }
-  if ((m == ZS_CULL_CHC_PROB || c->method == ZS_CULL_AUTO) && !count_polygons(&f))
+  if ((m == ZS_CULL_CHC_PROB || m == ZS_CULL_NOHC || c->method == ZS_CULL_AUTO) &&
+      !count_polygons(&f))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
+  if (m == ZS_CULL_NOHC) { /* an empty coverage grid */
+    c->cov_w = (cfg->width + NOHC_CELL - 1) / NOHC_CELL;
+    c->cov_h = (cfg->height + NOHC_CELL - 1) / NOHC_CELL;
+    if (!zs_grow((void **)&c->cov, &c->cap_cov, c->cov_w * c->cov_h, sizeof *c->cov))
+      return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
+    memset(c->cov, 0, (size_t)(c->cov_w * c->cov_h) * sizeof *c->cov);
+    zs_mat_mul(f.mvp, proj, view);
+  }
   if (!zs_grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
   c->ndecision = t->nslots;

@@ -57,20 +57,44 @@
  *             grows; a group with no sample hides all its members, else
  *             each is asked again on its own.  chcpp-nobatch,
  *             chcpp-nodefer and chcpp-nomulti switch one feature off
- *             (ablation).  The tight boxes of the octree are CHC++'s
- *             tighter bounds.
+ *             (ablation).  CHC++'s tighter bounds are the tight boxes of
+ *             the octree's nodes and, for every method, the parts of an
+ *             object (cull/parts.h; --bounds box asks about its box).
  *   chcpp-prob  chcpp with chc-prob's test (formulas 2, 3, 6, 9, 10)
  *             before each query chcpp would issue, of a hidden element or
  *             of a visible object that falls due: when the query does not
  *             pay, the element is drawn unasked and its P(V) follows (11).
  *             The combination neither paper tried.
+ *   nohc      near-optimal hierarchical culling (Guthe, Balazs, Klein
+ *             2006): every termination element (an object, visible or
+ *             not, or a node that was hidden) is queried, and drawn only
+ *             when its answer comes back, when
+ *               Cr > P(V) Cr + Cq,   Cq = T + S Tq,
+ *             with S the pixels of its box's projected rectangle (not (9)'s
+ *             estimate), and otherwise drawn (inside a query, whose count
+ *             of written pixels is read in the next frame) or opened.  P(V)
+ *             is the product of two estimates:
+ *               history   an element visible with s samples in its last
+ *                         frame: the rate at which elements of the same
+ *                         log2(s + 1) class were still visible, learnt from
+ *                         this culler's own queries; hidden i frames in a
+ *                         row: 1 - p(i) (chcpp's p); unseen: 1;
+ *               coverage  1 - the chance that every coverage cell of the
+ *                         rectangle is covered, each cell covered with
+ *                         probability 1 - e^-d, d the projected box area
+ *                         drawn into it so far this frame (front to back)
+ *                         times the fill of a mesh in its box (1/2).
+ *   ideal-box an oracle as ideal, that draws the instances whose tight box
+ *             has a sample against the full image's depth buffer: the
+ *             lower bound of any method that asks about whole boxes.
  *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
  *             queries, and plain vfc for frames after which a whole frame
  *             of queries found nothing hidden (probing again every 8th
  *             frame): a scene without occlusion pays no query cost.
  *
  * Exactness.  Every method but vfc-box gives the image of none: a node is
- * skipped only when its tight box (which holds its content) has no sample
+ * skipped only when its tight box, or an object's parts' boxes (which
+ * hold its content), have no sample
  * passing the less-or-equal test against a depth buffer that only gets
  * nearer; boxes that the near plane could cut are never queried but taken
  * as visible.
@@ -98,6 +122,8 @@ typedef enum zs_cull_method {
   ZS_CULL_CHCPP_NODEFER,  /* ablation: without deferred visible queries */
   ZS_CULL_CHCPP_NOMULTI,  /* ablation: without multiqueries */
   ZS_CULL_CHCPP_PROB,     /* CHC++ with chc-prob's test before each query */
+  ZS_CULL_NOHC,           /* near-optimal hierarchical culling's cost model */
+  ZS_CULL_IDEAL_BOX,      /* oracle: the instances whose box has a sample */
   ZS_CULL_METHODS
 } zs_cull_method;
 
@@ -107,7 +133,7 @@ enum { ZS_CHCPP_BATCH = 50, ZS_CHCPP_VISIBLE_FRAMES = 5 };
  * (test_cull checks them against zs_cull_method_name). */
 #define ZS_CULL_METHOD_LIST                                                                   \
   "none vfc vfc-box hsw chc chc-prob ideal auto chcpp chcpp-nobatch chcpp-nodefer chcpp-nomulti " \
-  "chcpp-prob"
+  "chcpp-prob nohc ideal-box"
 
 /* "none", "vfc", ...; and back (-1 for an unknown name). */
 const char *zs_cull_method_name(zs_cull_method m);
@@ -160,6 +186,16 @@ const uint8_t *zs_culler_decisions(const zs_culler *c, int32_t *n);
 zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_culler **out,
                            zs_error *err);
 void zs_culler_destroy(zs_culler *c);
+
+/* What a query asks about an object: the union of its parts' boxes
+ * (cull/parts.h; the default), or its box. */
+typedef enum zs_query_bounds { ZS_BOUNDS_PARTS, ZS_BOUNDS_BOX } zs_query_bounds;
+
+/* "parts" or "box"; -1 for another name. */
+int zs_query_bounds_parse(const char *name);
+
+/* Before the culler's first frame. */
+zs_status zs_culler_set_bounds(zs_culler *c, zs_query_bounds b, zs_error *err);
 
 /* Draws one frame of scene s (organised in tree t) on dev with the camera
  * view/proj: clears the device, sets the camera, and issues draws and

@@ -9,6 +9,7 @@
 #include "cull/cull.h"
 #include "cull/frustum.h"
 #include "cull/octree.h"
+#include "cull/parts.h"
 #include "scene/generate.h"
 #include "scene/scene.h"
 #include "scene/scenefile.h"
@@ -16,6 +17,7 @@
 
 enum { W = 160, H = 120 };
 static zs_error err;
+static zs_query_bounds walk_bounds = ZS_BOUNDS_PARTS; /* what walk's cullers query */
 
 typedef struct walk_result {
   uint64_t diff[ZS_CULL_METHODS];     /* pixels differing from none, summed */
@@ -45,6 +47,7 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
     ck_assert_int_eq(zs_device_create(&cfg, &dev[k], &err), ZS_OK);
     ck_assert_int_eq(zs_device_set_clock(dev[k], &clock, &err), ZS_OK);
     ck_assert_int_eq(zs_culler_create(methods[k], NULL, &cul[k], &err), ZS_OK);
+    ck_assert_int_eq(zs_culler_set_bounds(cul[k], walk_bounds, &err), ZS_OK);
   }
   uint32_t *ref = malloc(W * H * sizeof *ref);
   int path_frames = s.path.frames > 0 ? s.path.frames : 1;
@@ -83,7 +86,8 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
 static const zs_cull_method exact[] = {ZS_CULL_NONE,  ZS_CULL_VFC,           ZS_CULL_HSW,
                                        ZS_CULL_CHC,   ZS_CULL_CHC_PROB,      ZS_CULL_IDEAL,
                                        ZS_CULL_AUTO,  ZS_CULL_CHCPP,         ZS_CULL_CHCPP_NOBATCH,
-                                       ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI, ZS_CULL_CHCPP_PROB};
+                                       ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI, ZS_CULL_CHCPP_PROB,
+                                       ZS_CULL_NOHC,  ZS_CULL_IDEAL_BOX};
 enum { NEXACT = sizeof exact / sizeof exact[0] };
 
 /* The generated scenes, small, with their own walks and moving objects. */
@@ -108,7 +112,7 @@ END_TEST
 START_TEST(exact_at_every_latency) {
   /* latency from 0 to 3 frames' worth of none's modelled time */
   const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_HSW, ZS_CULL_CHC, ZS_CULL_CHC_PROB, ZS_CULL_AUTO,
-                              ZS_CULL_CHCPP, ZS_CULL_CHCPP_PROB};
+                              ZS_CULL_CHCPP, ZS_CULL_CHCPP_PROB, ZS_CULL_NOHC};
   enum { NM = sizeof m / sizeof m[0] };
   walk_result base;
   walk("plant?detail=0.05", 1, 1, m, 1, -1, &base);
@@ -191,6 +195,87 @@ START_TEST(chcpp_prob_asks_least_on_the_plant) {
 }
 END_TEST
 
+START_TEST(ideal_box_bounds_every_box_query_method) {
+  /* A method skips an object only when its box found no sample against a
+   * depth buffer that only gets nearer, so it draws every object whose box
+   * has a sample against the final one: ideal-box's set.  And that set
+   * holds the ideal's. */
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_IDEAL,    ZS_CULL_IDEAL_BOX, ZS_CULL_HSW,
+                              ZS_CULL_CHC,  ZS_CULL_CHC_PROB, ZS_CULL_CHCPP,     ZS_CULL_NOHC};
+  enum { NM = sizeof m / sizeof m[0] };
+  walk_result r;
+  walk("teapots?count=300&moving=40", 10, 7, m, NM, -1, &r);
+  ck_assert_uint_lt(r.objects[1], r.objects[2]); /* boxes are looser than pixels */
+  for (int k = 3; k < NM; k++)
+    ck_assert_msg(r.objects[2] <= r.objects[k], "ideal-box draws %llu objects, %s %llu",
+                  (unsigned long long)r.objects[2], zs_cull_method_name(m[k]),
+                  (unsigned long long)r.objects[k]);
+  ck_assert_int_le(r.modelled_ps[1], r.modelled_ps[2]);
+}
+END_TEST
+
+START_TEST(parts_hold_every_face_inside_the_box) {
+  /* The teapots split into parts (the ground, flat, does not); every face
+   * lies in one part's box, and every part's box in the object's. */
+  zs_scene s;
+  ck_assert_msg(zs_gen_scene("teapots?count=5", &s, &err) == ZS_OK, "%s", err.msg);
+  zs_parts *p = zs_parts_create();
+  ck_assert_ptr_nonnull(p);
+  int split = 0;
+  for (int32_t i = 0; i < s.ninst; i++) {
+    const double(*lo)[3], (*hi)[3];
+    int n;
+    ck_assert(zs_parts_of(p, &s, i, &lo, &hi, &n));
+    split += n > 1;
+    ck_assert_int_le(n, ZS_PARTS_MAX);
+    for (int k = 0; k < n; k++)
+      for (int a = 0; a < 3; a++) {
+        ck_assert(lo[k][a] >= s.inst[i].lo[a] && hi[k][a] <= s.inst[i].hi[a]);
+        ck_assert(lo[k][a] <= hi[k][a]);
+      }
+    const zs_mesh *m = &s.meshes[s.inst[i].mesh].mesh;
+    const double *t = s.inst[i].model;
+    for (int32_t f = 0; f < m->nfaces; f++) {
+      int held = 0;
+      for (int k = 0; k < n && !held; k++) {
+        held = 1;
+        for (int32_t j = m->face_start[f]; j < m->face_start[f + 1] && held; j++) {
+          const double *v = m->pos + 3 * m->face_vert[j];
+          for (int r = 0; r < 3; r++) {
+            double w = t[4 * r] * v[0] + t[4 * r + 1] * v[1] + t[4 * r + 2] * v[2] + t[4 * r + 3];
+            held &= w >= lo[k][r] && w <= hi[k][r];
+          }
+        }
+      }
+      ck_assert_msg(held, "instance %d face %d lies in no part", i, f);
+    }
+  }
+  ck_assert_int_eq(split, 5);
+  zs_parts_destroy(p);
+  zs_scene_free(&s);
+}
+END_TEST
+
+START_TEST(parts_are_exact_and_tighter_than_boxes) {
+  /* the same walk asked about boxes and about parts: both exact; with
+   * parts, the oracle of box queries and nohc draw fewer objects */
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_IDEAL_BOX, ZS_CULL_CHC, ZS_CULL_NOHC,
+                              ZS_CULL_CHCPP};
+  enum { NM = sizeof m / sizeof m[0] };
+  walk_result box, parts;
+  walk_bounds = ZS_BOUNDS_BOX;
+  walk("teapots?count=300&moving=40", 10, 7, m, NM, -1, &box);
+  walk_bounds = ZS_BOUNDS_PARTS;
+  walk("teapots?count=300&moving=40", 10, 7, m, NM, -1, &parts);
+  for (int k = 1; k < NM; k++) {
+    ck_assert_uint_eq(box.diff[k], 0);
+    ck_assert_uint_eq(parts.diff[k], 0);
+  }
+  ck_assert_uint_lt(parts.objects[1], box.objects[1]);
+  ck_assert_uint_lt(parts.objects[3], box.objects[3]);
+}
+END_TEST
+
 START_TEST(counters_identical_every_run) {
   walk_result a, b;
   walk("teapots?count=60&moving=20", 6, 13, exact, NEXACT, -1, &a);
@@ -209,10 +294,10 @@ START_TEST(auto_costs_nothing_without_occlusion) {
   ck_assert_msg(zs_scenefile_load(path, &s, &err) == ZS_OK, "%s", err.msg);
   zs_octree t;
   ck_assert_int_eq(zs_octree_build(&t, &s, NULL, &err), ZS_OK);
-  const zs_cull_method m[3] = {ZS_CULL_VFC, ZS_CULL_AUTO, ZS_CULL_CHC};
-  int64_t total[3] = {0, 0, 0};
-  uint64_t queries[3] = {0, 0, 0};
-  for (int k = 0; k < 3; k++) {
+  const zs_cull_method m[4] = {ZS_CULL_VFC, ZS_CULL_AUTO, ZS_CULL_CHC, ZS_CULL_NOHC};
+  int64_t total[4] = {0, 0, 0, 0};
+  uint64_t queries[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 4; k++) {
     zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
     zs_device *d;
     zs_culler *c;
@@ -237,6 +322,9 @@ START_TEST(auto_costs_nothing_without_occlusion) {
   ck_assert_uint_eq(queries[1], 0);
   ck_assert_uint_gt(queries[2], 0); /* chc does pay for queries here */
   ck_assert_int_gt(total[2], total[0]);
+  /* nohc: its coverage finds nothing to hide here, and it is within 5 % of vfc */
+  ck_assert_msg(total[3] * 100 <= total[0] * 105, "nohc %lld ps, vfc %lld ps", (long long)total[3],
+                (long long)total[0]);
   zs_octree_free(&t);
   zs_scene_free(&s);
 }
@@ -278,6 +366,9 @@ int main(void) {
   tcase_add_test(tc, vfc_box_reports_its_error);
   tcase_add_test(tc, query_ordering_on_the_plant);
   tcase_add_test(tc, counters_identical_every_run);
+  tcase_add_test(tc, ideal_box_bounds_every_box_query_method);
+  tcase_add_test(tc, parts_hold_every_face_inside_the_box);
+  tcase_add_test(tc, parts_are_exact_and_tighter_than_boxes);
   tcase_add_test(tc, chcpp_features_each_pay_on_the_plant);
   tcase_add_test(tc, chcpp_prob_asks_least_on_the_plant);
   tcase_add_test(tc, method_list_names_every_method);

@@ -33,6 +33,8 @@ static const char usage_tail[] =
     "  --repeat K          render K times; ms_per_frame is the median\n"
     "  --stats             print the frame's counters as one JSON line\n"
     "  --cull METHOD       draw through a culling method (vfc, hsw, chc, chc-prob, ...)\n"
+    "  --bounds parts|box  with --cull: queries ask about an object's parts'\n"
+    "                      boxes (default) or its box\n"
     "  --overlay culling   with --cull: the octree's boxes, coloured by decision:\n"
     "                      grey outside, red queried hidden, green queried visible,\n"
     "                      blue entered without a query\n"
@@ -45,6 +47,7 @@ typedef struct render_opts {
   zs_algo algo;
   zs_shade shade;
   int threads, repeat, stats, hidden_line, cull, overlay;
+  zs_query_bounds bounds;
   zs_clock_params clock;
 } render_opts;
 
@@ -84,6 +87,11 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       VALUE();
       if ((o->cull = zs_cull_method_parse(v)) < 0)
         return zs_error_set(err, ZS_ERR_ARG, "--cull: unknown method '%s' (" ZS_CULL_METHOD_LIST ")", v);
+    } else if (strcmp(a, "--bounds") == 0) {
+      VALUE();
+      int b = zs_query_bounds_parse(v);
+      if (b < 0) return zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
+      o->bounds = (zs_query_bounds)b;
     } else if (strcmp(a, "--overlay") == 0) {
       VALUE();
       if (strcmp(v, "culling") != 0)
@@ -223,19 +231,18 @@ static zs_status run(const render_opts *o, zs_error *err) {
     goto done;
   }
   if (o->cull >= 0) {
-    if ((st = zs_octree_build(&tree, &model, NULL, err)) ||
-        (st = zs_culler_create((zs_cull_method)o->cull, NULL, &culler, err)))
-      goto done;
+    if ((st = zs_octree_build(&tree, &model, NULL, err))) goto done;
     have_tree = 1;
   }
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
-    if (culler) {
+    if (o->cull >= 0) {
       /* each repeat is a fresh first frame: the culler starts again */
       zs_culler_destroy(culler);
       culler = NULL;
       zs_cull_stats cs;
       if ((st = zs_culler_create((zs_cull_method)o->cull, NULL, &culler, err)) ||
+          (st = zs_culler_set_bounds(culler, o->bounds, err)) ||
           (st = zs_culler_frame(culler, dev, &model, &tree, view, proj, &cs, err)))
         goto done;
       if (o->overlay && (st = draw_overlay(dev, culler, &tree, err))) goto done;

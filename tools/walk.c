@@ -43,6 +43,8 @@ static const char usage[] =
     "  --clock-set K=V     set one clock constant, ns\n"
     "  --latency-frames X  query latency as X times none's mean frame time\n"
     "  --depth D --looseness K   the loose octree (default 4, 2)\n"
+    "  --bounds parts|box  what queries ask about an object: the union of its\n"
+    "                      parts' boxes (default), or its box\n"
     "  --quiet             no progress on stderr\n";
 
 typedef struct walk_opts {
@@ -51,6 +53,7 @@ typedef struct walk_opts {
   int frames, width, height, quiet, depth, step;
   double looseness, latency_frames;
   zs_clock_params clock;
+  zs_query_bounds bounds;
 } walk_opts;
 
 /* Per method, the sums over the walk. */
@@ -93,6 +96,11 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     } else if (strcmp(a, "--frames") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 1000000, &o->frames, err)) return err->code;
+    } else if (strcmp(a, "--bounds") == 0) {
+      VALUE();
+      int b = zs_query_bounds_parse(v);
+      if (b < 0) return zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
+      o->bounds = (zs_query_bounds)b;
     } else if (strcmp(a, "--step") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 10000, &o->step, err)) return err->code;
@@ -214,7 +222,9 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     r->m = (zs_cull_method)o->methods[k];
     zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
     if ((st = zs_device_create(&cfg, &r->dev, err))) goto done;
-    if ((st = zs_culler_create(r->m, NULL, &r->culler, err))) goto done;
+    if ((st = zs_culler_create(r->m, NULL, &r->culler, err)) ||
+        (st = zs_culler_set_bounds(r->culler, o->bounds, err)))
+      goto done;
     if ((st = zs_device_set_clock(r->dev, &clock, err))) goto done;
   }
   if (o->latency_frames >= 0) {

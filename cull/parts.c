@@ -1,0 +1,242 @@
+/* Tighter bounds for the occlusion queries of objects (parts.h). */
+#include "cull/parts.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/grow.h"
+
+/* A mesh's parts: the vertices of each (a vertex of faces in two parts is
+ * in both), as one list with offsets. */
+typedef struct mesh_parts {
+  int done;
+  int n;                          /* parts with faces */
+  int32_t start[ZS_PARTS_MAX + 1];
+  int32_t *vert;
+} mesh_parts;
+
+/* An instance's boxes, and its placement when they were made. */
+typedef struct inst_parts {
+  int n;                          /* 0: not made yet */
+  double at_model[16];
+  double lo[ZS_PARTS_MAX][3], hi[ZS_PARTS_MAX][3];
+} inst_parts;
+
+struct zs_parts {
+  mesh_parts *mesh;
+  int32_t cap_mesh;
+  inst_parts *inst;
+  int32_t cap_inst;
+};
+
+zs_parts *zs_parts_create(void) { return calloc(1, sizeof(zs_parts)); }
+
+void zs_parts_destroy(zs_parts *p) {
+  if (!p) return;
+  for (int32_t m = 0; m < p->cap_mesh; m++) free(p->mesh[m].vert);
+  free(p->mesh);
+  free(p->inst);
+  free(p);
+}
+
+typedef struct box3 {
+  double lo[3], hi[3];
+} box3;
+
+static const box3 empty_box = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+
+static void box_add(box3 *b, const box3 *o) {
+  for (int k = 0; k < 3; k++) {
+    b->lo[k] = fmin(b->lo[k], o->lo[k]);
+    b->hi[k] = fmax(b->hi[k], o->hi[k]);
+  }
+}
+
+static double box_volume(const box3 *b) {
+  return b->hi[0] < b->lo[0] ? 0.0 : (b->hi[0] - b->lo[0]) * (b->hi[1] - b->lo[1]) * (b->hi[2] - b->lo[2]);
+}
+
+/* A group of faces: face[first .. first + count - 1] of the split order. */
+typedef struct group {
+  int32_t first, count;
+  box3 box;
+  /* its best split: faces whose centroid bin along axis is <= bin go
+   * first; gain is the volume it saves */
+  int axis, bin;
+  double gain;
+} group;
+
+enum { BINS = 16 };
+
+static int bin_of(const double *centroid, const box3 *cb, int axis) {
+  double w = cb->hi[axis] - cb->lo[axis];
+  int b = w > 0.0 ? (int)((centroid[axis] - cb->lo[axis]) / w * BINS) : 0;
+  return b < 0 ? 0 : b >= BINS ? BINS - 1 : b;
+}
+
+/* The bounds of the centroids of g's faces. */
+static box3 centroid_bounds(const group *g, const int32_t *face, const double *centroid) {
+  box3 cb = empty_box;
+  for (int32_t j = 0; j < g->count; j++) {
+    const double *c = centroid + 3 * face[g->first + j];
+    box3 p = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
+    box_add(&cb, &p);
+  }
+  return cb;
+}
+
+/* The split of g that leaves the least volume, binned along each axis. */
+static void best_split(group *g, const int32_t *face, const double *centroid, const box3 *fbox) {
+  g->gain = 0.0;
+  if (g->count < 2) return;
+  box3 cb = centroid_bounds(g, face, centroid);
+  for (int a = 0; a < 3; a++) {
+    box3 bin[BINS], left[BINS];
+    int32_t n[BINS] = {0};
+    for (int b = 0; b < BINS; b++) bin[b] = empty_box;
+    for (int32_t j = 0; j < g->count; j++) {
+      int32_t f = face[g->first + j];
+      int b = bin_of(centroid + 3 * f, &cb, a);
+      box_add(&bin[b], &fbox[f]);
+      n[b]++;
+    }
+    left[0] = bin[0];
+    for (int b = 1; b < BINS; b++) left[b] = left[b - 1], box_add(&left[b], &bin[b]);
+    box3 right = empty_box;
+    int32_t nright = 0;
+    for (int b = BINS - 1; b > 0; b--) { /* split after bin b - 1 */
+      box_add(&right, &bin[b]);
+      nright += n[b];
+      if (nright == 0 || nright == g->count) continue;
+      double gain = box_volume(&g->box) - box_volume(&left[b - 1]) - box_volume(&right);
+      if (gain > g->gain) g->gain = gain, g->axis = a, g->bin = b - 1;
+    }
+  }
+}
+
+/* Splits the faces of m into at most ZS_PARTS_MAX groups, each time
+ * splitting the group whose split saves the most volume, while a split
+ * saves at least 2 % of the mesh's box. */
+static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
+  int32_t nf = m->nfaces > 0 ? m->nfaces : 1;
+  int32_t *face = malloc((size_t)nf * sizeof *face);
+  double *centroid = malloc((size_t)nf * 3 * sizeof *centroid);
+  box3 *fbox = malloc((size_t)nf * sizeof *fbox);
+  int32_t *seen = malloc((size_t)(m->nverts > 0 ? m->nverts : 1) * sizeof *seen);
+  int32_t total = m->face_start[m->nfaces];
+  mp->vert = malloc((size_t)(total > 0 ? total : 1) * sizeof *mp->vert);
+  if (!face || !centroid || !fbox || !seen || !mp->vert) {
+    free(face), free(centroid), free(fbox), free(seen);
+    return 0;
+  }
+  group g[ZS_PARTS_MAX];
+  g[0] = (group){0, m->nfaces, empty_box, 0, 0, 0.0};
+  for (int32_t f = 0; f < m->nfaces; f++) {
+    face[f] = f;
+    fbox[f] = empty_box;
+    int32_t a = m->face_start[f], b = m->face_start[f + 1];
+    for (int k = 0; k < 3; k++) centroid[3 * f + k] = 0.0;
+    for (int32_t j = a; j < b; j++) {
+      const double *p = m->pos + 3 * m->face_vert[j];
+      box3 pb = {{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
+      box_add(&fbox[f], &pb);
+      for (int k = 0; k < 3; k++) centroid[3 * f + k] += p[k] / (b - a);
+    }
+    box_add(&g[0].box, &fbox[f]);
+  }
+  int ng = 1;
+  const double worth = 0.02 * box_volume(&g[0].box);
+  best_split(&g[0], face, centroid, fbox);
+  while (ng < ZS_PARTS_MAX) {
+    int best = 0;
+    for (int i = 1; i < ng; i++)
+      if (g[i].gain > g[best].gain) best = i;
+    if (!(g[best].gain > worth)) break;
+    /* partition: the faces of the low bins first */
+    group *s = &g[best];
+    box3 cb = centroid_bounds(s, face, centroid);
+    int32_t lo = s->first, hi = s->first + s->count - 1;
+    while (lo <= hi) {
+      if (bin_of(centroid + 3 * face[lo], &cb, s->axis) <= s->bin) lo++;
+      else {
+        int32_t t = face[lo];
+        face[lo] = face[hi], face[hi--] = t;
+      }
+    }
+    group a = {s->first, lo - s->first, empty_box, 0, 0, 0.0};
+    group b = {lo, s->first + s->count - lo, empty_box, 0, 0, 0.0};
+    for (int32_t j = 0; j < a.count; j++) box_add(&a.box, &fbox[face[a.first + j]]);
+    for (int32_t j = 0; j < b.count; j++) box_add(&b.box, &fbox[face[b.first + j]]);
+    best_split(&a, face, centroid, fbox);
+    best_split(&b, face, centroid, fbox);
+    g[best] = a;
+    g[ng++] = b;
+  }
+  /* each group's vertices, once each */
+  for (int32_t v = 0; v < m->nverts; v++) seen[v] = -1;
+  int32_t n = 0;
+  mp->n = 0;
+  for (int i = 0; i < ng; i++) {
+    if (g[i].count == 0) continue;
+    mp->start[mp->n] = n;
+    for (int32_t j = 0; j < g[i].count; j++) {
+      int32_t f = face[g[i].first + j];
+      for (int32_t k = m->face_start[f]; k < m->face_start[f + 1]; k++)
+        if (seen[m->face_vert[k]] != i) {
+          seen[m->face_vert[k]] = i;
+          mp->vert[n++] = m->face_vert[k];
+        }
+    }
+    mp->n++;
+  }
+  mp->start[mp->n] = n;
+  mp->done = 1;
+  free(face), free(centroid), free(fbox), free(seen);
+  return 1;
+}
+
+
+/* The world boxes of the parts of instance in, transformed as
+ * zs_scene_instance_bounds transforms its vertices. */
+static void make_inst_parts(inst_parts *ip, const mesh_parts *mp, const zs_mesh *m,
+                            const zs_instance *in) {
+  const double *t = in->model;
+  for (int k = 0; k < mp->n; k++) {
+    for (int32_t j = mp->start[k]; j < mp->start[k + 1]; j++) {
+      const double *p = m->pos + 3 * (size_t)mp->vert[j];
+      for (int r = 0; r < 3; r++) {
+        double w = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
+        if (j == mp->start[k] || w < ip->lo[k][r]) ip->lo[k][r] = w;
+        if (j == mp->start[k] || w > ip->hi[k][r]) ip->hi[k][r] = w;
+      }
+    }
+  }
+  ip->n = mp->n < 2 ? 1 : mp->n;
+  if (mp->n < 2) { /* one part, or none: the object's own box */
+    memcpy(ip->lo[0], in->lo, sizeof ip->lo[0]);
+    memcpy(ip->hi[0], in->hi, sizeof ip->hi[0]);
+  }
+  memcpy(ip->at_model, in->model, sizeof ip->at_model);
+}
+
+int zs_parts_of(zs_parts *p, const zs_scene *s, int32_t i, const double (**lo)[3],
+                const double (**hi)[3], int *n) {
+  int32_t old = p->cap_inst;
+  if (!zs_grow((void **)&p->inst, &p->cap_inst, s->ninst, sizeof *p->inst)) return 0;
+  memset(p->inst + old, 0, (size_t)(p->cap_inst - old) * sizeof *p->inst);
+  old = p->cap_mesh;
+  if (!zs_grow((void **)&p->mesh, &p->cap_mesh, s->nmeshes, sizeof *p->mesh)) return 0;
+  memset(p->mesh + old, 0, (size_t)(p->cap_mesh - old) * sizeof *p->mesh);
+  const zs_instance *in = &s->inst[i];
+  const zs_mesh *m = &s->meshes[in->mesh].mesh;
+  mesh_parts *mp = &p->mesh[in->mesh];
+  if (!mp->done && !make_mesh_parts(mp, m)) return 0;
+  inst_parts *ip = &p->inst[i];
+  if (ip->n == 0 || memcmp(ip->at_model, in->model, sizeof ip->at_model) != 0)
+    make_inst_parts(ip, mp, m, in);
+  *lo = (const double(*)[3])ip->lo;
+  *hi = (const double(*)[3])ip->hi;
+  *n = ip->n;
+  return 1;
+}
