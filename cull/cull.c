@@ -77,6 +77,7 @@ typedef struct pending {
 enum {
   NOHC_CELL = 16,
   NOHC_MEASURE = 4,
+  NOHC_BATCH = 32,
   NOHC_HIDDEN = 8,
   NOHC_WROTE = 24,
   NOHC_HISTORIES = 1 + NOHC_HIDDEN + NOHC_WROTE,
@@ -733,7 +734,7 @@ static void nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int
   double cq = f->tquery + area * f->tq;                       /* (10), S measured */
   if (cr > pv * cr + cq) {                                    /* (2), (3) */
     es->asked_class = k;
-    issue_query(f, e, mask, (unsigned char)was_visible);
+    push_pending(f, &c->iq, &c->ni, &c->cap_iq, e, mask, (uint8_t)was_visible);
     return;
   }
   es->pv = pv;
@@ -752,10 +753,16 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
   }
   c->nheap = 0;
   c->qhead = c->qtail = 0;
+  c->ni = 0;
+  c->multi = 0;
   if (!t->node[ZS_OCTREE_ROOT].empty && !heap_push(f, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES))
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
 
-  while (f->status == ZS_OK && (c->nheap > 0 || c->qhead < c->qtail)) {
+  while (f->status == ZS_OK && (c->nheap > 0 || c->qhead < c->qtail || c->ni > 0)) {
+    /* nohc: its queries wait in a batch of NOHC_BATCH, issued when full
+     * or when there is nothing else to do: one change from drawing to
+     * querying and back per batch, which its cost model counts */
+    if (c->ni > 0 && (c->ni >= NOHC_BATCH || c->nheap == 0)) flush_invisible(f);
     /* Part 1: results that are ready, or any when nothing else is left. */
     while (f->status == ZS_OK && c->qhead < c->qtail &&
            (c->nheap == 0 || zs_device_query_ready(f->dev, c->qq[c->qhead].q)))
@@ -974,6 +981,8 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   f.tquery = c->cost.t_ns >= 0 ? c->cost.t_ns
                                 : k->per_call_ns + 2.0 * k->cpu_per_query_ns + 2.0 * k->switch_ns;
   f.tq = c->cost.tq_ns >= 0 ? c->cost.tq_ns : k->per_query_pixel_ns;
+  if (c->method == ZS_CULL_NOHC && c->cost.t_ns < 0) /* a batch pays its two switches once */
+    f.tquery = k->per_call_ns + 2.0 * k->cpu_per_query_ns + 2.0 * k->switch_ns / NOHC_BATCH;
 
   zs_cull_method m = c->method;
   if (m == ZS_CULL_CHCPP || m == ZS_CULL_CHCPP_NOBATCH || m == ZS_CULL_CHCPP_NODEFER ||

@@ -71,22 +71,28 @@
  *             when its answer comes back, when
  *               Cr > P(V) Cr + Cq,   Cq = T + S Tq,
  *             with S the pixels of its box's projected rectangle (not (9)'s
- *             estimate), and otherwise drawn (inside a query, whose count
- *             of written pixels is read in the next frame) or opened.  P(V)
- *             is the product of two estimates:
- *               history   an element visible with s samples in its last
- *                         frame: the rate at which elements of the same
- *                         log2(s + 1) class were still visible, learnt from
- *                         this culler's own queries; hidden i frames in a
- *                         row: 1 - p(i) (chcpp's p); unseen: 1;
- *               coverage  1 - the chance that every coverage cell of the
- *                         rectangle is covered, each cell covered with
- *                         probability 1 - e^-d, d the projected box area
- *                         drawn into it so far this frame (front to back)
- *                         times the fill of a mesh in its box (1/2).
- *   ideal-box an oracle as ideal, that draws the instances whose tight box
- *             has a sample against the full image's depth buffer: the
- *             lower bound of any method that asks about whole boxes.
+ *             estimate); otherwise it is drawn at once (an object) or
+ *             opened (a node).  P(V) is the rate at which elements of its
+ *             class were found visible by this culler's own queries, from a
+ *             prior worth two answers.  A class is a history times one of
+ *             ten buckets of coverage:
+ *               history   unseen last frame; hidden i frames in a row (prior
+ *                         1 - p(i), chcpp's p); or a visible object by
+ *                         log2(s + 1) of the pixels s its last measured draw
+ *                         wrote (every 4th frame it draws it inside a query);
+ *               coverage  the chance that what is drawn so far covers the
+ *                         rectangle: every 16-pixel cell it meets covered,
+ *                         each with probability 1 - e^-d, d the projected box
+ *                         areas drawn into the cell this frame (front to
+ *                         back) times the fill of a mesh in its box (1/2);
+ *                         1 - coverage is the prior of the other classes.
+ *             Its queries wait in batches of 32, issued when a batch is
+ *             full or nothing else is left to do: one change to querying
+ *             and back per batch, so its T counts 2/32 of a switch each
+ *             (state-switch-aware; chc-prob's T counts two).
+ *   ideal-box an oracle as ideal, that draws the instances whose query
+ *             bounds (parts or box) have a sample against the full image's
+ *             depth buffer: the lower bound of every method that asks.
  *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
  *             queries, and plain vfc for frames after which a whole frame
  *             of queries found nothing hidden (probing again every 8th
