@@ -296,8 +296,8 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
     if (flat) {
       /* Newell's normal of the face in eye space */
       double nrm[3] = {0, 0, 0};
-      for (int i = 0; i < n; i++) {
-        const double *a = &d->eyepos[3 * fv[i]], *b = &d->eyepos[3 * fv[(i + 1) % n]];
+      for (int i = 0, j = 1; i < n; i++, j = j + 1 < n ? j + 1 : 0) {
+        const double *a = &d->eyepos[3 * fv[i]], *b = &d->eyepos[3 * fv[j]];
         nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
         nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
         nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);

@@ -88,6 +88,22 @@ static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
     return;
   }
   uint32_t *zr = t->depth + off, *ir = t->id + off, *cr = t->rgb + off;
+  /* z is linear along the span: when both ends lie strictly between the
+   * planes, so does every pixel, and depth_of is a shift */
+  const int64_t zlast = z + dz * (x1 - 1 - x0);
+  if (z > 0 && zlast > 0 && z < zfar && zlast < zfar) {
+    for (int x = x0; x < x1; x++, z += dz) {
+      uint32_t d = (uint32_t)(z >> shift), zb = zr[x];
+      if (d < zb || (d == zb && id < ir[x])) {
+        zr[x] = d;
+        ir[x] = id;
+        cr[x] = rgb;
+        w++;
+      }
+    }
+    *written += w;
+    return;
+  }
   for (int x = x0; x < x1; x++, z += dz) {
     uint32_t d = depth_of(z, shift, zfar);
     uint32_t zb = zr[x];
@@ -229,7 +245,8 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
       if (a->r.rows > 0) dda_step(&a->r);
       else zs_edge_dda_start(&a->r, &edges[++a->right], y + 1);
       a->zl += p->dzdx * (a->l.x - old_xl) + p->dzdy;
-      act[kept++] = *a;
+      if (kept != j) act[kept] = *a;
+      kept++;
     }
     if (obs && obs->row) {
       zs_trace_row tr = {y, s->trace_pairs, nact, s->trace_spans, ntrace_spans};

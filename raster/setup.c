@@ -24,6 +24,7 @@
  */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "raster/grow.h"
 #include "raster/internal.h"
@@ -58,6 +59,18 @@ typedef struct plane {
   uint8_t zshift;
 } plane;
 
+/* e with v = m 2^e, m in [0.5, 1), as frexp gives it; read from the bits
+ * for a normal v >= 1 (bound always is), frexp otherwise. */
+static int binary_exponent(double v) {
+  uint64_t bits;
+  memcpy(&bits, &v, sizeof bits);
+  int biased = (int)((bits >> 52) & 0x7FF);
+  if (v >= 1.0 && biased != 0x7FF) return biased - 1022;
+  int e;
+  frexp(v, &e);
+  return e;
+}
+
 /* The fixed-point plane through vertices a, b, c (indices into X, Y, Z),
  * whose doubled area det must be non-zero; box is the polygon's extent in
  * pixels. */
@@ -81,8 +94,7 @@ static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
   double bound = fabs(A) * (box_w + 0.5) + fabs(B) * (box_h + 0.5) + fabs(Z[a]) + 1.0;
   /* bound = m 2^e with m in [0.5, 1): bound 2^(32 + shift) < 2^61 holds
    * exactly when shift <= 29 - e. */
-  int e;
-  frexp(bound, &e);
+  int e = binary_exponent(bound);
   int shift = 29 - e < 20 ? 29 - e : 20;
   if (shift < 0) {
     double f = ldexp(1.0, 27) / bound; /* fit the gradient to zshift 0 */
@@ -91,7 +103,7 @@ static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
     shift = 0;
   }
   double zc = Z[a] + A * cx + B * cy;
-  double scale = ldexp(1.0, 32 + shift);
+  double scale = (double)((uint64_t)1 << (32 + shift)); /* 2^(32 + shift), exact */
   p.zshift = (uint8_t)shift;
   p.dzdx = llrint(A * scale);
   p.dzdy = llrint(B * scale);
@@ -132,8 +144,8 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   int counts[2] = {0, 0};
   for (int side = 0; side < 2; side++) { /* 0: left chain, 1: right chain */
     int step = ((side == 0) == forward_is_left) ? 1 : n - 1;
-    for (int i = top; i != bot; i = (i + step) % n) {
-      int j = (i + step) % n;
+    for (int i = top, j; i != bot; i = j) {
+      j = i + step < n ? i + step : i + step - n; /* (i + step) mod n */
       zs_edge e = {X[idx[i]], Y[idx[i]], X[idx[j]], Y[idx[j]], 0, 0};
       e.row0 = first_row(e.Y0);
       e.row1 = last_row(e.Y1);
@@ -203,7 +215,7 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
   int64_t area2 = 0;
   int32_t xmin = X[0], xmax = X[0], ymin = Y[0], ymax = Y[0];
   for (int i = 0; i < m; i++) {
-    int j = (i + 1) % m;
+    int j = i + 1 < m ? i + 1 : 0;
     area2 += (int64_t)X[i] * Y[j] - (int64_t)X[j] * Y[i];
     if (X[i] < xmin) xmin = X[i];
     if (X[i] > xmax) xmax = X[i];
@@ -228,7 +240,8 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
   double box_h = (double)(ymax - ymin) / 256.0 + 2.0;
   plane pl = make_plane(X, Y, Z, 0, best, best + 1, box_w, box_h);
 
-  if (convex_monotone(X, Y, idx, m, area2))
+  /* (a triangle of non-zero area always is) */
+  if (m == 3 || convex_monotone(X, Y, idx, m, area2))
     return emit(b, sp, &pl, X, Y, idx, m, area2) ? ZS_SETUP_DRAWN
                                                  : ZS_SETUP_NOMEM;
   /* Snapping bent the polygon: draw it as a fan of triangles that share its

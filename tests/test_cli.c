@@ -144,7 +144,7 @@ static const bad_option bad_options[] = {
 /* Help comes first, even beside an option the command does not know. */
 static const char *const help_commands[][3] = {
     {"render", NULL}, {"walk", NULL}, {"trace", NULL}, {"query", NULL}, {"path", NULL},
-    {"bench", "octree"}, {"bench", "depthsort"}, {"calibrate", NULL}};
+    {"bench", "octree"}, {"bench", "depthsort"}, {"bench", "raster"}, {"calibrate", NULL}};
 
 START_TEST(help_before_anything_else) {
   const char *const *c = help_commands[_i];
@@ -185,6 +185,51 @@ START_TEST(bad_option_refused) {
   ck_assert_msg(strstr(err, b->message) != NULL, "case %d: '%s' lacks '%s'", _i, err, b->message);
   ck_assert_msg(one_line(err), "case %d: not one line: '%s'", _i, err);
   ck_assert_msg(!zs_test_exists(png), "case %d: an image was written", _i);
+}
+END_TEST
+
+START_TEST(bench_raster_writes_csv_and_table) {
+  /* the triangle sizes at 500x500, one frame each: the counts are exact
+   * (10x10: 2,500 squares of two triangles, 40 layers to reach 200,000
+   * triangles; 500x500: one square, 64 layers, the most there are) */
+  char csv[4096], md[4096];
+  snprintf(csv, sizeof csv, "%s/cli-bench.csv", ZS_BINARY_DIR);
+  snprintf(md, sizeof md, "%s/cli-bench.md", ZS_BINARY_DIR);
+  unlink(csv);
+  unlink(md);
+  const char *args[] = {"bench", "raster", "--no-scenes", "--repeat", "1", "--size", "500x500",
+                        "--csv", csv, "--md", md, NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  ck_assert_str_eq(err, "");
+  FILE *f = fopen(csv, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[512];
+  int rows = 0;
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_str_eq(line, "case,algo,threads,width,height,triangles,pixels_tested,ms,mtri_per_s,mpix_per_s\n");
+  static const char *const want[] = {
+      "triangles 10x10,zbuffer,1,500,500,200000,10000000,",
+      "triangles 10x10,scanline,1,500,500,200000,10000000,",
+      "triangles 500x500,zbuffer,1,500,500,128,16000000,",
+      "triangles 500x500,scanline,1,500,500,128,16000000,"};
+  int found[4] = {0, 0, 0, 0};
+  while (fgets(line, sizeof line, f)) {
+    rows++;
+    for (int k = 0; k < 4; k++) found[k] += strncmp(line, want[k], strlen(want[k])) == 0;
+  }
+  fclose(f);
+  ck_assert_int_eq(rows, 10);
+  for (int k = 0; k < 4; k++) ck_assert_msg(found[k] == 1, "no row '%s'", want[k]);
+  ck_assert(zs_test_exists(md));
+  ck_assert_ptr_nonnull(strstr(out, "triangles 25x25"));
+  /* too small for the largest triangles: refused, nothing written */
+  unlink(csv);
+  const char *small[] = {"bench", "raster", "--size", "100x100", "--csv", csv, NULL};
+  rc = zs_test_run_zscan(small, out, sizeof out, err, sizeof err);
+  ck_assert_int_eq(rc, 1);
+  ck_assert_str_eq(err, "zscan bench raster: --size: at least 500x500 (the largest triangles)\n");
+  ck_assert(!zs_test_exists(csv));
 }
 END_TEST
 
@@ -267,6 +312,7 @@ int main(void) {
                       sizeof help_commands / sizeof help_commands[0]);
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, huge_obj_refused_before_reading);
+  tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
   suite_add_tcase(s, tc);

@@ -30,6 +30,7 @@
 #include "cull/octree.h"
 #include "scene/generate.h"
 #include "tools/cli.h"
+#include "tools/outfile.h"
 
 
 enum { STEPS = 10 };
@@ -55,51 +56,6 @@ static const char usage[] =
     "  median update time over F frames (default 50) of a loose octree (looseness K,\n"
     "  default 2) and a plain one, both of depth D (default 4) and split policy S\n"
     "  (default 0: every object at its own level)\n";
-
-/* ---- files under a temporary name ---------------------------------------- */
-
-/* Creates PATH.tmp.XXXXXX; *tmp receives its name (malloc'd). */
-static FILE *temp_open(const char *path, char **tmp, zs_error *err) {
-  static const char suffix[] = ".tmp.XXXXXX";
-  size_t n = strlen(path);
-  *tmp = malloc(n + sizeof suffix);
-  if (!*tmp) {
-    zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-    return NULL;
-  }
-  memcpy(*tmp, path, n);
-  memcpy(*tmp + n, suffix, sizeof suffix);
-  int fd = mkstemp(*tmp);
-  FILE *f = NULL;
-  if (fd >= 0) {
-    mode_t mask = umask(0);
-    umask(mask);
-    if (fchmod(fd, 0666 & ~mask) == 0) f = fdopen(fd, "w");
-    if (!f) {
-      close(fd);
-      remove(*tmp);
-    }
-  }
-  if (!f) {
-    zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
-    free(*tmp);
-    *tmp = NULL;
-  }
-  return f;
-}
-
-/* Closes f and renames tmp over path (removing tmp on failure). */
-static zs_status temp_commit(FILE *f, char *tmp, const char *path, zs_error *err) {
-  zs_status st = ZS_OK;
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad)
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-  else if (rename(tmp, path) != 0)
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", path, strerror(errno));
-  if (st) remove(tmp);
-  free(tmp);
-  return st;
-}
 
 /* ---- measuring ------------------------------------------------------------ */
 
@@ -186,7 +142,7 @@ static void print_shape(const bench_row *r, const bench_opts *o) {
 static zs_status write_csv(const char *path, const bench_row *rows, int n, int frames,
                            zs_error *err) {
   char *tmp;
-  FILE *f = temp_open(path, &tmp, err);
+  FILE *f = zs_out_open(path, &tmp, err);
   if (!f) return err->code;
   fprintf(f,
           "moving,loose_ms,plain_ms,loose_us_per_object,plain_us_per_object,"
@@ -208,7 +164,7 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, int f
             per_frame(r->work[1].nodes_created, frames), r->stats[0].nodes, r->stats[1].nodes,
             r->stats[0].depth, r->stats[1].depth, r->build_ms[0], r->build_ms[1]);
   }
-  return temp_commit(f, tmp, path, err);
+  return zs_out_commit(f, tmp, path, err);
 }
 
 /* The plot: update time per frame and per moved object, both trees, drawn

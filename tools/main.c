@@ -21,7 +21,7 @@ static const char usage[] =
     "  path SCENE       the cameras of the scene's walk, one line per frame\n"
     "  query INPUT      per object: pixels owned and bounding-box samples\n"
     "  calibrate        measure the device clock's constants on this machine\n"
-    "  bench WHAT       benchmarks: octree, depthsort\n";
+    "  bench WHAT       benchmarks: octree, depthsort, raster\n";
 
 int main(int argc, char **argv) {
   if (argc < 2) {

@@ -1,0 +1,319 @@
+/* `zscan bench raster`: raster throughput, in both hidden-surface modes.
+ *
+ * Two parts, each frame timed (wall clock, median of --repeat frames) from
+ * clear to finish, with the device's own counters beside it:
+ *   triangles  screens tiled with triangles of one size: the two halves of
+ *              S x S pixel squares (S = 4, 10, 25, 100, 500), in layers
+ *              drawn back to front so that every pixel of every layer is
+ *              tested and written; enough layers that a frame fills at
+ *              least 8 M pixels and draws at least 200,000 triangles (or
+ *              64 layers);
+ *   scenes     whole scenes from their own cameras: teapots, city, plant,
+ *              and a teapot field of about a million triangles.
+ * It reports ms per frame, million triangles per second and million pixels
+ * tested per second, and writes a CSV, a Markdown table and a plot. */
+#include "tools/bench_raster.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/raster.h"
+#include "scene/scene.h"
+#include "tools/cli.h"
+#include "tools/frame.h"
+#include "tools/input.h"
+#include "tools/outfile.h"
+#include "tools/plot.h"
+
+static const char usage[] =
+    "usage: zscan bench raster [options]\n"
+    "  --repeat K        frames timed per case; the median is reported (default 11)\n"
+    "  --threads N       render threads in zbuffer mode (default 1)\n"
+    "  --size WxH        image size (default 1024x768)\n"
+    "  --csv FILE        one row per case and mode\n"
+    "  --md FILE         the table in Markdown\n"
+    "  --plot FILE.png   Mtri/s and Mpix/s against triangle size, both modes\n"
+    "  --no-scenes       the triangle sizes only\n";
+
+static const int sides[] = {4, 10, 25, 100, 500};
+enum { NSIDES = sizeof sides / sizeof sides[0] };
+static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
+                                     "builtin:default?level=42"};
+enum { NSCENES = sizeof scenes / sizeof scenes[0] };
+static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
+
+typedef struct bench_opts {
+  int repeat, threads, width, height, scenes;
+  const char *csv, *md, *plot;
+} bench_opts;
+
+typedef struct bench_row {
+  char name[64];
+  const char *algo;
+  double triangles, pixels, ms;
+} bench_row;
+
+static double mtri(const bench_row *r) { return r->triangles / r->ms * 1e-3; }
+static double mpix(const bench_row *r) { return r->pixels / r->ms * 1e-3; }
+
+/* One layer of the tiling: each S x S square of the image as two
+ * triangles, in pixel units at z = 0. */
+typedef struct tiling {
+  zs_mesh mesh;
+  int layers;
+} tiling;
+
+static void tiling_free(tiling *t) {
+  free(t->mesh.pos);
+  free(t->mesh.face_start);
+  free(t->mesh.face_vert);
+}
+
+static zs_status tiling_make(int side, int w, int h, tiling *t, zs_error *err) {
+  memset(t, 0, sizeof *t);
+  int nx = w / side, ny = h / side;
+  if (nx < 1 || ny < 1) return zs_error_set(err, ZS_ERR_ARG, "--size: smaller than %d pixels", side);
+  int64_t verts = (int64_t)(nx + 1) * (ny + 1), faces = 2 * (int64_t)nx * ny;
+  t->mesh.pos = malloc((size_t)verts * 3 * sizeof *t->mesh.pos);
+  t->mesh.face_start = malloc((size_t)(faces + 1) * sizeof *t->mesh.face_start);
+  t->mesh.face_vert = malloc((size_t)faces * 3 * sizeof *t->mesh.face_vert);
+  if (!t->mesh.pos || !t->mesh.face_start || !t->mesh.face_vert) {
+    tiling_free(t);
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  for (int j = 0; j <= ny; j++)
+    for (int i = 0; i <= nx; i++) {
+      double *p = t->mesh.pos + 3 * ((size_t)j * (nx + 1) + i);
+      p[0] = (double)i * side, p[1] = (double)j * side, p[2] = 0.0;
+    }
+  int32_t f = 0;
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      int32_t a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
+      const int32_t tri[2][3] = {{a, b, c}, {a, c, d}};
+      for (int k = 0; k < 2; k++, f++) {
+        t->mesh.face_start[f] = 3 * f;
+        memcpy(t->mesh.face_vert + 3 * f, tri[k], sizeof tri[k]);
+      }
+    }
+  t->mesh.face_start[f] = 3 * f;
+  t->mesh.nverts = (int32_t)verts;
+  t->mesh.nfaces = f;
+  double pixels = (double)nx * side * ny * side;
+  int by_pixels = (int)ceil(8e6 / pixels), by_tris = (int)ceil(2e5 / (double)faces);
+  t->layers = by_pixels > by_tris ? by_pixels : by_tris;
+  if (t->layers > 64) t->layers = 64;
+  return ZS_OK;
+}
+
+/* Times o->repeat frames of the layers of t on dev; the counters of the
+ * last go to r. */
+static zs_status time_tiling(zs_device *dev, const tiling *t, int w, int h, const bench_opts *o,
+                             double *ms, bench_row *r, zs_error *err) {
+  double view[16], proj[16];
+  zs_mat_identity(view);
+  zs_mat_ortho(proj, 0.0, w, 0.0, h, 0.5, t->layers + 1.0);
+  for (int k = 0; k < o->repeat; k++) {
+    double start = zs_wall_ms();
+    zs_device_clear(dev);
+    zs_device_set_camera(dev, view, proj);
+    for (int l = 0; l < t->layers; l++) { /* the farthest first */
+      double model[16];
+      zs_mat_translate(model, 0.0, 0.0, -(double)(t->layers - l));
+      zs_status st = zs_device_draw(dev, &t->mesh, model, (uint32_t)l * (uint32_t)t->mesh.nfaces,
+                                    0x808080, err);
+      if (st) return st;
+    }
+    zs_status st = zs_device_finish(dev, NULL, NULL, err);
+    if (st) return st;
+    ms[k] = zs_wall_ms() - start;
+  }
+  const zs_raster_stats *s = zs_device_stats(dev);
+  r->triangles = (double)s->polygons_rasterized;
+  r->pixels = (double)s->pixels_tested;
+  r->ms = zs_median(ms, o->repeat);
+  return ZS_OK;
+}
+
+static zs_status time_scene(zs_device *dev, const zs_scene *s, int w, int h, const bench_opts *o,
+                            double *ms, bench_row *r, zs_error *err) {
+  double view[16], proj[16];
+  zs_status st = zs_frame_camera(s, &s->camera, w, h, view, proj, err);
+  for (int k = 0; k < o->repeat && st == ZS_OK; k++) {
+    double start = zs_wall_ms();
+    zs_device_clear(dev);
+    zs_device_set_camera(dev, view, proj);
+    if (!(st = zs_frame_draw_scene(dev, s, err))) st = zs_device_finish(dev, NULL, NULL, err);
+    ms[k] = zs_wall_ms() - start;
+  }
+  if (st) return st;
+  const zs_raster_stats *c = zs_device_stats(dev);
+  r->triangles = (double)c->polygons_rasterized;
+  r->pixels = (double)c->pixels_tested;
+  r->ms = zs_median(ms, o->repeat);
+  return ZS_OK;
+}
+
+/* One case (the tiling t, or the scene s) in mode algos[a], on a device of
+ * its own. */
+static zs_status run_case(const bench_opts *o, int a, const char *name, const tiling *t,
+                          const zs_scene *s, double *ms, bench_row *r, zs_error *err) {
+  zs_device_config cfg = {o->width, o->height, algos[a], ZS_SHADE_FLAT, 0,
+                          algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0};
+  zs_device *dev;
+  zs_status st = zs_device_create(&cfg, &dev, err);
+  if (st) return st;
+  snprintf(r->name, sizeof r->name, "%s", name);
+  r->algo = a ? "scanline" : "zbuffer";
+  st = t ? time_tiling(dev, t, o->width, o->height, o, ms, r, err)
+         : time_scene(dev, s, o->width, o->height, o, ms, r, err);
+  zs_device_destroy(dev);
+  return st;
+}
+
+static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts *o, int md) {
+  if (md) {
+    fprintf(f, "| case | algo | triangles | pixels tested | ms per frame | Mtri/s | Mpix/s |\n");
+    fprintf(f, "|---|---|---|---|---|---|---|\n");
+  } else {
+    fprintf(f, "raster throughput at %dx%d, %d thread%s, median of %d frames\n", o->width,
+            o->height, o->threads, o->threads > 1 ? "s" : "", o->repeat);
+    fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s\n", "case", "algo", "triangles",
+            "pixels_tested", "ms", "Mtri/s", "Mpix/s");
+  }
+  for (int i = 0; i < n; i++) {
+    const bench_row *r = &rows[i];
+    if (md)
+      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.1f | %.0f |\n", r->name, r->algo,
+              r->triangles, r->pixels, r->ms, mtri(r), mpix(r));
+    else
+      fprintf(f, "%-28s %-9s %10.0f %13.0f %10.3f %8.2f %8.1f\n", r->name, r->algo, r->triangles,
+              r->pixels, r->ms, mtri(r), mpix(r));
+  }
+}
+
+static zs_status write_csv(const char *path, const bench_row *rows, int n, const bench_opts *o,
+                           zs_error *err) {
+  char *tmp;
+  FILE *f = zs_out_open(path, &tmp, err);
+  if (!f) return err->code;
+  fprintf(f, "case,algo,threads,width,height,triangles,pixels_tested,ms,mtri_per_s,mpix_per_s\n");
+  for (int i = 0; i < n; i++)
+    fprintf(f, "%s,%s,%d,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f\n", rows[i].name, rows[i].algo, o->threads,
+            o->width, o->height, rows[i].triangles, rows[i].pixels, rows[i].ms, mtri(&rows[i]),
+            mpix(&rows[i]));
+  return zs_out_commit(f, tmp, path, err);
+}
+
+static zs_status write_md(const char *path, const bench_row *rows, int n, const bench_opts *o,
+                          zs_error *err) {
+  char *tmp;
+  FILE *f = zs_out_open(path, &tmp, err);
+  if (!f) return err->code;
+  write_table(f, rows, n, o, 1);
+  return zs_out_commit(f, tmp, path, err);
+}
+
+/* Mtri/s and Mpix/s against the triangles' side, both modes (rows: the
+ * sides in order, zbuffer then scanline for each). */
+static zs_status write_plot(const char *path, const bench_row *rows, const bench_opts *o,
+                            zs_error *err) {
+  char script[4096];
+  size_t len = 0;
+#define ADD(...) len += (size_t)snprintf(script + len, len < sizeof script ? sizeof script - len : 0, __VA_ARGS__)
+  ADD("$data << EOD\n");
+  for (int i = 0; i < NSIDES; i++)
+    ADD("%d %.4f %.4f %.4f %.4f\n", sides[i], mtri(&rows[2 * i]), mtri(&rows[2 * i + 1]),
+        mpix(&rows[2 * i]), mpix(&rows[2 * i + 1]));
+  ADD("EOD\nset terminal pngcairo size 1200,500 font 'sans,11'\nset output OUT\n");
+  ADD("set multiplot layout 1,2 title 'Raster throughput at %dx%d, %d thread%s "
+      "(triangles: halves of S x S squares; median of %d frames)'\n",
+      o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->repeat);
+  ADD("set grid\nset logscale xy\nset xlabel 'triangle side S (pixels)'\nset key top right\n"
+      "set ylabel 'million triangles per second'\n"
+      "plot $data using 1:2 with linespoints pt 7 lw 2 title 'zbuffer', \\\n"
+      "     $data using 1:3 with linespoints pt 5 lw 2 title 'scanline'\n"
+      "set key bottom right\nset ylabel 'million pixels tested per second'\n"
+      "plot $data using 1:4 with linespoints pt 7 lw 2 title 'zbuffer', \\\n"
+      "     $data using 1:5 with linespoints pt 5 lw 2 title 'scanline'\n"
+      "unset multiplot\n");
+#undef ADD
+  if (len >= sizeof script) return zs_error_set(err, ZS_ERR_ARG, "plot script too long");
+  return zs_plot_run(path, script, err);
+}
+
+static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
+  *o = (bench_opts){11, 1, 1024, 768, 1, NULL, NULL, NULL};
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = NULL;
+    if (strcmp(a, "--no-scenes") == 0) {
+      o->scenes = 0;
+      continue;
+    }
+    if (a[0] != '-' || !a[1])
+      return zs_error_set(err, ZS_ERR_ARG, "unexpected argument '%s' (see zscan bench raster --help)", a);
+    if (strcmp(a, "--repeat") != 0 && strcmp(a, "--threads") != 0 && strcmp(a, "--size") != 0 &&
+        strcmp(a, "--csv") != 0 && strcmp(a, "--md") != 0 && strcmp(a, "--plot") != 0)
+      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench raster --help)", a);
+    if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+    if (strcmp(a, "--repeat") == 0) {
+      if (zs_cli_int(a, v, 1, 100000, &o->repeat, err)) return err->code;
+    } else if (strcmp(a, "--threads") == 0) {
+      if (zs_cli_int(a, v, 1, 64, &o->threads, err)) return err->code;
+    } else if (strcmp(a, "--size") == 0) {
+      if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
+    } else {
+      if (zs_cli_output_path(a, v, err)) return err->code;
+      if (strcmp(a, "--csv") == 0) o->csv = v;
+      else if (strcmp(a, "--md") == 0) o->md = v;
+      else o->plot = v;
+    }
+  }
+  if (o->width < sides[NSIDES - 1] || o->height < sides[NSIDES - 1])
+    return zs_error_set(err, ZS_ERR_ARG, "--size: at least %dx%d (the largest triangles)",
+                        sides[NSIDES - 1], sides[NSIDES - 1]);
+  return ZS_OK;
+}
+
+int zs_cmd_bench_raster(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    return 0;
+  }
+  bench_opts o;
+  zs_error err;
+  zs_error_clear(&err);
+  bench_row rows[2 * (NSIDES + NSCENES)];
+  int n = 0;
+  double *ms = NULL;
+  zs_status st = parse(argc, argv, &o, &err);
+  if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
+    st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
+  for (int i = 0; i < NSIDES && !st; i++) {
+    tiling t;
+    if ((st = tiling_make(sides[i], o.width, o.height, &t, &err))) break;
+    char name[64];
+    snprintf(name, sizeof name, "triangles %dx%d", sides[i], sides[i]);
+    for (int a = 0; a < 2 && !st; a++) st = run_case(&o, a, name, &t, NULL, ms, &rows[n++], &err);
+    tiling_free(&t);
+  }
+  for (int i = 0; i < NSCENES && o.scenes && !st; i++) {
+    zs_scene s;
+    if ((st = zs_input_load_scene(scenes[i], &s, &err))) break;
+    for (int a = 0; a < 2 && !st; a++)
+      st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
+    zs_scene_free(&s);
+  }
+  free(ms);
+  if (!st) write_table(stdout, rows, n, &o, 0);
+  if (!st && o.csv && !(st = write_csv(o.csv, rows, n, &o, &err))) printf("wrote %s\n", o.csv);
+  if (!st && o.md && !(st = write_md(o.md, rows, n, &o, &err))) printf("wrote %s\n", o.md);
+  if (!st && o.plot && !(st = write_plot(o.plot, rows, &o, &err))) printf("wrote %s\n", o.plot);
+  if (st) {
+    fprintf(stderr, "zscan bench raster: %s\n", err.msg);
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,52 @@
+/* Output files written under a temporary name (outfile.h). */
+#include "tools/outfile.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* Creates PATH.tmp.XXXXXX; *tmp receives its name (malloc'd). */
+FILE *zs_out_open(const char *path, char **tmp, zs_error *err) {
+  static const char suffix[] = ".tmp.XXXXXX";
+  size_t n = strlen(path);
+  *tmp = malloc(n + sizeof suffix);
+  if (!*tmp) {
+    zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
+    return NULL;
+  }
+  memcpy(*tmp, path, n);
+  memcpy(*tmp + n, suffix, sizeof suffix);
+  int fd = mkstemp(*tmp);
+  FILE *f = NULL;
+  if (fd >= 0) {
+    mode_t mask = umask(0);
+    umask(mask);
+    if (fchmod(fd, 0666 & ~mask) == 0) f = fdopen(fd, "w");
+    if (!f) {
+      close(fd);
+      remove(*tmp);
+    }
+  }
+  if (!f) {
+    zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+    free(*tmp);
+    *tmp = NULL;
+  }
+  return f;
+}
+
+/* Closes f and renames tmp over path (removing tmp on failure). */
+zs_status zs_out_commit(FILE *f, char *tmp, const char *path, zs_error *err) {
+  zs_status st = ZS_OK;
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad)
+    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+  else if (rename(tmp, path) != 0)
+    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", path, strerror(errno));
+  if (st) remove(tmp);
+  free(tmp);
+  return st;
+}
+

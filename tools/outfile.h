@@ -1,0 +1,20 @@
+/* zscan tools — output files that appear whole or not at all.
+ *
+ * A CSV, a table or a report is written to PATH.tmp.XXXXXX (mode 0666 less
+ * the umask) and renamed over PATH when every byte went out; on any error
+ * the temporary file is removed, so no half-written file is left. */
+#ifndef ZS_TOOLS_OUTFILE_H
+#define ZS_TOOLS_OUTFILE_H
+
+#include <stdio.h>
+
+#include "raster/error.h"
+
+/* Creates PATH.tmp.XXXXXX; *tmp receives its name (malloc'd).  NULL, with
+ * err set, on failure. */
+FILE *zs_out_open(const char *path, char **tmp, zs_error *err);
+
+/* Closes f and renames tmp over path (removing tmp on failure); frees tmp. */
+zs_status zs_out_commit(FILE *f, char *tmp, const char *path, zs_error *err);
+
+#endif
