@@ -100,6 +100,7 @@ void zs_device_destroy(zs_device *d) {
   free(d->clip);
   free(d->eyepos);
   free(d->outcode);
+  free(d->snap);
   free(d->queries);
   free(d);
 }
@@ -164,6 +165,9 @@ static int reserve_verts(zs_device *d, int32_t n) {
   unsigned *o = realloc(d->outcode, (size_t)n * sizeof *o);
   if (!o) return 0;
   d->outcode = o;
+  zs_snap_vert *s = realloc(d->snap, (size_t)n * sizeof *s);
+  if (!s) return 0;
+  d->snap = s;
   d->cap_verts = n;
   return 1;
 }
@@ -252,12 +256,18 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
   const int flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
   const int painter = d->cfg.algo == ZS_ALGO_DEPTHSORT;
   const int need_eye = flat || painter;
+  zs_setup_params sp = {d->cfg.width, d->cfg.height,
+                        d->cfg.cull_back && k != ZS_KERNEL_QUERY, 0, 0,
+                        k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
   for (int32_t i = 0; i < mesh->nverts; i++) {
     const double *p = &mesh->pos[3 * i];
     double c[4];
     zs_mat_apply(mvp, p, c);
     d->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
     d->outcode[i] = zs_clip_outcode(&d->clip[i], d->gx, d->gy);
+    /* snapped once here for all the faces that share it (set-up snaps
+     * the vertices of a clipped face itself) */
+    if (d->outcode[i] == 0) zs_snap_vertex(&sp, &d->clip[i], &d->snap[i]);
     if (need_eye) {
       double e[4];
       zs_mat_apply(mv, p, e);
@@ -265,10 +275,8 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
     }
   }
 
-  zs_setup_params sp = {d->cfg.width, d->cfg.height,
-                        d->cfg.cull_back && k != ZS_KERNEL_QUERY, 0, 0,
-                        k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
   zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
+  zs_snap_vert snapped[ZS_MAX_POLY_VERTS];
   for (int32_t f = 0; f < mesh->nfaces; f++) {
     int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
     d->stats.polygons_in++;
@@ -304,18 +312,20 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
       }
       sp.rgb = zs_shade_flat(sp.rgb, nrm);
     }
-    for (int i = 0; i < n; i++) in[i] = d->clip[fv[i]];
-    const zs_clip_vert *poly = in;
+    zs_setup_result r;
     if (or_code) {
+      for (int i = 0; i < n; i++) in[i] = d->clip[fv[i]];
       d->stats.polygons_clipped++;
       n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
       if (n == 0) {
         d->stats.polygons_outside++;
         continue;
       }
-      poly = clipped;
+      r = zs_setup_polygon(&d->batch, &sp, clipped, n);
+    } else {
+      for (int i = 0; i < n; i++) snapped[i] = d->snap[fv[i]];
+      r = zs_setup_snapped(&d->batch, &sp, snapped, n);
     }
-    zs_setup_result r = zs_setup_polygon(&d->batch, &sp, poly, n);
     if (painter && r == ZS_SETUP_DRAWN) {
       /* the sort key: distance along the view axis of the centroid of the
        * face's vertices; every face in view is ordered, even one too small

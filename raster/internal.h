@@ -82,6 +82,19 @@ typedef enum zs_setup_result {
 zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *p,
                                  const zs_clip_vert *v, int n);
 
+/* A vertex snapped: window x and image y in 1/256 pixel, window depth in
+ * [0, 1].  zs_setup_polygon snaps each vertex with zs_snap_vertex; a draw
+ * snaps each vertex of its mesh once and hands an unclipped face's
+ * vertices to zs_setup_snapped, which gives the same result. */
+typedef struct zs_snap_vert {
+  int32_t x, y;
+  double z;
+} zs_snap_vert;
+
+void zs_snap_vertex(const zs_setup_params *p, const zs_clip_vert *v, zs_snap_vert *out);
+zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *p,
+                                 const zs_snap_vert *v, int n);
+
 void zs_batch_reset(zs_batch *b);
 void zs_batch_free(zs_batch *b);
 
@@ -224,6 +237,7 @@ struct zs_device {
   zs_clip_vert *clip;             /* per mesh vertex, this draw */
   double *eyepos;
   unsigned *outcode;
+  zs_snap_vert *snap;      /* per vertex, when its outcode is 0 */
   int32_t cap_verts;
 
   /* queries and the clock */
