@@ -186,7 +186,7 @@ static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts 
   for (int i = 0; i < n; i++) {
     const bench_row *r = &rows[i];
     if (md)
-      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.1f | %.0f |\n", r->name, r->algo,
+      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.3g | %.0f |\n", r->name, r->algo,
               r->triangles, r->pixels, r->ms, mtri(r), mpix(r));
     else
       fprintf(f, "%-28s %-9s %10.0f %13.0f %10.3f %8.2f %8.1f\n", r->name, r->algo, r->triangles,
