@@ -313,8 +313,8 @@ static void draw_instance(frame_ctx *f, int32_t i) {
   if (f->status != ZS_OK) return;
   const zs_instance *in = &f->s->inst[i];
   const zs_mesh *m = &f->s->meshes[in->mesh].mesh;
-  elem_state *es = &f->c->os[i];
   const int nohc = f->c->method == ZS_CULL_NOHC;
+  elem_state *es = nohc ? &f->c->os[i] : NULL; /* (none and the oracles keep no state) */
   /* nohc measures an object it draws every NOHC_MEASURE frames (the first
    * time at random, so that the measurements spread over the frames): it
    * draws it inside a query, whose count of written pixels is its history

@@ -98,6 +98,15 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *p,
 void zs_batch_reset(zs_batch *b);
 void zs_batch_free(zs_batch *b);
 
+/* ---- span_simd.c: the draw kernel's span fill with AVX2 ----
+ * For a span whose depths z .. z + (x1 - x0 - 1) dz all lie strictly
+ * inside the depth range: the scalar loop's test and writes, eight pixels
+ * at a time; returns the pixels written.  zs_span_simd_active: the CPU has
+ * AVX2 and zs_raster_set_simd has not turned it off. */
+int zs_span_simd_active(void);
+uint64_t zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
+                           int64_t dz, int shift, uint32_t id, uint32_t rgb);
+
 /* ---- scanline.c ---- */
 typedef enum zs_kernel {
   ZS_KERNEL_DRAW,      /* less-with-id test; write depth, id, colour */

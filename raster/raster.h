@@ -202,6 +202,11 @@ int zs_device_query_ready(const zs_device *dev, zs_query q);
  * moves to the result's ready time and the wait counts as a stall. */
 uint64_t zs_device_query_result(zs_device *dev, zs_query q);
 
+/* Whether the draw kernel may fill long spans with AVX2 (span_simd.c;
+ * on by default where the CPU has it).  The images and counters are the
+ * same either way; returns whether the SIMD path is now in use. */
+int zs_raster_set_simd(int on);
+
 /* ---- clock.c: the modelled clock ----
  *
  * Real queries answer after a latency, and a CPU that waits for an answer

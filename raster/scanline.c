@@ -72,7 +72,7 @@ static inline uint32_t depth_of(int64_t z, int shift, int64_t zfar) {
 static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
                              int x0, int x1, int64_t z, int64_t dz,
                              int shift, uint32_t id, uint32_t rgb,
-                             uint64_t *written) {
+                             int simd, uint64_t *written) {
   if (k == ZS_KERNEL_OVERDRAW) {
     uint32_t *cnt = t->count + off;
     for (int x = x0; x < x1; x++) cnt[x]++;
@@ -92,6 +92,10 @@ static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
    * planes, so does every pixel, and depth_of is a shift */
   const int64_t zlast = z + dz * (x1 - 1 - x0);
   if (z > 0 && zlast > 0 && z < zfar && zlast < zfar) {
+    if (simd && x1 - x0 >= 16) {
+      *written += zs_fill_span_simd(zr, ir, cr, x0, x1, z, dz, shift, id, rgb);
+      return;
+    }
     for (int x = x0; x < x1; x++, z += dz) {
       uint32_t d = (uint32_t)(z >> shift), zb = zr[x];
       if (d < zb || (d == zb && id < ir[x])) {
@@ -164,6 +168,7 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
   int32_t *head = s->bucket_head, *next = s->next;
   zs_active *act = s->active;
   const int width = t->width;
+  const int simd = k == ZS_KERNEL_DRAW && zs_span_simd_active();
 
   /* The sorted polygon table: bucket each polygon under its first row;
    * walking the batch backwards keeps each bucket in batch order. */
@@ -230,7 +235,7 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
       if (x0 < x1) {
         int64_t z = a->zl + p->dzdx * (x0 - a->l.x);
         fill_span(k, t, off, (int)x0, (int)x1, z, p->dzdx, p->zshift, p->id,
-                  p->rgb, &written);
+                  p->rgb, simd, &written);
         spans++;
         tested += (uint64_t)(x1 - x0);
         if (obs) s->trace_spans[ntrace_spans++] = (zs_trace_span){(int32_t)x0, (int32_t)x1 - 1, p->id};

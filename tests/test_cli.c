@@ -197,8 +197,8 @@ START_TEST(bench_raster_writes_csv_and_table) {
   snprintf(md, sizeof md, "%s/cli-bench.md", ZS_BINARY_DIR);
   unlink(csv);
   unlink(md);
-  const char *args[] = {"bench", "raster", "--no-scenes", "--repeat", "1", "--size", "500x500",
-                        "--csv", csv, "--md", md, NULL};
+  const char *args[] = {"bench", "raster", "--no-scenes", "--no-simd", "--repeat", "1", "--size",
+                        "500x500", "--csv", csv, "--md", md, NULL};
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
   ck_assert_str_eq(err, "");
@@ -207,12 +207,13 @@ START_TEST(bench_raster_writes_csv_and_table) {
   char line[512];
   int rows = 0;
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
-  ck_assert_str_eq(line, "case,algo,threads,width,height,triangles,pixels_tested,ms,mtri_per_s,mpix_per_s\n");
+  ck_assert_str_eq(line, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,"
+                         "mtri_per_s,mpix_per_s\n");
   static const char *const want[] = {
-      "triangles 10x10,zbuffer,1,500,500,200000,10000000,",
-      "triangles 10x10,scanline,1,500,500,200000,10000000,",
-      "triangles 500x500,zbuffer,1,500,500,128,16000000,",
-      "triangles 500x500,scanline,1,500,500,128,16000000,"};
+      "triangles 10x10,zbuffer,1,scalar,500,500,200000,10000000,",
+      "triangles 10x10,scanline,1,scalar,500,500,200000,10000000,",
+      "triangles 500x500,zbuffer,1,scalar,500,500,128,16000000,",
+      "triangles 500x500,scanline,1,scalar,500,500,128,16000000,"};
   int found[4] = {0, 0, 0, 0};
   while (fgets(line, sizeof line, f)) {
     rows++;

@@ -35,7 +35,8 @@ static const char usage[] =
     "  --csv FILE        one row per case and mode\n"
     "  --md FILE         the table in Markdown\n"
     "  --plot FILE.png   Mtri/s and Mpix/s against triangle size, both modes\n"
-    "  --no-scenes       the triangle sizes only\n";
+    "  --no-scenes       the triangle sizes only\n"
+    "  --no-simd         fill spans with the scalar loop only (the same pixels)\n";
 
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
@@ -45,7 +46,7 @@ enum { NSCENES = sizeof scenes / sizeof scenes[0] };
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {
-  int repeat, threads, width, height, scenes;
+  int repeat, threads, width, height, scenes, simd;
   const char *csv, *md, *plot;
 } bench_opts;
 
@@ -178,8 +179,9 @@ static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts 
     fprintf(f, "| case | algo | triangles | pixels tested | ms per frame | Mtri/s | Mpix/s |\n");
     fprintf(f, "|---|---|---|---|---|---|---|\n");
   } else {
-    fprintf(f, "raster throughput at %dx%d, %d thread%s, median of %d frames\n", o->width,
-            o->height, o->threads, o->threads > 1 ? "s" : "", o->repeat);
+    fprintf(f, "raster throughput at %dx%d, %d thread%s, %s spans, median of %d frames\n",
+            o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->simd ? "AVX2" : "scalar",
+            o->repeat);
     fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s\n", "case", "algo", "triangles",
             "pixels_tested", "ms", "Mtri/s", "Mpix/s");
   }
@@ -199,10 +201,11 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
   char *tmp;
   FILE *f = zs_out_open(path, &tmp, err);
   if (!f) return err->code;
-  fprintf(f, "case,algo,threads,width,height,triangles,pixels_tested,ms,mtri_per_s,mpix_per_s\n");
+  fprintf(f, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,mtri_per_s,"
+             "mpix_per_s\n");
   for (int i = 0; i < n; i++)
-    fprintf(f, "%s,%s,%d,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f\n", rows[i].name, rows[i].algo, o->threads,
-            o->width, o->height, rows[i].triangles, rows[i].pixels, rows[i].ms, mtri(&rows[i]),
+    fprintf(f, "%s,%s,%d,%s,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f\n", rows[i].name, rows[i].algo,
+            o->threads, o->simd ? "avx2" : "scalar", o->width, o->height, rows[i].triangles, rows[i].pixels, rows[i].ms, mtri(&rows[i]),
             mpix(&rows[i]));
   return zs_out_commit(f, tmp, path, err);
 }
@@ -228,9 +231,10 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
     ADD("%d %.4f %.4f %.4f %.4f\n", sides[i], mtri(&rows[2 * i]), mtri(&rows[2 * i + 1]),
         mpix(&rows[2 * i]), mpix(&rows[2 * i + 1]));
   ADD("EOD\nset terminal pngcairo size 1200,500 font 'sans,11'\nset output OUT\n");
-  ADD("set multiplot layout 1,2 title 'Raster throughput at %dx%d, %d thread%s "
+  ADD("set multiplot layout 1,2 title 'Raster throughput at %dx%d, %d thread%s, %s spans "
       "(triangles: halves of S x S squares; median of %d frames)'\n",
-      o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->repeat);
+      o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->simd ? "AVX2" : "scalar",
+      o->repeat);
   ADD("set grid\nset logscale xy\nset xlabel 'triangle side S (pixels)'\nset key top right\n"
       "set ylabel 'million triangles per second'\n"
       "plot $data using 1:2 with linespoints pt 7 lw 2 title 'zbuffer', \\\n"
@@ -245,11 +249,15 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, 1, NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
       o->scenes = 0;
+      continue;
+    }
+    if (strcmp(a, "--no-simd") == 0) {
+      o->simd = 0;
       continue;
     }
     if (a[0] != '-' || !a[1])
@@ -289,6 +297,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   int n = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
+  o.simd = zs_raster_set_simd(!st && o.simd); /* what is in use */
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
   for (int i = 0; i < NSIDES && !st; i++) {
