@@ -101,11 +101,13 @@ void zs_batch_free(zs_batch *b);
 /* ---- span_simd.c: the draw kernel's span fill with AVX2 ----
  * For a span whose depths z .. z + (x1 - x0 - 1) dz all lie strictly
  * inside the depth range: the scalar loop's test and writes, eight pixels
- * at a time; returns the pixels written.  zs_span_simd_active: the CPU has
- * AVX2 and zs_raster_set_simd has not turned it off. */
+ * at a time, as far as whole steps of eight go; adds the pixels written to
+ * *written and returns the column where the scalar loop takes over.
+ * zs_span_simd_active: the CPU has AVX2 and zs_raster_set_simd has not
+ * turned it off. */
 int zs_span_simd_active(void);
-uint64_t zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
-                           int64_t dz, int shift, uint32_t id, uint32_t rgb);
+int zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
+                      int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written);
 
 /* ---- scanline.c ---- */
 typedef enum zs_kernel {

@@ -92,9 +92,10 @@ static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
    * planes, so does every pixel, and depth_of is a shift */
   const int64_t zlast = z + dz * (x1 - 1 - x0);
   if (z > 0 && zlast > 0 && z < zfar && zlast < zfar) {
-    if (simd && x1 - x0 >= 16) {
-      *written += zs_fill_span_simd(zr, ir, cr, x0, x1, z, dz, shift, id, rgb);
-      return;
+    if (simd && x1 - x0 >= 16) { /* AVX2 for whole steps of eight, the rest below */
+      int xs = zs_fill_span_simd(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+      z += dz * (xs - x0);
+      x0 = xs;
     }
     for (int x = x0; x < x1; x++, z += dz) {
       uint32_t d = (uint32_t)(z >> shift), zb = zr[x];

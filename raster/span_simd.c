@@ -22,9 +22,10 @@ static int simd_allowed = 1;
 
 #define ZS_HAVE_AVX2_PATH 1
 
-__attribute__((target("avx2"))) static uint64_t fill_avx2(uint32_t *zr, uint32_t *ir, uint32_t *cr,
-                                                           int x0, int x1, int64_t z, int64_t dz,
-                                                           int shift, uint32_t id, uint32_t rgb) {
+__attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir, uint32_t *cr,
+                                                      int x0, int x1, int64_t z, int64_t dz,
+                                                      int shift, uint32_t id, uint32_t rgb,
+                                                      uint64_t *written) {
   const __m256i sign = _mm256_set1_epi32((int)0x80000000u);
   const __m256i idv = _mm256_set1_epi32((int)id), rgbv = _mm256_set1_epi32((int)rgb);
   const __m256i id_s = _mm256_xor_si256(idv, sign);
@@ -34,7 +35,7 @@ __attribute__((target("avx2"))) static uint64_t fill_avx2(uint32_t *zr, uint32_t
   __m256i za = _mm256_setr_epi64x(z, z + dz, z + 2 * dz, z + 3 * dz);
   __m256i zb4 = _mm256_add_epi64(za, _mm256_set1_epi64x(4 * dz));
   const __m256i step = _mm256_set1_epi64x(8 * dz);
-  uint64_t written = 0;
+  uint64_t w = 0;
   int x = x0;
   for (; x + 8 <= x1; x += 8) {
     __m256i da = _mm256_permutevar8x32_epi32(_mm256_srl_epi64(za, count), low_dwords);
@@ -52,23 +53,13 @@ __attribute__((target("avx2"))) static uint64_t fill_avx2(uint32_t *zr, uint32_t
       _mm256_storeu_si256((__m256i *)(zr + x), _mm256_blendv_epi8(zold, d, pass));
       _mm256_storeu_si256((__m256i *)(ir + x), _mm256_blendv_epi8(iold, idv, pass));
       _mm256_storeu_si256((__m256i *)(cr + x), _mm256_blendv_epi8(cold, rgbv, pass));
-      written += (uint64_t)__builtin_popcount((unsigned)bits);
+      w += (uint64_t)__builtin_popcount((unsigned)bits);
     }
     za = _mm256_add_epi64(za, step);
     zb4 = _mm256_add_epi64(zb4, step);
   }
-  /* the last pixels, as the scalar loop does them */
-  z += dz * (x - x0);
-  for (; x < x1; x++, z += dz) {
-    uint32_t d = (uint32_t)(z >> shift), zb = zr[x];
-    if (d < zb || (d == zb && id < ir[x])) {
-      zr[x] = d;
-      ir[x] = id;
-      cr[x] = rgb;
-      written++;
-    }
-  }
-  return written;
+  *written += w;
+  return x;
 }
 
 static int cpu_has_avx2(void) { return __builtin_cpu_supports("avx2") != 0; }
@@ -87,13 +78,13 @@ int zs_span_simd_active(void) {
 #endif
 }
 
-uint64_t zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
-                           int64_t dz, int shift, uint32_t id, uint32_t rgb) {
+int zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
+                      int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written) {
 #ifdef ZS_HAVE_AVX2_PATH
-  return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb);
+  return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
 #else
-  (void)zr, (void)ir, (void)cr, (void)x0, (void)x1, (void)z, (void)dz, (void)shift, (void)id,
-      (void)rgb;
-  return 0;
+  (void)zr, (void)ir, (void)cr, (void)x1, (void)z, (void)dz, (void)shift, (void)id, (void)rgb,
+      (void)written;
+  return x0;
 #endif
 }
