@@ -443,3 +443,24 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
   }
   return ZS_OK;
 }
+
+static size_t scratch_bytes(const zs_walk_scratch *s) {
+  return (size_t)s->cap_rows * sizeof *s->bucket_head +
+         (size_t)s->cap_polys * (sizeof *s->next + sizeof *s->active + sizeof *s->cross);
+}
+
+zs_device_memory zs_device_memory_of(const zs_device *d) {
+  zs_device_memory m = {0, 0, 0};
+  size_t w = (size_t)d->cfg.width, px = w * (size_t)d->cfg.height;
+  if (d->depth) m.pixel_buffers += 3 * px * sizeof(uint32_t);
+  if (d->count) m.pixel_buffers += px * sizeof(uint32_t);
+  if (d->row_depth) m.pixel_buffers += 4 * w * sizeof(uint32_t);
+  m.pixel_buffers += w * sizeof(uint32_t); /* the shaded row */
+  m.tables = (size_t)d->batch.cap_polys * sizeof(zs_poly) +
+             (size_t)d->batch.cap_edges * sizeof(zs_edge) + scratch_bytes(&d->scratch);
+  if (d->band_scratch)
+    for (int i = 0; i < 64; i++) m.tables += scratch_bytes(&d->band_scratch[i]);
+  m.vertices = (size_t)d->cap_verts * (sizeof(zs_clip_vert) + 3 * sizeof(double) +
+                                       sizeof(unsigned) + sizeof(zs_snap_vert));
+  return m;
+}

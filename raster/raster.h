@@ -202,6 +202,16 @@ int zs_device_query_ready(const zs_device *dev, zs_query q);
  * moves to the result's ready time and the wait counts as a stall. */
 uint64_t zs_device_query_result(zs_device *dev, zs_query q);
 
+/* The memory a device holds now, in bytes: pixel buffers (full-frame in
+ * zbuffer mode; one row in scanline and depthsort modes), the polygon and
+ * edge tables with the walk's scratch (which grow with the polygons of a
+ * draw, or of the whole frame in scanline mode, and one entry per row),
+ * and the per-vertex arrays of the largest mesh drawn. */
+typedef struct zs_device_memory {
+  size_t pixel_buffers, tables, vertices;
+} zs_device_memory;
+zs_device_memory zs_device_memory_of(const zs_device *dev);
+
 /* Whether the draw kernel may fill long spans with AVX2 (span_simd.c;
  * on by default where the CPU has it).  The images and counters are the
  * same either way; returns whether the SIMD path is now in use. */

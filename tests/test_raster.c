@@ -395,6 +395,43 @@ START_TEST(simd_spans_equal_scalar) {
 }
 END_TEST
 
+START_TEST(scanline_memory_grows_with_width_not_area) {
+  /* The same sphere at four sizes: scanline mode's pixel buffers are rows
+   * (width), zbuffer mode's the frame (area); the polygon tables do not
+   * depend on the image's width at all. */
+  mesh_buf b = {0};
+  mb_sphere(&b, 0.5, 0.5, -3.0, 0.4, 64, 32, 0x808080);
+  const int sizes[4][2] = {{256, 192}, {1024, 192}, {256, 768}, {1024, 768}};
+  zs_device_memory mem[2][4];
+  for (int algo = 0; algo < 2; algo++)
+    for (int k = 0; k < 4; k++) {
+      int w = sizes[k][0], h = sizes[k][1];
+      zs_device *d = device(w, h, (zs_algo)algo, ZS_SHADE_FLAT, 0);
+      double view[16], proj[16];
+      zs_mat_identity(view);
+      zs_mat_ortho(proj, 0, 1, 0, 1, 0.5, 10);
+      zs_device_set_camera(d, view, proj);
+      zs_device_clear(d);
+      zs_error err;
+      zs_error_clear(&err);
+      ck_assert_int_eq(zs_device_draw(d, &b.m, NULL, 0, ZS_RGB_MESH, &err), ZS_OK);
+      ck_assert_int_eq(zs_device_finish(d, NULL, NULL, &err), ZS_OK);
+      mem[algo][k] = zs_device_memory_of(d);
+      zs_device_destroy(d);
+    }
+  const zs_device_memory *z = mem[ZS_ALGO_ZBUFFER], *s = mem[ZS_ALGO_SCANLINE];
+  /* scanline: four rows of 4 bytes per pixel of width, and the shaded row */
+  for (int k = 0; k < 4; k++) ck_assert_uint_eq(s[k].pixel_buffers, (size_t)sizes[k][0] * 5 * 4);
+  ck_assert_uint_eq(s[0].pixel_buffers, s[2].pixel_buffers); /* 4x the height: the same */
+  /* zbuffer: depth, id and colour for every pixel, and the shaded row */
+  for (int k = 0; k < 4; k++)
+    ck_assert_uint_eq(z[k].pixel_buffers,
+                      (size_t)sizes[k][0] * sizes[k][1] * 12 + (size_t)sizes[k][0] * 4);
+  ck_assert_uint_eq(s[0].tables, s[1].tables); /* 4x the width: the same tables */
+  mb_free(&b);
+}
+END_TEST
+
 START_TEST(depth_stepping_equals_evaluation) {
   /* Steep and shallow planes: the depth the walk wrote at each pixel equals
    * the plane evaluated there in double, to within one unit of the 32-bit
@@ -497,6 +534,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, lecture_zbuffer_examples);
   tcase_add_test(tc, modes_agree_and_order_does_not_matter);
   tcase_add_test(tc, simd_spans_equal_scalar);
+  tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
   tcase_add_test(tc, degenerate_faces_draw_nothing);
   tcase_add_test(tc, back_faces_culled_only_when_asked);

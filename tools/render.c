@@ -180,6 +180,9 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
          (unsigned long long)k->queries, (unsigned long long)k->query_waits,
          (unsigned long long)k->stalls, k->stall_ps * 1e-9, k->sync_ps * 1e-9, k->gpu_ps * 1e-9,
          k->cpu_ps * 1e-9, zs_device_frame_ps(dev) * 1e-9);
+  zs_device_memory mem = zs_device_memory_of(dev);
+  printf("\"buffer_bytes\":%zu,\"table_bytes\":%zu,\"vertex_bytes\":%zu,", mem.pixel_buffers,
+         mem.tables, mem.vertices);
   printf("\"threads\":%d,\"repeat\":%d,\"ms_per_frame\":%.3f,\"ms_load\":%.3f}\n", o->threads,
          o->repeat, ms, load_ms);
 }
