@@ -17,9 +17,6 @@
  * objects touch or cut into each other (buildings standing on the street,
  * pipes through walls, teapots in columns) a few pixels along the contact
  * are decided by depth precision; there the bound is 5 in 10,000. */
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/gl.h>
-#include <GL/osmesa.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,57 +25,9 @@
 #include "tests/testutil.h"
 #include "tools/frame.h"
 #include "tools/input.h"
+#include "tools/mesa.h"
 
 enum { W = 512, H = 384 };
-
-/* Mesa's ids: face id + 1 from the colour (0 background). */
-static void mesa_ids(const zs_scene *s, const double view[16], const double proj[16],
-                     uint32_t *ids) {
-  static unsigned char rgba[W * H * 4];
-  OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, NULL);
-  ck_assert_ptr_nonnull(ctx);
-  ck_assert(OSMesaMakeCurrent(ctx, rgba, GL_UNSIGNED_BYTE, W, H));
-  glViewport(0, 0, W, H);
-  glClearColor(0, 0, 0, 0);
-  glClearDepth(1.0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_DITHER);
-  glShadeModel(GL_FLAT);
-  double p[16];
-  for (int r = 0; r < 4; r++)
-    for (int c = 0; c < 4; c++) p[4 * c + r] = proj[4 * r + c]; /* GL is column-major */
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixd(p);
-  glMatrixMode(GL_MODELVIEW);
-  /* all faces, in id order */
-  for (int32_t i = 0; i < s->ninst; i++) {
-    const zs_instance *in = &s->inst[i];
-    double mv[16], g[16];
-    zs_mat_mul(mv, view, in->model);
-    for (int r = 0; r < 4; r++)
-      for (int c = 0; c < 4; c++) g[4 * c + r] = mv[4 * r + c];
-    glLoadMatrixd(g);
-    const zs_mesh *m = &s->meshes[in->mesh].mesh;
-    for (int32_t f = 0; f < m->nfaces; f++) {
-      uint32_t id = in->id_base + (uint32_t)m->face_id[f] + 1;
-      glColor3ub((GLubyte)(id >> 16), (GLubyte)(id >> 8), (GLubyte)id);
-      glBegin(GL_POLYGON);
-      for (int32_t k = m->face_start[f]; k < m->face_start[f + 1]; k++)
-        glVertex3dv(&m->pos[3 * m->face_vert[k]]);
-      glEnd();
-    }
-  }
-  glFinish();
-  for (int y = 0; y < H; y++) /* GL's row 0 is the bottom */
-    for (int x = 0; x < W; x++) {
-      const unsigned char *q = &rgba[4 * ((H - 1 - y) * W + x)];
-      ids[y * W + x] = (uint32_t)q[0] << 16 | (uint32_t)q[1] << 8 | q[2];
-    }
-  OSMesaDestroyContext(ctx);
-}
 
 typedef struct cross_case {
   const char *input;
@@ -114,7 +63,10 @@ START_TEST(faces_match_llvmpipe) {
   zs_image im;
   ck_assert_int_eq(zs_frame_render(&s, &cam, &o, &im, NULL, NULL, &err), ZS_OK);
   static uint32_t ids[W * H];
-  mesa_ids(&s, view, proj, ids);
+  zs_mesa *mesa;
+  ck_assert_msg(zs_mesa_create(W, H, &mesa, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_int_eq(zs_mesa_ids(mesa, &s, view, proj, ids, &err), ZS_OK);
+  zs_mesa_destroy(mesa);
   int differ = 0, covered = 0;
   for (int i = 0; i < W * H; i++) {
     differ += ids[i] != im.rgb[i];

@@ -24,6 +24,7 @@
 #include "tools/cli.h"
 #include "tools/frame.h"
 #include "tools/input.h"
+#include "tools/mesa.h"
 #include "tools/outfile.h"
 #include "tools/plot.h"
 
@@ -36,7 +37,9 @@ static const char usage[] =
     "  --md FILE         the table in Markdown\n"
     "  --plot FILE.png   Mtri/s and Mpix/s against triangle size, both modes\n"
     "  --no-scenes       the triangle sizes only\n"
-    "  --no-simd         fill spans with the scalar loop only (the same pixels)\n";
+    "  --no-simd         fill spans with the scalar loop only (the same pixels)\n"
+    "  --mesa            also the scenes through Mesa's llvmpipe (OSMesa), frames taken\n"
+    "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n";
 
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
@@ -46,7 +49,7 @@ enum { NSCENES = sizeof scenes / sizeof scenes[0] };
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {
-  int repeat, threads, width, height, scenes, simd;
+  int repeat, threads, width, height, scenes, simd, mesa;
   const char *csv, *md, *plot;
 } bench_opts;
 
@@ -157,6 +160,86 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, int w, int h, con
   return ZS_OK;
 }
 
+/* A scene through zscan (zbuffer mode) and llvmpipe, frames in turn. */
+typedef struct mesa_row {
+  const char *name;
+  double zscan_ms, mesa_ms;
+  uint64_t differ, covered; /* pixels whose face differs; pixels zscan covers */
+} mesa_row;
+
+static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char *name,
+                              double *ms, mesa_row *r, zs_error *err) {
+  const int w = o->width, h = o->height;
+  double view[16], proj[16], *mms = malloc((size_t)o->repeat * sizeof *mms);
+  uint32_t *ids = malloc((size_t)w * h * sizeof *ids);
+  zs_mesa *mesa = NULL;
+  zs_device *dev = NULL, *idev = NULL;
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0};
+  zs_device_config icfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_status st = !mms || !ids ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
+  if (!st && !(st = zs_frame_camera(s, &s->camera, w, h, view, proj, err)) &&
+      !(st = zs_mesa_create(w, h, &mesa, err)) && !(st = zs_device_create(&cfg, &dev, err)))
+    st = zs_device_create(&icfg, &idev, err);
+  for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
+    double t0 = zs_wall_ms();
+    zs_device_clear(dev);
+    zs_device_set_camera(dev, view, proj);
+    if ((st = zs_frame_draw_scene(dev, s, err)) || (st = zs_device_finish(dev, NULL, NULL, err)))
+      break;
+    double t1 = zs_wall_ms();
+    if ((st = zs_mesa_frame(mesa, s, view, proj, err))) break;
+    ms[k] = t1 - t0;
+    mms[k] = zs_wall_ms() - t1;
+  }
+  /* the faces each shows: zscan's id shading is the face id + 1, as Mesa's colours */
+  if (!st) {
+    zs_device_clear(idev);
+    zs_device_set_camera(idev, view, proj);
+    if (!(st = zs_frame_draw_scene(idev, s, err)) && !(st = zs_device_finish(idev, NULL, NULL, err)))
+      st = zs_mesa_ids(mesa, s, view, proj, ids, err);
+  }
+  if (!st) {
+    const uint32_t *zid = zs_device_id_buffer(idev);
+    r->name = name;
+    r->differ = r->covered = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+      uint32_t z = zid[i] == ZS_ID_NONE ? 0 : zid[i] + 1;
+      r->differ += z != ids[i];
+      r->covered += z != 0;
+    }
+    r->zscan_ms = zs_median(ms, o->repeat);
+    r->mesa_ms = zs_median(mms, o->repeat);
+  }
+  zs_mesa_destroy(mesa);
+  zs_device_destroy(dev);
+  zs_device_destroy(idev);
+  free(mms);
+  free(ids);
+  return st;
+}
+
+static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_opts *o, int md) {
+  if (md) {
+    fprintf(f, "\n| scene | zscan ms | llvmpipe ms | zscan / llvmpipe | faces differing in 10,000 pixels |\n");
+    fprintf(f, "|---|---|---|---|---|\n");
+  } else {
+    fprintf(f, "\nzscan (zbuffer, %d thread%s) and llvmpipe, frames in turn, median of %d\n",
+            o->threads, o->threads > 1 ? "s" : "", o->repeat);
+    fprintf(f, "%-28s %10s %12s %8s %14s\n", "scene", "zscan_ms", "llvmpipe_ms", "ratio",
+            "differ_per_10k");
+  }
+  for (int i = 0; i < n; i++) {
+    const mesa_row *r = &rows[i];
+    double per10k = 1e4 * (double)r->differ / ((double)o->width * o->height);
+    if (md)
+      fprintf(f, "| `%s` | %.2f | %.2f | %.2f | %.2f |\n", r->name, r->zscan_ms, r->mesa_ms,
+              r->zscan_ms / r->mesa_ms, per10k);
+    else
+      fprintf(f, "%-28s %10.3f %12.3f %8.3f %14.2f\n", r->name, r->zscan_ms, r->mesa_ms,
+              r->zscan_ms / r->mesa_ms, per10k);
+  }
+}
+
 /* One case (the tiling t, or the scene s) in mode algos[a], on a device of
  * its own. */
 static zs_status run_case(const bench_opts *o, int a, const char *name, const tiling *t,
@@ -210,12 +293,13 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
   return zs_out_commit(f, tmp, path, err);
 }
 
-static zs_status write_md(const char *path, const bench_row *rows, int n, const bench_opts *o,
-                          zs_error *err) {
+static zs_status write_md(const char *path, const bench_row *rows, int n, const mesa_row *mrows,
+                          int nm, const bench_opts *o, zs_error *err) {
   char *tmp;
   FILE *f = zs_out_open(path, &tmp, err);
   if (!f) return err->code;
   write_table(f, rows, n, o, 1);
+  if (nm) write_mesa_table(f, mrows, nm, o, 1);
   return zs_out_commit(f, tmp, path, err);
 }
 
@@ -249,7 +333,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, 1, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, 1, 0, NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
@@ -258,6 +342,13 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
     }
     if (strcmp(a, "--no-simd") == 0) {
       o->simd = 0;
+      continue;
+    }
+    if (strcmp(a, "--mesa") == 0) {
+      if (!zs_mesa_available())
+        return zs_error_set(err, ZS_ERR_UNSUPPORTED,
+                            "--mesa: zscan was built without OSMesa (install libosmesa6-dev, rebuild)");
+      o->mesa = 1;
       continue;
     }
     if (a[0] != '-' || !a[1])
@@ -294,7 +385,8 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   zs_error err;
   zs_error_clear(&err);
   bench_row rows[2 * (NSIDES + NSCENES)];
-  int n = 0;
+  mesa_row mrows[NSCENES];
+  int n = 0, nm = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
   o.simd = zs_raster_set_simd(!st && o.simd); /* what is in use */
@@ -313,12 +405,14 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     if ((st = zs_input_load_scene(scenes[i], &s, &err))) break;
     for (int a = 0; a < 2 && !st; a++)
       st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
+    if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], ms, &mrows[nm++], &err);
     zs_scene_free(&s);
   }
   free(ms);
   if (!st) write_table(stdout, rows, n, &o, 0);
+  if (!st && nm) write_mesa_table(stdout, mrows, nm, &o, 0);
   if (!st && o.csv && !(st = write_csv(o.csv, rows, n, &o, &err))) printf("wrote %s\n", o.csv);
-  if (!st && o.md && !(st = write_md(o.md, rows, n, &o, &err))) printf("wrote %s\n", o.md);
+  if (!st && o.md && !(st = write_md(o.md, rows, n, mrows, nm, &o, &err))) printf("wrote %s\n", o.md);
   if (!st && o.plot && !(st = write_plot(o.plot, rows, &o, &err))) printf("wrote %s\n", o.plot);
   if (st) {
     fprintf(stderr, "zscan bench raster: %s\n", err.msg);

@@ -1,0 +1,39 @@
+/* zscan tools — the same scene through Mesa's llvmpipe (OSMesa), for the
+ * cross-check test and `zscan bench raster --mesa`.
+ *
+ * Built with OSMesa when CMake finds it (libosmesa6-dev; ZS_HAVE_OSMESA),
+ * else every call reports that Mesa is not there.  llvmpipe's thread
+ * count is its own: it reads LP_NUM_THREADS when the first context is
+ * made (the default: one per core). */
+#ifndef ZS_TOOLS_MESA_H
+#define ZS_TOOLS_MESA_H
+
+#include <stdint.h>
+
+#include "raster/error.h"
+#include "scene/scene.h"
+
+typedef struct zs_mesa zs_mesa;
+
+/* Whether zscan was built with OSMesa. */
+int zs_mesa_available(void);
+
+/* A w x h RGBA context with a 24-bit depth buffer; ZS_ERR_UNSUPPORTED
+ * without OSMesa. */
+zs_status zs_mesa_create(int w, int h, zs_mesa **out, zs_error *err);
+void zs_mesa_destroy(zs_mesa *m);
+
+/* The face ids (id + 1, 0 where nothing) of scene s drawn with view and
+ * proj (zscan's row-major matrices): one flat colour per face, a "less"
+ * depth test, faces in id order, immediate mode.  ids: w * h, row 0 at
+ * the top. */
+zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], const double proj[16],
+                      uint32_t *ids, zs_error *err);
+
+/* One frame of s as fast as this GL offers it: each mesh's faces, fanned
+ * into triangles, drawn from vertex arrays (built on the first call), one
+ * colour per instance; cleared first, finished (glFinish) at the end. */
+zs_status zs_mesa_frame(zs_mesa *m, const zs_scene *s, const double view[16],
+                        const double proj[16], zs_error *err);
+
+#endif
