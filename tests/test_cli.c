@@ -188,15 +188,19 @@ START_TEST(bad_option_refused) {
 }
 END_TEST
 
+/* PATH in the build directory, with no file there yet. */
+static void fresh_path(char *buf, size_t n, const char *name) {
+  snprintf(buf, n, "%s/%s", ZS_BINARY_DIR, name);
+  unlink(buf);
+}
+
 START_TEST(bench_raster_writes_csv_and_table) {
   /* the triangle sizes at 500x500, one frame each: the counts are exact
    * (10x10: 2,500 squares of two triangles, 40 layers to reach 200,000
    * triangles; 500x500: one square, 64 layers, the most there are) */
   char csv[4096], md[4096];
-  snprintf(csv, sizeof csv, "%s/cli-bench.csv", ZS_BINARY_DIR);
-  snprintf(md, sizeof md, "%s/cli-bench.md", ZS_BINARY_DIR);
-  unlink(csv);
-  unlink(md);
+  fresh_path(csv, sizeof csv, "cli-bench.csv");
+  fresh_path(md, sizeof md, "cli-bench.md");
   const char *args[] = {"bench", "raster", "--no-scenes", "--no-simd", "--repeat", "1", "--size",
                         "500x500", "--csv", csv, "--md", md, NULL};
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
@@ -231,6 +235,45 @@ START_TEST(bench_raster_writes_csv_and_table) {
   ck_assert_int_eq(rc, 1);
   ck_assert_str_eq(err, "zscan bench raster: --size: at least 500x500 (the largest triangles)\n");
   ck_assert(!zs_test_exists(csv));
+}
+END_TEST
+
+START_TEST(walk_compares_hidden_surface_modes) {
+  /* --algos: scanline mode draws none's image exactly in every frame;
+   * depth sort does not on the city (its long street faces) and says by
+   * how many pixels; the tradeoff plot is written */
+  char csv[4096], png[4096];
+  fresh_path(csv, sizeof csv, "cli-walk-algos.csv");
+  fresh_path(png, sizeof png, "cli-walk-tradeoff.png");
+  const char *args[] = {"walk", "builtin:city", "--cull", "vfc", "--algos", "scanline,depthsort",
+                        "--frames", "3", "--size", "160x120", "--csv", csv, "--tradeoff", png,
+                        "--quiet", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  FILE *f = fopen(csv, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[512];
+  int scan = 0, sort = 0;
+  uint64_t sort_wrong = 0;
+  while (fgets(line, sizeof line, f)) {
+    const char *last = strrchr(line, ',');
+    ck_assert_ptr_nonnull(last);
+    unsigned long long wrong = strtoull(last + 1, NULL, 10);
+    if (strstr(line, ",scanline,")) {
+      scan++;
+      ck_assert_msg(wrong == 0, "scanline differs: %s", line);
+    }
+    if (strstr(line, ",depthsort,")) sort++, sort_wrong += wrong;
+  }
+  fclose(f);
+  ck_assert_int_eq(scan, 3);
+  ck_assert_int_eq(sort, 3);
+  ck_assert_uint_gt(sort_wrong, 0);
+  ck_assert(zs_test_exists(png));
+  const char *bad[] = {"walk", "builtin:city", "--cull", "vfc", "--algos", "raytrace", NULL};
+  rc = zs_test_run_zscan(bad, out, sizeof out, err, sizeof err);
+  ck_assert_int_eq(rc, 1);
+  ck_assert_str_eq(err, "zscan walk: --algos: expected scanline or depthsort, got 'raytrace'\n");
 }
 END_TEST
 
@@ -314,6 +357,7 @@ int main(void) {
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
+  tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
   suite_add_tcase(s, tc);

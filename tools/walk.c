@@ -45,10 +45,15 @@ static const char usage[] =
     "  --depth D --looseness K   the loose octree (default 4, 2)\n"
     "  --bounds parts|box  what queries ask about an object: the union of its\n"
     "                      parts' boxes (default), or its box\n"
+    "  --algos LIST        also draw everything in these hidden-surface modes,\n"
+    "                      scanline and/or depthsort, against none (zbuffer)\n"
+    "  --tradeoff FILE.png time against pixels wrong, one point per method and mode\n"
     "  --quiet             no progress on stderr\n";
 
 typedef struct walk_opts {
-  const char *scene, *csv, *plot, *frames_dir;
+  const char *scene, *csv, *plot, *frames_dir, *tradeoff;
+  zs_algo algos[2];
+  int nalgos;
   int methods[ZS_CULL_METHODS], nmethods;
   int frames, width, height, quiet, depth, step;
   double looseness, latency_frames;
@@ -96,6 +101,23 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     } else if (strcmp(a, "--frames") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 1000000, &o->frames, err)) return err->code;
+    } else if (strcmp(a, "--algos") == 0) {
+      VALUE();
+      char buf[64];
+      snprintf(buf, sizeof buf, "%s", v);
+      for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        zs_algo al;
+        if (strcmp(tok, "scanline") == 0) al = ZS_ALGO_SCANLINE;
+        else if (strcmp(tok, "depthsort") == 0) al = ZS_ALGO_DEPTHSORT;
+        else return zs_error_set(err, ZS_ERR_ARG, "--algos: expected scanline or depthsort, got '%s'", tok);
+        int dup = 0;
+        for (int k = 0; k < o->nalgos; k++) dup |= o->algos[k] == al;
+        if (!dup) o->algos[o->nalgos++] = al;
+      }
+    } else if (strcmp(a, "--tradeoff") == 0) {
+      VALUE();
+      o->tradeoff = v;
+      if (zs_cli_output_path(a, v, err)) return err->code;
     } else if (strcmp(a, "--bounds") == 0) {
       VALUE();
       int b = zs_query_bounds_parse(v);
@@ -192,6 +214,52 @@ static zs_status write_frame(const walk_opts *o, const method_run *r, int f, zs_
   return st;
 }
 
+/* A hidden-surface mode drawing everything (--algos), against none. */
+typedef struct algo_run {
+  zs_algo a;
+  zs_device *dev;
+  double modelled_ms, wall_ms;
+  uint64_t diff_pixels;
+} algo_run;
+
+static const char *algo_name(zs_algo a) {
+  return a == ZS_ALGO_SCANLINE ? "scanline" : a == ZS_ALGO_DEPTHSORT ? "depthsort" : "zbuffer";
+}
+
+/* The rows of a mode that keeps no full-frame buffers, as they come. */
+static void keep_ids(void *user, const zs_row *row) {
+  uint32_t *ids = user;
+  memcpy(ids + (size_t)row->y * (size_t)row->width, row->id, (size_t)row->width * sizeof *row->id);
+}
+
+/* Time against pixels wrong, one labelled point per row: wall (median)
+ * and modelled ms per frame against the mean pixels wrong per frame. */
+static zs_status write_tradeoff(const char *path, const char *scene, const char *const *names,
+                                const double *wall, const double *model, const double *wrong,
+                                int n, zs_error *err) {
+  char script[8192];
+  size_t len = 0;
+#define ADD(...) len += (size_t)snprintf(script + len, len < sizeof script ? sizeof script - len : 0, __VA_ARGS__)
+  ADD("$data << EOD\n");
+  for (int i = 0; i < n; i++) ADD("\"%s\" %.3f %.6f %.6f\n", names[i], wrong[i], wall[i], model[i]);
+  ADD("EOD\nset terminal pngcairo size 1200,500 font 'sans,11'\nset output OUT\n");
+  ADD("set multiplot layout 1,2 title '%s: run time against error (one point per method)'\n",
+      scene);
+  double xmax = 1.0;
+  for (int i = 0; i < n; i++) xmax = wrong[i] > xmax ? wrong[i] : xmax;
+  ADD("set grid\nset key off\nset xlabel 'pixels wrong per frame (against none)'\n"
+      "set xrange [%.3f:%.3f]\nset format x '%%.0s%%c'\nset logscale y\n", -0.05 * xmax, 1.3 * xmax);
+  ADD(
+      "set ylabel 'median wall ms per frame'\n"
+      "plot $data using 2:3 with points pt 7 ps 1.2, '' using 2:3:1 with labels offset 1,0.6 left font ',9'\n"
+      "set ylabel 'modelled ms per frame'\n"
+      "plot $data using 2:4 with points pt 7 ps 1.2, '' using 2:4:1 with labels offset 1,0.6 left font ',9'\n"
+      "unset multiplot\n");
+#undef ADD
+  if (len >= sizeof script) return zs_error_set(err, ZS_ERR_ARG, "tradeoff plot: too many points");
+  return zs_plot_run(path, script, err);
+}
+
 static zs_status run(const walk_opts *o, zs_error *err) {
   zs_scene s;
   if (zs_input_load_scene(o->scene, &s, err)) return err->code;
@@ -202,8 +270,12 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   memset(runs, 0, sizeof runs);
   FILE *csv = NULL;
   char csv_tmp[4200] = "";
-  uint32_t *ref_ids = NULL;
+  uint32_t *ref_ids = NULL, *algo_ids = NULL;
   double *frame_ms = NULL; /* per frame and method, for the plot */
+  double *frame_wall = NULL; /* per row (methods, then modes) and frame: the medians */
+  algo_run algos[2];
+  memset(algos, 0, sizeof algos);
+  const int nrows = o->nmethods + o->nalgos;
 
   int w = o->width ? o->width : s.width ? s.width : 1024;
   int h = o->height ? o->height : s.height ? s.height : 768;
@@ -241,7 +313,16 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     printf("query latency: %.3f ms (%.2f frames of none)\n", clock.query_latency_ns * 1e-6,
            o->latency_frames);
   }
+  for (int k = 0; k < o->nalgos; k++) {
+    zs_device_config cfg = {w, h, o->algos[k], ZS_SHADE_ID, 0, 1, 0};
+    algos[k].a = o->algos[k];
+    if ((st = zs_device_create(&cfg, &algos[k].dev, err)) ||
+        (st = zs_device_set_clock(algos[k].dev, &clock, err)))
+      goto done;
+  }
   if (!(ref_ids = malloc((size_t)w * (size_t)h * sizeof *ref_ids)) ||
+      !(algo_ids = malloc((size_t)w * (size_t)h * sizeof *algo_ids)) ||
+      !(frame_wall = calloc((size_t)frames * (size_t)nrows, sizeof *frame_wall)) ||
       !(frame_ms = calloc((size_t)frames * (size_t)o->nmethods, sizeof *frame_ms))) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
     goto done;
@@ -288,6 +369,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       r->frames_with_diff += diff > 0;
       r->chose_queries += cs.chosen == ZS_CULL_CHC_PROB;
       frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
+      frame_wall[(size_t)k * (size_t)frames + (size_t)f] = wall;
       if (csv)
         fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu\n", f * o->step,
                 zs_cull_method_name(r->m), zs_cull_method_name(cs.chosen), modelled, stall, wall,
@@ -295,6 +377,26 @@ static zs_status run(const walk_opts *o, zs_error *err) {
                 (unsigned long long)cs.faces_drawn, (unsigned long long)cs.objects_drawn,
                 (unsigned long long)cs.nodes_visited, (unsigned long long)diff);
       if (o->frames_dir && (st = write_frame(o, r, f, err))) break;
+    }
+    for (int k = 0; k < o->nalgos && st == ZS_OK; k++) { /* everything, in another mode */
+      algo_run *r = &algos[k];
+      double t0 = zs_wall_ms();
+      zs_device_clear(r->dev);
+      zs_device_set_camera(r->dev, view, proj);
+      if ((st = zs_frame_draw_scene(r->dev, &s, err)) ||
+          (st = zs_device_finish(r->dev, keep_ids, algo_ids, err)))
+        break;
+      double wall = zs_wall_ms() - t0, modelled = zs_device_frame_ps(r->dev) * 1e-9;
+      uint64_t diff = 0;
+      for (size_t i = 0; i < (size_t)w * (size_t)h; i++) diff += algo_ids[i] != ref_ids[i];
+      r->modelled_ms += modelled;
+      r->wall_ms += wall;
+      r->diff_pixels += diff;
+      frame_wall[(size_t)(o->nmethods + k) * (size_t)frames + (size_t)f] = wall;
+      if (csv)
+        fprintf(csv, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu\n", f * o->step, algo_name(r->a),
+                modelled, wall, (unsigned long long)zs_scene_faces(&s), (int)s.ninst,
+                (unsigned long long)diff);
     }
     progress(o, f, frames);
   }
@@ -321,6 +423,27 @@ static zs_status run(const walk_opts *o, zs_error *err) {
            r->modelled_ms > 0 ? 1000.0 * n / r->modelled_ms : 0.0, r->stall_ms / n, r->wall_ms / n,
            (unsigned long long)r->diff_pixels);
   }
+  for (int k = 0; k < o->nalgos; k++) {
+    const algo_run *r = &algos[k];
+    double n = frames;
+    printf("%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n", algo_name(r->a), 0.0,
+           (double)zs_scene_faces(&s), (double)s.ninst, r->modelled_ms / n,
+           r->modelled_ms > 0 ? 1000.0 * n / r->modelled_ms : 0.0, 0.0, r->wall_ms / n,
+           (unsigned long long)r->diff_pixels);
+  }
+  if (o->tradeoff) {
+    const char *names[ZS_CULL_METHODS + 2];
+    double wall[ZS_CULL_METHODS + 2], model[ZS_CULL_METHODS + 2], wrong[ZS_CULL_METHODS + 2];
+    for (int k = 0; k < nrows; k++) {
+      int alg = k >= o->nmethods;
+      names[k] = alg ? algo_name(algos[k - o->nmethods].a) : zs_cull_method_name(runs[k].m);
+      wall[k] = zs_median(frame_wall + (size_t)k * (size_t)frames, frames);
+      model[k] = (alg ? algos[k - o->nmethods].modelled_ms : runs[k].modelled_ms) / frames;
+      wrong[k] = (double)(alg ? algos[k - o->nmethods].diff_pixels : runs[k].diff_pixels) / frames;
+    }
+    if ((st = write_tradeoff(o->tradeoff, o->scene, names, wall, model, wrong, nrows, err)))
+      goto done;
+  }
   if (o->plot) {
     const char *names[ZS_CULL_METHODS];
     for (int k = 0; k < o->nmethods; k++) names[k] = zs_cull_method_name(runs[k].m);
@@ -336,7 +459,10 @@ done:
     unlink(csv_tmp);
   }
   free(ref_ids);
+  free(algo_ids);
   free(frame_ms);
+  free(frame_wall);
+  for (int k = 0; k < 2; k++) zs_device_destroy(algos[k].dev);
   for (int k = 0; k < ZS_CULL_METHODS; k++) {
     zs_culler_destroy(runs[k].culler);
     zs_device_destroy(runs[k].dev);
