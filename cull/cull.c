@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cull/coverage.h"
 #include "cull/frustum.h"
 #include "cull/parts.h"
 #include "raster/grow.h"
@@ -70,12 +71,12 @@ typedef struct pending {
   uint8_t was_visible;
 } pending;
 
-/* nohc: coverage cells of NOHC_CELL pixels; the share of its box's
- * rectangle a mesh fills, for the coverage it adds; the classes of
+/* nohc: the share of its box's rectangle a mesh fills, for the coverage
+ * it adds (cull/coverage.h); draws measured every NOHC_MEASURE frames;
+ * queries in batches of NOHC_BATCH; the classes of
  * history (unseen; hidden 1 .. NOHC_HIDDEN frames in a row; visible, by
  * log2(s + 1) of the pixels s it wrote) times NOHC_BUCKETS of coverage. */
 enum {
-  NOHC_CELL = 16,
   NOHC_MEASURE = 4,
   NOHC_BATCH = 32,
   NOHC_HIDDEN = 8,
@@ -131,8 +132,7 @@ struct zs_culler {
   zs_rng rng;
   /* nohc: the coverage grid of this frame; per history class, how often an
    * object asked about was found visible and hidden */
-  double *cov;
-  int32_t cov_w, cov_h, cap_cov;
+  zs_coverage cov;
   /* the boxes of the query being issued; the objects' parts (NULL: boxes) */
   double (*qlo)[3], (*qhi)[3];
   int32_t cap_qlo, cap_qhi;
@@ -150,9 +150,8 @@ typedef struct frame_ctx {
   zs_frustum frustum;
   double eye[3];
   double near_reach;       /* farthest a near-plane corner lies from the eye */
-  double tan_half_fovy, width, height;
+  double tan_half_fovy, height;
   double ttri, tcall, tq, tquery; /* cost model constants, ns */
-  double mvp[16];          /* world to clip (nohc's rectangles) */
   zs_cull_stats *st;
   uint64_t hidden_objects; /* auto: objects drawn that wrote no pixel */
   zs_error *err;
@@ -208,7 +207,7 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->gm);
   free(c->owns_pixel);
   free(c->owner);
-  free(c->cov);
+  zs_coverage_free(&c->cov);
   free(c->qlo);
   free(c->qhi);
   zs_parts_destroy(c->parts);
@@ -255,56 +254,12 @@ static double box_distance2(const double eye[3], const double *lo, const double 
   return d2;
 }
 
-/* ---- nohc's screen estimates ---- */
-
-/* The window rectangle x0, y0, x1, y1 of a box's projection, clamped to
- * the image; the whole image when a corner lies behind the eye. */
-static void box_rect(const frame_ctx *f, const double *lo, const double *hi, double r[4]) {
-  const double *m = f->mvp;
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  for (int b = 0; b < 8; b++) {
-    double p[3] = {(b & 1) ? hi[0] : lo[0], (b & 2) ? hi[1] : lo[1], (b & 4) ? hi[2] : lo[2]};
-    double cw = m[12] * p[0] + m[13] * p[1] + m[14] * p[2] + m[15];
-    if (!(cw > 1e-9)) {
-      r[0] = r[1] = 0.0, r[2] = f->width, r[3] = f->height;
-      return;
-    }
-    double x = 0.5 * ((m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]) / cw + 1.0) * f->width;
-    double y = 0.5 * ((m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7]) / cw + 1.0) * f->height;
-    x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
-  }
-  r[0] = fmax(x0, 0.0), r[1] = fmax(y0, 0.0), r[2] = fmin(x1, f->width), r[3] = fmin(y1, f->height);
-}
-
-/* Runs body for every coverage cell that rectangle r meets, with cell
- * pointing at its coverage and overlap the pixels they share. */
-#define FOR_EACH_CELL(f, r, cell, overlap, body)                                             \
-  for (int32_t cy_ = (int32_t)((r)[1] / NOHC_CELL); cy_ * NOHC_CELL < (r)[3]; cy_++)          \
-    for (int32_t cx_ = (int32_t)((r)[0] / NOHC_CELL); cx_ * NOHC_CELL < (r)[2]; cx_++) {      \
-      double *cell = &(f)->c->cov[cy_ * (f)->c->cov_w + cx_];                                 \
-      double overlap = (fmin((r)[2], (cx_ + 1) * NOHC_CELL) - fmax((r)[0], cx_ * NOHC_CELL)) * \
-                       (fmin((r)[3], (cy_ + 1) * NOHC_CELL) - fmax((r)[1], cy_ * NOHC_CELL));   \
-      body                                                                                    \
-    }
-
 /* A drawn object covers about nohc_fill of its box's rectangle. */
 static void add_coverage(frame_ctx *f, int32_t i) {
   double r[4];
-  box_rect(f, f->t->olo[i], f->t->ohi[i], r);
+  zs_coverage_rect(&f->c->cov, f->t->olo[i], f->t->ohi[i], r);
   zs_device_cpu_work(f->dev, ZS_CPU_COST_EVAL, 1);
-  FOR_EACH_CELL(f, r, cell, overlap, { *cell += nohc_fill * overlap / (NOHC_CELL * NOHC_CELL); })
-}
-
-/* The chance that what is drawn so far covers all of rectangle r: every
- * cell it meets covered, each with probability 1 - e^-d. */
-static double covered(frame_ctx *f, const double r[4]) {
-  double p = 1.0;
-  FOR_EACH_CELL(f, r, cell, overlap, {
-    (void)overlap;
-    p *= 1.0 - exp(-*cell);
-    if (p < 1e-9) return 0.0;
-  })
-  return p;
+  zs_coverage_add(&f->c->cov, r, nohc_fill);
 }
 
 /* ---- drawing ---- */
@@ -716,13 +671,13 @@ static void nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int
   const double *lo, *hi;
   elem_box(f, e, &lo, &hi);
   double r[4];
-  box_rect(f, lo, hi, r);
+  zs_coverage_rect(&c->cov, lo, hi, r);
   f->st->cost_evals++;
   zs_device_cpu_work(f->dev, ZS_CPU_COST_EVAL, 1);
   /* P(V): the rate at which elements of its class (history, coverage)
    * were found visible, starting from a prior worth two outcomes: for
    * the hidden, chcpp's 1 - p(i); else the coverage's 1 - P(covered). */
-  double cov = covered(f, r);
+  double cov = zs_coverage_covered(&c->cov, r);
   int32_t h = history_of(es, was_visible, seen_last, is_object(e));
   int32_t k = h * NOHC_BUCKETS + (int32_t)fmin(cov * NOHC_BUCKETS, NOHC_BUCKETS - 1);
   double prior = h >= 1 && h <= NOHC_HIDDEN ? 1.0 - keep_hidden((uint32_t)h) : 1.0 - cov;
@@ -973,7 +928,6 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   /* orthographic: the near plane may cut any box; ask none (exact, as vfc) */
   f.near_reach = proj[14] != 0.0 ? 1.0001 * znear * sqrt(1.0 + tx * tx + ty * ty) : INFINITY;
   f.tan_half_fovy = ty;
-  f.width = cfg->width;
   f.height = cfg->height;
   const zs_clock_params *k = zs_device_clock_params(dev);
   f.ttri = c->cost.ttri_ns >= 0 ? c->cost.ttri_ns : k->per_polygon_ns;
@@ -1005,12 +959,8 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
       !count_polygons(&f))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
   if (m == ZS_CULL_NOHC) { /* an empty coverage grid */
-    c->cov_w = (cfg->width + NOHC_CELL - 1) / NOHC_CELL;
-    c->cov_h = (cfg->height + NOHC_CELL - 1) / NOHC_CELL;
-    if (!zs_grow((void **)&c->cov, &c->cap_cov, c->cov_w * c->cov_h, sizeof *c->cov))
+    if (!zs_coverage_reset(&c->cov, cfg->width, cfg->height, view, proj))
       return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
-    memset(c->cov, 0, (size_t)(c->cov_w * c->cov_h) * sizeof *c->cov);
-    zs_mat_mul(f.mvp, proj, view);
   }
   if (!zs_grow((void **)&c->decision, &c->cap_decision, t->nslots, 1))
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
