@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
+#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
@@ -216,6 +217,21 @@ void zs_gen_bounds(zs_scene *s, const double lo[3], const double hi[3]) {
 int zs_gen_segments(double base, double detail, int min) {
   int n = (int)floor(base * detail + 0.5);
   return n < min ? min : n;
+}
+
+int32_t zs_gen_ground(zs_scene *s, const double lo[3], const double hi[3], const char *spec,
+                      zs_error *err) {
+  zs_model ground;
+  int32_t obj = zs_gen_model(&ground, "ground", err);
+  if (obj < 0) return -1;
+  if (zs_gen_box(&ground, lo, hi, NULL, ZS_BUILTIN_GROUND_RGB, obj)) {
+    zs_model_free(&ground);
+    ZS_GEN_NOMEM(err, spec);
+    return -1;
+  }
+  int32_t mesh = zs_gen_add_mesh(s, &ground, err);
+  if (mesh < 0) return -1;
+  return zs_gen_add_instance(s, mesh, NULL, ZS_RGB_MESH, err, "ground");
 }
 
 int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err) {

@@ -12,20 +12,8 @@
 enum { FIELD = ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE };
 
 static zs_status build_default(const zs_gen_args *a, zs_scene *s, zs_error *err) {
-  zs_model ground;
-  int32_t obj, teapot_mesh = zs_gen_teapot_mesh(s, zs_gen_int(a, "level"), err);
+  int32_t teapot_mesh = zs_gen_teapot_mesh(s, zs_gen_int(a, "level"), err);
   if (teapot_mesh < 0) return err->code;
-
-  double lo[3], hi[3];
-  zs_builtin_ground(lo, hi);
-  obj = zs_gen_model(&ground, "ground", err);
-  if (obj < 0) return err->code;
-  if (zs_gen_box(&ground, lo, hi, NULL, ZS_BUILTIN_GROUND_RGB, obj)) {
-    zs_model_free(&ground);
-    return ZS_GEN_NOMEM(err, a->spec);
-  }
-  int32_t ground_mesh = zs_gen_add_mesh(s, &ground, err);
-  if (ground_mesh < 0) return err->code;
 
   double place[FIELD][16];
   uint32_t rgb[FIELD];
@@ -33,8 +21,9 @@ static zs_status build_default(const zs_gen_args *a, zs_scene *s, zs_error *err)
   for (int t = 0; t < FIELD; t++)
     if (zs_gen_add_instance(s, teapot_mesh, place[t], rgb[t], err, "teapot_%d", t) < 0)
       return err->code;
-  if (zs_gen_add_instance(s, ground_mesh, NULL, ZS_RGB_MESH, err, "ground") < 0)
-    return err->code;
+  double lo[3], hi[3];
+  zs_builtin_ground(lo, hi);
+  if (zs_gen_ground(s, lo, hi, a->spec, err) < 0) return err->code;
 
   /* The camera of the builtin: completed later from the bounds. */
   zs_camera_default(&s->camera);

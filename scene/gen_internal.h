@@ -105,6 +105,12 @@ int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
  * s; returns its mesh index, or -1 with err set. */
 int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err);
 
+/* Adds the ground: a slab from lo to hi (object "ground", ground green)
+ * as one mesh with one instance named "ground"; its instance index, or -1
+ * with err set (spec names the scene in the message). */
+int32_t zs_gen_ground(zs_scene *s, const double lo[3], const double hi[3], const char *spec,
+                      zs_error *err);
+
 /* Sets the scene's camera to look from eye at target (up +y), fovy 45,
  * near/far as given, image 1024 x 768. */
 void zs_gen_camera(zs_scene *s, const double eye[3], const double target[3],

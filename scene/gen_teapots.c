@@ -97,8 +97,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
   zs_rng rng;
   zs_rng_seed(&rng, a->seed);
 
-  zs_model ground;
-  int32_t obj, teapot_mesh = zs_gen_teapot_mesh(s, zs_gen_int(a, "level"), err);
+  int32_t teapot_mesh = zs_gen_teapot_mesh(s, zs_gen_int(a, "level"), err);
   if (teapot_mesh < 0) return err->code;
 
   int scattered = count / 8, in_columns = count - scattered;
@@ -158,16 +157,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
 
   double half = CELL * (g + 1) / 2.0;
   const double lo[3] = {-half, -0.5, -half}, hi[3] = {half, 0.0, half};
-  obj = zs_gen_model(&ground, "ground", err);
-  if (obj < 0) return err->code;
-  if (zs_gen_box(&ground, lo, hi, NULL, ZS_BUILTIN_GROUND_RGB, obj)) {
-    zs_model_free(&ground);
-    return ZS_GEN_NOMEM(err, a->spec);
-  }
-  int32_t ground_mesh = zs_gen_add_mesh(s, &ground, err);
-  if (ground_mesh < 0) return err->code;
-  if (zs_gen_add_instance(s, ground_mesh, NULL, ZS_RGB_MESH, err, "ground") < 0)
-    return err->code;
+  if (zs_gen_ground(s, lo, hi, a->spec, err) < 0) return err->code;
 
   /* W: half the field's width; H: the height of the tallest column.  The
    * gap between two rows of columns nearest the middle is at x = gx. */
