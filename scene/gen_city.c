@@ -269,9 +269,7 @@ static int walk(const double (*p)[2], int n, zs_gen_key *keys) {
 static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
   int n = zs_gen_int(a, "blocks"), ncars = 2 * n * n;
   int moving = zs_gen_int(a, "moving");
-  if (moving > ncars)
-    return zs_error_set(err, ZS_ERR_ARG, "%s: moving: %d is more than the cars (%d)", a->spec,
-                        moving, ncars);
+  if (zs_gen_check_moving(a, moving, ncars, "the cars", err)) return err->code;
   city c = {n, 0.5 * (n * BLOCK + (n + 1) * STREET)};
   zs_rng rng;
   zs_rng_seed(&rng, a->seed);

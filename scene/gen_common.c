@@ -219,6 +219,13 @@ int zs_gen_segments(double base, double detail, int min) {
   return n < min ? min : n;
 }
 
+zs_status zs_gen_check_moving(const zs_gen_args *a, int moving, int max, const char *what,
+                              zs_error *err) {
+  if (moving <= max) return ZS_OK;
+  return zs_error_set(err, ZS_ERR_ARG, "%s: moving: %d is more than %s (%d)", a->spec, moving, what,
+                      max);
+}
+
 int32_t zs_gen_ground(zs_scene *s, const double lo[3], const double hi[3], const char *spec,
                       zs_error *err) {
   zs_model ground;

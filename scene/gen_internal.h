@@ -105,6 +105,11 @@ int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
  * s; returns its mesh index, or -1 with err set. */
 int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err);
 
+/* Refuses more moving objects than there are ("SPEC: moving: N is more
+ * than WHAT (MAX)"). */
+zs_status zs_gen_check_moving(const zs_gen_args *a, int moving, int max, const char *what,
+                              zs_error *err);
+
 /* Adds the ground: a slab from lo to hi (object "ground", ground green)
  * as one mesh with one instance named "ground"; its instance index, or -1
  * with err set (spec names the scene in the message). */

@@ -25,9 +25,7 @@
 static zs_status build_spheres(const zs_gen_args *a, zs_scene *s, zs_error *err) {
   int count = zs_gen_int(a, "count");
   int moving = zs_gen_given(a, "moving") ? zs_gen_int(a, "moving") : count;
-  if (moving > count)
-    return zs_error_set(err, ZS_ERR_ARG, "%s: moving: %d is more than count (%d)", a->spec,
-                        moving, count);
+  if (zs_gen_check_moving(a, moving, count, "count", err)) return err->code;
   zs_rng rng;
   zs_rng_seed(&rng, a->seed);
 
