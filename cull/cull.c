@@ -372,16 +372,22 @@ static int too_close(const frame_ctx *f, elem e) {
 
 /* ---- the cost model (chc-prob, auto) ---- */
 
+/* (6), extended: Cr = N Ttri + M Tcall, N the polygons and M the objects
+ * under e. */
+static double render_cost(const frame_ctx *f, elem e) {
+  int64_t n = is_object(e) ? f->s->meshes[f->s->inst[object_of(e)].mesh].mesh.nfaces
+                           : f->c->polys[e];
+  int64_t calls = is_object(e) ? 1 : f->t->node[e].count;
+  return (double)n * f->ttri + (double)calls * f->tcall;
+}
+
 /* Formulas 2, 3, 6, 9, 10: whether querying e pays, given P(V) = pv. */
 static int query_pays(frame_ctx *f, elem e, double pv) {
   const double *lo, *hi;
   elem_box(f, e, &lo, &hi);
   f->st->cost_evals++;
   zs_device_cpu_work(f->dev, ZS_CPU_COST_EVAL, 1);
-  int64_t n = is_object(e) ? f->s->meshes[f->s->inst[object_of(e)].mesh].mesh.nfaces
-                           : f->c->polys[e];
-  int64_t calls = is_object(e) ? 1 : f->t->node[e].count;
-  double cr = (double)n * f->ttri + (double)calls * f->tcall;          /* (6) */
+  double cr = render_cost(f, e);
   double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
   double abb = 2.0 * (dx * dy + dy * dz + dz * dx);
   double dis = 0.0;
@@ -683,16 +689,13 @@ static void nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int
   double prior = h >= 1 && h <= NOHC_HIDDEN ? 1.0 - keep_hidden((uint32_t)h) : 1.0 - cov;
   double pv = (c->class_visible[k] + 2.0 * prior) / (c->class_visible[k] + c->class_hidden[k] + 2.0);
   double area = fmax(r[2] - r[0], 0.0) * fmax(r[3] - r[1], 0.0);
-  int64_t n = is_object(e) ? f->s->meshes[f->s->inst[object_of(e)].mesh].mesh.nfaces : c->polys[e];
-  int64_t calls = is_object(e) ? 1 : f->t->node[e].count;
-  double cr = (double)n * f->ttri + (double)calls * f->tcall; /* (6) */
+  double cr = render_cost(f, e);
   double cq = f->tquery + area * f->tq;                       /* (10), S measured */
   if (cr > pv * cr + cq) {                                    /* (2), (3) */
     es->asked_class = k;
     push_pending(f, &c->iq, &c->ni, &c->cap_iq, e, mask, (uint8_t)was_visible);
     return;
   }
-  es->pv = pv;
   pull_up_visibility(f, e);
   traverse(f, e, mask);
 }

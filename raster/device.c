@@ -19,6 +19,18 @@
 
 #define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
 
+static const char *const algo_names[] = {"zbuffer", "scanline", "depthsort"};
+
+const char *zs_algo_name(zs_algo a) {
+  return (unsigned)a < sizeof algo_names / sizeof algo_names[0] ? algo_names[a] : "?";
+}
+
+int zs_algo_parse(const char *name) {
+  for (int i = 0; i < (int)(sizeof algo_names / sizeof algo_names[0]); i++)
+    if (strcmp(name, algo_names[i]) == 0) return i;
+  return -1;
+}
+
 static uint32_t *alloc_u32(size_t n) { return malloc(n * sizeof(uint32_t)); }
 
 zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,

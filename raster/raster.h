@@ -87,6 +87,10 @@ typedef enum zs_algo {
   ZS_ALGO_DEPTHSORT /* painter's algorithm with frame coherence (depthsort.c) */
 } zs_algo;
 
+/* "zbuffer", "scanline", "depthsort"; and back (-1 for another name). */
+const char *zs_algo_name(zs_algo a);
+int zs_algo_parse(const char *name);
+
 typedef enum zs_shade {
   ZS_SHADE_FLAT,     /* material colour times a Lambert term, see shade.c */
   ZS_SHADE_ID,       /* RGB = id + 1 as 24 bits, background 0 */

@@ -250,7 +250,7 @@ static zs_status run_case(const bench_opts *o, int a, const char *name, const ti
   zs_status st = zs_device_create(&cfg, &dev, err);
   if (st) return st;
   snprintf(r->name, sizeof r->name, "%s", name);
-  r->algo = a ? "scanline" : "zbuffer";
+  r->algo = zs_algo_name(algos[a]);
   st = t ? time_tiling(dev, t, o->width, o->height, o, ms, r, err)
          : time_scene(dev, s, o->width, o->height, o, ms, r, err);
   zs_device_destroy(dev);

@@ -71,11 +71,11 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       o->out_png = v;
     } else if (strcmp(a, "--algo") == 0) {
       VALUE();
-      if (strcmp(v, "zbuffer") == 0) o->algo = ZS_ALGO_ZBUFFER;
-      else if (strcmp(v, "scanline") == 0) o->algo = ZS_ALGO_SCANLINE;
-      else if (strcmp(v, "depthsort") == 0) o->algo = ZS_ALGO_DEPTHSORT;
-      else return zs_error_set(err, ZS_ERR_ARG,
-                               "--algo: expected zbuffer, scanline or depthsort, got '%s'", v);
+      int al = zs_algo_parse(v);
+      if (al < 0)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "--algo: expected zbuffer, scanline or depthsort, got '%s'", v);
+      o->algo = (zs_algo)al;
     } else if (strcmp(a, "--shade") == 0) {
       VALUE();
       if (strcmp(v, "flat") == 0) o->shade = ZS_SHADE_FLAT;
@@ -144,7 +144,7 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
                         double ms, double load_ms, int64_t diff_pixels) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
-         o->algo == ZS_ALGO_ZBUFFER ? "zbuffer" : o->algo == ZS_ALGO_SCANLINE ? "scanline" : "depthsort");
+         zs_algo_name(o->algo));
   /* triangles: what the polygons would be as triangle fans */
   long long triangles = 0, vertices = 0;
   for (int32_t i = 0; i < sc->ninst; i++) {

@@ -106,13 +106,12 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       char buf[64];
       snprintf(buf, sizeof buf, "%s", v);
       for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
-        zs_algo al;
-        if (strcmp(tok, "scanline") == 0) al = ZS_ALGO_SCANLINE;
-        else if (strcmp(tok, "depthsort") == 0) al = ZS_ALGO_DEPTHSORT;
-        else return zs_error_set(err, ZS_ERR_ARG, "--algos: expected scanline or depthsort, got '%s'", tok);
+        int al = zs_algo_parse(tok);
+        if (al < 0 || al == ZS_ALGO_ZBUFFER) /* zbuffer is the reference, none */
+          return zs_error_set(err, ZS_ERR_ARG, "--algos: expected scanline or depthsort, got '%s'", tok);
         int dup = 0;
-        for (int k = 0; k < o->nalgos; k++) dup |= o->algos[k] == al;
-        if (!dup) o->algos[o->nalgos++] = al;
+        for (int k = 0; k < o->nalgos; k++) dup |= (int)o->algos[k] == al;
+        if (!dup) o->algos[o->nalgos++] = (zs_algo)al;
       }
     } else if (strcmp(a, "--tradeoff") == 0) {
       VALUE();
@@ -221,10 +220,6 @@ typedef struct algo_run {
   double modelled_ms, wall_ms;
   uint64_t diff_pixels;
 } algo_run;
-
-static const char *algo_name(zs_algo a) {
-  return a == ZS_ALGO_SCANLINE ? "scanline" : a == ZS_ALGO_DEPTHSORT ? "depthsort" : "zbuffer";
-}
 
 /* The rows of a mode that keeps no full-frame buffers, as they come. */
 static void keep_ids(void *user, const zs_row *row) {
@@ -394,7 +389,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       r->diff_pixels += diff;
       frame_wall[(size_t)(o->nmethods + k) * (size_t)frames + (size_t)f] = wall;
       if (csv)
-        fprintf(csv, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu\n", f * o->step, algo_name(r->a),
+        fprintf(csv, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu\n", f * o->step, zs_algo_name(r->a),
                 modelled, wall, (unsigned long long)zs_scene_faces(&s), (int)s.ninst,
                 (unsigned long long)diff);
     }
@@ -426,7 +421,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   for (int k = 0; k < o->nalgos; k++) {
     const algo_run *r = &algos[k];
     double n = frames;
-    printf("%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n", algo_name(r->a), 0.0,
+    printf("%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n", zs_algo_name(r->a), 0.0,
            (double)zs_scene_faces(&s), (double)s.ninst, r->modelled_ms / n,
            r->modelled_ms > 0 ? 1000.0 * n / r->modelled_ms : 0.0, 0.0, r->wall_ms / n,
            (unsigned long long)r->diff_pixels);
@@ -436,7 +431,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     double wall[ZS_CULL_METHODS + 2], model[ZS_CULL_METHODS + 2], wrong[ZS_CULL_METHODS + 2];
     for (int k = 0; k < nrows; k++) {
       int alg = k >= o->nmethods;
-      names[k] = alg ? algo_name(algos[k - o->nmethods].a) : zs_cull_method_name(runs[k].m);
+      names[k] = alg ? zs_algo_name(algos[k - o->nmethods].a) : zs_cull_method_name(runs[k].m);
       wall[k] = zs_median(frame_wall + (size_t)k * (size_t)frames, frames);
       model[k] = (alg ? algos[k - o->nmethods].modelled_ms : runs[k].modelled_ms) / frames;
       wrong[k] = (double)(alg ? algos[k - o->nmethods].diff_pixels : runs[k].diff_pixels) / frames;
