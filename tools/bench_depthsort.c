@@ -14,7 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "raster/raster.h"
 #include "scene/paths.h"
@@ -22,6 +21,7 @@
 #include "tools/cli.h"
 #include "tools/frame.h"
 #include "tools/input.h"
+#include "tools/outfile.h"
 
 static const char usage[] =
     "usage: zscan bench depthsort [SCENE] [--frames N] [--size WxH] [--far F] [--csv FILE]\n"
@@ -186,24 +186,16 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
            rows[m].reused_pct, rows[m].full_ms, rows[m].coherent_ms, rows[m].full_cmp,
            rows[m].coherent_cmp, rows[m].diff);
   if (csv_path) {
-    char tmp[4200];
-    snprintf(tmp, sizeof tmp, "%s.tmp", csv_path);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-      zs_error_set(&err, ZS_ERR_IO, "%s: cannot write", csv_path);
-      goto fail;
-    }
+    char *tmp;
+    FILE *f = zs_out_open(csv_path, &tmp, &err);
+    if (!f) goto fail;
     fprintf(f, "motion,faces,reused_pct,full_sort_ms,coherent_sort_ms,full_comparisons,"
                "coherent_comparisons,diff_pixels\n");
     for (int m = 0; m < 4; m++)
       fprintf(f, "%s,%.0f,%.2f,%.4f,%.4f,%.0f,%.0f,%.1f\n", motions[m], rows[m].faces,
               rows[m].reused_pct, rows[m].full_ms, rows[m].coherent_ms, rows[m].full_cmp,
               rows[m].coherent_cmp, rows[m].diff);
-    if (fclose(f) != 0 || rename(tmp, csv_path) != 0) {
-      unlink(tmp);
-      zs_error_set(&err, ZS_ERR_IO, "%s: cannot write", csv_path);
-      goto fail;
-    }
+    if (zs_out_commit(f, tmp, csv_path, &err)) goto fail;
     printf("wrote %s\n", csv_path);
   }
   return 0;

@@ -6,9 +6,9 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "tools/cli.h"
+#include "tools/outfile.h"
 
 #define FIELD(name) {#name, offsetof(zs_clock_params, name)}
 const zs_clock_field zs_clock_fields[] = {
@@ -87,20 +87,9 @@ void zs_clock_print(FILE *f, const zs_clock_params *p) {
 }
 
 zs_status zs_clockfile_write(const char *path, const zs_clock_params *p, zs_error *err) {
-  char tmp[4200];
-  snprintf(tmp, sizeof tmp, "%s.tmp.XXXXXX", path);
-  int fd = mkstemp(tmp);
-  if (fd < 0) return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
-  FILE *f = fdopen(fd, "w");
-  if (!f) {
-    close(fd);
-    unlink(tmp);
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-  }
+  char *tmp;
+  FILE *f = zs_out_open(path, &tmp, err);
+  if (!f) return err->code;
   zs_clock_print(f, p);
-  if (fclose(f) != 0 || rename(tmp, path) != 0) {
-    unlink(tmp);
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-  }
-  return ZS_OK;
+  return zs_out_commit(f, tmp, path, err);
 }

@@ -50,3 +50,8 @@ zs_status zs_out_commit(FILE *f, char *tmp, const char *path, zs_error *err) {
   return st;
 }
 
+void zs_out_discard(FILE *f, char *tmp) {
+  fclose(f);
+  remove(tmp);
+  free(tmp);
+}

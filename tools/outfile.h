@@ -17,4 +17,7 @@ FILE *zs_out_open(const char *path, char **tmp, zs_error *err);
 /* Closes f and renames tmp over path (removing tmp on failure); frees tmp. */
 zs_status zs_out_commit(FILE *f, char *tmp, const char *path, zs_error *err);
 
+/* Closes f, removes tmp and frees it: nothing is written (after an error). */
+void zs_out_discard(FILE *f, char *tmp);
+
 #endif

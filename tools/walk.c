@@ -25,6 +25,7 @@
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
+#include "tools/outfile.h"
 #include "tools/plot.h"
 
 static const char usage[] =
@@ -264,7 +265,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   method_run runs[ZS_CULL_METHODS];
   memset(runs, 0, sizeof runs);
   FILE *csv = NULL;
-  char csv_tmp[4200] = "";
+  char *csv_tmp = NULL;
   uint32_t *ref_ids = NULL, *algo_ids = NULL;
   double *frame_ms = NULL; /* per frame and method, for the plot */
   double *frame_wall = NULL; /* per row (methods, then modes) and frame: the medians */
@@ -323,9 +324,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     goto done;
   }
   if (o->csv) {
-    snprintf(csv_tmp, sizeof csv_tmp, "%s.tmp", o->csv);
-    if (!(csv = fopen(csv_tmp, "w"))) {
-      st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write", o->csv);
+    if (!(csv = zs_out_open(o->csv, &csv_tmp, err))) {
+      st = err->code;
       goto done;
     }
     fprintf(csv, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
@@ -397,12 +397,9 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   }
   if (st) goto done;
   if (csv) {
-    if (fclose(csv) != 0 || rename(csv_tmp, o->csv) != 0) {
-      csv = NULL;
-      st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write", o->csv);
-      goto done;
-    }
-    csv = NULL;
+    FILE *done_csv = csv;
+    csv = NULL; /* committed or removed, either way */
+    if ((st = zs_out_commit(done_csv, csv_tmp, o->csv, err))) goto done;
   }
 
   /* The paper's Table 2, per frame on average. */
@@ -449,10 +446,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   }
 
 done:
-  if (csv) {
-    fclose(csv);
-    unlink(csv_tmp);
-  }
+  if (csv) zs_out_discard(csv, csv_tmp);
   free(ref_ids);
   free(algo_ids);
   free(frame_ms);
