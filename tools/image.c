@@ -15,15 +15,15 @@
  */
 #include "tools/image.h"
 
+#include "tools/outfile.h"
+
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/types.h>
-#include <unistd.h>
 
 #include "raster/raster.h"
 
@@ -92,11 +92,9 @@ static void unpack_rgb(const unsigned char *bytes, uint32_t *rgb, int width) {
              (uint32_t)bytes[3 * x + 2];
 }
 
-/* ---- Files written under a temporary name ----
- *
- * tmpfile_open creates PATH.tmp.XXXXXX next to PATH; tmpfile_commit closes
- * it and renames it over PATH; tmpfile_discard closes and removes it.  After
- * a failed commit the temporary is gone too. */
+/* ---- Files written under a temporary name (tools/outfile.c) ----
+ * A PNG's file and its temporary name travel together through the libpng
+ * writer's state. */
 
 typedef struct tmp_file {
   char *name; /* PATH.tmp.XXXXXX, NULL when closed */
@@ -104,66 +102,21 @@ typedef struct tmp_file {
 } tmp_file;
 
 static zs_status tmpfile_open(tmp_file *f, const char *path, zs_error *err) {
-  static const char suffix[] = ".tmp.XXXXXX";
-  f->name = NULL;
-  f->fp = NULL;
-  if (path[0] == '\0')
-    return zs_error_set(err, ZS_ERR_ARG, "cannot create a file without a name");
-  size_t n = strlen(path);
-  f->name = malloc(n + sizeof suffix);
-  if (!f->name) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  memcpy(f->name, path, n);
-  memcpy(f->name + n, suffix, sizeof suffix);
-
-  int fd = mkstemp(f->name);
-  if (fd < 0) {
-    int e = errno;
-    free(f->name);
-    f->name = NULL;
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", path,
-                        strerror(e));
-  }
-  /* mkstemp makes the file 0600; give it what fopen would have.  Reading
-   * the umask means setting it, so it is set straight back. */
-  mode_t mask = umask(0);
-  umask(mask);
-  if (fchmod(fd, 0666 & ~mask) == 0) f->fp = fdopen(fd, "wb");
-  if (!f->fp) {
-    int e = errno;
-    close(fd);
-    remove(f->name);
-    free(f->name);
-    f->name = NULL;
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", path,
-                        strerror(e));
-  }
-  return ZS_OK;
+  f->fp = zs_out_open(path, &f->name, err);
+  return f->fp ? ZS_OK : err->code;
 }
 
 static void tmpfile_discard(tmp_file *f) {
   if (!f->name) return;
-  fclose(f->fp);
-  remove(f->name);
-  free(f->name);
+  zs_out_discard(f->fp, f->name);
   f->name = NULL;
   f->fp = NULL;
 }
 
 static zs_status tmpfile_commit(tmp_file *f, const char *path, zs_error *err) {
-  zs_status st = ZS_OK;
-  int closed = fclose(f->fp);
-  f->fp = NULL;
-  if (closed != 0) {
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path,
-                      strerror(errno));
-    remove(f->name);
-  } else if (rename(f->name, path) != 0) {
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", path,
-                      strerror(errno));
-    remove(f->name);
-  }
-  free(f->name);
+  zs_status st = zs_out_commit(f->fp, f->name, path, err);
   f->name = NULL;
+  f->fp = NULL;
   return st;
 }
 

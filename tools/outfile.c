@@ -10,6 +10,11 @@
 /* Creates PATH.tmp.XXXXXX; *tmp receives its name (malloc'd). */
 FILE *zs_out_open(const char *path, char **tmp, zs_error *err) {
   static const char suffix[] = ".tmp.XXXXXX";
+  *tmp = NULL;
+  if (path[0] == '\0') {
+    zs_error_set(err, ZS_ERR_ARG, "cannot create a file without a name");
+    return NULL;
+  }
   size_t n = strlen(path);
   *tmp = malloc(n + sizeof suffix);
   if (!*tmp) {
@@ -23,7 +28,7 @@ FILE *zs_out_open(const char *path, char **tmp, zs_error *err) {
   if (fd >= 0) {
     mode_t mask = umask(0);
     umask(mask);
-    if (fchmod(fd, 0666 & ~mask) == 0) f = fdopen(fd, "w");
+    if (fchmod(fd, 0666 & ~mask) == 0) f = fdopen(fd, "wb");
     if (!f) {
       close(fd);
       remove(*tmp);
