@@ -338,36 +338,36 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
       o->scenes = 0;
-      continue;
-    }
-    if (strcmp(a, "--no-simd") == 0) {
+    } else if (strcmp(a, "--no-simd") == 0) {
       o->simd = 0;
-      continue;
-    }
-    if (strcmp(a, "--mesa") == 0) {
+    } else if (strcmp(a, "--mesa") == 0) {
       if (!zs_mesa_available())
         return zs_error_set(err, ZS_ERR_UNSUPPORTED,
                             "--mesa: zscan was built without OSMesa (install libosmesa6-dev, rebuild)");
       o->mesa = 1;
-      continue;
-    }
-    if (a[0] != '-' || !a[1])
-      return zs_error_set(err, ZS_ERR_ARG, "unexpected argument '%s' (see zscan bench raster --help)", a);
-    if (strcmp(a, "--repeat") != 0 && strcmp(a, "--threads") != 0 && strcmp(a, "--size") != 0 &&
-        strcmp(a, "--csv") != 0 && strcmp(a, "--md") != 0 && strcmp(a, "--plot") != 0)
-      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench raster --help)", a);
-    if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
-    if (strcmp(a, "--repeat") == 0) {
-      if (zs_cli_int(a, v, 1, 100000, &o->repeat, err)) return err->code;
+    } else if (strcmp(a, "--repeat") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 100000, &o->repeat, err))
+        return err->code;
     } else if (strcmp(a, "--threads") == 0) {
-      if (zs_cli_int(a, v, 1, 64, &o->threads, err)) return err->code;
+      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 64, &o->threads, err))
+        return err->code;
     } else if (strcmp(a, "--size") == 0) {
-      if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
+      if (zs_cli_value(argc, argv, &i, &v, err) ||
+          zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err))
+        return err->code;
+    } else if (strcmp(a, "--csv") == 0) {
+      if (zs_cli_value(argc, argv, &i, &o->csv, err) || zs_cli_output_path(a, o->csv, err))
+        return err->code;
+    } else if (strcmp(a, "--md") == 0) {
+      if (zs_cli_value(argc, argv, &i, &o->md, err) || zs_cli_output_path(a, o->md, err))
+        return err->code;
+    } else if (strcmp(a, "--plot") == 0) {
+      if (zs_cli_value(argc, argv, &i, &o->plot, err) || zs_cli_output_path(a, o->plot, err))
+        return err->code;
+    } else if (a[0] == '-' && a[1]) {
+      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench raster --help)", a);
     } else {
-      if (zs_cli_output_path(a, v, err)) return err->code;
-      if (strcmp(a, "--csv") == 0) o->csv = v;
-      else if (strcmp(a, "--md") == 0) o->md = v;
-      else o->plot = v;
+      return zs_error_set(err, ZS_ERR_ARG, "unexpected argument '%s' (see zscan bench raster --help)", a);
     }
   }
   if (o->width < sides[NSIDES - 1] || o->height < sides[NSIDES - 1])
