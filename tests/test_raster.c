@@ -181,16 +181,7 @@ START_TEST(fan_of_thin_triangles_covers_once) {
    * none, and each row's covered pixels are one run. */
   const int W = 256, H = 256, N = 10000;
   mesh_buf b = {0};
-  int32_t c = mb_vert(&b, 128.5, 128.5, 0);
-  int32_t first = b.m.nverts;
-  for (int i = 0; i < N; i++) {
-    double a = 2 * ZS_PI * i / N;
-    mb_vert(&b, 128.5 + 120.3 * cos(a), 128.5 + 120.3 * sin(a), 0);
-  }
-  for (int i = 0; i < N; i++) {
-    int32_t v[3] = {c, first + i, first + (i + 1) % N};
-    mb_face(&b, v, 3, 0xFFFFFF);
-  }
+  mb_fan(&b, 128.5, 128.5, 120.3, N);
   for (int algo = 0; algo < 2; algo++) {
     frame f = frame_new(W, H);
     zs_raster_stats s = render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_OVERDRAW, 0, NULL, NULL, &f);
@@ -371,7 +362,7 @@ START_TEST(simd_spans_equal_scalar) {
     }
     mb_face(&b, v, 3, (uint32_t)zs_rng_below(&rng, 0x1000000));
   }
-  mb_sphere(&b, W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0x3366cc);
+  mb_sphere(&b, W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
   for (int algo = 0; algo < 2; algo++) {
     frame f[2];
     zs_raster_stats st[2];
@@ -400,7 +391,7 @@ START_TEST(scanline_memory_grows_with_width_not_area) {
    * (width), zbuffer mode's the frame (area); the polygon tables do not
    * depend on the image's width at all. */
   mesh_buf b = {0};
-  mb_sphere(&b, 0.5, 0.5, -3.0, 0.4, 64, 32, 0x808080);
+  mb_sphere(&b, 0.5, 0.5, -3.0, 0.4, 64, 32, 0);
   const int sizes[4][2] = {{256, 192}, {1024, 192}, {256, 768}, {1024, 768}};
   zs_device_memory mem[2][4];
   for (int algo = 0; algo < 2; algo++)

@@ -69,16 +69,7 @@ static void ortho(double view[16], double proj[16]) {
 START_TEST(fan_of_100000_slivers) {
   mesh_buf b = {0};
   const int n = 100000;
-  int32_t c = mb_vert(&b, 64.37, 47.81, 0);
-  int32_t first = b.m.nverts;
-  for (int i = 0; i < n; i++) {
-    double a = 2 * ZS_PI * i / n;
-    mb_vert(&b, 64.37 + 40.2 * cos(a), 47.81 + 40.2 * sin(a), 0);
-  }
-  for (int i = 0; i < n; i++) {
-    int32_t v[3] = {c, first + i, first + (i + 1) % n};
-    mb_face(&b, v, 3, 0xFFFFFF);
-  }
+  mb_fan(&b, 64.37, 47.81, 40.2, n);
   double view[16], proj[16];
   ortho(view, proj);
   static frame f;

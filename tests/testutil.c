@@ -130,6 +130,19 @@ void mb_free(mesh_buf *b) {
 }
 
 
+void mb_fan(mesh_buf *b, double cx, double cy, double r, int n) {
+  int32_t c = mb_vert(b, cx, cy, 0);
+  int32_t first = b->m.nverts;
+  for (int i = 0; i < n; i++) {
+    double a = 2 * ZS_PI * i / n;
+    mb_vert(b, cx + r * cos(a), cy + r * sin(a), 0);
+  }
+  for (int i = 0; i < n; i++) {
+    int32_t v[3] = {c, first + i, first + (i + 1) % n};
+    mb_face(b, v, 3, 0xFFFFFF);
+  }
+}
+
 void mb_sphere(mesh_buf *b, double cx, double cy, double cz, double r, int slices, int stacks,
                int inward) {
   int32_t top = mb_vert(b, cx, cy + r, cz);

@@ -36,6 +36,9 @@ typedef struct mesh_buf {
 int32_t mb_vert(mesh_buf *b, double x, double y, double z);
 void mb_face(mesh_buf *b, const int32_t *v, int n, uint32_t rgb);
 void mb_free(mesh_buf *b);
+/* A fan of n triangles around (cx, cy) at depth 0: a regular n-gon of
+ * radius r, white. */
+void mb_fan(mesh_buf *b, double cx, double cy, double r, int n);
 /* A closed UV sphere of radius r around (cx, cy, cz): triangles at the
  * poles, quads between; counter-clockwise seen from outside, or from
  * inside when inward. */
