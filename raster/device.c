@@ -352,6 +352,7 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
       case ZS_SETUP_DRAWN: d->stats.polygons_rasterized++; break;
       case ZS_SETUP_BACK: d->stats.polygons_culled_back++; break;
       case ZS_SETUP_DEGENERATE: d->stats.polygons_degenerate++; break;
+      case ZS_SETUP_OFFSCREEN: d->stats.polygons_offscreen++; break;
       case ZS_SETUP_NOMEM: return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
     }
   }
@@ -372,14 +373,14 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
 zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
                          const double model[16], uint32_t id_base, uint32_t rgb,
                          zs_error *err) {
-  uint64_t polygons = d->stats.polygons_rasterized;
+  uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_call);
   zs_status st = zs_device_draw_with(d, mesh, model, id_base, rgb, draw_kernel(d), &c, err);
   if (st != ZS_OK) return st;
   /* In scanline mode the pixels are walked in finish; the clock charges
    * them there. */
-  int64_t cost = zs_clock_command_cost(d, mesh->nverts, d->stats.polygons_rasterized - polygons,
+  int64_t cost = zs_clock_command_cost(d, mesh->nverts, zs_polygons_set_up(&d->stats) - polygons,
                                        &c, 0);
   int64_t end = zs_clock_gpu_command(d, cost, 0);
   if (d->query_open) {

@@ -73,6 +73,7 @@ typedef enum zs_setup_result {
   ZS_SETUP_DRAWN,
   ZS_SETUP_BACK,
   ZS_SETUP_DEGENERATE,
+  ZS_SETUP_OFFSCREEN, /* no pixel centre of the window in its box */
   ZS_SETUP_NOMEM
 } zs_setup_result;
 

@@ -80,7 +80,7 @@ zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const doubl
   }
   start[nf] = 4 * nf;
   zs_mesh boxes = {pos, 8 * n, start, vert, nf, NULL, NULL};
-  uint64_t polygons = d->stats.polygons_rasterized;
+  uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_query);
   zs_status st = zs_device_draw_with(d, &boxes, NULL, 0, 0, ZS_KERNEL_QUERY, &c, err);
@@ -89,7 +89,7 @@ zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const doubl
   free(vert);
   if (st != ZS_OK) return st;
   d->clock.query_pixels += c.tested;
-  int64_t cost = zs_clock_command_cost(d, 8 * n, d->stats.polygons_rasterized - polygons, &c, 1);
+  int64_t cost = zs_clock_command_cost(d, 8 * n, zs_polygons_set_up(&d->stats) - polygons, &c, 1);
   zs_query_rec *q = &d->queries[d->nqueries - 1];
   q->gpu_end_ps = zs_clock_gpu_command(d, cost, 1);
   q->samples += c.written;

@@ -116,11 +116,20 @@ typedef struct zs_raster_stats {
   uint64_t polygons_clipped;     /* crossed near, far or the guard band */
   uint64_t polygons_culled_back; /* back faces, when culling is on */
   uint64_t polygons_degenerate;  /* zero area after snapping */
+  uint64_t polygons_offscreen;   /* in the guard band, but their window box holds
+                                  * no pixel centre: dropped by set-up */
   uint64_t polygons_rasterized;  /* set up and walked by the scanline code */
   uint64_t spans;                /* non-empty spans filled */
   uint64_t pixels_tested;        /* fragments depth-tested */
   uint64_t pixels_written;       /* fragments that passed and were written */
 } zs_raster_stats;
+
+/* The faces the clock charges a draw for: those that reached set-up and
+ * were not culled as back faces or degenerate.  A face dropped there for
+ * lying off the window counts, as a GPU sets it up before its scissor. */
+static inline uint64_t zs_polygons_set_up(const zs_raster_stats *s) {
+  return s->polygons_rasterized + s->polygons_offscreen;
+}
 
 /* One finished row of the image, handed to a zs_row_sink in order y = 0,
  * 1, ..., height-1.  rgb is 0xRRGGBB per pixel as shaded; depth and id are

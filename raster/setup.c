@@ -237,6 +237,14 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
   }
   if (area2 == 0) return ZS_SETUP_DEGENERATE;
   if (sp->cull_back && area2 > 0) return ZS_SETUP_BACK;
+  /* Clipping stops at the guard band, far outside the window: a face
+   * whose box holds no pixel centre of the window would only walk its
+   * edges down rows it never fills.  The test is on the box, inclusive
+   * at both ends, so it never drops a face that covers a pixel. */
+  if (xmax < ZS_SUBPIXEL_ONE / 2 || ymax < ZS_SUBPIXEL_ONE / 2 ||
+      xmin > (int64_t)sp->width * ZS_SUBPIXEL_ONE - ZS_SUBPIXEL_ONE / 2 ||
+      ymin > (int64_t)sp->height * ZS_SUBPIXEL_ONE - ZS_SUBPIXEL_ONE / 2)
+    return ZS_SETUP_OFFSCREEN;
 
   /* The plane from the fan triangle (0, k, k+1) of largest area: the best
    * conditioned choice, and the same for every piece of the face. */

@@ -492,6 +492,58 @@ START_TEST(back_faces_culled_only_when_asked) {
 }
 END_TEST
 
+START_TEST(faces_off_the_window_are_dropped_at_set_up) {
+  /* Clipping stops at the guard band, 2^15 pixels out: a face beyond the
+   * window but inside the band reaches set-up, which drops it when its box
+   * holds no pixel centre of the window.  The picture is that of the faces
+   * that remain; the clock still charges every face set up. */
+  mesh_buf all = {0}, kept = {0};
+  static const double tris[6][6] = {
+      {-6, 2, -1, 2, -3, 9},     /* left of the window */
+      {17, 2, 20, 2, 18, 9},     /* right */
+      {2, 17, 9, 17, 5, 20},     /* above */
+      {2, -5, 9, -5, 5, -1},     /* below */
+      {15.5, 2, 20, 2, 15.5, 9}, /* box starts on the centres of column 15: kept */
+      {12, 12, 30, 12, 12, 30},  /* partly in the window: kept */
+  };
+  for (int t = 0; t < 6; t++) {
+    int32_t v[3];
+    for (int k = 0; k < 3; k++) v[k] = mb_vert(&all, tris[t][2 * k], tris[t][2 * k + 1], 0);
+    mb_face(&all, v, 3, 0x102030u * (uint32_t)(t + 1));
+    if (t < 4) continue;
+    for (int k = 0; k < 3; k++) v[k] = mb_vert(&kept, tris[t][2 * k], tris[t][2 * k + 1], 0);
+    mb_face(&kept, v, 3, 0x102030u * (uint32_t)(t + 1));
+  }
+  /* the kept faces keep their ids: number them as in `all` */
+  int32_t ids[2] = {4, 5};
+  kept.m.face_id = ids;
+  for (int algo = 0; algo < 2; algo++) {
+    frame fa = frame_new(16, 16), fk = frame_new(16, 16);
+    zs_raster_stats sa = render(&all.m, 16, 16, (zs_algo)algo, ZS_SHADE_ID, 0, NULL, NULL, &fa);
+    zs_raster_stats sk = render(&kept.m, 16, 16, (zs_algo)algo, ZS_SHADE_ID, 0, NULL, NULL, &fk);
+    ck_assert_uint_eq(sa.polygons_offscreen, 4);
+    ck_assert_uint_eq(sa.polygons_rasterized, 2);
+    ck_assert_uint_eq(sa.polygons_outside, 0);
+    ck_assert_uint_eq(zs_polygons_set_up(&sa), 6);
+    ck_assert_uint_eq(sa.pixels_written, sk.pixels_written);
+    ck_assert_uint_gt(sa.pixels_written, 0);
+    ck_assert_mem_eq(fa.id, fk.id, 16 * 16 * 4);
+    ck_assert_mem_eq(fa.depth, fk.depth, 16 * 16 * 4);
+    /* the sliver's left edge runs through the centres of column 15, which
+     * the coverage rule gives it: the face at the box's limit was
+     * rasterized, not dropped */
+    int in_col15 = 0;
+    for (int y = 0; y < 16; y++) in_col15 += fa.id[16 * y + 15] == 4;
+    ck_assert_int_gt(in_col15, 0);
+    frame_free(&fa);
+    frame_free(&fk);
+  }
+  kept.m.face_id = NULL;
+  mb_free(&all);
+  mb_free(&kept);
+}
+END_TEST
+
 START_TEST(nothing_behind_the_eye) {
   /* A triangle straddling the eye plane: only the part in front of the
    * near plane is drawn; one wholly behind draws nothing. */
@@ -528,6 +580,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
   tcase_add_test(tc, degenerate_faces_draw_nothing);
+  tcase_add_test(tc, faces_off_the_window_are_dropped_at_set_up);
   tcase_add_test(tc, back_faces_culled_only_when_asked);
   tcase_add_test(tc, nothing_behind_the_eye);
   suite_add_tcase(s, tc);

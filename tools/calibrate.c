@@ -113,7 +113,7 @@ static void frame_counts(const zs_device *d, double c[NTERMS]) {
   const zs_clock_stats *k = zs_device_clock(d);
   c[0] = (double)s->draws;
   c[1] = (double)s->vertices;
-  c[2] = (double)s->polygons_rasterized;
+  c[2] = (double)zs_polygons_set_up(s);
   c[3] = (double)s->spans;
   c[4] = (double)s->pixels_tested;
   c[5] = (double)s->pixels_written;

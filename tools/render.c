@@ -157,10 +157,11 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
          (unsigned long long)s->draws);
   printf("\"polygons_in\":%llu,\"polygons_outside\":%llu,\"polygons_clipped\":%llu,"
          "\"polygons_culled_back\":%llu,\"polygons_degenerate\":%llu,"
-         "\"polygons_rasterized\":%llu,",
+         "\"polygons_offscreen\":%llu,\"polygons_rasterized\":%llu,",
          (unsigned long long)s->polygons_in, (unsigned long long)s->polygons_outside,
          (unsigned long long)s->polygons_clipped, (unsigned long long)s->polygons_culled_back,
-         (unsigned long long)s->polygons_degenerate, (unsigned long long)s->polygons_rasterized);
+         (unsigned long long)s->polygons_degenerate, (unsigned long long)s->polygons_offscreen,
+         (unsigned long long)s->polygons_rasterized);
   printf("\"spans\":%llu,\"pixels_tested\":%llu,\"pixels_written\":%llu,"
          "\"image_hash\":\"%016llx\",",
          (unsigned long long)s->spans, (unsigned long long)s->pixels_tested,
