@@ -106,10 +106,37 @@ static void insertion_sort(const zs_depthsort *ds, uint32_t *ids, uint32_t n, ui
   }
 }
 
-/* Merges the sorted lists a (na) and b (nb) into out. */
+/* Merges the sorted lists a (na) and b (nb) into out.  The order is a
+ * strict total one (ids break ties), so any merge gives the same list;
+ * when b is much the shorter (a few new faces among many kept ones) each
+ * of its faces finds its place in a by a galloping search from the last
+ * one, O(log gap) comparisons instead of one per face of a. */
 static void merge(const zs_depthsort *ds, const uint32_t *a, uint32_t na, const uint32_t *b,
                   uint32_t nb, uint32_t *out, uint64_t *cmp) {
   uint32_t i = 0, j = 0, k = 0;
+  if ((uint64_t)nb * 16 < na) {
+    for (; j < nb; j++) {
+      /* the first a[p], p >= i, that b[j] is painted before */
+      uint32_t lo = i, step = 1, hi = na; /* the answer is in [lo, hi] */
+      while (lo + step - 1 < na) {
+        if (before(ds, b[j], a[lo + step - 1], cmp)) {
+          hi = lo + step - 1;
+          break;
+        }
+        lo += step;
+        step *= 2;
+      }
+      while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (before(ds, b[j], a[mid], cmp)) hi = mid;
+        else lo = mid + 1;
+      }
+      memcpy(out + k, a + i, (size_t)(lo - i) * sizeof *a);
+      k += lo - i;
+      i = lo;
+      out[k++] = b[j];
+    }
+  }
   while (i < na && j < nb) out[k++] = before(ds, b[j], a[i], cmp) ? b[j++] : a[i++];
   while (i < na) out[k++] = a[i++];
   while (j < nb) out[k++] = b[j++];
@@ -228,11 +255,11 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
     merge_sort(ds, ds->order, ds->tmp, n, &st.comparisons);
     st.inserted = n;
   } else {
+    st.reused = nold;
+    st.inserted = nfresh;
     if (!keep_as_is) insertion_sort(ds, ds->tmp, nold, &st.comparisons);
     merge_sort(ds, ds->fresh, ds->prev_order, nfresh, &st.comparisons);
     merge(ds, ds->tmp, nold, ds->fresh, nfresh, ds->order, &st.comparisons);
-    st.reused = nold;
-    st.inserted = nfresh;
   }
 
   /* Ranks, painter's depths, and the memory for the next frame. */

@@ -334,7 +334,8 @@ zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh,
  * from the two view matrices:
  *   static, translation, roll about the view axis: depths are unchanged or
  *     shift all by the same amount, so the old order is kept as it is;
- *     only new faces are sorted and merged in;
+ *     only new faces are sorted and merged in (a few among many gallop
+ *     to their places: O(log gap) comparisons each);
  *   slow rotation (about an axis off the view axis, under 2 degrees): the
  *     old order is nearly right: re-sorted by insertion sort with a
  *     galloping search (O(log d) comparisons for a face d places out),

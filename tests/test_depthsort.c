@@ -81,6 +81,42 @@ START_TEST(static_camera_does_no_comparisons) {
 }
 END_TEST
 
+START_TEST(few_new_faces_gallop_into_the_kept_order) {
+  /* 1,000 faces seen, then the same with 10 more among them (a static
+   * camera: the order is kept).  Each new face finds its place by a
+   * galloping search, about 2 log2(gap) comparisons; a plain merge would
+   * compare against every kept face up to the last new one. */
+  mesh_buf b = {0};
+  soup(&b, 1000, 5);
+  zs_device *d = device(ZS_ALGO_DEPTHSORT);
+  double eye[3] = {0, 0, 30};
+  frame(d, &b.m, eye, origin, 0, NULL);
+  uint64_t faces = zs_device_depthsort_stats(d)->faces;
+  zs_rng rng;
+  zs_rng_seed(&rng, 6);
+  for (int i = 0; i < 10; i++) {
+    int32_t v[3];
+    double cx = zs_rng_range(&rng, -3, 3), cz = -3.5 + 0.7 * i; /* spread over the depths */
+    for (int k = 0; k < 3; k++)
+      v[k] = mb_vert(&b, cx + (k == 1 ? 0.5 : 0), (k == 2 ? 0.5 : 0), cz);
+    mb_face(&b, v, 3, 0xFFFFFF);
+  }
+  frame_ids painted, exact;
+  frame(d, &b.m, eye, origin, 0, &painted);
+  const zs_depthsort_stats *s = zs_device_depthsort_stats(d);
+  ck_assert_int_eq(s->motion, ZS_MOTION_STATIC);
+  ck_assert_uint_eq(s->reused, faces);
+  ck_assert_uint_eq(s->inserted, 10);
+  ck_assert_msg(s->comparisons < 250, "comparisons %llu", (unsigned long long)s->comparisons);
+  zs_device *fresh = device(ZS_ALGO_DEPTHSORT);
+  frame(fresh, &b.m, eye, origin, 0, &exact);
+  ck_assert_int_eq(memcmp(painted.id, exact.id, sizeof exact.id), 0);
+  zs_device_destroy(fresh);
+  zs_device_destroy(d);
+  mb_free(&b);
+}
+END_TEST
+
 START_TEST(roll_reuses_the_whole_order) {
   mesh_buf b = {0};
   soup(&b, 500, 2);
@@ -236,6 +272,7 @@ int main(void) {
   TCase *tc = tcase_create("coherence");
   tcase_add_test(tc, static_camera_does_no_comparisons);
   tcase_add_test(tc, roll_reuses_the_whole_order);
+  tcase_add_test(tc, few_new_faces_gallop_into_the_kept_order);
   tcase_add_test(tc, motions_reuse_as_the_paper_says);
   tcase_add_test(tc, separate_depths_paint_exactly);
   tcase_add_test(tc, cyclic_overlap_differs);
