@@ -1,6 +1,7 @@
 /* The zscan command as a user meets it: error messages and exit status on
  * bad files and bad options, and outputs that are never half written. */
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -194,6 +195,51 @@ static void fresh_path(char *buf, size_t n, const char *name) {
   unlink(buf);
 }
 
+/* The instructions per frame of the 500x500 triangles in zbuffer mode, from
+ * the CSV of `bench raster --callgrind`. */
+static double callgrind_instructions(const char *csv) {
+  const char *args[] = {"bench", "raster", "--case", "triangles 500x500", "--algo", "zbuffer",
+                        "--repeat", "1", "--size", "500x500", "--callgrind", "--csv", csv, NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  FILE *f = fopen(csv, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[512];
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_ptr_null(fgets(line + 256, 256, f)); /* one case, one mode: one row */
+  fclose(f);
+  ck_assert_msg(strncmp(line, "triangles 500x500,zbuffer,1,", 28) == 0, "%s", line);
+  const char *last = strrchr(line, ',');
+  ck_assert_ptr_nonnull(last);
+  return atof(last + 1);
+}
+
+START_TEST(bench_raster_counts_instructions) {
+  char csv[4096];
+  fresh_path(csv, sizeof csv, "cli-callgrind.csv");
+#ifdef ZS_SANITIZED
+  /* valgrind cannot run a sanitized build: refused up front, nothing written */
+  const char *args[] = {"bench", "raster", "--callgrind", "--csv", csv, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 1);
+  ck_assert_str_eq(err, "zscan bench raster: --callgrind: this zscan is built with sanitizers, "
+                        "which valgrind cannot run\n");
+  ck_assert(!zs_test_exists(csv));
+#else
+  /* 64 layers of 250,000 pixels: a few instructions a pixel, the same in
+   * two runs but for the sort of the frame times (a handful) */
+  double a = callgrind_instructions(csv), b = callgrind_instructions(csv);
+  ck_assert_msg(a > 16e6 * 2 && a < 16e6 * 40, "%.0f instructions per frame", a);
+  ck_assert_msg(fabs(a - b) < 1e-5 * a, "%.0f then %.0f", a, b);
+  unlink(csv);
+#endif
+  /* an unknown case is named in the error */
+  const char *bad[] = {"bench", "raster", "--case", "triangles 7x7", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
+  ck_assert_ptr_nonnull(strstr(err, "--case 'triangles 7x7': no such case"));
+}
+END_TEST
+
 START_TEST(bench_raster_writes_csv_and_table) {
   /* the triangle sizes at 500x500, one frame each: the counts are exact
    * (10x10: 2,500 squares of two triangles, 40 layers to reach 200,000
@@ -212,7 +258,7 @@ START_TEST(bench_raster_writes_csv_and_table) {
   int rows = 0;
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
   ck_assert_str_eq(line, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,"
-                         "mtri_per_s,mpix_per_s\n");
+                         "mtri_per_s,mpix_per_s,instructions_per_frame\n");
   static const char *const want[] = {
       "triangles 10x10,zbuffer,1,scalar,500,500,200000,10000000,",
       "triangles 10x10,scanline,1,scalar,500,500,200000,10000000,",
@@ -357,6 +403,7 @@ int main(void) {
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
+  tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);

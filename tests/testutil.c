@@ -37,15 +37,10 @@ uint64_t zs_test_fnv1a(const void *data, size_t n) {
   return h;
 }
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <stdlib.h>
-#include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-extern char **environ;
+#include "tools/spawn.h"
 
 static void slurp(const char *path, char *buf, size_t cap) {
   buf[0] = '\0';
@@ -67,21 +62,12 @@ int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *
   argv[n++] = exe;
   for (int i = 0; args[i] && n < 63; i++) argv[n++] = args[i];
   argv[n] = NULL;
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid;
-  int rc = posix_spawn(&pid, exe, &fa, NULL, (char *const *)argv, environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return -2;
-  int status;
-  waitpid(pid, &status, 0);
+  int rc = zs_spawn_wait((char *const *)argv, out_path, err_path);
   if (out) slurp(out_path, out, out_cap);
   if (err) slurp(err_path, err, err_cap);
   unlink(out_path);
   unlink(err_path);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return rc;
 }
 
 int zs_test_exists(const char *path) {

@@ -21,6 +21,7 @@
 
 #include "raster/raster.h"
 #include "scene/scene.h"
+#include "tools/callgrind.h"
 #include "tools/cli.h"
 #include "tools/frame.h"
 #include "tools/input.h"
@@ -39,7 +40,11 @@ static const char usage[] =
     "  --no-scenes       the triangle sizes only\n"
     "  --no-simd         fill spans with the scalar loop only (the same pixels)\n"
     "  --mesa            also the scenes through Mesa's llvmpipe (OSMesa), frames taken\n"
-    "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n";
+    "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n"
+    "  --callgrind       also the instructions per frame of each case, one thread, counted\n"
+    "                    by valgrind's callgrind (runs of 1 and 3 frames; the difference / 2)\n"
+    "  --case NAME       only that case ('triangles 10x10', 'builtin:city', ...)\n"
+    "  --algo MODE       only that mode: zbuffer or scanline\n";
 
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
@@ -49,7 +54,9 @@ enum { NSCENES = sizeof scenes / sizeof scenes[0] };
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {
-  int repeat, threads, width, height, scenes, simd, mesa;
+  int repeat, threads, width, height, scenes, simd, mesa, callgrind;
+  int algo;               /* -1: both modes */
+  const char *only_case;  /* NULL: every case */
   const char *csv, *md, *plot;
 } bench_opts;
 
@@ -57,10 +64,12 @@ typedef struct bench_row {
   char name[64];
   const char *algo;
   double triangles, pixels, ms;
+  double instructions;  /* per frame, under callgrind; 0: not counted */
 } bench_row;
 
 static double mtri(const bench_row *r) { return r->triangles / r->ms * 1e-3; }
 static double mpix(const bench_row *r) { return r->pixels / r->ms * 1e-3; }
+static double per(double a, double b) { return b > 0 ? a / b : 0.0; }
 
 /* One layer of the tiling: each S x S square of the image as two
  * triangles, in pixel units at z = 0. */
@@ -240,6 +249,26 @@ static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_o
   }
 }
 
+/* The instructions per frame of one case and mode: this zscan runs the
+ * case alone under callgrind for 1 and for 3 frames; loading and set-up
+ * are the same in both, so half the difference is one frame. */
+static zs_status count_instructions(const bench_opts *o, const char *name, zs_algo algo,
+                                    double *per_frame, zs_error *err) {
+  char size[64];
+  snprintf(size, sizeof size, "%dx%d", o->width, o->height);
+  uint64_t n[2];
+  static const char *const frames[2] = {"1", "3"};
+  for (int k = 0; k < 2; k++) {
+    const char *args[] = {"bench", "raster", "--case", name, "--algo", zs_algo_name(algo),
+                          "--repeat", frames[k], "--size", size,
+                          o->simd ? NULL : "--no-simd", NULL};
+    zs_status st = zs_callgrind_count(args, &n[k], err);
+    if (st) return st;
+  }
+  *per_frame = n[1] > n[0] ? (double)(n[1] - n[0]) / 2.0 : 0.0;
+  return ZS_OK;
+}
+
 /* One case (the tiling t, or the scene s) in mode algos[a], on a device of
  * its own. */
 static zs_status run_case(const bench_opts *o, int a, const char *name, const tiling *t,
@@ -254,28 +283,36 @@ static zs_status run_case(const bench_opts *o, int a, const char *name, const ti
   st = t ? time_tiling(dev, t, o->width, o->height, o, ms, r, err)
          : time_scene(dev, s, o->width, o->height, o, ms, r, err);
   zs_device_destroy(dev);
+  r->instructions = 0;
+  if (!st && o->callgrind) st = count_instructions(o, name, algos[a], &r->instructions, err);
   return st;
 }
 
 static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts *o, int md) {
   if (md) {
-    fprintf(f, "| case | algo | triangles | pixels tested | ms per frame | Mtri/s | Mpix/s |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|\n");
+    fprintf(f, "| case | algo | triangles | pixels tested | ms per frame | Mtri/s | Mpix/s |%s\n",
+            o->callgrind ? " instructions per frame | per triangle | per pixel tested |" : "");
+    fprintf(f, "|---|---|---|---|---|---|---|%s\n", o->callgrind ? "---|---|---|" : "");
   } else {
     fprintf(f, "raster throughput at %dx%d, %d thread%s, %s spans, median of %d frames\n",
             o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->simd ? "AVX2" : "scalar",
             o->repeat);
-    fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s\n", "case", "algo", "triangles",
-            "pixels_tested", "ms", "Mtri/s", "Mpix/s");
+    fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s%s\n", "case", "algo", "triangles",
+            "pixels_tested", "ms", "Mtri/s", "Mpix/s",
+            o->callgrind ? "  instr/frame  instr/tri  instr/pix" : "");
   }
   for (int i = 0; i < n; i++) {
     const bench_row *r = &rows[i];
     if (md)
-      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.3g | %.0f |\n", r->name, r->algo,
+      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.3g | %.0f |", r->name, r->algo,
               r->triangles, r->pixels, r->ms, mtri(r), mpix(r));
     else
-      fprintf(f, "%-28s %-9s %10.0f %13.0f %10.3f %8.2f %8.1f\n", r->name, r->algo, r->triangles,
+      fprintf(f, "%-28s %-9s %10.0f %13.0f %10.3f %8.2f %8.1f", r->name, r->algo, r->triangles,
               r->pixels, r->ms, mtri(r), mpix(r));
+    if (o->callgrind)
+      fprintf(f, md ? " %.0f | %.0f | %.1f |" : " %12.0f %10.0f %10.1f", r->instructions,
+              per(r->instructions, r->triangles), per(r->instructions, r->pixels));
+    fputc('\n', f);
   }
 }
 
@@ -285,11 +322,14 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
   FILE *f = zs_out_open(path, &tmp, err);
   if (!f) return err->code;
   fprintf(f, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,mtri_per_s,"
-             "mpix_per_s\n");
-  for (int i = 0; i < n; i++)
-    fprintf(f, "%s,%s,%d,%s,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f\n", rows[i].name, rows[i].algo,
-            o->threads, o->simd ? "avx2" : "scalar", o->width, o->height, rows[i].triangles, rows[i].pixels, rows[i].ms, mtri(&rows[i]),
-            mpix(&rows[i]));
+             "mpix_per_s,instructions_per_frame\n");
+  for (int i = 0; i < n; i++) {
+    fprintf(f, "%s,%s,%d,%s,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f,", rows[i].name, rows[i].algo,
+            o->threads, o->simd ? "avx2" : "scalar", o->width, o->height, rows[i].triangles,
+            rows[i].pixels, rows[i].ms, mtri(&rows[i]), mpix(&rows[i]));
+    if (o->callgrind) fprintf(f, "%.0f", rows[i].instructions);
+    fputc('\n', f);
+  }
   return zs_out_commit(f, tmp, path, err);
 }
 
@@ -333,7 +373,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, 1, 0, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, 1, 0, 0, -1, NULL, NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
@@ -345,6 +385,16 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
         return zs_error_set(err, ZS_ERR_UNSUPPORTED,
                             "--mesa: zscan was built without OSMesa (install libosmesa6-dev, rebuild)");
       o->mesa = 1;
+    } else if (strcmp(a, "--callgrind") == 0) {
+      if (!zs_callgrind_available(err)) return err->code;
+      o->callgrind = 1;
+    } else if (strcmp(a, "--case") == 0) {
+      if (zs_cli_value(argc, argv, &i, &o->only_case, err)) return err->code;
+    } else if (strcmp(a, "--algo") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      o->algo = zs_algo_parse(v);
+      if (o->algo != ZS_ALGO_ZBUFFER && o->algo != ZS_ALGO_SCANLINE)
+        return zs_error_set(err, ZS_ERR_ARG, "--algo '%s': zbuffer or scanline", v);
     } else if (strcmp(a, "--repeat") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 100000, &o->repeat, err))
         return err->code;
@@ -393,22 +443,32 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
   for (int i = 0; i < NSIDES && !st; i++) {
-    tiling t;
-    if ((st = tiling_make(sides[i], o.width, o.height, &t, &err))) break;
     char name[64];
     snprintf(name, sizeof name, "triangles %dx%d", sides[i], sides[i]);
-    for (int a = 0; a < 2 && !st; a++) st = run_case(&o, a, name, &t, NULL, ms, &rows[n++], &err);
+    if (o.only_case && strcmp(o.only_case, name) != 0) continue;
+    tiling t;
+    if ((st = tiling_make(sides[i], o.width, o.height, &t, &err))) break;
+    for (int a = 0; a < 2 && !st; a++)
+      if (o.algo < 0 || (int)algos[a] == o.algo)
+        st = run_case(&o, a, name, &t, NULL, ms, &rows[n++], &err);
     tiling_free(&t);
   }
   for (int i = 0; i < NSCENES && o.scenes && !st; i++) {
+    if (o.only_case && strcmp(o.only_case, scenes[i]) != 0) continue;
     zs_scene s;
     if ((st = zs_input_load_scene(scenes[i], &s, &err))) break;
     for (int a = 0; a < 2 && !st; a++)
-      st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
+      if (o.algo < 0 || (int)algos[a] == o.algo)
+        st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
     if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], ms, &mrows[nm++], &err);
     zs_scene_free(&s);
   }
   free(ms);
+  if (!st && n == 0)
+    st = zs_error_set(&err, ZS_ERR_ARG,
+                      "--case '%s': no such case (triangles SxS for S = 4, 10, 25, 100, 500; "
+                      "builtin:teapots, builtin:city, builtin:plant, builtin:default?level=42)",
+                      o.only_case ? o.only_case : "");
   if (!st) write_table(stdout, rows, n, &o, 0);
   if (!st && nm) write_mesa_table(stdout, mrows, nm, &o, 0);
   if (!st && o.csv && !(st = write_csv(o.csv, rows, n, &o, &err))) printf("wrote %s\n", o.csv);

@@ -1,29 +1,15 @@
 #include "tools/plot.h"
 
+#include "tools/spawn.h"
+
 #include <errno.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-extern char **environ;
-
-int zs_plot_available(void) {
-  const char *path = getenv("PATH");
-  if (!path) return 0;
-  char buf[4096];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *dir = strtok(buf, ":"); dir; dir = strtok(NULL, ":")) {
-    char exe[4200];
-    snprintf(exe, sizeof exe, "%s/gnuplot", dir);
-    if (access(exe, X_OK) == 0) return 1;
-  }
-  return 0;
-}
+int zs_plot_available(void) { return zs_program_available("gnuplot"); }
 
 /* s as a gnuplot single-quoted string: quotes doubled. */
 static void quoted(FILE *f, const char *s) {
@@ -53,17 +39,9 @@ zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
     return zs_error_set(err, ZS_ERR_IO, "%s: cannot write", tmp_gp);
   }
   char *args[] = {"gnuplot", tmp_gp, NULL};
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid;
-  int rc = posix_spawnp(&pid, "gnuplot", &fa, NULL, args, environ);
-  posix_spawn_file_actions_destroy(&fa);
-  int status = 0;
-  if (rc == 0) waitpid(pid, &status, 0);
+  int rc = zs_spawn_wait(args, NULL, NULL);
   unlink(tmp_gp);
-  if (rc != 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  if (rc != 0) {
     unlink(tmp_png);
     return zs_error_set(err, ZS_ERR_IO, "%s: gnuplot failed", png);
   }

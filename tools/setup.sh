@@ -23,8 +23,9 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   assimp-testmodels           real and deliberately broken models for the tests
 #   gnuplot-nox                 the benchmark plots
 #   libosmesa6-dev              Mesa's llvmpipe, for the cross-check test
+#   valgrind                    instruction counts: zscan bench raster --callgrind and its test
 zs_packages=(cmake gcc make pkg-config libpng-dev check clang libcjson-dev
-             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev)
+             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do

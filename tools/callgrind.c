@@ -1,0 +1,67 @@
+#include "tools/callgrind.h"
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "tools/spawn.h"
+
+int zs_callgrind_available(zs_error *err) {
+#ifdef ZS_SANITIZED
+  zs_error_set(err, ZS_ERR_UNSUPPORTED,
+               "--callgrind: this zscan is built with sanitizers, which valgrind cannot run");
+  return 0;
+#else
+  if (zs_program_available("valgrind")) return 1;
+  zs_error_set(err, ZS_ERR_UNSUPPORTED, "--callgrind: valgrind is not installed (apt-get install valgrind)");
+  return 0;
+#endif
+}
+
+zs_status zs_callgrind_count(const char *const *args, uint64_t *instructions, zs_error *err) {
+  *instructions = 0;
+  if (!zs_callgrind_available(err)) return err->code;
+  char self[4096];
+  ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot find this program's path");
+  self[n] = '\0';
+  const char *tmpdir = getenv("TMPDIR");
+  char log[4200];
+  snprintf(log, sizeof log, "%s/zscan-callgrind-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
+  int fd = mkstemp(log);
+  if (fd < 0) return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot create %s", log);
+  close(fd);
+  char log_opt[4300];
+  snprintf(log_opt, sizeof log_opt, "--log-file=%s", log);
+  const char *argv[64];
+  int k = 0;
+  argv[k++] = "valgrind";
+  argv[k++] = "--tool=callgrind";
+  argv[k++] = "--callgrind-out-file=/dev/null";
+  argv[k++] = log_opt;
+  argv[k++] = self;
+  for (int i = 0; args[i]; i++) {
+    if (k == 63) {
+      unlink(log);
+      return zs_error_set(err, ZS_ERR_ARG, "--callgrind: too many arguments");
+    }
+    argv[k++] = args[i];
+  }
+  argv[k] = NULL;
+  int rc = zs_spawn_wait((char *const *)argv, NULL, NULL);
+  /* callgrind's summary: "==PID== Collected : N" */
+  FILE *f = fopen(log, "r");
+  char line[512];
+  int found = 0;
+  while (f && fgets(line, sizeof line, f)) {
+    const char *c = strstr(line, "Collected :");
+    if (c) found = sscanf(c + strlen("Collected :"), "%" SCNu64, instructions) == 1;
+  }
+  if (f) fclose(f);
+  unlink(log);
+  if (rc != 0 || !found)
+    return zs_error_set(err, ZS_ERR_IO, "--callgrind: the run under valgrind failed (exit %d)", rc);
+  return ZS_OK;
+}
