@@ -145,7 +145,8 @@ static const bad_option bad_options[] = {
 /* Help comes first, even beside an option the command does not know. */
 static const char *const help_commands[][3] = {
     {"render", NULL}, {"walk", NULL}, {"trace", NULL}, {"query", NULL}, {"path", NULL},
-    {"bench", "octree"}, {"bench", "depthsort"}, {"bench", "raster"}, {"calibrate", NULL}};
+    {"bench", "octree"}, {"bench", "depthsort"}, {"bench", "raster"}, {"bench", "tradeoff"},
+    {"calibrate", NULL}};
 
 START_TEST(help_before_anything_else) {
   const char *const *c = help_commands[_i];
@@ -237,6 +238,57 @@ START_TEST(bench_raster_counts_instructions) {
   const char *bad[] = {"bench", "raster", "--case", "triangles 7x7", NULL};
   ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
   ck_assert_ptr_nonnull(strstr(err, "--case 'triangles 7x7': no such case"));
+}
+END_TEST
+
+START_TEST(bench_tradeoff_runs_every_walk) {
+  /* the whole suite, small: every walk, method and mode, with its files */
+  char dir[4096], path[4300];
+  snprintf(dir, sizeof dir, "%s/cli-tradeoff", ZS_BINARY_DIR);
+  static const char *const walks[] = {"teapots", "city", "plant"};
+  static const char *const exts[] = {"csv", "md", "png"};
+  for (int k = 0; k < 3; k++)
+    for (int e = 0; e < 3; e++) {
+      snprintf(path, sizeof path, "%s/tradeoff-%s.%s", dir, walks[k], exts[e]);
+      unlink(path);
+    }
+  const char *args[] = {"bench", "tradeoff", "--quick", "--size", "160x120", "--out", dir, NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  for (int k = 0; k < 3; k++)
+    for (int e = 0; e < 3; e++) {
+      snprintf(path, sizeof path, "%s/tradeoff-%s.%s", dir, walks[k], exts[e]);
+      ck_assert_msg(zs_test_exists(path), "no %s", path);
+    }
+  snprintf(path, sizeof path, "%s/tradeoff.md", dir);
+  FILE *f = fopen(path, "r");
+  ck_assert_ptr_nonnull(f);
+  /* every exact method and the scanline mode get no pixel wrong; each
+   * walk has all 14 rows: none, 11 methods, 2 modes */
+  static const char *const exact[] = {"none", "vfc", "hsw", "chc", "chc-prob", "chcpp",
+                                      "chcpp-prob", "nohc", "ideal-box", "ideal", "auto",
+                                      "scanline"};
+  char line[1024];
+  int heads = 0, rows = 0, exact_rows = 0, depthsort = 0;
+  while (fgets(line, sizeof line, f)) {
+    if (strncmp(line, "### ", 4) == 0) heads++;
+    if (line[0] != '|' || strncmp(line, "|---", 4) == 0 || strncmp(line, "| method", 8) == 0)
+      continue;
+    rows++;
+    char name[64];
+    ck_assert_int_eq(sscanf(line, "| %63s |", name), 1);
+    depthsort += strcmp(name, "depthsort") == 0;
+    for (size_t m = 0; m < sizeof exact / sizeof exact[0]; m++)
+      if (strcmp(name, exact[m]) == 0) {
+        exact_rows++;
+        ck_assert_msg(strstr(line, " | 0 |\n") != NULL, "not exact: %s", line);
+      }
+  }
+  fclose(f);
+  ck_assert_int_eq(heads, 3);
+  ck_assert_int_eq(rows, 3 * 14);
+  ck_assert_int_eq(exact_rows, 3 * 12);
+  ck_assert_int_eq(depthsort, 3);
 }
 END_TEST
 
@@ -404,6 +456,7 @@ int main(void) {
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
+  tcase_add_test(tc, bench_tradeoff_runs_every_walk);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);

@@ -49,10 +49,11 @@ static const char usage[] =
     "  --algos LIST        also draw everything in these hidden-surface modes,\n"
     "                      scanline and/or depthsort, against none (zbuffer)\n"
     "  --tradeoff FILE.png time against pixels wrong, one point per method and mode\n"
+    "  --md FILE           the table of means per frame in Markdown\n"
     "  --quiet             no progress on stderr\n";
 
 typedef struct walk_opts {
-  const char *scene, *csv, *plot, *frames_dir, *tradeoff;
+  const char *scene, *csv, *plot, *frames_dir, *tradeoff, *md;
   zs_algo algos[2];
   int nalgos;
   int methods[ZS_CULL_METHODS], nmethods;
@@ -114,6 +115,10 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
         for (int k = 0; k < o->nalgos; k++) dup |= (int)o->algos[k] == al;
         if (!dup) o->algos[o->nalgos++] = (zs_algo)al;
       }
+    } else if (strcmp(a, "--md") == 0) {
+      VALUE();
+      o->md = v;
+      if (zs_cli_output_path(a, v, err)) return err->code;
     } else if (strcmp(a, "--tradeoff") == 0) {
       VALUE();
       o->tradeoff = v;
@@ -254,6 +259,32 @@ static zs_status write_tradeoff(const char *path, const char *scene, const char 
 #undef ADD
   if (len >= sizeof script) return zs_error_set(err, ZS_ERR_ARG, "tradeoff plot: too many points");
   return zs_plot_run(path, script, err);
+}
+
+/* One line of the summary: a method's or a mode's means per frame. */
+typedef struct summary_row {
+  const char *name;
+  double queries, faces, objects, modelled_ms, stall_ms, wall_ms;
+  uint64_t diff_pixels; /* over all frames */
+} summary_row;
+
+static void write_summary(FILE *f, int md, const summary_row *rows, int n) {
+  if (md)
+    fputs("| method or mode | queries | faces drawn | objects | modelled ms | modelled fps | "
+          "stall ms | wall ms (mean) | pixels wrong (all frames) |\n"
+          "|---|---|---|---|---|---|---|---|---|\n", f);
+  else
+    fprintf(f, "%-9s %9s %12s %9s %10s %10s %9s %9s %11s\n", "method", "queries", "faces_drawn",
+            "objects", "model_ms", "model_fps", "stall_ms", "wall_ms", "diff_pixels");
+  for (int k = 0; k < n; k++) {
+    const summary_row *r = &rows[k];
+    double fps = r->modelled_ms > 0 ? 1000.0 / r->modelled_ms : 0.0;
+    fprintf(f,
+            md ? "| %s | %.1f | %.0f | %.1f | %.3f | %.1f | %.3f | %.3f | %llu |\n"
+               : "%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n",
+            r->name, r->queries, r->faces, r->objects, r->modelled_ms, fps, r->stall_ms,
+            r->wall_ms, (unsigned long long)r->diff_pixels);
+  }
 }
 
 static zs_status run(const walk_opts *o, zs_error *err) {
@@ -403,25 +434,31 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   }
 
   /* The paper's Table 2, per frame on average. */
-  printf("%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
-         (unsigned long long)zs_scene_faces(&s));
-  printf("%-9s %9s %12s %9s %10s %10s %9s %9s %11s\n", "method", "queries", "faces_drawn",
-         "objects", "model_ms", "model_fps", "stall_ms", "wall_ms", "diff_pixels");
+  summary_row rows[ZS_CULL_METHODS + 2];
   for (int k = 0; k < o->nmethods; k++) {
     const method_run *r = &runs[k];
-    double n = frames;
-    printf("%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n", zs_cull_method_name(r->m),
-           r->queries / n, r->faces / n, r->objects / n, r->modelled_ms / n,
-           r->modelled_ms > 0 ? 1000.0 * n / r->modelled_ms : 0.0, r->stall_ms / n, r->wall_ms / n,
-           (unsigned long long)r->diff_pixels);
+    rows[k] = (summary_row){zs_cull_method_name(r->m), r->queries / frames, r->faces / frames,
+                            r->objects / frames, r->modelled_ms / frames, r->stall_ms / frames,
+                            r->wall_ms / frames, r->diff_pixels};
   }
   for (int k = 0; k < o->nalgos; k++) {
     const algo_run *r = &algos[k];
-    double n = frames;
-    printf("%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n", zs_algo_name(r->a), 0.0,
-           (double)zs_scene_faces(&s), (double)s.ninst, r->modelled_ms / n,
-           r->modelled_ms > 0 ? 1000.0 * n / r->modelled_ms : 0.0, 0.0, r->wall_ms / n,
-           (unsigned long long)r->diff_pixels);
+    rows[o->nmethods + k] = (summary_row){zs_algo_name(r->a), 0.0, (double)zs_scene_faces(&s),
+                                          (double)s.ninst, r->modelled_ms / frames, 0.0,
+                                          r->wall_ms / frames, r->diff_pixels};
+  }
+  printf("%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
+         (unsigned long long)zs_scene_faces(&s));
+  write_summary(stdout, 0, rows, nrows);
+  if (o->md) {
+    char *md_tmp;
+    FILE *md = zs_out_open(o->md, &md_tmp, err);
+    if (!md) {
+      st = err->code;
+      goto done;
+    }
+    write_summary(md, 1, rows, nrows);
+    if ((st = zs_out_commit(md, md_tmp, o->md, err))) goto done;
   }
   if (o->tradeoff) {
     const char *names[ZS_CULL_METHODS + 2];
