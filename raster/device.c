@@ -203,13 +203,13 @@ typedef struct band_job {
   zs_target t;
   zs_walk_counts counts[64];
   int ok[64];
-  int nbands;
+  int nbands, row0, rows;  /* the bands split rows [row0, row0 + rows) */
 } band_job;
 
 static void walk_band(void *ctx, int band) {
   band_job *j = ctx;
-  int h = j->d->cfg.height;
-  int y0 = (int)((int64_t)h * band / j->nbands), y1 = (int)((int64_t)h * (band + 1) / j->nbands);
+  int y0 = j->row0 + (int)((int64_t)j->rows * band / j->nbands);
+  int y1 = j->row0 + (int)((int64_t)j->rows * (band + 1) / j->nbands);
   j->counts[band] = (zs_walk_counts){0, 0, 0};
   j->ok[band] = zs_scan_batch(&j->d->batch, j->k, &j->t, y0, y1, NULL, NULL,
                               &j->d->band_scratch[band], &j->counts[band]);
@@ -218,17 +218,33 @@ static void walk_band(void *ctx, int band) {
 /* Walks the batch into the full frame; in bands when threads pay. */
 static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
   zs_target t = full_frame_target(d);
+  /* The rows the batch covers: bands over the whole frame would leave
+   * most of them idle for an object that covers a few rows, and each band
+   * still reads every polygon. */
+  int32_t lo = d->cfg.height, hi = -1;
+  for (int32_t i = 0; i < d->batch.npolys; i++) {
+    const zs_poly *p = &d->batch.polys[i];
+    if (p->row0 < lo) lo = p->row0;
+    if (p->row1 > hi) hi = p->row1;
+  }
+  if (lo < 0) lo = 0;
+  if (hi > d->cfg.height - 1) hi = d->cfg.height - 1;
+  int rows = hi - lo + 1;
   /* four bands a thread, taken in turn: the rows of a picture do not hold
-   * equal work (the objects sit where they sit) */
+   * equal work (the objects sit where they sit); at least 16 rows a band */
   int nbands = 4 * d->cfg.threads < 64 ? 4 * d->cfg.threads : 64;
-  /* below a few hundred polygons, starting the threads costs more */
-  if (!d->pool || d->batch.npolys < 256)
+  if (nbands > rows / 16) nbands = rows / 16;
+  /* below a few hundred polygons or two bands, waking the threads costs
+   * more than it saves */
+  if (!d->pool || d->batch.npolys < 256 || nbands < 2)
     return zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
   band_job j;
   j.d = d;
   j.k = k;
   j.t = t;
   j.nbands = nbands;
+  j.row0 = lo;
+  j.rows = rows;
   zs_pool_run(d->pool, walk_band, &j, nbands);
   *out = (zs_walk_counts){0, 0, 0};
   int ok = 1;
