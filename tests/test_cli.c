@@ -146,7 +146,7 @@ static const bad_option bad_options[] = {
 static const char *const help_commands[][3] = {
     {"render", NULL}, {"walk", NULL}, {"trace", NULL}, {"query", NULL}, {"path", NULL},
     {"bench", "octree"}, {"bench", "depthsort"}, {"bench", "raster"}, {"bench", "tradeoff"},
-    {"calibrate", NULL}};
+    {"bench", "suite"}, {"calibrate", NULL}};
 
 START_TEST(help_before_anything_else) {
   const char *const *c = help_commands[_i];
@@ -289,6 +289,32 @@ START_TEST(bench_tradeoff_runs_every_walk) {
   ck_assert_int_eq(rows, 3 * 14);
   ck_assert_int_eq(exact_rows, 3 * 12);
   ck_assert_int_eq(depthsort, 3);
+}
+END_TEST
+
+START_TEST(bench_suite_writes_every_file) {
+  char dir[4096], path[4300];
+  snprintf(dir, sizeof dir, "%s/cli-suite", ZS_BINARY_DIR);
+  static const char *const files[] = {"raster.csv", "raster.md", "raster.png", "tradeoff.md",
+                                      "tradeoff-plant.png", "depthsort.csv", "octree.csv",
+                                      "octree.png"};
+  enum { NFILES = sizeof files / sizeof files[0] };
+  for (int k = 0; k < NFILES; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, files[k]);
+    unlink(path);
+  }
+  const char *args[] = {"bench", "suite", "--quick", "--out", dir, NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  for (int k = 0; k < NFILES; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, files[k]);
+    ck_assert_msg(zs_test_exists(path), "no %s", path);
+  }
+  /* each benchmark's command is echoed before its output */
+  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench raster --csv"));
+  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench tradeoff --out"));
+  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench depthsort --frames 4"));
+  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench octree --count 500"));
 }
 END_TEST
 
@@ -457,6 +483,7 @@ int main(void) {
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_tradeoff_runs_every_walk);
+  tcase_add_test(tc, bench_suite_writes_every_file);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
