@@ -17,7 +17,9 @@
  *   Vertices are snapped to 1/256 pixel (ZS_SUBPIXEL_BITS = 8), rounding to
  *   nearest, ties to even, in window coordinates.  The guard band keeps every
  *   snapped coordinate within +-ZS_GUARD_PIXELS pixels, so coordinates fit
- *   in 24 bits and every edge product in 64.
+ *   in 24 bits and every edge product in 64.  A face inside the band whose
+ *   snapped box holds no pixel centre of the window is dropped at set-up
+ *   (polygons_offscreen); the clock still charges it (zs_polygons_set_up).
  *
  * COVERAGE
  *   A pixel belongs to a polygon when its centre lies inside; a centre
