@@ -196,6 +196,7 @@ static void fresh_path(char *buf, size_t n, const char *name) {
   unlink(buf);
 }
 
+#ifndef ZS_SANITIZED
 /* The instructions per frame of the 500x500 triangles in zbuffer mode, from
  * the CSV of `bench raster --callgrind`. */
 static double callgrind_instructions(const char *csv) {
@@ -215,6 +216,8 @@ static double callgrind_instructions(const char *csv) {
   ck_assert_ptr_nonnull(last);
   return atof(last + 1);
 }
+
+#endif
 
 START_TEST(bench_raster_counts_instructions) {
   char csv[4096];
