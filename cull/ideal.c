@@ -1,0 +1,78 @@
+/* The oracles: ideal draws exactly the objects that own a pixel of the
+ * full image, ideal-box those whose query bounds have a sample against its
+ * depth buffer.  Neither asks the device a query: they are the floors. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cull/internal.h"
+#include "raster/grow.h"
+
+/* The oracle of ideal: which instances own a pixel of the full image; with
+ * boxes (ideal-box), also which instances' tight boxes have a sample
+ * against its depth buffer (a box holds its instance, so every owner is
+ * one of them). */
+void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16], int boxes) {
+  zs_culler *c = f->c;
+  const zs_device_config *cfg = zs_device_config_of(f->dev);
+  if (!c->oracle) {
+    zs_device_config oc = *cfg;
+    oc.algo = ZS_ALGO_ZBUFFER;
+    oc.shade = ZS_SHADE_ID;
+    if ((f->status = zs_device_create(&oc, &c->oracle, f->err))) return;
+  }
+  if (!zs_grow((void **)&c->owns_pixel, &c->cap_inst, f->s->ninst, 1)) {
+    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+    return;
+  }
+  zs_device_clear(c->oracle);
+  zs_device_set_camera(c->oracle, view, proj);
+  for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) {
+    const zs_instance *in = &f->s->inst[i];
+    f->status = zs_device_draw(c->oracle, &f->s->meshes[in->mesh].mesh, in->model, in->id_base,
+                               in->rgb, f->err);
+  }
+  if (f->status) return;
+  /* The instance each face id belongs to (ids are id_base + face id). */
+  if (!c->owner) {
+    uint32_t n = 0;
+    for (int32_t i = 0; i < f->s->ninst; i++) {
+      const zs_mesh *m = &f->s->meshes[f->s->inst[i].mesh].mesh;
+      for (int32_t k = 0; k < m->nfaces; k++) {
+        uint32_t id = f->s->inst[i].id_base + (uint32_t)(m->face_id ? m->face_id[k] : k);
+        if (id + 1 > n) n = id + 1;
+      }
+    }
+    if (!(c->owner = malloc((size_t)(n ? n : 1) * sizeof *c->owner))) {
+      f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+      return;
+    }
+    c->nowner = n;
+    for (int32_t i = 0; i < f->s->ninst; i++) {
+      const zs_mesh *m = &f->s->meshes[f->s->inst[i].mesh].mesh;
+      for (int32_t k = 0; k < m->nfaces; k++)
+        c->owner[f->s->inst[i].id_base + (uint32_t)(m->face_id ? m->face_id[k] : k)] = i;
+    }
+  }
+  memset(c->owns_pixel, 0, (size_t)f->s->ninst);
+  const uint32_t *ids = zs_device_id_buffer(c->oracle);
+  size_t npx = (size_t)cfg->width * (size_t)cfg->height;
+  for (size_t p = 0; p < npx; p++)
+    if (ids[p] < c->nowner) c->owns_pixel[c->owner[ids[p]]] = 1;
+  for (int32_t i = 0; boxes && i < f->s->ninst && f->status == ZS_OK; i++) {
+    zs_query q;
+    if (c->owns_pixel[i]) continue;
+    int32_t nbox = 0;
+    if (!cull_add_query_boxes(f, object_elem(i), &nbox)) {
+      f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+      return;
+    }
+    if ((f->status = zs_device_query_begin(c->oracle, &q, f->err)) ||
+        (f->status = zs_device_query_boxes(c->oracle, (const double(*)[3])c->qlo,
+                                           (const double(*)[3])c->qhi, nbox, f->err)) ||
+        (f->status = zs_device_query_end(c->oracle, f->err)))
+      return;
+    c->owns_pixel[i] = zs_device_query_result(c->oracle, q) > 0;
+  }
+  for (int32_t i = 0; i < f->s->ninst; i++)
+    if (c->owns_pixel[i]) cull_draw_instance(f, i);
+}

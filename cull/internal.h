@@ -1,0 +1,183 @@
+/* zscan cull — what the culling methods share: the elements they walk,
+ * the culler's state, the frame's context and the steps every method
+ * takes (hierarchy.c).  The methods themselves: cull.c (vfc, hsw, chc,
+ * chc-prob, auto, nohc's walk, none, vfc-box), chcpp.c, nohc.c, ideal.c.
+ * Not for use outside cull/. */
+#ifndef ZS_CULL_INTERNAL_H
+#define ZS_CULL_INTERNAL_H
+
+#include "cull/coverage.h"
+#include "cull/cull.h"
+#include "cull/frustum.h"
+#include "cull/parts.h"
+#include "raster/rng.h"
+
+/* The hierarchy the methods walk: the octree's nodes, with each object as
+ * a leaf of the node that holds it (so a visible object does not drag its
+ * neighbours in, and a hidden one is culled on its own).  An element is a
+ * node n >= 0 or an object i, encoded as -(i + 2). */
+typedef int32_t elem;
+static inline int is_object(elem e) { return e <= -2; }
+static inline int32_t object_of(elem e) { return -e - 2; }
+static inline elem object_elem(int32_t i) { return -i - 2; }
+
+/* Across frames, per element. */
+typedef struct elem_state {
+  uint32_t last_visited;   /* frame (frames count from 1) */
+  uint32_t done;           /* frame it was rendered (object) or opened (node) */
+  uint8_t visible;
+  double pv;               /* P(V) for the next frame */
+  uint32_t next_query;     /* chcpp: the frame a visible object is asked again;
+                            * nohc: the frame its draw is measured again */
+  uint32_t hidden_frames;  /* chcpp: frames found hidden in a row */
+  uint32_t samples;        /* nohc: pixels its last draw wrote */
+  int32_t asked_class;     /* nohc: history class its query was decided on, or -1 */
+} elem_state;
+
+/* chcpp: an element waiting for its query to be issued. */
+typedef struct pending {
+  elem e;
+  unsigned mask;
+  uint8_t was_visible;
+} pending;
+
+/* nohc: the share of its box's rectangle a mesh fills, for the coverage
+ * it adds (cull/coverage.h); draws measured every NOHC_MEASURE frames;
+ * queries in batches of NOHC_BATCH; the classes of
+ * history (unseen; hidden 1 .. NOHC_HIDDEN frames in a row; visible, by
+ * log2(s + 1) of the pixels s it wrote) times NOHC_BUCKETS of coverage. */
+enum {
+  NOHC_MEASURE = 4,
+  NOHC_BATCH = 32,
+  NOHC_HIDDEN = 8,
+  NOHC_WROTE = 24,
+  NOHC_HISTORIES = 1 + NOHC_HIDDEN + NOHC_WROTE,
+  NOHC_BUCKETS = 10,
+  NOHC_CLASSES = NOHC_HISTORIES * NOHC_BUCKETS
+};
+
+typedef struct heap_entry {
+  double key;
+  elem e;
+  unsigned mask;           /* frustum planes still to test */
+} heap_entry;
+
+typedef struct query_entry {
+  elem e;
+  zs_query q;
+  unsigned mask;           /* frustum planes its content still tests */
+  uint8_t was_visible;     /* its state before this frame (auto's learning) */
+  int32_t group, ngroup;   /* chcpp multiquery: members gm[group ..], 0: single */
+} query_entry;
+
+struct zs_culler {
+  zs_cull_method method;
+  zs_cost_params cost;
+  uint32_t frame;
+  elem_state *ns, *os;     /* nodes, objects */
+  int32_t cap_ns, init_ns, cap_os, init_os;
+  heap_entry *heap;
+  int32_t nheap, cap_heap;
+  query_entry *qq;
+  int32_t qhead, qtail, cap_qq;
+  int64_t *polys;          /* polygons under each node, this frame */
+  int32_t cap_polys;
+  uint8_t *decision;       /* zs_node_decision per node, this frame */
+  int32_t cap_decision, ndecision;
+  /* ideal */
+  zs_device *oracle;
+  uint8_t *owns_pixel;
+  int32_t cap_inst;
+  int32_t *owner;          /* face id -> instance */
+  uint32_t nowner;
+  /* auto: transitions seen by its queries, and the mode of the next frame */
+  uint64_t vv, vh, hv, hh;
+  int use_queries;
+  /* chcpp: the queue of invisible elements to batch, of visible objects
+   * whose query is due; the rng of the first visible intervals */
+  pending *iq, *vq, *gm;   /* gm: the members of this frame's multiqueries */
+  int32_t ni, nv, ngm, cap_iq, cap_vq, cap_gm;
+  int multi;               /* multiqueries on */
+  zs_rng rng;
+  /* nohc: the coverage grid of this frame; per history class, how often an
+   * object asked about was found visible and hidden */
+  zs_coverage cov;
+  /* the boxes of the query being issued; the objects' parts (NULL: boxes) */
+  double (*qlo)[3], (*qhi)[3];
+  int32_t cap_qlo, cap_qhi;
+  zs_parts *parts;
+  uint32_t class_visible[NOHC_CLASSES], class_hidden[NOHC_CLASSES];
+};
+
+/* The frame's context. */
+typedef struct frame_ctx {
+  zs_culler *c;
+  zs_device *dev;
+  const zs_scene *s;
+  const zs_octree *t;
+  zs_frustum frustum;
+  double eye[3];
+  double near_reach;       /* farthest a near-plane corner lies from the eye */
+  double tan_half_fovy, height;
+  double ttri, tcall, tq, tquery; /* cost model constants, ns */
+  zs_cull_stats *st;
+  uint64_t hidden_objects; /* auto: objects drawn that wrote no pixel */
+  zs_error *err;
+  zs_status status;
+} frame_ctx;
+
+
+
+/* ---- hierarchy.c: elements, drawing, the traversal, queries ---- */
+
+elem_state *cull_state(frame_ctx *f, elem e);
+/* The box of an element: a node's tight box, an object's own box. */
+void cull_elem_box(const frame_ctx *f, elem e, const double **lo, const double **hi);
+/* Records the decision on node e for the overlay. */
+void cull_decide(frame_ctx *f, elem e, zs_node_decision d);
+/* Draws instance i (and counts it). */
+void cull_draw_instance(frame_ctx *f, int32_t i);
+/* Pushes e on the traversal queue (0 when out of memory). */
+int cull_heap_push(frame_ctx *f, elem e, unsigned mask);
+/* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
+void cull_traverse(frame_ctx *f, elem e, unsigned mask);
+void cull_pull_up_visibility(frame_ctx *f, elem e);
+/* Whether the near plane could cut e's box (a query would miss pixels). */
+int cull_too_close(const frame_ctx *f, elem e);
+/* The cost model: Cr (6), whether a query pays (2, 3, 6, 9, 10), P(V) (11). */
+double cull_render_cost(const frame_ctx *f, elem e);
+int cull_query_pays(frame_ctx *f, elem e, double pv);
+double cull_predict(const elem_state *es, double w1, double w2);
+/* Appends the boxes a query over e draws to the culler's query boxes. */
+int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n);
+/* One query over the boxes of members[0 .. n-1], queued as qe. */
+void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_entry qe);
+void cull_issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible);
+/* Takes the answer at the head of the query queue and acts on it. */
+void cull_take_result(frame_ctx *f);
+/* Pops the nearest element and tests it against the frustum; 0: outside. */
+int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);
+int cull_push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem e, unsigned mask,
+                      uint8_t was_visible);
+/* The chance that an element hidden i frames in a row stays hidden. */
+double cull_keep_hidden(uint32_t i);
+/* Issues the queue of invisible elements (chcpp's batch, nohc's). */
+void cull_flush_invisible(frame_ctx *f);
+/* Draws e as if visible without asking; its P(V) goes to the next frame. */
+void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv);
+/* Polygons under every node, this frame (0 when out of memory). */
+int cull_count_polygons(frame_ctx *f);
+
+/* ---- the methods' own modules ---- */
+
+/* chcpp.c: CHC++ and its ablations; prob: chcpp-prob. */
+void cull_walk_chcpp(frame_ctx *f, int batch, int defer, int prob);
+/* nohc.c: whether instance i's draw is measured this frame; after the
+ * draw, its history and the coverage it adds; a termination element. */
+int cull_nohc_measure_due(const frame_ctx *f, int32_t i);
+void cull_nohc_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written);
+void cull_nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int seen_last);
+/* ideal.c: ideal and ideal-box (boxes). */
+void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16], int boxes);
+
+#endif
