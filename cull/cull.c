@@ -151,7 +151,6 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
     /* chc, chc-prob, auto, nohc */
     int seen_last = es->last_visited == frame - 1;
     int was_visible = es->visible && seen_last;
-    double pv = cull_predict(es, w1, w2);
     es->visible = 0;
     es->last_visited = frame;
     if (cull_too_close(f, e)) { /* cannot be asked: taken as visible */
@@ -167,6 +166,8 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
       continue;
     }
     if (is_object(e) || !was_visible) {
+      /* (11) from last frame's P(V): es->pv is unchanged so far */
+      double pv = cull_predict(es, w1, w2);
       if (m != ZS_CULL_CHC && !cull_query_pays(f, e, pv)) {
         cull_draw_unasked(f, e, mask, pv);
         continue;
