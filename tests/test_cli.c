@@ -442,6 +442,40 @@ START_TEST(render_writes_png_and_stats) {
   for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++)
     ck_assert_msg(strstr(out, keys[i]) != NULL, "stdout lacks %s: %s", keys[i], out);
   ck_assert_str_eq(err, "");
+  ck_assert_ptr_null(strstr(out, "\"cull\"")); /* no culling: no culling figures */
+}
+END_TEST
+
+/* The value of "key":N in a JSON line of numbers. */
+static long long json_int(const char *line, const char *key) {
+  char pat[128];
+  snprintf(pat, sizeof pat, "\"%s\":", key);
+  const char *p = strstr(line, pat);
+  ck_assert_msg(p != NULL, "no %s in %s", key, line);
+  return atoll(p + strlen(pat));
+}
+
+START_TEST(render_stats_show_the_culling_work) {
+  /* vfc on the city: plane masking leaves far fewer box-plane tests than
+   * six per element visited; chc-prob evaluates its cost model where it
+   * decides and asks fewer queries than it evaluates */
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-cull.png", ZS_BINARY_DIR);
+  const char *vfc[] = {"render", "builtin:city", "--size", "256x192", "--cull", "vfc", "--stats",
+                       "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(vfc, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "\"cull\":\"vfc\""));
+  long long visited = json_int(out, "nodes_visited"), tests = json_int(out, "frustum_tests");
+  ck_assert_int_gt(visited, 0);
+  ck_assert_int_lt(tests, 6 * visited / 2);
+  ck_assert_int_eq(json_int(out, "cost_evals"), 0);
+  ck_assert_int_gt(json_int(out, "octree_nodes"), 1);
+  const char *prob[] = {"render", "builtin:city", "--size", "256x192", "--cull", "chc-prob",
+                        "--stats", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(prob, out, sizeof out, err, sizeof err), 0);
+  long long evals = json_int(out, "cost_evals"), queries = json_int(out, "queries");
+  ck_assert_int_gt(evals, 0);
+  ck_assert_int_lt(queries, evals);
 }
 END_TEST
 
@@ -482,6 +516,7 @@ int main(void) {
   tcase_add_loop_test(tc, help_before_anything_else, 0,
                       sizeof help_commands / sizeof help_commands[0]);
   tcase_add_test(tc, render_writes_png_and_stats);
+  tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

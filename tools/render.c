@@ -139,9 +139,18 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   return ZS_OK;
 }
 
+/* The culling method's work in the frame (render --cull): what it skipped
+ * shows as frustum tests below nodes found inside (none), queries the cost
+ * model judged not worth asking (cost_evals - queries), objects drawn. */
+typedef struct cull_report {
+  const char *method;
+  const zs_cull_stats *st;
+  int32_t octree_nodes;
+} cull_report;
+
 static void print_stats(const render_opts *o, const zs_scene *sc,
                         const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
-                        double ms, double load_ms, int64_t diff_pixels) {
+                        double ms, double load_ms, int64_t diff_pixels, const cull_report *cr) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
          zs_algo_name(o->algo));
@@ -175,6 +184,13 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
            (unsigned long long)ds->reused, (unsigned long long)ds->inserted,
            (unsigned long long)ds->comparisons, (long long)diff_pixels, zs_device_depthsort_ms(dev));
   }
+  if (cr)
+    printf("\"cull\":\"%s\",\"octree_nodes\":%d,\"nodes_visited\":%llu,\"frustum_tests\":%llu,"
+           "\"cost_evals\":%llu,\"queries_hidden\":%llu,\"objects_drawn\":%llu,\"faces_drawn\":%llu,",
+           cr->method, (int)cr->octree_nodes, (unsigned long long)cr->st->nodes_visited,
+           (unsigned long long)cr->st->frustum_tests, (unsigned long long)cr->st->cost_evals,
+           (unsigned long long)cr->st->queries_hidden, (unsigned long long)cr->st->objects_drawn,
+           (unsigned long long)cr->st->faces_drawn);
   const zs_clock_stats *k = zs_device_clock(dev);
   printf("\"queries\":%llu,\"query_waits\":%llu,\"stalls\":%llu,\"stall_ms\":%.6f,"
          "\"sync_ms\":%.6f,\"gpu_ms\":%.6f,\"cpu_ms\":%.6f,\"modelled_ms\":%.6f,",
@@ -214,6 +230,8 @@ static zs_status run(const render_opts *o, zs_error *err) {
   zs_status st = ZS_OK;
   zs_device *dev = NULL;
   zs_culler *culler = NULL;
+  zs_cull_stats cs;
+  memset(&cs, 0, sizeof cs);
   zs_octree tree;
   int have_tree = 0;
   zs_image im = {0, 0, NULL};
@@ -244,7 +262,6 @@ static zs_status run(const render_opts *o, zs_error *err) {
       /* each repeat is a fresh first frame: the culler starts again */
       zs_culler_destroy(culler);
       culler = NULL;
-      zs_cull_stats cs;
       if ((st = zs_culler_create((zs_cull_method)o->cull, NULL, &culler, err)) ||
           (st = zs_culler_set_bounds(culler, o->bounds, err)) ||
           (st = zs_culler_frame(culler, dev, &model, &tree, view, proj, &cs, err)))
@@ -278,9 +295,11 @@ static zs_status run(const render_opts *o, zs_error *err) {
     zs_image_free(&b);
     if (st) goto done;
   }
+  cull_report cr = {o->cull >= 0 ? zs_cull_method_name((zs_cull_method)o->cull) : NULL, &cs,
+                    have_tree ? tree.nnodes : 0};
   if (o->stats)
     print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
-                diff_pixels);
+                diff_pixels, o->cull >= 0 ? &cr : NULL);
 
 done:
   zs_culler_destroy(culler);
