@@ -321,6 +321,39 @@ START_TEST(bench_suite_writes_every_file) {
 }
 END_TEST
 
+START_TEST(bench_depthsort_coherence_pays_where_depths_are_kept) {
+  /* The comparisons are exact: translation and roll keep the order and
+   * insert a few faces (under 2 % of a full sort's comparisons); slow yaw
+   * re-sorts (less than a full sort, more than a tenth); fast motion
+   * replaces half the faces (more than a tenth). */
+  char csv[4096];
+  fresh_path(csv, sizeof csv, "cli-depthsort.csv");
+  const char *args[] = {"bench", "depthsort", "--frames", "6", "--size", "256x192", "--csv",
+                        csv, NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  FILE *f = fopen(csv, "r");
+  ck_assert_ptr_nonnull(f);
+  char line[512];
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_str_eq(line, "motion,faces,reused_pct,full_sort_ms,coherent_sort_ms,"
+                         "full_comparisons,coherent_comparisons,diff_pixels\n");
+  static const char *const motions[4] = {"translate", "roll", "yaw", "fast"};
+  for (int m = 0; m < 4; m++) {
+    ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+    char name[32];
+    double faces, reused, full_ms, coh_ms, full, coherent;
+    ck_assert_int_eq(sscanf(line, "%31[^,],%lf,%lf,%lf,%lf,%lf,%lf", name, &faces, &reused,
+                            &full_ms, &coh_ms, &full, &coherent), 7);
+    ck_assert_str_eq(name, motions[m]);
+    ck_assert_msg(full > faces, "%s: %s", motions[m], line);
+    if (m < 2) ck_assert_msg(coherent < 0.02 * full, "%s: %s", motions[m], line);
+    else ck_assert_msg(coherent > 0.1 * full && coherent < full, "%s: %s", motions[m], line);
+  }
+  fclose(f);
+}
+END_TEST
+
 START_TEST(bench_raster_writes_csv_and_table) {
   /* the triangle sizes at 500x500, one frame each: the counts are exact
    * (10x10: 2,500 squares of two triangles, 40 layers to reach 200,000
@@ -522,6 +555,7 @@ int main(void) {
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_tradeoff_runs_every_walk);
   tcase_add_test(tc, bench_suite_writes_every_file);
+  tcase_add_test(tc, bench_depthsort_coherence_pays_where_depths_are_kept);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);

@@ -96,14 +96,16 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
     if ((st = frame(full, s, view, proj, err)) || (st = zs_device_finish(full, NULL, NULL, err)))
       break;
     full_ms[f] = zs_device_depthsort_ms(full);
-    out->full_cmp += (double)zs_device_depthsort_stats(full)->comparisons;
+    if (f > 0) out->full_cmp += (double)zs_device_depthsort_stats(full)->comparisons;
     /* with coherence, and its picture */
     if ((st = frame(coherent, s, view, proj, err)) ||
         (st = zs_device_finish(coherent, keep_ids, &sink, err)))
       break;
     const zs_depthsort_stats *ds = zs_device_depthsort_stats(coherent);
     coh_ms[f] = zs_device_depthsort_ms(coherent);
-    out->coherent_cmp += (double)ds->comparisons;
+    /* the first frame has no order to keep: the sort figures count the
+     * frames after it, as the medians of the times do */
+    if (f > 0) out->coherent_cmp += (double)ds->comparisons;
     out->faces += (double)ds->faces;
     /* the first frame has nothing to reuse: the table counts the others */
     if (f > 0) out->reused_pct += ds->faces ? 100.0 * (double)ds->reused / (double)ds->faces : 0;
@@ -116,8 +118,8 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
   if (st == ZS_OK) {
     out->faces /= frames;
     out->reused_pct /= frames > 1 ? frames - 1 : 1;
-    out->full_cmp /= frames;
-    out->coherent_cmp /= frames;
+    out->full_cmp /= frames > 1 ? frames - 1 : 1;
+    out->coherent_cmp /= frames > 1 ? frames - 1 : 1;
     out->diff /= frames;
     /* medians over the frames after the first */
     out->full_ms = zs_median(full_ms + 1, frames > 1 ? frames - 1 : 1);
