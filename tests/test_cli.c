@@ -196,16 +196,22 @@ static void fresh_path(char *buf, size_t n, const char *name) {
   unlink(buf);
 }
 
+/* Runs zscan with args, which must succeed, and opens the CSV it wrote. */
+static FILE *run_for_csv(const char *const *args, const char *csv) {
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  FILE *f = fopen(csv, "r");
+  ck_assert_ptr_nonnull(f);
+  return f;
+}
+
 #ifndef ZS_SANITIZED
 /* The instructions per frame of the 500x500 triangles in zbuffer mode, from
  * the CSV of `bench raster --callgrind`. */
 static double callgrind_instructions(const char *csv) {
   const char *args[] = {"bench", "raster", "--case", "triangles 500x500", "--algo", "zbuffer",
                         "--repeat", "1", "--size", "500x500", "--callgrind", "--csv", csv, NULL};
-  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
-  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
-  FILE *f = fopen(csv, "r");
-  ck_assert_ptr_nonnull(f);
+  FILE *f = run_for_csv(args, csv);
   char line[512];
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
@@ -330,10 +336,7 @@ START_TEST(bench_depthsort_coherence_pays_where_depths_are_kept) {
   fresh_path(csv, sizeof csv, "cli-depthsort.csv");
   const char *args[] = {"bench", "depthsort", "--frames", "6", "--size", "256x192", "--csv",
                         csv, NULL};
-  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
-  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
-  FILE *f = fopen(csv, "r");
-  ck_assert_ptr_nonnull(f);
+  FILE *f = run_for_csv(args, csv);
   char line[512];
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
   ck_assert_str_eq(line, "motion,faces,reused_pct,full_sort_ms,coherent_sort_ms,"
@@ -363,11 +366,8 @@ START_TEST(bench_raster_writes_csv_and_table) {
   fresh_path(md, sizeof md, "cli-bench.md");
   const char *args[] = {"bench", "raster", "--no-scenes", "--no-simd", "--repeat", "1", "--size",
                         "500x500", "--csv", csv, "--md", md, NULL};
-  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
-  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  FILE *f = run_for_csv(args, csv);
   ck_assert_str_eq(err, "");
-  FILE *f = fopen(csv, "r");
-  ck_assert_ptr_nonnull(f);
   char line[512];
   int rows = 0;
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
@@ -391,8 +391,7 @@ START_TEST(bench_raster_writes_csv_and_table) {
   /* too small for the largest triangles: refused, nothing written */
   unlink(csv);
   const char *small[] = {"bench", "raster", "--size", "100x100", "--csv", csv, NULL};
-  rc = zs_test_run_zscan(small, out, sizeof out, err, sizeof err);
-  ck_assert_int_eq(rc, 1);
+  ck_assert_int_eq(zs_test_run_zscan(small, out, sizeof out, err, sizeof err), 1);
   ck_assert_str_eq(err, "zscan bench raster: --size: at least 500x500 (the largest triangles)\n");
   ck_assert(!zs_test_exists(csv));
 }
