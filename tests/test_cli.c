@@ -250,30 +250,14 @@ START_TEST(bench_raster_counts_instructions) {
 }
 END_TEST
 
-START_TEST(bench_tradeoff_runs_every_walk) {
-  /* the whole suite, small: every walk, method and mode, with its files */
-  char dir[4096], path[4300];
-  snprintf(dir, sizeof dir, "%s/cli-tradeoff", ZS_BINARY_DIR);
-  static const char *const walks[] = {"teapots", "city", "plant"};
-  static const char *const exts[] = {"csv", "md", "png"};
-  for (int k = 0; k < 3; k++)
-    for (int e = 0; e < 3; e++) {
-      snprintf(path, sizeof path, "%s/tradeoff-%s.%s", dir, walks[k], exts[e]);
-      unlink(path);
-    }
-  const char *args[] = {"bench", "tradeoff", "--quick", "--size", "160x120", "--out", dir, NULL};
-  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
-  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
-  for (int k = 0; k < 3; k++)
-    for (int e = 0; e < 3; e++) {
-      snprintf(path, sizeof path, "%s/tradeoff-%s.%s", dir, walks[k], exts[e]);
-      ck_assert_msg(zs_test_exists(path), "no %s", path);
-    }
+/* tradeoff.md of bench tradeoff in dir: each walk has all 14 rows (none,
+ * 11 methods, 2 modes), and every exact method and the scanline mode get
+ * no pixel wrong. */
+static void check_tradeoff_md(const char *dir) {
+  char path[4300];
   snprintf(path, sizeof path, "%s/tradeoff.md", dir);
   FILE *f = fopen(path, "r");
   ck_assert_ptr_nonnull(f);
-  /* every exact method and the scanline mode get no pixel wrong; each
-   * walk has all 14 rows: none, 11 methods, 2 modes */
   static const char *const exact[] = {"none", "vfc", "hsw", "chc", "chc-prob", "chcpp",
                                       "chcpp-prob", "nohc", "ideal-box", "ideal", "auto",
                                       "scanline"};
@@ -299,7 +283,6 @@ START_TEST(bench_tradeoff_runs_every_walk) {
   ck_assert_int_eq(exact_rows, 3 * 12);
   ck_assert_int_eq(depthsort, 3);
 }
-END_TEST
 
 START_TEST(bench_suite_writes_every_file) {
   char dir[4096], path[4300];
@@ -312,7 +295,8 @@ START_TEST(bench_suite_writes_every_file) {
     snprintf(path, sizeof path, "%s/%s", dir, files[k]);
     unlink(path);
   }
-  const char *args[] = {"bench", "suite", "--quick", "--out", dir, NULL};
+  /* everything small: every walk, method and mode, with its files */
+  const char *args[] = {"bench", "suite", "--quick", "--size", "500x500", "--out", dir, NULL};
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
   for (int k = 0; k < NFILES; k++) {
@@ -322,8 +306,14 @@ START_TEST(bench_suite_writes_every_file) {
   /* each benchmark's command is echoed before its output */
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench raster --csv"));
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench tradeoff --out"));
-  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench depthsort --frames 4"));
+  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench depthsort --frames 4 --csv"));
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench octree --count 500"));
+  check_tradeoff_md(dir);
+  for (int k = 0; k < 3; k++) {
+    static const char *const walks[] = {"teapots", "city", "plant"};
+    snprintf(path, sizeof path, "%s/tradeoff-%s.csv", dir, walks[k]);
+    ck_assert_msg(zs_test_exists(path), "no %s", path);
+  }
 }
 END_TEST
 
@@ -552,7 +542,6 @@ int main(void) {
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
-  tcase_add_test(tc, bench_tradeoff_runs_every_walk);
   tcase_add_test(tc, bench_suite_writes_every_file);
   tcase_add_test(tc, bench_depthsort_coherence_pays_where_depths_are_kept);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);

@@ -18,7 +18,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "raster/error.h"
+#include "raster/raster.h"
 #include "tools/bench_depthsort.h"
 #include "tools/bench_octree.h"
 #include "tools/bench_raster.h"
@@ -28,9 +28,11 @@
 #include "tools/mesa.h"
 
 static const char usage[] =
-    "usage: zscan bench suite [--out DIR] [--quick]\n"
-    "  --out DIR  where every benchmark's files go (default bench-suite)\n"
-    "  --quick    a few frames of each: a check that it all runs\n";
+    "usage: zscan bench suite [--out DIR] [--quick] [--size WxH]\n"
+    "  --out DIR   where every benchmark's files go (default bench-suite)\n"
+    "  --quick     a few frames of each: a check that it all runs\n"
+    "  --size WxH  the image size of raster, tradeoff and depthsort (raster needs\n"
+    "              500x500 or more; default each one's own, 1024x768)\n";
 
 /* Runs one benchmark's command with args (NULL-terminated, the command's
  * name first); returns its exit status. */
@@ -49,8 +51,8 @@ int zs_cmd_bench_suite(int argc, char **argv) {
     fputs(usage, stdout);
     return 0;
   }
-  const char *dir = "bench-suite";
-  int quick = 0;
+  const char *dir = "bench-suite", *size = NULL;
+  int quick = 0, w, h;
   zs_error err;
   zs_error_clear(&err);
   for (int i = 1; i < argc; i++) {
@@ -58,6 +60,10 @@ int zs_cmd_bench_suite(int argc, char **argv) {
       quick = 1;
     } else if (strcmp(argv[i], "--out") == 0) {
       if (zs_cli_value(argc, argv, &i, &dir, &err)) goto fail;
+    } else if (strcmp(argv[i], "--size") == 0) {
+      if (zs_cli_value(argc, argv, &i, &size, &err) ||
+          zs_cli_size(argv[i - 1], size, ZS_MAX_IMAGE_SIDE, &w, &h, &err))
+        goto fail;
     } else {
       zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench suite --help)", argv[i]);
       goto fail;
@@ -91,9 +97,24 @@ int zs_cmd_bench_suite(int argc, char **argv) {
     raster[n++] = "1";
     raster[n++] = "--no-scenes";
   }
+  if (size) {
+    raster[n++] = "--size";
+    raster[n++] = (char *)size;
+  }
   raster[n] = NULL;
-  char *tradeoff[] = {"tradeoff", "--out", (char *)dir, quick ? "--quick" : NULL, NULL};
-  char *depthsort[] = {"depthsort", "--frames", quick ? "4" : "40", "--csv", path[3], NULL};
+  char *tradeoff[8] = {"tradeoff", "--out", (char *)dir}, *depthsort[8] = {"depthsort"};
+  int nt = 3, nd = 1;
+  if (quick) tradeoff[nt++] = "--quick";
+  depthsort[nd++] = "--frames";
+  depthsort[nd++] = quick ? "4" : "40";
+  depthsort[nd++] = "--csv";
+  depthsort[nd++] = path[3];
+  if (size) {
+    tradeoff[nt++] = "--size";
+    tradeoff[nt++] = (char *)size;
+    depthsort[nd++] = "--size";
+    depthsort[nd++] = (char *)size;
+  }
   char *octree[] = {"octree", "--count", quick ? "500" : "5000", "--frames", quick ? "3" : "50",
                     "--csv", path[4], "--plot", path[5], NULL};
   if (run(zs_cmd_bench_raster, raster) || run(zs_cmd_bench_tradeoff, tradeoff) ||
