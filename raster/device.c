@@ -71,7 +71,8 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
   if (ok && cfg->threads > 1 && cfg->algo == ZS_ALGO_ZBUFFER) {
     d->pool = zs_pool_create(cfg->threads);
     d->band_scratch = calloc(64, sizeof *d->band_scratch); /* one per band */
-    ok = d->pool && d->band_scratch;
+    d->setup_parts = calloc((size_t)cfg->threads, sizeof *d->setup_parts);
+    ok = d->pool && d->band_scratch && d->setup_parts;
     if (!ok) {
       zs_device_destroy(d);
       return zs_error_set(err, ZS_ERR_NOMEM, "threads: cannot start %d threads", cfg->threads);
@@ -109,6 +110,9 @@ void zs_device_destroy(zs_device *d) {
   if (d->band_scratch)
     for (int i = 0; i < 64; i++) zs_walk_scratch_free(&d->band_scratch[i]);
   free(d->band_scratch);
+  if (d->setup_parts)
+    for (int i = 0; i < d->cfg.threads; i++) zs_batch_free(&d->setup_parts[i]);
+  free(d->setup_parts);
   free(d->clip);
   free(d->eyepos);
   free(d->outcode);
@@ -263,6 +267,161 @@ static void add_counts(zs_device *d, const zs_walk_counts *c) {
   d->stats.pixels_written += c->written;
 }
 
+/* The counters the set-up of a range of faces adds. */
+typedef struct face_counts {
+  uint64_t in, outside, clipped, culled_back, degenerate, offscreen, rasterized;
+} face_counts;
+
+/* Transforms vertices [i0, i1) of mesh: to eye space (for the normals of
+ * flat shading and the painter's keys) and to clip space, with the
+ * outcode, snapped when inside every plane. */
+static void transform_vertices(zs_device *d, const zs_mesh *mesh, const double mvp[16],
+                               const double mv[16], const zs_setup_params *sp, int need_eye,
+                               int32_t i0, int32_t i1) {
+  for (int32_t i = i0; i < i1; i++) {
+    const double *p = &mesh->pos[3 * i];
+    double c[4];
+    zs_mat_apply(mvp, p, c);
+    d->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
+    d->outcode[i] = zs_clip_outcode(&d->clip[i], d->gx, d->gy);
+    /* snapped once here for all the faces that share it (set-up snaps
+     * the vertices of a clipped face itself) */
+    if (d->outcode[i] == 0) zs_snap_vertex(sp, &d->clip[i], &d->snap[i]);
+    if (need_eye) {
+      double e[4];
+      zs_mat_apply(mv, p, e);
+      memcpy(&d->eyepos[3 * i], e, 3 * sizeof e[0]);
+    }
+  }
+}
+
+/* Sets up faces [f0, f1) of mesh into b, from the transformed vertices:
+ * trivial reject, flat colour, clipping where a face crosses a plane.
+ * The painter's keys go to ds (NULL: not the painter).  A face with a
+ * vertex out of range stops it with an error. */
+static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0, int32_t f1,
+                             uint32_t id_base, uint32_t rgb, zs_setup_params sp, int flat,
+                             zs_depthsort *ds, zs_batch *b, face_counts *fc, zs_error *err) {
+  zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
+  zs_snap_vert snapped[ZS_MAX_POLY_VERTS];
+  for (int32_t f = f0; f < f1; f++) {
+    int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
+    fc->in++;
+    if (n < 3 || n > ZS_MAX_POLY_VERTS) {
+      fc->degenerate++;
+      continue;
+    }
+    const int32_t *fv = &mesh->face_vert[s];
+    unsigned and_code = ~0u, or_code = 0;
+    for (int i = 0; i < n; i++) {
+      if (fv[i] < 0 || fv[i] >= mesh->nverts)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "draw: face %d uses vertex %d of %d", (int)f,
+                            (int)fv[i], (int)mesh->nverts);
+      and_code &= d->outcode[fv[i]];
+      or_code |= d->outcode[fv[i]];
+    }
+    if (and_code) {
+      fc->outside++;
+      continue;
+    }
+    sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
+    sp.rgb = rgb != ZS_RGB_MESH ? rgb
+             : mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
+    if (flat) {
+      /* Newell's normal of the face in eye space */
+      double nrm[3] = {0, 0, 0};
+      for (int i = 0, j = 1; i < n; i++, j = j + 1 < n ? j + 1 : 0) {
+        const double *a = &d->eyepos[3 * fv[i]], *c = &d->eyepos[3 * fv[j]];
+        nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
+        nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
+        nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
+      }
+      sp.rgb = zs_shade_flat(sp.rgb, nrm);
+    }
+    zs_setup_result r;
+    if (or_code) {
+      for (int i = 0; i < n; i++) in[i] = d->clip[fv[i]];
+      fc->clipped++;
+      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
+      if (n == 0) {
+        fc->outside++;
+        continue;
+      }
+      r = zs_setup_polygon(b, &sp, clipped, n);
+    } else {
+      for (int i = 0; i < n; i++) snapped[i] = d->snap[fv[i]];
+      r = zs_setup_snapped(b, &sp, snapped, n);
+    }
+    if (ds && r == ZS_SETUP_DRAWN) {
+      /* the sort key: distance along the view axis of the centroid of the
+       * face's vertices; every face in view is ordered, even one too small
+       * to cover a pixel centre */
+      int32_t nv = mesh->face_start[f + 1] - s;
+      double zsum = 0.0;
+      for (int i = 0; i < nv; i++) zsum += d->eyepos[3 * fv[i] + 2];
+      if (!zs_depthsort_note(ds, sp.id, -zsum / nv))
+        return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    }
+    switch (r) {
+      case ZS_SETUP_DRAWN: fc->rasterized++; break;
+      case ZS_SETUP_BACK: fc->culled_back++; break;
+      case ZS_SETUP_DEGENERATE: fc->degenerate++; break;
+      case ZS_SETUP_OFFSCREEN: fc->offscreen++; break;
+      case ZS_SETUP_NOMEM: return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    }
+  }
+  return ZS_OK;
+}
+
+static void add_face_counts(zs_raster_stats *s, const face_counts *fc) {
+  s->polygons_in += fc->in;
+  s->polygons_outside += fc->outside;
+  s->polygons_clipped += fc->clipped;
+  s->polygons_culled_back += fc->culled_back;
+  s->polygons_degenerate += fc->degenerate;
+  s->polygons_offscreen += fc->offscreen;
+  s->polygons_rasterized += fc->rasterized;
+}
+
+/* A large draw in zbuffer mode, split over the threads: the vertices in
+ * ranges, then the faces in ranges, each set up into a batch of its own;
+ * the batches are joined in face order, so the walk, the picture and the
+ * counters are those of one thread. */
+typedef struct setup_job {
+  zs_device *d;
+  const zs_mesh *mesh;
+  const double *mvp, *mv;
+  zs_setup_params sp;
+  int flat, need_eye, nparts;
+  uint32_t id_base, rgb;
+  zs_batch *batch[64];
+  face_counts fc[64];
+  zs_status st[64];
+  zs_error err[64];
+} setup_job;
+
+static void transform_part(void *ctx, int part) {
+  setup_job *j = ctx;
+  int64_t n = j->mesh->nverts;
+  transform_vertices(j->d, j->mesh, j->mvp, j->mv, &j->sp, j->need_eye,
+                     (int32_t)(n * part / j->nparts), (int32_t)(n * (part + 1) / j->nparts));
+}
+
+static void setup_part(void *ctx, int part) {
+  setup_job *j = ctx;
+  int64_t n = j->mesh->nfaces;
+  j->fc[part] = (face_counts){0, 0, 0, 0, 0, 0, 0};
+  zs_error_clear(&j->err[part]);
+  j->st[part] = setup_faces(j->d, j->mesh, (int32_t)(n * part / j->nparts),
+                            (int32_t)(n * (part + 1) / j->nparts), j->id_base, j->rgb, j->sp,
+                            j->flat, NULL, j->batch[part], &j->fc[part], &j->err[part]);
+}
+
+/* Below this many faces a draw is set up on one thread: handing the work
+ * over costs more than it saves. */
+enum { PARALLEL_SETUP_FACES = 4096 };
+
 zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
                               const double model[16], uint32_t id_base,
                               uint32_t rgb, zs_kernel k, zs_walk_counts *out,
@@ -279,98 +438,41 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
   else memcpy(mv, d->view, sizeof mv);
   zs_mat_mul(mvp, d->proj, mv);
 
-  /* Transform: every vertex once, to eye space (for the normals of flat
-   * shading) and to clip space, with its outcode. */
   const int flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
   const int painter = d->cfg.algo == ZS_ALGO_DEPTHSORT;
   const int need_eye = flat || painter;
   zs_setup_params sp = {d->cfg.width, d->cfg.height,
                         d->cfg.cull_back && k != ZS_KERNEL_QUERY, 0, 0,
                         k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
-  for (int32_t i = 0; i < mesh->nverts; i++) {
-    const double *p = &mesh->pos[3 * i];
-    double c[4];
-    zs_mat_apply(mvp, p, c);
-    d->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
-    d->outcode[i] = zs_clip_outcode(&d->clip[i], d->gx, d->gy);
-    /* snapped once here for all the faces that share it (set-up snaps
-     * the vertices of a clipped face itself) */
-    if (d->outcode[i] == 0) zs_snap_vertex(&sp, &d->clip[i], &d->snap[i]);
-    if (need_eye) {
-      double e[4];
-      zs_mat_apply(mv, p, e);
-      memcpy(&d->eyepos[3 * i], e, 3 * sizeof e[0]);
-    }
-  }
-
-  zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
-  zs_snap_vert snapped[ZS_MAX_POLY_VERTS];
-  for (int32_t f = 0; f < mesh->nfaces; f++) {
-    int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
-    d->stats.polygons_in++;
-    if (n < 3 || n > ZS_MAX_POLY_VERTS) {
-      d->stats.polygons_degenerate++;
-      continue;
-    }
-    const int32_t *fv = &mesh->face_vert[s];
-    unsigned and_code = ~0u, or_code = 0;
-    for (int i = 0; i < n; i++) {
-      if (fv[i] < 0 || fv[i] >= mesh->nverts)
-        return zs_error_set(err, ZS_ERR_ARG,
-                            "draw: face %d uses vertex %d of %d", (int)f,
-                            (int)fv[i], (int)mesh->nverts);
-      and_code &= d->outcode[fv[i]];
-      or_code |= d->outcode[fv[i]];
-    }
-    if (and_code) {
-      d->stats.polygons_outside++;
-      continue;
-    }
-    sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
-    sp.rgb = rgb != ZS_RGB_MESH ? rgb
-             : mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
-    if (flat) {
-      /* Newell's normal of the face in eye space */
-      double nrm[3] = {0, 0, 0};
-      for (int i = 0, j = 1; i < n; i++, j = j + 1 < n ? j + 1 : 0) {
-        const double *a = &d->eyepos[3 * fv[i]], *b = &d->eyepos[3 * fv[j]];
-        nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  if (d->setup_parts && mesh->nfaces >= PARALLEL_SETUP_FACES) {
+    /* (threads exist in zbuffer mode only, so never the painter) */
+    setup_job *j = malloc(sizeof *j);
+    if (!j) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    *j = (setup_job){d, mesh, mvp, mv, sp, flat, need_eye, d->cfg.threads, id_base, rgb,
+                     {NULL}, {{0, 0, 0, 0, 0, 0, 0}}, {ZS_OK}, {{0, {0}}}};
+    j->batch[0] = &d->batch;
+    for (int t = 1; t < j->nparts; t++) j->batch[t] = &d->setup_parts[t];
+    zs_pool_run(d->pool, transform_part, j, j->nparts);
+    zs_pool_run(d->pool, setup_part, j, j->nparts);
+    zs_status st = ZS_OK;
+    for (int t = 0; t < j->nparts; t++) {
+      if (st == ZS_OK) { /* as one thread would: counted up to the first error */
+        add_face_counts(&d->stats, &j->fc[t]);
+        if ((st = j->st[t]) != ZS_OK) zs_error_set(err, st, "%s", j->err[t].msg);
+        else if (t > 0 && !zs_batch_append(&d->batch, j->batch[t]))
+          st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
       }
-      sp.rgb = zs_shade_flat(sp.rgb, nrm);
+      if (t > 0) zs_batch_reset(j->batch[t]);
     }
-    zs_setup_result r;
-    if (or_code) {
-      for (int i = 0; i < n; i++) in[i] = d->clip[fv[i]];
-      d->stats.polygons_clipped++;
-      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
-      if (n == 0) {
-        d->stats.polygons_outside++;
-        continue;
-      }
-      r = zs_setup_polygon(&d->batch, &sp, clipped, n);
-    } else {
-      for (int i = 0; i < n; i++) snapped[i] = d->snap[fv[i]];
-      r = zs_setup_snapped(&d->batch, &sp, snapped, n);
-    }
-    if (painter && r == ZS_SETUP_DRAWN) {
-      /* the sort key: distance along the view axis of the centroid of the
-       * face's vertices; every face in view is ordered, even one too small
-       * to cover a pixel centre */
-      int32_t nv = mesh->face_start[f + 1] - s;
-      double zsum = 0.0;
-      for (int i = 0; i < nv; i++) zsum += d->eyepos[3 * fv[i] + 2];
-      if (!zs_depthsort_note(&d->depthsort, sp.id, -zsum / nv))
-        return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-    }
-    switch (r) {
-      case ZS_SETUP_DRAWN: d->stats.polygons_rasterized++; break;
-      case ZS_SETUP_BACK: d->stats.polygons_culled_back++; break;
-      case ZS_SETUP_DEGENERATE: d->stats.polygons_degenerate++; break;
-      case ZS_SETUP_OFFSCREEN: d->stats.polygons_offscreen++; break;
-      case ZS_SETUP_NOMEM: return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-    }
+    free(j);
+    if (st != ZS_OK) return st;
+  } else {
+    transform_vertices(d, mesh, mvp, mv, &sp, need_eye, 0, mesh->nverts);
+    face_counts fc = {0, 0, 0, 0, 0, 0, 0};
+    zs_status st = setup_faces(d, mesh, 0, mesh->nfaces, id_base, rgb, sp, flat,
+                               painter ? &d->depthsort : NULL, &d->batch, &fc, err);
+    add_face_counts(&d->stats, &fc);
+    if (st != ZS_OK) return st;
   }
 
   *out = (zs_walk_counts){0, 0, 0};

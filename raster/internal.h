@@ -97,6 +97,8 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *p,
                                  const zs_snap_vert *v, int n);
 
 void zs_batch_reset(zs_batch *b);
+/* Appends src's polygons and edges to dst, in order (0: out of memory). */
+int zs_batch_append(zs_batch *dst, const zs_batch *src);
 void zs_batch_free(zs_batch *b);
 
 /* ---- span_simd.c: the draw kernel's span fill with AVX2 ----
@@ -264,6 +266,8 @@ struct zs_device {
   /* threads: zbuffer mode walks large batches in bands of rows */
   struct zs_pool *pool;
   zs_walk_scratch *band_scratch;  /* one per band */
+  zs_batch *setup_parts;          /* a large draw's faces set up by thread
+                                   * t > 0 (thread 0 uses batch) */
   int last_was_query;             /* the GPU's last command was a query box */
 };
 

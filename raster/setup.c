@@ -53,6 +53,19 @@ static int reserve(zs_batch *b, int polys, int edges) {
          zs_grow((void **)&b->edges, &b->cap_edges, (int64_t)b->nedges + edges, sizeof *b->edges);
 }
 
+int zs_batch_append(zs_batch *dst, const zs_batch *src) {
+  if (!reserve(dst, src->npolys, src->nedges)) return 0;
+  for (int32_t i = 0; i < src->npolys; i++) {
+    zs_poly p = src->polys[i];
+    p.edge0 += dst->nedges;
+    dst->polys[dst->npolys + i] = p;
+  }
+  memcpy(dst->edges + dst->nedges, src->edges, (size_t)src->nedges * sizeof *src->edges);
+  dst->npolys += src->npolys;
+  dst->nedges += src->nedges;
+  return 1;
+}
+
 typedef struct plane {
   int32_t ox, oy;
   int64_t zc, dzdx, dzdy;

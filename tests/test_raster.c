@@ -456,6 +456,69 @@ START_TEST(depth_stepping_equals_evaluation) {
 }
 END_TEST
 
+/* Renders b in zbuffer mode with flat shading on `threads` threads under a
+ * perspective camera; the device's buffers go to f, its counters are
+ * returned; the draw's status to *st (and its message to msg). */
+static zs_raster_stats render_threads(const zs_mesh *m, int threads, frame *f, zs_status *st,
+                                      char *msg, size_t cap) {
+  zs_device_config cfg = {f->w, f->h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, threads, 0};
+  zs_device *d = NULL;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+  double view[16], proj[16];
+  zs_mat_look_at(view, (double[3]){0.3, 0.4, 3.0}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
+  zs_mat_perspective(proj, 50, (double)f->w / f->h, 0.5, 10);
+  zs_device_clear(d);
+  zs_device_set_camera(d, view, proj);
+  *st = zs_device_draw(d, m, NULL, 0, ZS_RGB_MESH, &err);
+  snprintf(msg, cap, "%s", err.msg);
+  if (*st == ZS_OK) ck_assert_int_eq(zs_device_finish(d, frame_sink, f, &err), ZS_OK);
+  zs_raster_stats s = *zs_device_stats(d);
+  zs_device_destroy(d);
+  return s;
+}
+
+START_TEST(large_draws_set_up_on_threads_give_the_same_bytes) {
+  /* A sphere of 24,000 faces (above the size at which a draw's set-up is
+   * split over the threads), part of it outside the frustum: every buffer
+   * and every counter equal for 1 to 4 threads.  Then a face with a vertex
+   * out of range in the last part: the same error, the same counters. */
+  mesh_buf b = {0};
+  mb_sphere(&b, 0.4, 0, 0, 1.3, 200, 120, 0);
+  ck_assert_int_gt(b.m.nfaces, 20000);
+  frame one = frame_new(200, 150);
+  zs_status st;
+  char msg1[ZS_ERROR_MSG_MAX], msgn[ZS_ERROR_MSG_MAX];
+  zs_raster_stats s1 = render_threads(&b.m, 1, &one, &st, msg1, sizeof msg1);
+  ck_assert_int_eq(st, ZS_OK);
+  ck_assert_uint_gt(s1.polygons_outside + s1.polygons_offscreen, 0);
+  for (int threads = 2; threads <= 4; threads++) {
+    frame many = frame_new(200, 150);
+    zs_raster_stats sn = render_threads(&b.m, threads, &many, &st, msgn, sizeof msgn);
+    ck_assert_int_eq(st, ZS_OK);
+    ck_assert_mem_eq(&s1, &sn, sizeof s1);
+    ck_assert_mem_eq(one.rgb, many.rgb, 200 * 150 * 4);
+    ck_assert_mem_eq(one.depth, many.depth, 200 * 150 * 4);
+    ck_assert_mem_eq(one.id, many.id, 200 * 150 * 4);
+    frame_free(&many);
+  }
+  b.m.face_vert[b.m.face_start[b.m.nfaces - 3]] = b.m.nverts + 7;
+  frame bad = frame_new(200, 150);
+  s1 = render_threads(&b.m, 1, &bad, &st, msg1, sizeof msg1);
+  ck_assert_int_eq(st, ZS_ERR_ARG);
+  zs_raster_stats sn = render_threads(&b.m, 3, &bad, &st, msgn, sizeof msgn);
+  ck_assert_int_eq(st, ZS_ERR_ARG);
+  ck_assert_str_eq(msg1, msgn);
+  ck_assert_ptr_nonnull(strstr(msg1, "uses vertex"));
+  ck_assert_uint_eq(s1.polygons_in, sn.polygons_in);
+  ck_assert_uint_eq(s1.polygons_rasterized, sn.polygons_rasterized);
+  frame_free(&bad);
+  frame_free(&one);
+  mb_free(&b);
+}
+END_TEST
+
 START_TEST(degenerate_faces_draw_nothing) {
   mesh_buf b = {0};
   int32_t v[3] = {mb_vert(&b, 1, 1, 0), mb_vert(&b, 5, 5, 0), mb_vert(&b, 9, 9, 0)};
@@ -580,6 +643,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
   tcase_add_test(tc, degenerate_faces_draw_nothing);
+  tcase_add_test(tc, large_draws_set_up_on_threads_give_the_same_bytes);
   tcase_add_test(tc, faces_off_the_window_are_dropped_at_set_up);
   tcase_add_test(tc, back_faces_culled_only_when_asked);
   tcase_add_test(tc, nothing_behind_the_eye);
