@@ -222,11 +222,15 @@ static void walk_band(void *ctx, int band) {
 /* Walks the batch into the full frame; in bands when threads pay. */
 static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
   zs_target t = full_frame_target(d);
+  /* below a thousand polygons, waking the threads costs more than it saves
+   * (a teapot's 688 faces walked in bands made the teapots 5-7 % slower
+   * on two threads than on one) */
+  const int one_walk = !d->pool || d->batch.npolys < 1024;
   /* The rows the batch covers: bands over the whole frame would leave
    * most of them idle for an object that covers a few rows, and each band
    * still reads every polygon. */
   int32_t lo = d->cfg.height, hi = -1;
-  for (int32_t i = 0; i < d->batch.npolys; i++) {
+  for (int32_t i = 0; i < d->batch.npolys && !one_walk; i++) {
     const zs_poly *p = &d->batch.polys[i];
     if (p->row0 < lo) lo = p->row0;
     if (p->row1 > hi) hi = p->row1;
@@ -238,10 +242,7 @@ static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
    * equal work (the objects sit where they sit); at least 16 rows a band */
   int nbands = 4 * d->cfg.threads < 64 ? 4 * d->cfg.threads : 64;
   if (nbands > rows / 16) nbands = rows / 16;
-  /* below a thousand polygons or two bands, waking the threads costs
-   * more than it saves (a teapot's 688 faces walked in bands made the
-   * teapots 5-7 % slower on two threads than on one) */
-  if (!d->pool || d->batch.npolys < 1024 || nbands < 2)
+  if (one_walk || nbands < 2)
     return zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
   band_job j;
   j.d = d;
