@@ -161,9 +161,7 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
         goto fail;
       }
     } else if (strcmp(a, "--csv") == 0) {
-      if (zs_cli_value(argc, argv, &i, &csv_path, &err) ||
-          zs_cli_output_path(a, csv_path, &err))
-        goto fail;
+      if (zs_cli_output_value(argc, argv, &i, &csv_path, &err)) goto fail;
     } else if (a[0] == '-' && a[1]) {
       zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench depthsort --help)", a);
       goto fail;

@@ -406,13 +406,13 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
           zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err))
         return err->code;
     } else if (strcmp(a, "--csv") == 0) {
-      if (zs_cli_value(argc, argv, &i, &o->csv, err) || zs_cli_output_path(a, o->csv, err))
+      if (zs_cli_output_value(argc, argv, &i, &o->csv, err))
         return err->code;
     } else if (strcmp(a, "--md") == 0) {
-      if (zs_cli_value(argc, argv, &i, &o->md, err) || zs_cli_output_path(a, o->md, err))
+      if (zs_cli_output_value(argc, argv, &i, &o->md, err))
         return err->code;
     } else if (strcmp(a, "--plot") == 0) {
-      if (zs_cli_value(argc, argv, &i, &o->plot, err) || zs_cli_output_path(a, o->plot, err))
+      if (zs_cli_output_value(argc, argv, &i, &o->plot, err))
         return err->code;
     } else if (a[0] == '-' && a[1]) {
       return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench raster --help)", a);

@@ -13,10 +13,8 @@
  * the quick walks, fewer frames elsewhere: a check that it all runs. */
 #include "tools/bench_suite.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "raster/raster.h"
 #include "tools/bench_depthsort.h"
@@ -26,6 +24,7 @@
 #include "tools/callgrind.h"
 #include "tools/cli.h"
 #include "tools/mesa.h"
+#include "tools/outfile.h"
 
 static const char usage[] =
     "usage: zscan bench suite [--out DIR] [--quick] [--size WxH]\n"
@@ -69,10 +68,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
       goto fail;
     }
   }
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    zs_error_set(&err, ZS_ERR_IO, "--out %s: cannot create: %s", dir, strerror(errno));
-    goto fail;
-  }
+  if (zs_out_dir("--out", dir, &err)) goto fail;
   char path[6][4200];
   static const char *const names[6] = {"raster.csv", "raster.md", "raster.png",
                                        "depthsort.csv", "octree.csv", "octree.png"};

@@ -14,7 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "raster/raster.h"
 #include "tools/cli.h"
@@ -81,10 +80,7 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
       goto fail;
     }
   }
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    zs_error_set(&err, ZS_ERR_IO, "--out %s: cannot create: %s", dir, strerror(errno));
-    goto fail;
-  }
+  if (zs_out_dir("--out", dir, &err)) goto fail;
   const walk_case *walks = is_quick ? quick : full;
   char path[NWALKS][3][4200];
   for (int k = 0; k < NWALKS; k++) {

@@ -88,6 +88,12 @@ zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err) {
   return ZS_OK;
 }
 
+zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err) {
+  const char *opt = argv[*i];
+  if (zs_cli_value(argc, argv, i, out, err)) return err->code;
+  return zs_cli_output_path(opt, *out, err);
+}
+
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);

@@ -22,6 +22,8 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
 /* Refuses an output path whose directory does not exist or cannot be
  * written, before any work is done. */
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
+/* zs_cli_value, then zs_cli_output_path on the value: an output file's option. */
+zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err);
 
 /* 1 when any argument after the command is --help or -h: help is given
  * before anything else is parsed, so it works beside a bad option too. */

@@ -60,3 +60,9 @@ void zs_out_discard(FILE *f, char *tmp) {
   remove(tmp);
   free(tmp);
 }
+
+zs_status zs_out_dir(const char *opt, const char *dir, zs_error *err) {
+  if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+    return zs_error_set(err, ZS_ERR_IO, "%s %s: cannot create: %s", opt, dir, strerror(errno));
+  return ZS_OK;
+}

@@ -116,13 +116,9 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
         if (!dup) o->algos[o->nalgos++] = (zs_algo)al;
       }
     } else if (strcmp(a, "--md") == 0) {
-      VALUE();
-      o->md = v;
-      if (zs_cli_output_path(a, v, err)) return err->code;
+      if (zs_cli_output_value(argc, argv, &i, &o->md, err)) return err->code;
     } else if (strcmp(a, "--tradeoff") == 0) {
-      VALUE();
-      o->tradeoff = v;
-      if (zs_cli_output_path(a, v, err)) return err->code;
+      if (zs_cli_output_value(argc, argv, &i, &o->tradeoff, err)) return err->code;
     } else if (strcmp(a, "--bounds") == 0) {
       VALUE();
       int b = zs_query_bounds_parse(v);
@@ -135,13 +131,9 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       VALUE();
       if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
     } else if (strcmp(a, "--csv") == 0) {
-      VALUE();
-      o->csv = v;
-      if (zs_cli_output_path(a, v, err)) return err->code;
+      if (zs_cli_output_value(argc, argv, &i, &o->csv, err)) return err->code;
     } else if (strcmp(a, "--plot") == 0) {
-      VALUE();
-      o->plot = v;
-      if (zs_cli_output_path(a, v, err)) return err->code;
+      if (zs_cli_output_value(argc, argv, &i, &o->plot, err)) return err->code;
     } else if (strcmp(a, "--frames-dir") == 0) {
       VALUE();
       o->frames_dir = v;
