@@ -60,6 +60,17 @@ static void soup(mesh_buf *b, int n, uint64_t seed) {
 
 static const double origin[3] = {0, 0, 0};
 
+/* What a sort from scratch paints of m from that camera must be what the
+ * coherent device painted. */
+static void assert_paints_as_fresh(const zs_mesh *m, const double eye[3], double roll_deg,
+                                   const frame_ids *painted) {
+  static frame_ids exact;
+  zs_device *fresh = device(ZS_ALGO_DEPTHSORT);
+  frame(fresh, m, eye, origin, roll_deg, &exact);
+  ck_assert_int_eq(memcmp(painted->id, exact.id, sizeof exact.id), 0);
+  zs_device_destroy(fresh);
+}
+
 START_TEST(static_camera_does_no_comparisons) {
   mesh_buf b = {0};
   soup(&b, 500, 1);
@@ -101,17 +112,14 @@ START_TEST(few_new_faces_gallop_into_the_kept_order) {
       v[k] = mb_vert(&b, cx + (k == 1 ? 0.5 : 0), (k == 2 ? 0.5 : 0), cz);
     mb_face(&b, v, 3, 0xFFFFFF);
   }
-  frame_ids painted, exact;
+  frame_ids painted;
   frame(d, &b.m, eye, origin, 0, &painted);
   const zs_depthsort_stats *s = zs_device_depthsort_stats(d);
   ck_assert_int_eq(s->motion, ZS_MOTION_STATIC);
   ck_assert_uint_eq(s->reused, faces);
   ck_assert_uint_eq(s->inserted, 10);
   ck_assert_msg(s->comparisons < 250, "comparisons %llu", (unsigned long long)s->comparisons);
-  zs_device *fresh = device(ZS_ALGO_DEPTHSORT);
-  frame(fresh, &b.m, eye, origin, 0, &exact);
-  ck_assert_int_eq(memcmp(painted.id, exact.id, sizeof exact.id), 0);
-  zs_device_destroy(fresh);
+  assert_paints_as_fresh(&b.m, eye, 0, &painted);
   zs_device_destroy(d);
   mb_free(&b);
 }
@@ -126,7 +134,7 @@ START_TEST(roll_reuses_the_whole_order) {
   double eye[3] = {0, 0, 30};
   frame(d, &b.m, eye, origin, 0, NULL);
   for (int k = 1; k <= 5; k++) {
-    frame_ids painted, exact;
+    frame_ids painted;
     frame(d, &b.m, eye, origin, 2.0 * k, &painted);
     const zs_depthsort_stats *s = zs_device_depthsort_stats(d);
     ck_assert_int_eq(s->motion, ZS_MOTION_ROLL);
@@ -136,10 +144,7 @@ START_TEST(roll_reuses_the_whole_order) {
     ck_assert_uint_eq(s->inserted, 0);
     ck_assert_uint_eq(s->reused, s->faces);
     /* the order kept is the order a fresh sort gives: same picture */
-    zs_device *fresh = device(ZS_ALGO_DEPTHSORT);
-    frame(fresh, &b.m, eye, origin, 2.0 * k, &exact);
-    ck_assert_int_eq(memcmp(painted.id, exact.id, sizeof exact.id), 0);
-    zs_device_destroy(fresh);
+    assert_paints_as_fresh(&b.m, eye, 2.0 * k, &painted);
   }
   zs_device_destroy(d);
   mb_free(&b);

@@ -292,6 +292,25 @@ START_TEST(lecture_zbuffer_examples) {
 }
 END_TEST
 
+/* n random triangles over a w x h window and margin pixels beyond it,
+ * random colours; every third lies at depth -2 (so that coplanar faces
+ * meet and the id rule decides), the others' vertices at random depths in
+ * [zlo, -1].  One draw of the generator per statement (docs/ARCHITECTURE.md,
+ * Determinism). */
+static void random_triangles(mesh_buf *b, zs_rng *rng, int n, int w, int h, double margin,
+                             double zlo) {
+  for (int i = 0; i < n; i++) {
+    int32_t v[3];
+    for (int k = 0; k < 3; k++) {
+      double x = zs_rng_range(rng, -margin, w + margin);
+      double y = zs_rng_range(rng, -margin, h + margin);
+      double z = (i % 3 == 0) ? -2.0 : zs_rng_range(rng, zlo, -1);
+      v[k] = mb_vert(b, x, y, z);
+    }
+    mb_face(b, v, 3, (uint32_t)zs_rng_below(rng, 0x1000000));
+  }
+}
+
 /* ---- order independence and the two modes ---- */
 
 START_TEST(modes_agree_and_order_does_not_matter) {
@@ -302,17 +321,7 @@ START_TEST(modes_agree_and_order_does_not_matter) {
   zs_rng rng;
   zs_rng_seed(&rng, 7);
   mesh_buf b = {0};
-  for (int i = 0; i < 300; i++) {
-    int32_t v[3];
-    double z = (i % 3 == 0) ? -2.0 : zs_rng_range(&rng, -5, -1);
-    for (int k = 0; k < 3; k++) {
-      /* one draw per statement (docs/ARCHITECTURE.md, Determinism) */
-      double x = zs_rng_range(&rng, -10, W + 10), y = zs_rng_range(&rng, -10, H + 10);
-      double zk = (i % 3 == 0) ? z : zs_rng_range(&rng, -5, -1);
-      v[k] = mb_vert(&b, x, y, zk);
-    }
-    mb_face(&b, v, 3, (uint32_t)zs_rng_below(&rng, 0x1000000));
-  }
+  random_triangles(&b, &rng, 300, W, H, 10, -5);
   /* the shuffled copy keeps each face's id */
   mesh_buf s = {0};
   int32_t *perm = malloc(300 * sizeof *perm), *ids = malloc(300 * sizeof *ids);
@@ -353,15 +362,7 @@ START_TEST(simd_spans_equal_scalar) {
   zs_rng rng;
   zs_rng_seed(&rng, 11);
   mesh_buf b = {0};
-  for (int i = 0; i < 400; i++) {
-    int32_t v[3];
-    for (int k = 0; k < 3; k++) {
-      double x = zs_rng_range(&rng, -40, W + 40), y = zs_rng_range(&rng, -40, H + 40);
-      double z = (i % 3 == 0) ? -2.0 : zs_rng_range(&rng, -9, -1);
-      v[k] = mb_vert(&b, x, y, z);
-    }
-    mb_face(&b, v, 3, (uint32_t)zs_rng_below(&rng, 0x1000000));
-  }
+  random_triangles(&b, &rng, 400, W, H, 40, -9);
   mb_sphere(&b, W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
   for (int algo = 0; algo < 2; algo++) {
     frame f[2];
