@@ -88,6 +88,7 @@ void zs_octree_params_default(zs_octree_params *p, zs_octree_kind kind) {
   p->max_depth = ZS_OCTREE_DEFAULT_DEPTH;
   p->looseness = ZS_OCTREE_DEFAULT_LOOSENESS;
   p->split = 0;
+  p->flat = ZS_OCTREE_DEFAULT_FLAT;
 }
 
 void zs_octree_cell_box(const zs_octree *t, int level, const int32_t cell[3], double factor,
@@ -495,8 +496,18 @@ zs_status zs_octree_build(zs_octree *t, const zs_scene *s, const zs_octree_param
                         ZS_OCTREE_MAX_LOOSENESS);
   if (p->split < 0)
     return zs_error_set(err, ZS_ERR_ARG, "octree: split %d is negative", p->split);
+  if (p->flat < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "octree: flat %d is negative", p->flat);
   t->params = *p;
   if (t->params.kind == ZS_OCTREE_PLAIN) t->params.looseness = 1.0;
+  /* A handful of objects: levels would cost more node visits and box tests
+   * than they save, so the root alone lists them (the number of instances
+   * never changes after the build, so neither does this choice). */
+  if (s->ninst <= p->flat) {
+    t->flat = 1;
+    t->params.max_depth = 0;
+  }
+  p = &t->params;
 
   /* the root cell: the cube around the scene's bounds */
   double side = 0.0;
@@ -721,6 +732,8 @@ zs_status zs_octree_check(const zs_octree *t, zs_error *err) {
   const int N = t->params.split, max = t->params.max_depth;
   CHECK(t->nslots >= 1 && t->nslots <= t->cap_nodes, "octree: %d slots", (int)t->nslots);
   CHECK(t->node[0].level == 0 && t->node[0].parent == -1, "octree: node 0 is not the root");
+  CHECK(!t->flat || (t->params.max_depth == 0 && t->nobjects <= t->params.flat),
+        "octree: flat with depth %d and %d objects", t->params.max_depth, (int)t->nobjects);
 
   /* the free list */
   int32_t nfree = 0;

@@ -92,7 +92,8 @@ enum {
   ZS_OCTREE_ROOT = 0,        /* index of the root node */
   ZS_OCTREE_NONE = -1,       /* no node / no object */
   ZS_OCTREE_MAX_DEPTH = 16,  /* deepest max_depth accepted */
-  ZS_OCTREE_DEFAULT_DEPTH = 4
+  ZS_OCTREE_DEFAULT_DEPTH = 4,
+  ZS_OCTREE_DEFAULT_FLAT = 16  /* see zs_octree_params.flat */
 };
 
 #define ZS_OCTREE_DEFAULT_LOOSENESS 2.0
@@ -105,6 +106,10 @@ typedef struct zs_octree_params {
   int max_depth;    /* levels 0 .. max_depth, 0 .. ZS_OCTREE_MAX_DEPTH (default 4) */
   double looseness; /* k, 1 < k <= 8 (default 2); the plain tree stores 1 */
   int split;        /* N >= 0: see SPLIT POLICY (default 0) */
+  int flat;         /* a scene of at most this many objects gets no hierarchy:
+                     * the tree is built with depth 0, the root alone holding
+                     * every object, and a culler walking it tests the objects
+                     * one by one (default 16; 0: always the hierarchy) */
 } zs_octree_params;
 
 /* A node; read it, never write it. */
@@ -141,7 +146,8 @@ typedef struct zs_octree_work {
 } zs_octree_work;
 
 typedef struct zs_octree {
-  zs_octree_params params;
+  zs_octree_params params; /* as built: max_depth is 0 when flat */
+  int32_t flat;          /* 1: nobjects <= params.flat, the root alone */
   double origin[3];      /* the root cell's low corner */
   double side;           /* the root cell's side S_0 */
   /* nodes */
@@ -163,7 +169,7 @@ typedef struct zs_octree {
   zs_octree_work work;   /* everything since the build (build included) */
 } zs_octree;
 
-/* Defaults: depth 4, looseness 2, split 0. */
+/* Defaults: depth 4, looseness 2, split 0, flat 16. */
 void zs_octree_params_default(zs_octree_params *p, zs_octree_kind kind);
 
 /* Builds the tree over s's instances (inserted in index order).  p NULL:

@@ -492,6 +492,16 @@ START_TEST(render_stats_show_the_culling_work) {
   ck_assert_int_lt(tests, 6 * visited / 2);
   ck_assert_int_eq(json_int(out, "cost_evals"), 0);
   ck_assert_int_gt(json_int(out, "octree_nodes"), 1);
+  ck_assert_ptr_nonnull(strstr(out, "\"octree\":\"loose\""));
+  /* a handful of objects (the default scene's 10): no octree, the root
+   * lists them, so the elements visited are the root and the objects */
+  const char *few[] = {"render", "--size", "256x192", "--cull", "hsw", "--stats", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(few, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "\"octree\":\"flat\""));
+  ck_assert_int_eq(json_int(out, "octree_nodes"), 1);
+  ck_assert_int_eq(json_int(out, "objects"), 10);
+  ck_assert_int_eq(json_int(out, "nodes_visited"), 11);
+  ck_assert_int_le(json_int(out, "queries"), 10);
   const char *prob[] = {"render", "builtin:city", "--size", "256x192", "--cull", "chc-prob",
                         "--stats", "-o", png, NULL};
   ck_assert_int_eq(zs_test_run_zscan(prob, out, sizeof out, err, sizeof err), 0);

@@ -199,6 +199,13 @@ static void check_tree(const zs_octree *t, const zs_scene *s, unsigned long long
   }
 }
 
+/* The default parameters, but a hierarchy however few the objects: the
+ * placement tests below use a handful of boxes. */
+static void hierarchy_params(zs_octree_params *p, zs_octree_kind kind) {
+  zs_octree_params_default(p, kind);
+  p->flat = 0;
+}
+
 /* ---- tests ----------------------------------------------------------------- */
 
 START_TEST(loose_level_and_cell) {
@@ -211,8 +218,10 @@ START_TEST(loose_level_and_cell) {
   set_box(&s, 3, 600, 600, 600, 125);     /* r = s_2 exactly: level 2 */
   set_box(&s, 4, 600, 600, 600, 125.001); /* just over: level 1 */
   set_box(&s, 5, 999, 1, 999, 20);        /* a corner cell: 500/20 = 25: level 4 */
+  zs_octree_params p;
+  hierarchy_params(&p, ZS_OCTREE_LOOSE);
   zs_octree t;
-  ck_assert_int_eq(zs_octree_build(&t, &s, NULL, &err), ZS_OK);
+  ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
   check_tree(&t, &s, 0);
   static const int want_level[6] = {4, 2, 0, 2, 1, 4};
   static const int32_t want_cell[6][3] = {{1, 1, 1}, {0, 1, 3}, {0, 0, 0},
@@ -239,8 +248,7 @@ START_TEST(loose_level_and_cell) {
   zs_octree_free(&t);
 
   /* the plain tree keeps the small object crossing the middle at the root */
-  zs_octree_params p;
-  zs_octree_params_default(&p, ZS_OCTREE_PLAIN);
+  hierarchy_params(&p, ZS_OCTREE_PLAIN);
   set_box(&s, 0, 500, 100, 100, 1);
   ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
   check_tree(&t, &s, 0);
@@ -260,7 +268,7 @@ static void random_moves(zs_octree_kind kind, int depth, double k, int split,
   box_scene(&s, n);
   for (int i = 0; i < n; i++) random_box(&rng, &s, i);
   zs_octree_params p;
-  zs_octree_params_default(&p, kind);
+  hierarchy_params(&p, kind);
   p.max_depth = depth;
   p.looseness = k;
   p.split = split;
@@ -306,7 +314,7 @@ START_TEST(tight_bounds_shrink) {
   for (int kind = 0; kind < 2; kind++) {
     set_box(&s, 1, 110, 110, 110, 12);
     zs_octree_params p;
-    zs_octree_params_default(&p, (zs_octree_kind)kind);
+    hierarchy_params(&p, (zs_octree_kind)kind);
     zs_octree t;
     ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
     int32_t n = t.home[0];
@@ -349,7 +357,7 @@ START_TEST(same_moves_same_tree) {
       box_scene(&s, 400);
       for (int i = 0; i < 400; i++) random_box(&rng, &s, i);
       zs_octree_params p;
-      zs_octree_params_default(&p, (zs_octree_kind)kind);
+      hierarchy_params(&p, (zs_octree_kind)kind);
       p.split = 2;
       zs_octree t;
       ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
@@ -382,9 +390,10 @@ START_TEST(same_cell_move_is_free) {
   set_box(&s, 1, 700, 300, 200, 10);
   set_box(&s, 2, 300, 800, 600, 50);
   zs_octree lt, pt;
-  zs_octree_params p;
-  zs_octree_params_default(&p, ZS_OCTREE_PLAIN);
-  ck_assert_int_eq(zs_octree_build(&lt, &s, NULL, &err), ZS_OK);
+  zs_octree_params lp, p;
+  hierarchy_params(&lp, ZS_OCTREE_LOOSE);
+  hierarchy_params(&p, ZS_OCTREE_PLAIN);
+  ck_assert_int_eq(zs_octree_build(&lt, &s, &lp, &err), ZS_OK);
   ck_assert_int_eq(zs_octree_build(&pt, &s, &p, &err), ZS_OK);
   uint64_t before = zs_octree_hash(&lt);
 
@@ -439,6 +448,48 @@ START_TEST(same_cell_move_is_free) {
 }
 END_TEST
 
+START_TEST(flat_for_a_handful) {
+  /* Up to ZS_OCTREE_DEFAULT_FLAT objects the default tree is the root
+   * alone, whatever their sizes and places, and stays so as they move; one
+   * more and the levels are back. */
+  for (int n = ZS_OCTREE_DEFAULT_FLAT; n <= ZS_OCTREE_DEFAULT_FLAT + 1; n++) {
+    for (int kind = 0; kind < 2; kind++) {
+      zs_rng rng;
+      zs_rng_seed(&rng, 40 + (unsigned long long)n);
+      zs_scene s;
+      box_scene(&s, n);
+      for (int i = 0; i < n; i++) set_box(&s, i, 60.0 + 55.0 * i, 100, 900 - 50.0 * i, 4);
+      zs_octree_params p;
+      zs_octree_params_default(&p, (zs_octree_kind)kind);
+      zs_octree t;
+      ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
+      check_tree(&t, &s, 0);
+      const int flat = n <= ZS_OCTREE_DEFAULT_FLAT;
+      ck_assert_int_eq(t.flat, flat);
+      zs_octree_stats st;
+      zs_octree_stats_get(&t, &st);
+      if (flat) {
+        ck_assert_int_eq(st.nodes, 1);
+        ck_assert_int_eq(t.node[ZS_OCTREE_ROOT].nobj, n);
+        ck_assert_int_eq(t.params.max_depth, 0);
+      } else {
+        ck_assert_int_eq(st.depth, 4); /* boxes of radius 4: the deepest level */
+        ck_assert_int_gt(st.nodes, n);
+      }
+      for (int r = 0; r < 5; r++) {
+        random_round(&rng, &s);
+        ck_assert_int_eq(zs_octree_update(&t, &s, NULL, &err), ZS_OK);
+        check_tree(&t, &s, 0);
+        zs_octree_stats_get(&t, &st);
+        if (flat) ck_assert_int_eq(st.nodes, 1);
+      }
+      zs_octree_free(&t);
+      zs_scene_free(&s);
+    }
+  }
+}
+END_TEST
+
 START_TEST(split_policy) {
   /* split = 4: five small objects in the root's octant 0, each in its own
    * level-2 cell. */
@@ -448,7 +499,7 @@ START_TEST(split_policy) {
       {60, 60, 60}, {310, 60, 60}, {60, 310, 60}, {60, 60, 310}, {310, 310, 310}};
   for (int i = 0; i < 5; i++) set_box(&s, i, xyz[i][0], xyz[i][1], xyz[i][2], 1);
   zs_octree_params p;
-  zs_octree_params_default(&p, ZS_OCTREE_LOOSE);
+  hierarchy_params(&p, ZS_OCTREE_LOOSE);
   p.split = 4;
   zs_octree t;
   ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
@@ -491,7 +542,7 @@ START_TEST(spheres_scene_frames) {
                 "%s", err.msg);
   zs_octree lt, pt;
   zs_octree_params p;
-  zs_octree_params_default(&p, ZS_OCTREE_PLAIN);
+  hierarchy_params(&p, ZS_OCTREE_PLAIN);
   ck_assert_int_eq(zs_octree_build(&lt, &s, NULL, &err), ZS_OK);
   ck_assert_int_eq(zs_octree_build(&pt, &s, &p, &err), ZS_OK);
   check_tree(&lt, &s, 3);
@@ -533,7 +584,7 @@ START_TEST(bad_parameters) {
   box_scene(&s, 1);
   zs_octree t;
   zs_octree_params p;
-  zs_octree_params_default(&p, ZS_OCTREE_LOOSE);
+  hierarchy_params(&p, ZS_OCTREE_LOOSE);
   p.looseness = 1.0;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_ERR_ARG);
@@ -543,6 +594,11 @@ START_TEST(bad_parameters) {
   zs_error_clear(&err);
   ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_ERR_ARG);
   p.max_depth = 4;
+  p.flat = -1;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_ERR_ARG);
+  ck_assert_str_eq(err.msg, "octree: flat -1 is negative");
+  p.flat = 0;
   ck_assert_int_eq(zs_octree_build(&t, &s, &p, &err), ZS_OK);
   zs_scene s2;
   box_scene(&s2, 2);
@@ -622,6 +678,7 @@ int main(void) {
   tcase_add_test(tc, tight_bounds_shrink);
   tcase_add_test(tc, same_moves_same_tree);
   tcase_add_test(tc, same_cell_move_is_free);
+  tcase_add_test(tc, flat_for_a_handful);
   tcase_add_test(tc, split_policy);
   tcase_add_test(tc, spheres_scene_frames);
   tcase_add_test(tc, bad_parameters);

@@ -146,6 +146,7 @@ typedef struct cull_report {
   const char *method;
   const zs_cull_stats *st;
   int32_t octree_nodes;
+  int flat;                /* the octree is the root alone (a handful of objects) */
 } cull_report;
 
 static void print_stats(const render_opts *o, const zs_scene *sc,
@@ -185,9 +186,9 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
            (unsigned long long)ds->comparisons, (long long)diff_pixels, zs_device_depthsort_ms(dev));
   }
   if (cr)
-    printf("\"cull\":\"%s\",\"octree_nodes\":%d,\"nodes_visited\":%llu,\"frustum_tests\":%llu,"
+    printf("\"cull\":\"%s\",\"octree\":\"%s\",\"octree_nodes\":%d,\"nodes_visited\":%llu,\"frustum_tests\":%llu,"
            "\"cost_evals\":%llu,\"queries_hidden\":%llu,\"objects_drawn\":%llu,\"faces_drawn\":%llu,",
-           cr->method, (int)cr->octree_nodes, (unsigned long long)cr->st->nodes_visited,
+           cr->method, cr->flat ? "flat" : "loose", (int)cr->octree_nodes, (unsigned long long)cr->st->nodes_visited,
            (unsigned long long)cr->st->frustum_tests, (unsigned long long)cr->st->cost_evals,
            (unsigned long long)cr->st->queries_hidden, (unsigned long long)cr->st->objects_drawn,
            (unsigned long long)cr->st->faces_drawn);
@@ -296,7 +297,7 @@ static zs_status run(const render_opts *o, zs_error *err) {
     if (st) goto done;
   }
   cull_report cr = {o->cull >= 0 ? zs_cull_method_name((zs_cull_method)o->cull) : NULL, &cs,
-                    have_tree ? tree.nnodes : 0};
+                    have_tree ? tree.nnodes : 0, have_tree && tree.flat};
   if (o->stats)
     print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
                 diff_pixels, o->cull >= 0 ? &cr : NULL);
