@@ -86,8 +86,12 @@ int64_t zs_clock_command_cost(const zs_device *d, int32_t vertices, uint64_t pol
 }
 
 int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query) {
+  return zs_clock_gpu_command_at(d, cost, is_query, d->clock.cpu_ps);
+}
+
+int64_t zs_clock_gpu_command_at(zs_device *d, int64_t cost, int is_query, int64_t cpu_ps) {
   /* The GPU cannot start a command before the CPU has issued it. */
-  if (d->clock.gpu_ps < d->clock.cpu_ps) d->clock.gpu_ps = d->clock.cpu_ps;
+  if (d->clock.gpu_ps < cpu_ps) d->clock.gpu_ps = cpu_ps;
   if (is_query != d->last_was_query) {
     d->clock.switches++;
     d->clock.gpu_ps += d->costs.switch_cost;

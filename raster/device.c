@@ -113,10 +113,8 @@ void zs_device_destroy(zs_device *d) {
   if (d->setup_parts)
     for (int i = 0; i < d->cfg.threads; i++) zs_batch_free(&d->setup_parts[i]);
   free(d->setup_parts);
-  free(d->clip);
-  free(d->eyepos);
-  free(d->outcode);
-  free(d->snap);
+  zs_vert_scratch_free(&d->verts);
+  zs_defer_free(d);
   free(d->queries);
   free(d);
 }
@@ -157,6 +155,7 @@ static void fill_u32(uint32_t *p, size_t n, uint32_t v) {
 }
 
 void zs_device_clear(zs_device *d) {
+  zs_defer_discard(d); /* drawn and cleared away: the same frame */
   memset(&d->stats, 0, sizeof d->stats);
   zs_clock_reset(d);
   zs_batch_reset(&d->batch);
@@ -170,29 +169,42 @@ void zs_device_clear(zs_device *d) {
   }
 }
 
-static int reserve_verts(zs_device *d, int32_t n) {
-  if (n <= d->cap_verts) return 1;
-  zs_clip_vert *c = realloc(d->clip, (size_t)n * sizeof *c);
+int zs_vert_scratch_reserve(zs_vert_scratch *v, int32_t n) {
+  if (n <= v->cap) return 1;
+  zs_clip_vert *c = realloc(v->clip, (size_t)n * sizeof *c);
   if (!c) return 0;
-  d->clip = c;
-  double *e = realloc(d->eyepos, (size_t)n * 3 * sizeof *e);
+  v->clip = c;
+  double *e = realloc(v->eyepos, (size_t)n * 3 * sizeof *e);
   if (!e) return 0;
-  d->eyepos = e;
-  unsigned *o = realloc(d->outcode, (size_t)n * sizeof *o);
+  v->eyepos = e;
+  unsigned *o = realloc(v->outcode, (size_t)n * sizeof *o);
   if (!o) return 0;
-  d->outcode = o;
-  zs_snap_vert *s = realloc(d->snap, (size_t)n * sizeof *s);
+  v->outcode = o;
+  zs_snap_vert *s = realloc(v->snap, (size_t)n * sizeof *s);
   if (!s) return 0;
-  d->snap = s;
-  d->cap_verts = n;
+  v->snap = s;
+  v->cap = n;
   return 1;
+}
+
+void zs_vert_scratch_free(zs_vert_scratch *v) {
+  free(v->clip);
+  free(v->eyepos);
+  free(v->outcode);
+  free(v->snap);
+  memset(v, 0, sizeof *v);
+}
+
+size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
+  return (size_t)v->cap *
+         (sizeof(zs_clip_vert) + 3 * sizeof(double) + sizeof(unsigned) + sizeof(zs_snap_vert));
 }
 
 static zs_kernel draw_kernel(const zs_device *d) {
   return d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
 }
 
-static zs_target full_frame_target(zs_device *d) {
+zs_target zs_device_frame_target(zs_device *d) {
   zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width};
   return t;
 }
@@ -221,7 +233,7 @@ static void walk_band(void *ctx, int band) {
 
 /* Walks the batch into the full frame; in bands when threads pay. */
 static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
-  zs_target t = full_frame_target(d);
+  zs_target t = zs_device_frame_target(d);
   /* below a thousand polygons, waking the threads costs more than it saves
    * (a teapot's 688 faces walked in bands made the teapots 5-7 % slower
    * on two threads than on one) */
@@ -269,43 +281,47 @@ static void add_counts(zs_device *d, const zs_walk_counts *c) {
   d->stats.pixels_written += c->written;
 }
 
-/* The counters the set-up of a range of faces adds. */
-typedef struct face_counts {
-  uint64_t in, outside, clipped, culled_back, degenerate, offscreen, rasterized;
-} face_counts;
+void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p) {
+  if (model) zs_mat_mul(p->mv, d->view, model);
+  else memcpy(p->mv, d->view, sizeof p->mv);
+  zs_mat_mul(p->mvp, d->proj, p->mv);
+  p->flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
+  p->need_eye = p->flat || d->cfg.algo == ZS_ALGO_DEPTHSORT;
+  p->sp = (zs_setup_params){d->cfg.width, d->cfg.height, d->cfg.cull_back && k != ZS_KERNEL_QUERY,
+                            0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
+}
 
-/* Transforms vertices [i0, i1) of mesh: to eye space (for the normals of
- * flat shading and the painter's keys) and to clip space, with the
- * outcode, snapped when inside every plane. */
-static void transform_vertices(zs_device *d, const zs_mesh *mesh, const double mvp[16],
-                               const double mv[16], const zs_setup_params *sp, int need_eye,
-                               int32_t i0, int32_t i1) {
+/* Vertices [i0, i1): to eye space (for the normals of flat shading and
+ * the painter's keys) and to clip space, with the outcode, snapped when
+ * inside every plane. */
+void zs_draw_transform(const zs_device *d, const zs_draw_prep *pr, const zs_mesh *mesh,
+                       zs_vert_scratch *v, int32_t i0, int32_t i1) {
   for (int32_t i = i0; i < i1; i++) {
     const double *p = &mesh->pos[3 * i];
     double c[4];
-    zs_mat_apply(mvp, p, c);
-    d->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
-    d->outcode[i] = zs_clip_outcode(&d->clip[i], d->gx, d->gy);
+    zs_mat_apply(pr->mvp, p, c);
+    v->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
+    v->outcode[i] = zs_clip_outcode(&v->clip[i], d->gx, d->gy);
     /* snapped once here for all the faces that share it (set-up snaps
      * the vertices of a clipped face itself) */
-    if (d->outcode[i] == 0) zs_snap_vertex(sp, &d->clip[i], &d->snap[i]);
-    if (need_eye) {
+    if (v->outcode[i] == 0) zs_snap_vertex(&pr->sp, &v->clip[i], &v->snap[i]);
+    if (pr->need_eye) {
       double e[4];
-      zs_mat_apply(mv, p, e);
-      memcpy(&d->eyepos[3 * i], e, 3 * sizeof e[0]);
+      zs_mat_apply(pr->mv, p, e);
+      memcpy(&v->eyepos[3 * i], e, 3 * sizeof e[0]);
     }
   }
 }
 
-/* Sets up faces [f0, f1) of mesh into b, from the transformed vertices:
- * trivial reject, flat colour, clipping where a face crosses a plane.
- * The painter's keys go to ds (NULL: not the painter).  A face with a
- * vertex out of range stops it with an error. */
-static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0, int32_t f1,
-                             uint32_t id_base, uint32_t rgb, zs_setup_params sp, int flat,
-                             zs_depthsort *ds, zs_batch *b, face_counts *fc, zs_error *err) {
+/* Faces [f0, f1): trivial reject, flat colour, clipping where a face
+ * crosses a plane. */
+zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
+                        const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
+                        uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
+                        zs_error *err) {
   zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
   zs_snap_vert snapped[ZS_MAX_POLY_VERTS];
+  zs_setup_params sp = pr->sp;
   for (int32_t f = f0; f < f1; f++) {
     int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
     fc->in++;
@@ -320,8 +336,8 @@ static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0
         return zs_error_set(err, ZS_ERR_ARG,
                             "draw: face %d uses vertex %d of %d", (int)f,
                             (int)fv[i], (int)mesh->nverts);
-      and_code &= d->outcode[fv[i]];
-      or_code |= d->outcode[fv[i]];
+      and_code &= v->outcode[fv[i]];
+      or_code |= v->outcode[fv[i]];
     }
     if (and_code) {
       fc->outside++;
@@ -330,11 +346,11 @@ static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0
     sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
     sp.rgb = rgb != ZS_RGB_MESH ? rgb
              : mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
-    if (flat) {
+    if (pr->flat) {
       /* Newell's normal of the face in eye space */
       double nrm[3] = {0, 0, 0};
       for (int i = 0, j = 1; i < n; i++, j = j + 1 < n ? j + 1 : 0) {
-        const double *a = &d->eyepos[3 * fv[i]], *c = &d->eyepos[3 * fv[j]];
+        const double *a = &v->eyepos[3 * fv[i]], *c = &v->eyepos[3 * fv[j]];
         nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
         nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
         nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
@@ -343,7 +359,7 @@ static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0
     }
     zs_setup_result r;
     if (or_code) {
-      for (int i = 0; i < n; i++) in[i] = d->clip[fv[i]];
+      for (int i = 0; i < n; i++) in[i] = v->clip[fv[i]];
       fc->clipped++;
       n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
       if (n == 0) {
@@ -352,7 +368,7 @@ static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0
       }
       r = zs_setup_polygon(b, &sp, clipped, n);
     } else {
-      for (int i = 0; i < n; i++) snapped[i] = d->snap[fv[i]];
+      for (int i = 0; i < n; i++) snapped[i] = v->snap[fv[i]];
       r = zs_setup_snapped(b, &sp, snapped, n);
     }
     if (ds && r == ZS_SETUP_DRAWN) {
@@ -361,7 +377,7 @@ static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0
        * to cover a pixel centre */
       int32_t nv = mesh->face_start[f + 1] - s;
       double zsum = 0.0;
-      for (int i = 0; i < nv; i++) zsum += d->eyepos[3 * fv[i] + 2];
+      for (int i = 0; i < nv; i++) zsum += v->eyepos[3 * fv[i] + 2];
       if (!zs_depthsort_note(ds, sp.id, -zsum / nv))
         return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
     }
@@ -376,7 +392,7 @@ static zs_status setup_faces(const zs_device *d, const zs_mesh *mesh, int32_t f0
   return ZS_OK;
 }
 
-static void add_face_counts(zs_raster_stats *s, const face_counts *fc) {
+void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc) {
   s->polygons_in += fc->in;
   s->polygons_outside += fc->outside;
   s->polygons_clipped += fc->clipped;
@@ -393,12 +409,11 @@ static void add_face_counts(zs_raster_stats *s, const face_counts *fc) {
 typedef struct setup_job {
   zs_device *d;
   const zs_mesh *mesh;
-  const double *mvp, *mv;
-  zs_setup_params sp;
-  int flat, need_eye, nparts;
+  const zs_draw_prep *prep;
+  int nparts;
   uint32_t id_base, rgb;
   zs_batch *batch[64];
-  face_counts fc[64];
+  zs_face_counts fc[64];
   zs_status st[64];
   zs_error err[64];
 } setup_job;
@@ -406,23 +421,24 @@ typedef struct setup_job {
 static void transform_part(void *ctx, int part) {
   setup_job *j = ctx;
   int64_t n = j->mesh->nverts;
-  transform_vertices(j->d, j->mesh, j->mvp, j->mv, &j->sp, j->need_eye,
-                     (int32_t)(n * part / j->nparts), (int32_t)(n * (part + 1) / j->nparts));
+  zs_draw_transform(j->d, j->prep, j->mesh, &j->d->verts, (int32_t)(n * part / j->nparts),
+                    (int32_t)(n * (part + 1) / j->nparts));
 }
 
 static void setup_part(void *ctx, int part) {
   setup_job *j = ctx;
   int64_t n = j->mesh->nfaces;
-  j->fc[part] = (face_counts){0, 0, 0, 0, 0, 0, 0};
+  j->fc[part] = (zs_face_counts){0, 0, 0, 0, 0, 0, 0};
   zs_error_clear(&j->err[part]);
-  j->st[part] = setup_faces(j->d, j->mesh, (int32_t)(n * part / j->nparts),
-                            (int32_t)(n * (part + 1) / j->nparts), j->id_base, j->rgb, j->sp,
-                            j->flat, NULL, j->batch[part], &j->fc[part], &j->err[part]);
+  j->st[part] = zs_draw_setup(j->d, j->prep, &j->d->verts, j->mesh,
+                              (int32_t)(n * part / j->nparts),
+                              (int32_t)(n * (part + 1) / j->nparts), j->id_base, j->rgb, NULL,
+                              j->batch[part], &j->fc[part], &j->err[part]);
 }
 
-/* Below this many faces a draw is set up on one thread: handing the work
- * over costs more than it saves. */
-enum { PARALLEL_SETUP_FACES = 4096 };
+int zs_device_parallel_setup(const zs_device *d, const zs_mesh *mesh) {
+  return d->setup_parts && mesh->nfaces >= ZS_PARALLEL_SETUP_FACES;
+}
 
 zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
                               const double model[16], uint32_t id_base,
@@ -430,27 +446,18 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
                               zs_error *err) {
   if (mesh->nverts < 0 || mesh->nfaces < 0)
     return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
-  if (!reserve_verts(d, mesh->nverts > 0 ? mesh->nverts : 1))
+  if (!zs_vert_scratch_reserve(&d->verts, mesh->nverts > 0 ? mesh->nverts : 1))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
   d->stats.draws++;
   d->stats.vertices += (uint64_t)mesh->nverts;
 
-  double mv[16], mvp[16];
-  if (model) zs_mat_mul(mv, d->view, model);
-  else memcpy(mv, d->view, sizeof mv);
-  zs_mat_mul(mvp, d->proj, mv);
-
-  const int flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
-  const int painter = d->cfg.algo == ZS_ALGO_DEPTHSORT;
-  const int need_eye = flat || painter;
-  zs_setup_params sp = {d->cfg.width, d->cfg.height,
-                        d->cfg.cull_back && k != ZS_KERNEL_QUERY, 0, 0,
-                        k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
-  if (d->setup_parts && mesh->nfaces >= PARALLEL_SETUP_FACES) {
+  zs_draw_prep prep;
+  zs_draw_prepare(d, model, k, &prep);
+  if (zs_device_parallel_setup(d, mesh)) {
     /* (threads exist in zbuffer mode only, so never the painter) */
     setup_job *j = malloc(sizeof *j);
     if (!j) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-    *j = (setup_job){d, mesh, mvp, mv, sp, flat, need_eye, d->cfg.threads, id_base, rgb,
+    *j = (setup_job){d, mesh, &prep, d->cfg.threads, id_base, rgb,
                      {NULL}, {{0, 0, 0, 0, 0, 0, 0}}, {ZS_OK}, {{0, {0}}}};
     j->batch[0] = &d->batch;
     for (int t = 1; t < j->nparts; t++) j->batch[t] = &d->setup_parts[t];
@@ -459,7 +466,7 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
     zs_status st = ZS_OK;
     for (int t = 0; t < j->nparts; t++) {
       if (st == ZS_OK) { /* as one thread would: counted up to the first error */
-        add_face_counts(&d->stats, &j->fc[t]);
+        zs_add_face_counts(&d->stats, &j->fc[t]);
         if ((st = j->st[t]) != ZS_OK) zs_error_set(err, st, "%s", j->err[t].msg);
         else if (t > 0 && !zs_batch_append(&d->batch, j->batch[t]))
           st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
@@ -469,11 +476,12 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
     free(j);
     if (st != ZS_OK) return st;
   } else {
-    transform_vertices(d, mesh, mvp, mv, &sp, need_eye, 0, mesh->nverts);
-    face_counts fc = {0, 0, 0, 0, 0, 0, 0};
-    zs_status st = setup_faces(d, mesh, 0, mesh->nfaces, id_base, rgb, sp, flat,
-                               painter ? &d->depthsort : NULL, &d->batch, &fc, err);
-    add_face_counts(&d->stats, &fc);
+    zs_draw_transform(d, &prep, mesh, &d->verts, 0, mesh->nverts);
+    zs_face_counts fc = {0, 0, 0, 0, 0, 0, 0};
+    zs_status st = zs_draw_setup(d, &prep, &d->verts, mesh, 0, mesh->nfaces, id_base, rgb,
+                                 d->cfg.algo == ZS_ALGO_DEPTHSORT ? &d->depthsort : NULL,
+                                 &d->batch, &fc, err);
+    zs_add_face_counts(&d->stats, &fc);
     if (st != ZS_OK) return st;
   }
 
@@ -493,10 +501,16 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
 zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
                          const double model[16], uint32_t id_base, uint32_t rgb,
                          zs_error *err) {
+  zs_kernel k = draw_kernel(d);
+  if (zs_defer_wanted(d, mesh, k)) return zs_defer_push(d, mesh, model, id_base, rgb, err);
+  /* a draw set up in parallel on its own, or one that cannot wait: the
+   * queue goes first, so that the draws land in the order issued */
+  zs_status st = zs_defer_flush(d, err);
+  if (st != ZS_OK) return st;
   uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_call);
-  zs_status st = zs_device_draw_with(d, mesh, model, id_base, rgb, draw_kernel(d), &c, err);
+  st = zs_device_draw_with(d, mesh, model, id_base, rgb, k, &c, err);
   if (st != ZS_OK) return st;
   /* In scanline mode the pixels are walked in finish; the clock charges
    * them there. */
@@ -555,6 +569,8 @@ static void scanline_end_row(void *user, int y) {
 zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
                            zs_error *err) {
   const int w = d->cfg.width, h = d->cfg.height;
+  zs_status st = zs_defer_flush(d, err);
+  if (st != ZS_OK) return st;
   if (d->cfg.algo != ZS_ALGO_ZBUFFER) {
     if (d->cfg.algo == ZS_ALGO_DEPTHSORT && !zs_depthsort_order(&d->depthsort, &d->batch, d->view))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
@@ -593,7 +609,7 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + scratch_bytes(&d->scratch);
   if (d->band_scratch)
     for (int i = 0; i < 64; i++) m.tables += scratch_bytes(&d->band_scratch[i]);
-  m.vertices = (size_t)d->cap_verts * (sizeof(zs_clip_vert) + 3 * sizeof(double) +
-                                       sizeof(unsigned) + sizeof(zs_snap_vert));
+  m.tables += zs_defer_bytes(d);
+  m.vertices = zs_vert_scratch_bytes(&d->verts);
   return m;
 }

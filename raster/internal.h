@@ -217,7 +217,36 @@ int zs_depthsort_note(zs_depthsort *ds, uint32_t id, double key);
 int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]);
 void zs_depthsort_free(zs_depthsort *ds);
 
-/* ---- the device (device.c, query.c, clock.c) ---- */
+/* ---- the device (device.c, defer.c, query.c, clock.c) ---- */
+
+/* A draw's vertices after transformation (device.c): clip coordinates,
+ * eye coordinates (flat shading, the painter's keys), outcodes, and the
+ * snapped window position of each vertex inside every plane. */
+typedef struct zs_vert_scratch {
+  zs_clip_vert *clip;
+  double *eyepos;
+  unsigned *outcode;
+  zs_snap_vert *snap;
+  int32_t cap;
+} zs_vert_scratch;
+
+int zs_vert_scratch_reserve(zs_vert_scratch *v, int32_t n); /* 0: out of memory */
+void zs_vert_scratch_free(zs_vert_scratch *v);
+size_t zs_vert_scratch_bytes(const zs_vert_scratch *v);
+
+/* What a draw fixes before its vertices and faces are processed. */
+typedef struct zs_draw_prep {
+  double mv[16], mvp[16];
+  zs_setup_params sp;
+  int flat, need_eye;
+} zs_draw_prep;
+
+/* The counters the set-up of a range of faces adds. */
+typedef struct zs_face_counts {
+  uint64_t in, outside, clipped, culled_back, degenerate, offscreen, rasterized;
+} zs_face_counts;
+
+typedef struct zs_deferred zs_deferred; /* defer.c */
 
 /* A query: its samples so far, and when the GPU finished its last command
  * (ps); the result is ready a latency later. */
@@ -248,11 +277,7 @@ struct zs_device {
 
   zs_batch batch;
   zs_walk_scratch scratch;
-  zs_clip_vert *clip;             /* per mesh vertex, this draw */
-  double *eyepos;
-  unsigned *outcode;
-  zs_snap_vert *snap;      /* per vertex, when its outcode is 0 */
-  int32_t cap_verts;
+  zs_vert_scratch verts;          /* per mesh vertex, this draw */
 
   /* queries and the clock */
   zs_clock_params clock_params;
@@ -269,7 +294,40 @@ struct zs_device {
   zs_batch *setup_parts;          /* a large draw's faces set up by thread
                                    * t > 0 (thread 0 uses batch) */
   int last_was_query;             /* the GPU's last command was a query box */
+  zs_deferred *deferred;          /* zs_device_defer_draws: the queued draws */
 };
+
+/* device.c: a draw's preparation, its vertices [i0, i1) transformed into
+ * v, its faces [f0, f1) set up into b (the painter's keys to ds, NULL when
+ * not the painter); a face with a vertex out of range stops it with an
+ * error. */
+void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p);
+void zs_draw_transform(const zs_device *d, const zs_draw_prep *p, const zs_mesh *mesh,
+                       zs_vert_scratch *v, int32_t i0, int32_t i1);
+zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *p, const zs_vert_scratch *v,
+                        const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
+                        uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
+                        zs_error *err);
+void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc);
+/* From this many faces a draw is transformed and set up in parts over the
+ * threads on its own; below, handing the work over costs more than it
+ * saves. */
+enum { ZS_PARALLEL_SETUP_FACES = 4096 };
+int zs_device_parallel_setup(const zs_device *d, const zs_mesh *mesh);
+/* The full-frame buffers of zbuffer mode as a walk's target. */
+zs_target zs_device_frame_target(zs_device *d);
+
+/* defer.c: draws queued while zs_device_defer_draws is on, and rendered
+ * together at the next flush: set up in parallel, walked in bands of rows,
+ * each band taking the draws in order; counters and clock settled draw by
+ * draw in issue order, so everything is what immediate drawing gives. */
+int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k);
+zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
+                        uint32_t id_base, uint32_t rgb, zs_error *err);
+zs_status zs_defer_flush(zs_device *d, zs_error *err);
+void zs_defer_discard(zs_device *d);
+void zs_defer_free(zs_device *d);
+size_t zs_defer_bytes(const zs_device *d);
 
 /* Draws mesh with kernel k (DRAW or QUERY); the walk's counts go to out.
  * Shared by zs_device_draw and zs_device_query_box. */
@@ -284,6 +342,8 @@ int64_t zs_clock_command_cost(const zs_device *d, int32_t vertices, uint64_t pol
 /* The GPU executes a command of the given cost (ps), issued by the CPU
  * now; returns the GPU time at which it ends. */
 int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query);
+/* The same for a command the CPU issued at cpu_ps (a deferred draw). */
+int64_t zs_clock_gpu_command_at(zs_device *d, int64_t cost, int is_query, int64_t cpu_ps);
 void zs_clock_cpu(zs_device *d, int64_t cost);
 void zs_clock_reset(zs_device *d);
 

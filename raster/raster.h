@@ -178,6 +178,18 @@ zs_status zs_device_finish(zs_device *dev, zs_row_sink sink, void *user,
 
 const zs_raster_stats *zs_device_stats(const zs_device *dev);
 
+/* Deferred drawing (defer.c), for a whole scene drawn on two threads or
+ * more in zbuffer mode: while on, zs_device_draw queues each draw of fewer
+ * than 4,096 faces, and the next flush renders the queue at once, set up
+ * in parallel and walked in bands of rows with the draws in issue order.
+ * The image, the counters and the modelled clock come out the same as
+ * drawing at once, but they lag the queue: they hold after a flush, which
+ * zs_device_flush, zs_device_finish, a query, hidden-line edges or a large
+ * draw make.  Meshes must stay valid until then; a draw's error is
+ * reported by the flush.  Off by default; no effect on one thread. */
+void zs_device_defer_draws(zs_device *dev, int on);
+zs_status zs_device_flush(zs_device *dev, zs_error *err);
+
 /* The full-frame buffers of zbuffer mode (NULL in scanline mode), row 0 at
  * the top, width * height entries. */
 const uint32_t *zs_device_depth_buffer(const zs_device *dev);

@@ -460,18 +460,28 @@ END_TEST
 /* Renders b in zbuffer mode with flat shading on `threads` threads under a
  * perspective camera; the device's buffers go to f, its counters are
  * returned; the draw's status to *st (and its message to msg). */
-static zs_raster_stats render_threads(const zs_mesh *m, int threads, frame *f, zs_status *st,
-                                      char *msg, size_t cap) {
+/* A zbuffer device with flat shading on `threads` threads, cleared, under
+ * a perspective camera at eye looking at the origin. */
+static zs_device *perspective_device(const frame *f, int threads, double ex, double ey,
+                                     double ez) {
   zs_device_config cfg = {f->w, f->h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, threads, 0};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
   double view[16], proj[16];
-  zs_mat_look_at(view, (double[3]){0.3, 0.4, 3.0}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
+  zs_mat_look_at(view, (double[3]){ex, ey, ez}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
   zs_mat_perspective(proj, 50, (double)f->w / f->h, 0.5, 10);
   zs_device_clear(d);
   zs_device_set_camera(d, view, proj);
+  return d;
+}
+
+static zs_raster_stats render_threads(const zs_mesh *m, int threads, frame *f, zs_status *st,
+                                      char *msg, size_t cap) {
+  zs_device *d = perspective_device(f, threads, 0.3, 0.4, 3.0);
+  zs_error err;
+  zs_error_clear(&err);
   *st = zs_device_draw(d, m, NULL, 0, ZS_RGB_MESH, &err);
   snprintf(msg, cap, "%s", err.msg);
   if (*st == ZS_OK) ck_assert_int_eq(zs_device_finish(d, frame_sink, f, &err), ZS_OK);
@@ -517,6 +527,114 @@ START_TEST(large_draws_set_up_on_threads_give_the_same_bytes) {
   frame_free(&bad);
   frame_free(&one);
   mb_free(&b);
+}
+END_TEST
+
+/* One frame of many small draws: spheres of 60 faces at seeded places,
+ * every third one drawn twice at the same place in another colour (equal
+ * depths: which draw writes depends on the order), with a query box in
+ * the middle and, when bad >= 0, a face out of range in draw bad (the
+ * last draw then).  Deferred when defer is set.  The buffers go to f; the
+ * counters, the clock and the query's samples are returned through the
+ * pointers; the status of the first failing call is returned. */
+enum { SMALL_DRAWS = 150 };
+
+static zs_status small_draws_frame(const mesh_buf *m, int threads, int defer, int bad, frame *f,
+                                   zs_raster_stats *stats, zs_clock_stats *clock,
+                                   int64_t *frame_ps, uint64_t *samples, char *msg, size_t cap) {
+  zs_device *d = perspective_device(f, threads, 0.0, 0.0, 4.0);
+  zs_error err;
+  zs_error_clear(&err);
+  zs_device_defer_draws(d, defer);
+  zs_status st = ZS_OK;
+  *samples = 0;
+  for (int i = 0; i < SMALL_DRAWS && st == ZS_OK; i++) {
+    const zs_mesh *mesh = &m[i == bad ? SMALL_DRAWS : i / 3 * 3].m;
+    uint32_t rgb = 0x204060u + (uint32_t)i * 0x010203u;
+    st = zs_device_draw(d, mesh, NULL, (uint32_t)(i / 3 * 3) * 1000u, rgb, &err);
+    if (i == bad) break;
+    if (st == ZS_OK && i == SMALL_DRAWS / 2) {
+      zs_query q;
+      if ((st = zs_device_query_begin(d, &q, &err)) == ZS_OK &&
+          (st = zs_device_query_box(d, (double[3]){-0.2, -0.2, -0.5}, (double[3]){0.2, 0.2, 0.5},
+                                    &err)) == ZS_OK &&
+          (st = zs_device_query_end(d, &err)) == ZS_OK)
+        *samples = zs_device_query_result(d, q);
+    }
+  }
+  if (st == ZS_OK) st = zs_device_flush(d, &err);
+  snprintf(msg, cap, "%s", err.msg);
+  ck_assert_int_eq(zs_device_finish(d, frame_sink, f, &err), ZS_OK);
+  *stats = *zs_device_stats(d);
+  *clock = *zs_device_clock(d);
+  *frame_ps = zs_device_frame_ps(d);
+  zs_device_destroy(d);
+  return st;
+}
+
+START_TEST(deferred_small_draws_land_as_drawn_at_once) {
+  /* Queued draws, set up in chunks and walked in bands, against the same
+   * draws made at once on one thread: every buffer, every counter, the
+   * modelled clock and a query's samples equal for 2 to 4 threads; with a
+   * bad face in draw 100, the same error, and the 100 draws before it. */
+  mesh_buf m[SMALL_DRAWS + 1];
+  memset(m, 0, sizeof m);
+  zs_rng rng;
+  zs_rng_seed(&rng, 7);
+  for (int i = 0; i < SMALL_DRAWS; i += 3) {
+    double x = zs_rng_below(&rng, 2001) / 1000.0 - 1.0, y = zs_rng_below(&rng, 1501) / 1000.0 - 0.75;
+    double z = zs_rng_below(&rng, 1001) / 1000.0 - 0.5, r = 0.1 + zs_rng_below(&rng, 201) / 1000.0;
+    mb_sphere(&m[i], x, y, z, r, 10, 6, 0);
+  }
+  mb_sphere(&m[SMALL_DRAWS], 0, 0, 0, 0.3, 10, 6, 0);
+  m[SMALL_DRAWS].m.face_vert[m[SMALL_DRAWS].m.face_start[20]] = m[SMALL_DRAWS].m.nverts;
+  ck_assert_int_lt(m[0].m.nfaces, 4096); /* below the size that is set up alone */
+
+  for (int bad = -1; bad <= 100; bad += 101) {
+    frame one = frame_new(160, 120);
+    zs_raster_stats s1, sn;
+    zs_clock_stats c1, cn;
+    int64_t f1, fn;
+    uint64_t q1, qn;
+    char msg1[ZS_ERROR_MSG_MAX], msgn[ZS_ERROR_MSG_MAX];
+    zs_status st1 = small_draws_frame(m, 1, 0, bad, &one, &s1, &c1, &f1, &q1, msg1, sizeof msg1);
+    ck_assert_int_eq(st1, bad < 0 ? ZS_OK : ZS_ERR_ARG);
+    if (bad < 0) ck_assert_uint_gt(q1, 0);
+    for (int threads = 2; threads <= 4; threads++) {
+      frame many = frame_new(160, 120);
+      zs_status stn =
+          small_draws_frame(m, threads, 1, bad, &many, &sn, &cn, &fn, &qn, msgn, sizeof msgn);
+      ck_assert_int_eq(stn, st1);
+      ck_assert_str_eq(msgn, msg1);
+      ck_assert_mem_eq(&s1, &sn, sizeof s1);
+      ck_assert_mem_eq(&c1, &cn, sizeof c1);
+      ck_assert_int_eq(f1, fn);
+      ck_assert_uint_eq(q1, qn);
+      ck_assert_mem_eq(one.rgb, many.rgb, 160 * 120 * 4);
+      ck_assert_mem_eq(one.depth, many.depth, 160 * 120 * 4);
+      ck_assert_mem_eq(one.id, many.id, 160 * 120 * 4);
+      frame_free(&many);
+    }
+    frame_free(&one);
+  }
+
+  /* the queue is real: before the flush nothing is written or counted */
+  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 2, 0};
+  zs_device *d = NULL;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+  zs_device_clear(d);
+  zs_device_defer_draws(d, 1);
+  for (int i = 0; i < 30; i += 3)
+    ck_assert_int_eq(zs_device_draw(d, &m[i].m, NULL, 0, ZS_RGB_MESH, &err), ZS_OK);
+  ck_assert_uint_eq(zs_device_stats(d)->draws, 10);
+  ck_assert_uint_eq(zs_device_stats(d)->polygons_in, 0);
+  ck_assert_int_eq(zs_device_flush(d, &err), ZS_OK);
+  ck_assert_uint_eq(zs_device_stats(d)->polygons_in, 10 * (uint64_t)m[0].m.nfaces);
+  ck_assert_uint_gt(zs_device_stats(d)->pixels_written, 0);
+  zs_device_destroy(d);
+  for (int i = 0; i <= SMALL_DRAWS; i++) mb_free(&m[i]);
 }
 END_TEST
 
@@ -645,6 +763,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, depth_stepping_equals_evaluation);
   tcase_add_test(tc, degenerate_faces_draw_nothing);
   tcase_add_test(tc, large_draws_set_up_on_threads_give_the_same_bytes);
+  tcase_add_test(tc, deferred_small_draws_land_as_drawn_at_once);
   tcase_add_test(tc, faces_off_the_window_are_dropped_at_set_up);
   tcase_add_test(tc, back_faces_culled_only_when_asked);
   tcase_add_test(tc, nothing_behind_the_eye);

@@ -26,12 +26,17 @@ zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width
 }
 
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err) {
-  for (int32_t i = 0; i < scene->ninst; i++) {
+  /* every instance, nothing read between the draws: on two threads they
+   * are queued and rendered together (raster.h, deferred drawing) */
+  zs_device_defer_draws(dev, 1);
+  zs_status st = ZS_OK;
+  for (int32_t i = 0; i < scene->ninst && st == ZS_OK; i++) {
     const zs_instance *in = &scene->inst[i];
-    if (zs_device_draw(dev, &scene->meshes[in->mesh].mesh, in->model, in->id_base, in->rgb, err))
-      return err->code;
+    st = zs_device_draw(dev, &scene->meshes[in->mesh].mesh, in->model, in->id_base, in->rgb, err);
   }
-  return ZS_OK;
+  if (st == ZS_OK) st = zs_device_flush(dev, err);
+  zs_device_defer_draws(dev, 0);
+  return st;
 }
 
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,

@@ -1,0 +1,300 @@
+/* Deferred drawing (raster.h, zs_device_defer_draws; internal.h).
+ *
+ * With two threads or more, a draw of a few hundred faces is too small to
+ * split: waking the threads for its set-up or its walk costs more than it
+ * saves (the plant's draws average 165 faces, a teapot's 688).  So while
+ * deferral is on, zs_device_draw only queues the draw, and the next flush
+ * renders the whole queue at once:
+ *
+ *   1. set-up in chunks: the queue is cut into runs of consecutive draws
+ *      of about equal faces, taken by the threads as they come free; each
+ *      chunk transforms and sets up its draws into a batch of its own, and
+ *      every draw remembers where its polygons lie (chunk, first, count)
+ *      and the rows they cover;
+ *   2. the walk in bands of rows: each band takes every draw in issue
+ *      order and walks that draw's polygons over the band's rows.  A pixel
+ *      lies in one band, so it sees the fragments of the draws in the
+ *      order they were issued, exactly as with immediate drawing: the same
+ *      depth tests, the same writes, the same overwrites counted;
+ *   3. settling, draw by draw in issue order: its set-up counters, its
+ *      walk counters summed over the bands, and the clock: its GPU command
+ *      charged as if issued when the CPU issued it (the CPU clock read at
+ *      queueing time), so the modelled frame is also unchanged.
+ *
+ * The counters and the clock lag the queue until the flush, so deferral is
+ * for callers that read them after zs_device_finish (a whole scene drawn,
+ * tools/frame.c), not for culling, which reads the pixels of each draw.
+ * A query, hidden-line edges, a large draw (set up in parallel on its
+ * own) and finish flush first; clear drops the queue (those draws would be
+ * cleared away with the frame).  An error in a draw's set-up is reported
+ * at the flush, with the draws before it rendered and the ones after it
+ * not, as when drawing at once the caller would have stopped there. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/grow.h"
+#include "raster/internal.h"
+#include "raster/pool.h"
+
+enum { MAX_CHUNKS = 64, MAX_BANDS = 64 };
+
+typedef struct queued_draw {
+  const zs_mesh *mesh;
+  zs_draw_prep prep;
+  uint32_t id_base, rgb;
+  int64_t cpu_ps;          /* the CPU clock when it was issued */
+  /* filled by the set-up */
+  int32_t chunk, poly0, npolys;
+  int32_t row0, row1;      /* rows its polygons cover (row0 > row1: none) */
+  zs_face_counts fc;
+  uint8_t set_up;          /* set up whole (else its chunk stopped at or before it) */
+} queued_draw;
+
+struct zs_deferred {
+  int on;
+  queued_draw *q;
+  int32_t n, cap;
+  int32_t first[MAX_CHUNKS + 1];   /* chunk c: draws first[c] .. first[c + 1] - 1 */
+  zs_batch batch[MAX_CHUNKS];
+  zs_vert_scratch verts[MAX_CHUNKS];
+  zs_error err[MAX_CHUNKS];
+  zs_status st[MAX_CHUNKS];
+  zs_walk_counts *counts;          /* [band][draw] */
+  int32_t cap_counts;
+};
+
+void zs_device_defer_draws(zs_device *d, int on) {
+  if (!d->deferred) {
+    if (!on) return;
+    /* without memory for the queue, drawing stays immediate */
+    if (!(d->deferred = calloc(1, sizeof *d->deferred))) return;
+  }
+  d->deferred->on = on != 0;
+}
+
+zs_status zs_device_flush(zs_device *d, zs_error *err) { return zs_defer_flush(d, err); }
+
+int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k) {
+  return d->deferred && d->deferred->on && d->pool && d->cfg.algo == ZS_ALGO_ZBUFFER &&
+         (k == ZS_KERNEL_DRAW || k == ZS_KERNEL_OVERDRAW) && !d->query_open &&
+         !zs_device_parallel_setup(d, mesh);
+}
+
+zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
+                        uint32_t id_base, uint32_t rgb, zs_error *err) {
+  zs_deferred *q = d->deferred;
+  if (mesh->nverts < 0 || mesh->nfaces < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
+  if (!zs_grow((void **)&q->q, &q->cap, q->n + 1, sizeof *q->q))
+    return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  /* what zs_device_draw counts and charges when it is issued */
+  zs_clock_cpu(d, d->costs.cpu_per_call);
+  d->stats.draws++;
+  d->stats.vertices += (uint64_t)mesh->nverts;
+  queued_draw *e = &q->q[q->n++];
+  memset(e, 0, sizeof *e);
+  e->mesh = mesh;
+  zs_draw_prepare(d, model, ZS_KERNEL_DRAW, &e->prep);
+  e->id_base = id_base;
+  e->rgb = rgb;
+  e->cpu_ps = d->clock.cpu_ps;
+  return ZS_OK;
+}
+
+/* ---- 1. set-up, a chunk of consecutive draws per task ---- */
+
+typedef struct flush_job {
+  zs_device *d;
+  zs_deferred *q;
+  zs_kernel k;
+  zs_target t;
+  int32_t ndraw;           /* draws to walk: those before the first failed */
+  int nbands, row0, rows;
+  int ok[MAX_BANDS];
+} flush_job;
+
+static void setup_chunk(void *ctx, int c) {
+  flush_job *j = ctx;
+  zs_deferred *q = j->q;
+  const int h = j->d->cfg.height;
+  zs_batch *b = &q->batch[c];
+  zs_batch_reset(b);
+  q->st[c] = ZS_OK;
+  zs_error_clear(&q->err[c]);
+  for (int32_t i = q->first[c]; i < q->first[c + 1]; i++) {
+    queued_draw *e = &q->q[i];
+    const zs_mesh *m = e->mesh;
+    if (!zs_vert_scratch_reserve(&q->verts[c], m->nverts > 0 ? m->nverts : 1)) {
+      q->st[c] = zs_error_set(&q->err[c], ZS_ERR_NOMEM, "draw: out of memory");
+      return;
+    }
+    zs_draw_transform(j->d, &e->prep, m, &q->verts[c], 0, m->nverts);
+    e->chunk = c;
+    e->poly0 = b->npolys;
+    q->st[c] = zs_draw_setup(j->d, &e->prep, &q->verts[c], m, 0, m->nfaces, e->id_base, e->rgb,
+                             NULL, b, &e->fc, &q->err[c]);
+    if (q->st[c] != ZS_OK) return;
+    e->npolys = b->npolys - e->poly0;
+    e->row0 = h;
+    e->row1 = -1;
+    for (int32_t p = e->poly0; p < b->npolys; p++) {
+      if (b->polys[p].row0 < e->row0) e->row0 = b->polys[p].row0;
+      if (b->polys[p].row1 > e->row1) e->row1 = b->polys[p].row1;
+    }
+    if (e->row0 < 0) e->row0 = 0;
+    if (e->row1 > h - 1) e->row1 = h - 1;
+    e->set_up = 1;
+  }
+}
+
+/* Cuts the queue into nchunks runs of about equal weight (faces, plus one
+ * per draw for its fixed work). */
+static void cut_chunks(zs_deferred *q, int nchunks) {
+  uint64_t total = 0;
+  for (int32_t i = 0; i < q->n; i++) total += (uint64_t)q->q[i].mesh->nfaces + 1;
+  uint64_t acc = 0;
+  int c = 0;
+  q->first[0] = 0;
+  for (int32_t i = 0; i < q->n && c < nchunks - 1; i++) {
+    acc += (uint64_t)q->q[i].mesh->nfaces + 1;
+    if (acc * (uint64_t)nchunks >= total * (uint64_t)(c + 1)) q->first[++c] = i + 1;
+  }
+  while (c < nchunks) q->first[++c] = q->n;
+}
+
+/* ---- 2. the walk, a band of rows per task, every draw in order ---- */
+
+static void walk_band(void *ctx, int band) {
+  flush_job *j = ctx;
+  zs_deferred *q = j->q;
+  int y0 = j->row0 + (int)((int64_t)j->rows * band / j->nbands);
+  int y1 = j->row0 + (int)((int64_t)j->rows * (band + 1) / j->nbands);
+  zs_walk_counts *counts = &q->counts[(size_t)band * (size_t)j->ndraw];
+  int ok = 1;
+  for (int32_t i = 0; i < j->ndraw; i++) {
+    const queued_draw *e = &q->q[i];
+    counts[i] = (zs_walk_counts){0, 0, 0};
+    int r0 = e->row0 > y0 ? e->row0 : y0, r1 = e->row1 + 1 < y1 ? e->row1 + 1 : y1;
+    if (e->npolys == 0 || r0 >= r1) continue;
+    const zs_batch *b = &q->batch[e->chunk];
+    /* the draw's polygons: their edges are indexed in the chunk's batch */
+    zs_batch view = {b->polys + e->poly0, e->npolys, e->npolys, b->edges, b->nedges,
+                     b->nedges};
+    ok &= zs_scan_batch(&view, j->k, &j->t, r0, r1, NULL, NULL, &j->d->band_scratch[band],
+                        &counts[i]);
+  }
+  j->ok[band] = ok;
+}
+
+/* ---- the flush ---- */
+
+zs_status zs_defer_flush(zs_device *d, zs_error *err) {
+  zs_deferred *q = d->deferred;
+  if (!q || q->n == 0) return ZS_OK;
+  flush_job j;
+  memset(&j, 0, sizeof j);
+  j.d = d;
+  j.q = q;
+  j.k = d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
+  j.t = zs_device_frame_target(d);
+
+  /* four chunks a thread, so that a slow one does not hold the rest up */
+  int nchunks = 4 * d->cfg.threads < MAX_CHUNKS ? 4 * d->cfg.threads : MAX_CHUNKS;
+  if (nchunks > q->n) nchunks = q->n;
+  cut_chunks(q, nchunks);
+  zs_pool_run(d->pool, setup_chunk, &j, nchunks);
+
+  /* the first draw not set up ends the walk; its chunk holds the error */
+  zs_status st = ZS_OK;
+  j.ndraw = q->n;
+  for (int32_t i = 0; i < q->n; i++)
+    if (!q->q[i].set_up) {
+      j.ndraw = i;
+      int c = 0;
+      while (q->first[c + 1] <= i) c++;
+      st = zs_error_set(err, q->st[c], "%s", q->err[c].msg);
+      break;
+    }
+
+  int lo = d->cfg.height, hi = -1;
+  for (int32_t i = 0; i < j.ndraw; i++)
+    if (q->q[i].npolys > 0) {
+      if (q->q[i].row0 < lo) lo = q->q[i].row0;
+      if (q->q[i].row1 > hi) hi = q->q[i].row1;
+    }
+  if (hi >= lo) {
+    j.row0 = lo;
+    j.rows = hi - lo + 1;
+    /* four bands a thread, taken in turn (the rows do not hold equal
+     * work), at least 16 rows a band */
+    j.nbands = 4 * d->cfg.threads < MAX_BANDS ? 4 * d->cfg.threads : MAX_BANDS;
+    if (j.nbands > j.rows / 16) j.nbands = j.rows / 16;
+    if (j.nbands < 1) j.nbands = 1;
+    int64_t need = (int64_t)j.nbands * j.ndraw;
+    if (need > INT32_MAX ||
+        !zs_grow((void **)&q->counts, &q->cap_counts, (int32_t)need, sizeof *q->counts)) {
+      st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+      j.ndraw = 0;
+    } else {
+      zs_pool_run(d->pool, walk_band, &j, j.nbands);
+      for (int b = 0; b < j.nbands; b++)
+        if (!j.ok[b]) {
+          st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+          j.ndraw = 0;
+        }
+    }
+  } else {
+    j.nbands = 0; /* nothing to walk: every draw's counts are zero */
+  }
+
+  /* settle draw by draw, in the order issued */
+  for (int32_t i = 0; i < j.ndraw; i++) {
+    const queued_draw *e = &q->q[i];
+    zs_add_face_counts(&d->stats, &e->fc);
+    zs_walk_counts c = {0, 0, 0};
+    for (int b = 0; b < j.nbands; b++) {
+      const zs_walk_counts *bc = &q->counts[(size_t)b * (size_t)j.ndraw + (size_t)i];
+      c.spans += bc->spans;
+      c.tested += bc->tested;
+      c.written += bc->written;
+    }
+    d->stats.spans += c.spans;
+    d->stats.pixels_tested += c.tested;
+    d->stats.pixels_written += c.written;
+    int64_t cost = zs_clock_command_cost(d, e->mesh->nverts, e->fc.rasterized + e->fc.offscreen,
+                                         &c, 0);
+    zs_clock_gpu_command_at(d, cost, 0, e->cpu_ps);
+  }
+  /* the failed draw's set-up counters, as zs_device_draw would have added */
+  if (st != ZS_OK && j.ndraw < q->n) zs_add_face_counts(&d->stats, &q->q[j.ndraw].fc);
+  q->n = 0;
+  for (int c = 0; c < nchunks; c++) zs_batch_reset(&q->batch[c]);
+  return st;
+}
+
+void zs_defer_discard(zs_device *d) {
+  if (d->deferred) d->deferred->n = 0;
+}
+
+void zs_defer_free(zs_device *d) {
+  zs_deferred *q = d->deferred;
+  if (!q) return;
+  free(q->q);
+  for (int c = 0; c < MAX_CHUNKS; c++) {
+    zs_batch_free(&q->batch[c]);
+    zs_vert_scratch_free(&q->verts[c]);
+  }
+  free(q->counts);
+  free(q);
+  d->deferred = NULL;
+}
+
+size_t zs_defer_bytes(const zs_device *d) {
+  const zs_deferred *q = d->deferred;
+  if (!q) return 0;
+  size_t n = (size_t)q->cap * sizeof *q->q + (size_t)q->cap_counts * sizeof *q->counts;
+  for (int c = 0; c < MAX_CHUNKS; c++)
+    n += (size_t)q->batch[c].cap_polys * sizeof(zs_poly) +
+         (size_t)q->batch[c].cap_edges * sizeof(zs_edge) + zs_vert_scratch_bytes(&q->verts[c]);
+  return n;
+}
