@@ -13,6 +13,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdio.h>
+#include <time.h>
 
 #include "raster/internal.h"
 #include "raster/pool.h"
@@ -154,6 +156,24 @@ static void fill_u32(uint32_t *p, size_t n, uint32_t v) {
   for (size_t i = 0; i < n; i++) p[i] = v;
 }
 
+/* Clears the full-frame buffers' part `part` of nparts (whole rows). */
+typedef struct clear_job {
+  zs_device *d;
+  int nparts;
+} clear_job;
+
+static void clear_part(void *ctx, int part) {
+  const clear_job *j = ctx;
+  zs_device *d = j->d;
+  size_t w = (size_t)d->cfg.width, h = (size_t)d->cfg.height;
+  size_t y0 = h * (size_t)part / (size_t)j->nparts, y1 = h * (size_t)(part + 1) / (size_t)j->nparts;
+  size_t off = y0 * w, px = (y1 - y0) * w;
+  fill_u32(d->depth + off, px, ZS_DEPTH_FAR);
+  fill_u32(d->id + off, px, ZS_ID_NONE);
+  fill_u32(d->rgb + off, px, d->cfg.background);
+  if (d->count) memset(d->count + off, 0, px * sizeof *d->count);
+}
+
 void zs_device_clear(zs_device *d) {
   zs_defer_discard(d); /* drawn and cleared away: the same frame */
   memset(&d->stats, 0, sizeof d->stats);
@@ -161,11 +181,10 @@ void zs_device_clear(zs_device *d) {
   zs_batch_reset(&d->batch);
   d->depthsort.nfaces = 0;
   if (d->cfg.algo == ZS_ALGO_ZBUFFER) {
-    size_t px = (size_t)d->cfg.width * (size_t)d->cfg.height;
-    fill_u32(d->depth, px, ZS_DEPTH_FAR);
-    fill_u32(d->id, px, ZS_ID_NONE);
-    fill_u32(d->rgb, px, d->cfg.background);
-    if (d->count) memset(d->count, 0, px * sizeof *d->count);
+    /* 12 bytes a pixel or more: worth the threads at any size that has them */
+    clear_job j = {d, d->pool ? d->cfg.threads : 1};
+    if (d->pool) zs_pool_run(d->pool, clear_part, &j, j.nparts);
+    else clear_part(&j, 0);
   }
 }
 
@@ -436,7 +455,7 @@ static void setup_part(void *ctx, int part) {
                               j->batch[part], &j->fc[part], &j->err[part]);
 }
 
-int zs_device_parallel_setup(const zs_device *d, const zs_mesh *mesh) {
+static int parallel_setup(const zs_device *d, const zs_mesh *mesh) {
   return d->setup_parts && mesh->nfaces >= ZS_PARALLEL_SETUP_FACES;
 }
 
@@ -453,7 +472,7 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
 
   zs_draw_prep prep;
   zs_draw_prepare(d, model, k, &prep);
-  if (zs_device_parallel_setup(d, mesh)) {
+  if (parallel_setup(d, mesh)) {
     /* (threads exist in zbuffer mode only, so never the painter) */
     setup_job *j = malloc(sizeof *j);
     if (!j) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
@@ -507,6 +526,7 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
    * queue goes first, so that the draws land in the order issued */
   zs_status st = zs_defer_flush(d, err);
   if (st != ZS_OK) return st;
+  struct timespec T0, T1; clock_gettime(CLOCK_MONOTONIC, &T0);
   uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_call);
@@ -517,6 +537,8 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
   int64_t cost = zs_clock_command_cost(d, mesh->nverts, zs_polygons_set_up(&d->stats) - polygons,
                                        &c, 0);
   int64_t end = zs_clock_gpu_command(d, cost, 0);
+  clock_gettime(CLOCK_MONOTONIC, &T1);
+  if (getenv("ZS_DT") && mesh->nfaces >= 4096) fprintf(stderr, "large %d faces %.2f ms\n", (int)mesh->nfaces, (T1.tv_sec - T0.tv_sec) * 1e3 + (T1.tv_nsec - T0.tv_nsec) * 1e-6);
   if (d->query_open) {
     zs_query_rec *q = &d->queries[d->nqueries - 1];
     q->samples += c.written;

@@ -309,11 +309,12 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *p, const zs_vert
                         uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
                         zs_error *err);
 void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc);
-/* From this many faces a draw is transformed and set up in parts over the
- * threads on its own; below, handing the work over costs more than it
- * saves. */
-enum { ZS_PARALLEL_SETUP_FACES = 4096 };
-int zs_device_parallel_setup(const zs_device *d, const zs_mesh *mesh);
+/* Drawing at once, a draw from ZS_PARALLEL_SETUP_FACES faces is
+ * transformed and set up in parts over the threads; below, handing the
+ * work over costs more than it saves.  Deferred, draws below
+ * ZS_DEFER_MAX_FACES are queued (the queue is shared out by faces, so a
+ * draw of a few thousand faces balances with the rest). */
+enum { ZS_PARALLEL_SETUP_FACES = 4096, ZS_DEFER_MAX_FACES = 65536 };
 /* The full-frame buffers of zbuffer mode as a walk's target. */
 zs_target zs_device_frame_target(zs_device *d);
 
