@@ -23,30 +23,6 @@
  */
 #include "raster/internal.h"
 
-enum {
-  CLIP_NEAR = 1, CLIP_FAR = 2,
-  CLIP_LEFT = 4, CLIP_RIGHT = 8, CLIP_BOTTOM = 16, CLIP_TOP = 32
-};
-
-static double plane_dist(const zs_clip_vert *v, int plane, double gx,
-                         double gy) {
-  switch (plane) {
-    case CLIP_NEAR: return v->z + v->w;
-    case CLIP_FAR: return v->w - v->z;
-    case CLIP_LEFT: return gx * v->w + v->x;
-    case CLIP_RIGHT: return gx * v->w - v->x;
-    case CLIP_BOTTOM: return gy * v->w + v->y;
-    default: return gy * v->w - v->y;
-  }
-}
-
-unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double gy) {
-  unsigned code = 0;
-  for (int p = CLIP_NEAR; p <= CLIP_TOP; p <<= 1)
-    if (!(plane_dist(v, p, gx, gy) >= 0.0)) code |= (unsigned)p; /* NaN: out */
-  return code;
-}
-
 /* The point where the edge from `in` (d_in >= 0) to `out` (d_out < 0)
  * crosses plane p, with its coordinate across the plane taken from the
  * plane itself. */
@@ -60,11 +36,11 @@ static zs_clip_vert intersect(const zs_clip_vert *in, double d_in,
   r.z = in->z + t * (out->z - in->z);
   r.w = in->w + t * (out->w - in->w);
   switch (p) {
-    case CLIP_NEAR: r.z = -r.w; break;
-    case CLIP_FAR: r.z = r.w; break;
-    case CLIP_LEFT: r.x = -gx * r.w; break;
-    case CLIP_RIGHT: r.x = gx * r.w; break;
-    case CLIP_BOTTOM: r.y = -gy * r.w; break;
+    case ZS_CLIP_NEAR: r.z = -r.w; break;
+    case ZS_CLIP_FAR: r.z = r.w; break;
+    case ZS_CLIP_LEFT: r.x = -gx * r.w; break;
+    case ZS_CLIP_RIGHT: r.x = gx * r.w; break;
+    case ZS_CLIP_BOTTOM: r.y = -gy * r.w; break;
     default: r.y = gy * r.w; break;
   }
   return r;
@@ -76,14 +52,14 @@ int zs_clip_polygon(const zs_clip_vert *in, int n, unsigned mask, double gx,
   const zs_clip_vert *src = in;
   int count = n;
   int which = 0;
-  for (int p = CLIP_NEAR; p <= CLIP_TOP; p <<= 1) {
+  for (int p = ZS_CLIP_NEAR; p <= ZS_CLIP_TOP; p <<= 1) {
     if (!(mask & (unsigned)p)) continue;
     zs_clip_vert *dst = buf[which];
     int m = 0;
     for (int i = 0; i < count; i++) {
       const zs_clip_vert *a = &src[i];
       const zs_clip_vert *b = &src[(i + 1) % count];
-      double da = plane_dist(a, p, gx, gy), db = plane_dist(b, p, gx, gy);
+      double da = zs_clip_plane_dist(a, p, gx, gy), db = zs_clip_plane_dist(b, p, gx, gy);
       int ain = da >= 0.0, bin = db >= 0.0;
       /* A convex polygon gains at most one vertex per plane; only a face
        * that is not convex in clip space could come near this bound. */

@@ -5,6 +5,7 @@
 #ifndef ZS_RASTER_INTERNAL_H
 #define ZS_RASTER_INTERNAL_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "raster/raster.h"
@@ -54,7 +55,29 @@ typedef struct zs_clip_vert {
 /* ---- clip.c ---- */
 /* Outcode bits of a clip-space vertex against near, far and the guard
  * band (gx, gy: the band's half-widths in NDC units). */
-unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double gy);
+enum {
+  ZS_CLIP_NEAR = 1, ZS_CLIP_FAR = 2,
+  ZS_CLIP_LEFT = 4, ZS_CLIP_RIGHT = 8, ZS_CLIP_BOTTOM = 16, ZS_CLIP_TOP = 32
+};
+/* The signed distance of v from a plane, inside when >= 0.  Inline, with
+ * the outcode and zs_snap_vertex below: a draw calls them once per vertex
+ * (a call each measured 13 % of the teapots' frame for zs_mat_apply). */
+static inline double zs_clip_plane_dist(const zs_clip_vert *v, int plane, double gx, double gy) {
+  switch (plane) {
+    case ZS_CLIP_NEAR: return v->z + v->w;
+    case ZS_CLIP_FAR: return v->w - v->z;
+    case ZS_CLIP_LEFT: return gx * v->w + v->x;
+    case ZS_CLIP_RIGHT: return gx * v->w - v->x;
+    case ZS_CLIP_BOTTOM: return gy * v->w + v->y;
+    default: return gy * v->w - v->y;
+  }
+}
+static inline unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double gy) {
+  unsigned code = 0;
+  for (int p = ZS_CLIP_NEAR; p <= ZS_CLIP_TOP; p <<= 1)
+    if (!(zs_clip_plane_dist(v, p, gx, gy) >= 0.0)) code |= (unsigned)p; /* NaN: out */
+  return code;
+}
 /* Clips the convex polygon in[0..n-1] against every plane set in mask;
  * writes the result to out (ZS_CLIP_MAX_VERTS entries) and returns its
  * vertex count (0 when nothing is left). */
@@ -92,7 +115,17 @@ typedef struct zs_snap_vert {
   double z;
 } zs_snap_vert;
 
-void zs_snap_vertex(const zs_setup_params *p, const zs_clip_vert *v, zs_snap_vert *out);
+static inline void zs_snap_vertex(const zs_setup_params *sp, const zs_clip_vert *v,
+                                  zs_snap_vert *out) {
+  const double half_w = 0.5 * sp->width, half_h = 0.5 * sp->height;
+  const int64_t h_sub = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
+  double xw = (v->x / v->w + 1.0) * half_w;
+  double yw = (v->y / v->w + 1.0) * half_h;
+  double zw = (v->z / v->w + 1.0) * 0.5;
+  out->x = (int32_t)lrint(xw * ZS_SUBPIXEL_ONE);
+  out->y = (int32_t)(h_sub - lrint(yw * ZS_SUBPIXEL_ONE));
+  out->z = zw < 0.0 ? 0.0 : zw > 1.0 ? 1.0 : zw;
+}
 zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *p,
                                  const zs_snap_vert *v, int n);
 

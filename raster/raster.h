@@ -465,6 +465,10 @@ void zs_mat_perspective(double m[16], double fovy_deg, double aspect,
 /* glOrtho. */
 void zs_mat_ortho(double m[16], double left, double right, double bottom,
                   double top, double znear, double zfar);
-void zs_mat_apply(const double m[16], const double p[3], double out[4]);
+/* out = m (p, 1): inline, as set-up calls it once or twice per vertex. */
+static inline void zs_mat_apply(const double m[16], const double p[3], double out[4]) {
+  for (int i = 0; i < 4; i++)
+    out[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+}
 
 #endif

@@ -202,17 +202,6 @@ static int convex_monotone(const int32_t *X, const int32_t *Y, const int *idx,
   return changes <= 2;
 }
 
-void zs_snap_vertex(const zs_setup_params *sp, const zs_clip_vert *v, zs_snap_vert *out) {
-  const double half_w = 0.5 * sp->width, half_h = 0.5 * sp->height;
-  const int64_t h_sub = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
-  double xw = (v->x / v->w + 1.0) * half_w;
-  double yw = (v->y / v->w + 1.0) * half_h;
-  double zw = (v->z / v->w + 1.0) * 0.5;
-  out->x = (int32_t)lrint(xw * ZS_SUBPIXEL_ONE);
-  out->y = (int32_t)(h_sub - lrint(yw * ZS_SUBPIXEL_ONE));
-  out->z = zw < 0.0 ? 0.0 : zw > 1.0 ? 1.0 : zw;
-}
-
 zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
                                  const zs_clip_vert *v, int n) {
   zs_snap_vert s[ZS_CLIP_MAX_VERTS];

@@ -112,9 +112,3 @@ void zs_mat_ortho(double m[16], double left, double right, double bottom,
   m[10] = -2.0 / (zfar - znear);
   m[11] = -(zfar + znear) / (zfar - znear);
 }
-
-void zs_mat_apply(const double m[16], const double p[3], double out[4]) {
-  for (int i = 0; i < 4; i++)
-    out[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] +
-             m[4 * i + 3];
-}
