@@ -32,7 +32,7 @@ static int64_t floor_div(int64_t a, int64_t d) {
   return a >= 0 ? a / d : -((-a + d - 1) / d);
 }
 
-void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
+static inline void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
   int64_t dy = (int64_t)e->Y1 - e->Y0, dx = (int64_t)e->X1 - e->X0;
   s->d = 256 * dy;
   int64_t num = ((int64_t)e->X0 - 128) * dy + ((int64_t)row * 256 + 128 - e->Y0) * dx;
@@ -42,6 +42,8 @@ void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
   s->rs = 256 * dx - s->q * s->d;
   s->rows = e->row1 - row;
 }
+
+void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) { dda_start(s, e, row); }
 
 static inline void dda_step(zs_edge_dda *s) {
   s->x += s->q;
@@ -208,8 +210,8 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
   a->right_end = a->left_end + p->nright;
   a->left = edge_at(edges, p->edge0, a->left_end, y);
   a->right = edge_at(edges, a->left_end + 1, a->right_end, y);
-  zs_edge_dda_start(&a->l, &edges[a->left], y);
-  zs_edge_dda_start(&a->r, &edges[a->right], y);
+  dda_start(&a->l, &edges[a->left], y);
+  dda_start(&a->r, &edges[a->right], y);
   a->zl = p->zc + p->dzdx * (a->l.x - p->ox) + p->dzdy * (y - p->oy);
 }
 
@@ -236,9 +238,9 @@ static inline void row_span(zs_kernel k, const zs_target *t, int64_t off, const 
 static inline void step_down(zs_active *a, const zs_poly *p, const zs_edge *edges, int32_t y) {
   int64_t old_xl = a->l.x;
   if (a->l.rows > 0) dda_step(&a->l);
-  else zs_edge_dda_start(&a->l, &edges[++a->left], y + 1);
+  else dda_start(&a->l, &edges[++a->left], y + 1);
   if (a->r.rows > 0) dda_step(&a->r);
-  else zs_edge_dda_start(&a->r, &edges[++a->right], y + 1);
+  else dda_start(&a->r, &edges[++a->right], y + 1);
   a->zl += p->dzdx * (a->l.x - old_xl) + p->dzdy;
 }
 
