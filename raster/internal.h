@@ -217,7 +217,20 @@ void zs_walk_scratch_free(zs_walk_scratch *s);
 /* ---- shade.c ---- */
 /* The flat colour of a face: rgb times the Lambert term of its eye-space
  * normal n (need not be unit) against the fixed light. */
-uint32_t zs_shade_flat(uint32_t rgb, const double n[3]);
+static inline uint32_t zs_shade_flat(uint32_t rgb, const double n[3]) {
+  const double l[3] = {0.2672612419124244, 0.5345224838248488,
+                       0.8017837257372732}; /* (1,2,3)/sqrt(14) */
+  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  double cosine = len > 0.0 ? fabs(n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / len : 0.0;
+  if (cosine > 1.0) cosine = 1.0;
+  uint32_t q = (uint32_t)lrint(255.0 * (0.25 + 0.75 * cosine));
+  uint32_t r = (rgb >> 16) & 0xFF, g = (rgb >> 8) & 0xFF, b = rgb & 0xFF;
+  r = (r * q + 127) / 255;
+  g = (g * q + 127) / 255;
+  b = (b * q + 127) / 255;
+  return r << 16 | g << 8 | b;
+}
+
 /* The colours of one finished row for the shading mode. */
 void zs_shade_row(zs_shade shade, int width, const uint32_t *depth,
                   const uint32_t *id, const uint32_t *count,

@@ -6,7 +6,8 @@
  *   I = 0.25 + 0.75 |n . L| / |n|        (two-sided: back faces lit too)
  * quantized once to q = round(255 I), and each channel becomes
  *   c' = (c q + 127) / 255               (integer division)
- * so the only floating point is the one rounding to q.
+ * so the only floating point is the one rounding to q.  (zs_shade_flat is
+ * inline in internal.h: set-up calls it once per face.)
  *
  * Depth shading.  Grey from the linear eye distance, 255 at the near plane
  * and 0 at the far plane, background black.
@@ -17,20 +18,6 @@
 #include <math.h>
 
 #include "raster/internal.h"
-
-uint32_t zs_shade_flat(uint32_t rgb, const double n[3]) {
-  const double l[3] = {0.2672612419124244, 0.5345224838248488,
-                       0.8017837257372732}; /* (1,2,3)/sqrt(14) */
-  double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  double cosine = len > 0.0 ? fabs(n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / len : 0.0;
-  if (cosine > 1.0) cosine = 1.0;
-  uint32_t q = (uint32_t)lrint(255.0 * (0.25 + 0.75 * cosine));
-  uint32_t r = (rgb >> 16) & 0xFF, g = (rgb >> 8) & 0xFF, b = rgb & 0xFF;
-  r = (r * q + 127) / 255;
-  g = (g * q + 127) / 255;
-  b = (b * q + 127) / 255;
-  return r << 16 | g << 8 | b;
-}
 
 static const uint32_t heat[9] = {0x000000, 0x2050E0, 0x20C040, 0xF0E020,
                                  0xF09020, 0xE02020, 0xE02020, 0xE02020,
