@@ -13,8 +13,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <stdio.h>
-#include <time.h>
 
 #include "raster/internal.h"
 #include "raster/pool.h"
@@ -526,7 +524,6 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
    * queue goes first, so that the draws land in the order issued */
   zs_status st = zs_defer_flush(d, err);
   if (st != ZS_OK) return st;
-  struct timespec T0, T1; clock_gettime(CLOCK_MONOTONIC, &T0);
   uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_call);
@@ -537,8 +534,6 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
   int64_t cost = zs_clock_command_cost(d, mesh->nverts, zs_polygons_set_up(&d->stats) - polygons,
                                        &c, 0);
   int64_t end = zs_clock_gpu_command(d, cost, 0);
-  clock_gettime(CLOCK_MONOTONIC, &T1);
-  if (getenv("ZS_DT") && mesh->nfaces >= 4096) fprintf(stderr, "large %d faces %.2f ms\n", (int)mesh->nfaces, (T1.tv_sec - T0.tv_sec) * 1e3 + (T1.tv_nsec - T0.tv_nsec) * 1e-6);
   if (d->query_open) {
     zs_query_rec *q = &d->queries[d->nqueries - 1];
     q->samples += c.written;
