@@ -183,15 +183,19 @@ static int64_t cross3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
  * a star that winds twice through; monotony catches it. */
 static int convex_monotone(const int32_t *X, const int32_t *Y, const int *idx,
                            int n, int64_t area2) {
-  for (int i = 0; i < n; i++) {
-    int64_t t = cross3(X, Y, idx[(i + n - 1) % n], idx[i], idx[(i + 1) % n]);
+  /* (neighbours by comparison, not %: a division per vertex showed in the
+   * profile of the teapots, whose quads all come here) */
+  for (int i = 0, prev = n - 1; i < n; prev = i++) {
+    int next = i + 1 < n ? i + 1 : 0;
+    int64_t t = cross3(X, Y, idx[prev], idx[i], idx[next]);
     if ((t > 0 && area2 < 0) || (t < 0 && area2 > 0)) return 0;
   }
   /* Going round, the vertical direction may change only at the top and
    * at the bottom vertex. */
   int changes = 0, first = 0, last = 0;
   for (int i = 0; i < n; i++) {
-    int64_t d = (int64_t)Y[idx[(i + 1) % n]] - Y[idx[i]];
+    int next = i + 1 < n ? i + 1 : 0;
+    int64_t d = (int64_t)Y[idx[next]] - Y[idx[i]];
     int s = (d > 0) - (d < 0);
     if (!s) continue;
     if (!first) first = s;
