@@ -20,6 +20,9 @@
  *   in 24 bits and every edge product in 64.  A face inside the band whose
  *   snapped box holds no pixel centre of the window is dropped at set-up
  *   (polygons_offscreen); the clock still charges it (zs_polygons_set_up).
+ *   A face whose box holds no pixel centre at all (a speck between the
+ *   centres) covers no pixel: it is counted in polygons_rasterized, as set
+ *   up, but never enters the polygon table.
  *
  * COVERAGE
  *   A pixel belongs to a polygon when its centre lies inside; a centre

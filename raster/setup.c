@@ -251,6 +251,14 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
       xmin > (int64_t)sp->width * ZS_SUBPIXEL_ONE - ZS_SUBPIXEL_ONE / 2 ||
       ymin > (int64_t)sp->height * ZS_SUBPIXEL_ONE - ZS_SUBPIXEL_ONE / 2)
     return ZS_SETUP_OFFSCREEN;
+  /* No pixel centre in its box (inclusive): it covers no pixel, so it is
+   * not entered in the tables, and counts as drawn, as a polygon between
+   * two rows of centres always did.  Most faces of the million-triangle
+   * teapot field are such specks: they skip the plane, the edges and the
+   * walk. */
+  if (first_row(ymin) > last_row(ymax) ||
+      floordiv256((int64_t)xmin - 129) + 1 > floordiv256((int64_t)xmax - 128))
+    return ZS_SETUP_DRAWN;
 
   /* The plane from the fan triangle (0, k, k+1) of largest area: the best
    * conditioned choice, and the same for every piece of the face. */
