@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/pool.h"
 #include "raster/raster.h"
 #include "raster/rng.h"
 #include "tests/testutil.h"
@@ -644,6 +645,43 @@ START_TEST(deferred_small_draws_land_as_drawn_at_once) {
 }
 END_TEST
 
+/* The pool's jobs: each task adds its index + 1 to its own slot. */
+typedef struct pool_job {
+  uint64_t slot[64];
+} pool_job;
+
+static void pool_task(void *ctx, int task) {
+  /* a little work, so that the threads claim tasks at the same moments */
+  volatile unsigned spin = 0;
+  for (int i = 0; i < 64 * (task % 5); i++) spin = spin + 1u;
+  ((pool_job *)ctx)->slot[task] += (uint64_t)task + 1;
+}
+
+START_TEST(pool_runs_every_task_once) {
+  /* Many short jobs back to back, of 1 to 64 tasks, on 2 to 4 threads:
+   * a task taken twice, or a late worker taking a task of the next job,
+   * shows as a slot off its sum. */
+  for (int threads = 2; threads <= 4; threads++) {
+    zs_pool *p = zs_pool_create(threads);
+    ck_assert_ptr_nonnull(p);
+    pool_job j;
+    memset(&j, 0, sizeof j);
+    uint64_t runs[64] = {0};
+    for (int round = 0; round < 3000; round++) {
+      int ntasks = 1 + (round * 37) % 64;
+      zs_pool_run(p, pool_task, &j, ntasks);
+      for (int t = 0; t < ntasks; t++) runs[t]++;
+    }
+    for (int t = 0; t < 64; t++)
+      ck_assert_msg(j.slot[t] == runs[t] * (uint64_t)(t + 1), "threads %d task %d: %llu of %llu",
+                    threads, t, (unsigned long long)j.slot[t],
+                    (unsigned long long)(runs[t] * (uint64_t)(t + 1)));
+    zs_pool_destroy(p);
+  }
+  ck_assert_ptr_null(zs_pool_create(1));
+}
+END_TEST
+
 START_TEST(degenerate_faces_draw_nothing) {
   mesh_buf b = {0};
   int32_t v[3] = {mb_vert(&b, 1, 1, 0), mb_vert(&b, 5, 5, 0), mb_vert(&b, 9, 9, 0)};
@@ -770,6 +808,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, degenerate_faces_draw_nothing);
   tcase_add_test(tc, large_draws_set_up_on_threads_give_the_same_bytes);
   tcase_add_test(tc, deferred_small_draws_land_as_drawn_at_once);
+  tcase_add_test(tc, pool_runs_every_task_once);
   tcase_add_test(tc, faces_off_the_window_are_dropped_at_set_up);
   tcase_add_test(tc, back_faces_culled_only_when_asked);
   tcase_add_test(tc, nothing_behind_the_eye);
