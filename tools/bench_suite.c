@@ -1,10 +1,14 @@
 /* `zscan bench suite [--out DIR] [--quick]`: the documented suite, one
  * command, every file in DIR:
  *   raster.csv, .md, .png   bench raster: triangles of 4 to 500 pixels and
- *                           the whole scenes in both modes, beside Mesa's
- *                           llvmpipe when zscan has it (--mesa), with the
- *                           instructions per frame when valgrind is there
- *                           (--callgrind);
+ *                           the whole scenes in both modes, one thread,
+ *                           beside Mesa's llvmpipe on one thread when zscan
+ *                           has it (--mesa), with the instructions per
+ *                           frame when valgrind is there (--callgrind);
+ *   raster-threads.csv, .md, .png, .txt   the same on every thread of the
+ *                           machine, zscan and llvmpipe both (with --mesa
+ *                           and 2 threads or more: a child process, as
+ *                           llvmpipe reads LP_NUM_THREADS when it starts);
  *   tradeoff*.csv, .md, .png  bench tradeoff: run time against error, every
  *                           method and mode on every walk;
  *   depthsort.csv           bench depthsort: the depth-sort paper's Table 1;
@@ -14,7 +18,9 @@
 #include "tools/bench_suite.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "raster/raster.h"
 #include "tools/bench_depthsort.h"
@@ -25,6 +31,7 @@
 #include "tools/cli.h"
 #include "tools/mesa.h"
 #include "tools/outfile.h"
+#include "tools/spawn.h"
 
 static const char usage[] =
     "usage: zscan bench suite [--out DIR] [--quick] [--size WxH]\n"
@@ -43,6 +50,35 @@ static int run(int (*cmd)(int, char **), char **args) {
   printf("\n");
   fflush(stdout);
   return cmd(n, args);
+}
+
+/* bench raster on n threads beside llvmpipe on n, in a child process
+ * (LP_NUM_THREADS=n), its output into path[9] and then here. */
+static int run_all_threads(int n, char path[][4200], const char *size, zs_error *err) {
+  char self[4096], threads[16];
+  ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (len <= 0) return zs_error_set(err, ZS_ERR_IO, "cannot find the zscan executable");
+  self[len] = '\0';
+  snprintf(threads, sizeof threads, "%d", n);
+  char *args[20] = {self, "bench", "raster", "--threads", threads, "--mesa",
+                    "--csv", path[6], "--md", path[7], "--plot", path[8]};
+  int k = 12;
+  if (size) {
+    args[k++] = "--size";
+    args[k++] = (char *)size;
+  }
+  args[k] = NULL;
+  printf("\n$ LP_NUM_THREADS=%s zscan bench raster --threads %s --mesa ...\n", threads, threads);
+  fflush(stdout);
+  setenv("LP_NUM_THREADS", threads, 1);
+  int rc = zs_spawn_wait(args, path[9], path[9]);
+  setenv("LP_NUM_THREADS", "1", 1);
+  FILE *f = fopen(path[9], "r");
+  char line[512];
+  while (f && fgets(line, sizeof line, f)) fputs(line, stdout);
+  if (f) fclose(f);
+  if (rc != 0) return zs_error_set(err, ZS_ERR_IO, "bench raster --threads %s failed (%s)", threads, path[9]);
+  return 0;
 }
 
 int zs_cmd_bench_suite(int argc, char **argv) {
@@ -69,10 +105,12 @@ int zs_cmd_bench_suite(int argc, char **argv) {
     }
   }
   if (zs_out_dir("--out", dir, &err)) goto fail;
-  char path[6][4200];
-  static const char *const names[6] = {"raster.csv", "raster.md", "raster.png",
-                                       "depthsort.csv", "octree.csv", "octree.png"};
-  for (int k = 0; k < 6; k++) snprintf(path[k], sizeof path[k], "%s/%s", dir, names[k]);
+  char path[10][4200];
+  static const char *const names[10] = {
+      "raster.csv",         "raster.md",         "raster.png",         "depthsort.csv",
+      "octree.csv",         "octree.png",        "raster-threads.csv", "raster-threads.md",
+      "raster-threads.png", "raster-threads.txt"};
+  for (int k = 0; k < 10; k++) snprintf(path[k], sizeof path[k], "%s/%s", dir, names[k]);
   zs_error probe;
   zs_error_clear(&probe);
   const int mesa = zs_mesa_available(), callgrind = !quick && zs_callgrind_available(&probe);
@@ -113,11 +151,19 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   }
   char *octree[] = {"octree", "--count", quick ? "500" : "5000", "--frames", quick ? "3" : "50",
                     "--csv", path[4], "--plot", path[5], NULL};
-  if (run(zs_cmd_bench_raster, raster) || run(zs_cmd_bench_tradeoff, tradeoff) ||
-      run(zs_cmd_bench_depthsort, depthsort) || run(zs_cmd_bench_octree, octree))
-    return 1; /* the benchmark said why */
-  printf("\nwrote %s: raster, tradeoff (per walk), depthsort and octree files%s%s\n", dir,
+  /* llvmpipe on one thread beside zscan's one */
+  if (mesa && !quick) setenv("LP_NUM_THREADS", "1", 1);
+  if (run(zs_cmd_bench_raster, raster)) return 1; /* the benchmark said why */
+  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+  if (ncpu > 64) ncpu = 64;
+  const int all_threads = mesa && !quick && ncpu >= 2;
+  if (all_threads && run_all_threads((int)ncpu, path, size, &err)) goto fail;
+  if (run(zs_cmd_bench_tradeoff, tradeoff) || run(zs_cmd_bench_depthsort, depthsort) ||
+      run(zs_cmd_bench_octree, octree))
+    return 1;
+  printf("\nwrote %s: raster, tradeoff (per walk), depthsort and octree files%s%s%s\n", dir,
          mesa && !quick ? "; llvmpipe beside zscan" : "",
+         all_threads ? ", on one thread and on all" : "",
          callgrind ? "; instructions per frame under callgrind" : "");
   return 0;
 fail:
