@@ -29,9 +29,10 @@
 #include "raster/grow.h"
 #include "raster/internal.h"
 
-static int32_t floordiv256(int64_t v) {
-  return (int32_t)(v >= 0 ? v / 256 : -((-v + 255) / 256));
-}
+/* floor(v / 256): an arithmetic shift, which gcc and clang give signed
+ * values (C leaves it to the implementation; tests/test_raster.c checks
+ * it on negative coordinates). */
+static int32_t floordiv256(int64_t v) { return (int32_t)(v >> 8); }
 
 /* First and last pixel row whose centre yc satisfies ytop < yc <= ybot. */
 static int32_t first_row(int32_t ytop) { return floordiv256((int64_t)ytop - 128) + 1; }
@@ -264,7 +265,7 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
    * conditioned choice, and the same for every piece of the face. */
   int best = 1;
   int64_t best_area = 0;
-  for (int k = 1; k + 1 < m; k++) {
+  for (int k = 1; k + 1 < m && m > 3; k++) { /* (a triangle has one) */
     int64_t a = llabs(cross3(X, Y, 0, k, k + 1));
     if (a > best_area) {
       best_area = a;
