@@ -77,8 +77,6 @@ void zs_device_defer_draws(zs_device *d, int on) {
   d->deferred->on = on != 0;
 }
 
-zs_status zs_device_flush(zs_device *d, zs_error *err) { return zs_defer_flush(d, err); }
-
 int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k) {
   return d->deferred && d->deferred->on && d->pool && d->cfg.algo == ZS_ALGO_ZBUFFER &&
          (k == ZS_KERNEL_DRAW || k == ZS_KERNEL_OVERDRAW) && !d->query_open &&
@@ -86,7 +84,7 @@ int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k) {
 }
 
 zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
-                        uint32_t id_base, uint32_t rgb, zs_error *err) {
+                        uint32_t id_base, uint32_t rgb, zs_kernel k, zs_error *err) {
   zs_deferred *q = d->deferred;
   if (mesh->nverts < 0 || mesh->nfaces < 0)
     return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
@@ -99,7 +97,7 @@ zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16
   queued_draw *e = &q->q[q->n++];
   memset(e, 0, sizeof *e);
   e->mesh = mesh;
-  zs_draw_prepare(d, model, ZS_KERNEL_DRAW, &e->prep);
+  zs_draw_prepare(d, model, k, &e->prep);
   e->id_base = id_base;
   e->rgb = rgb;
   e->cpu_ps = d->clock.cpu_ps;
@@ -113,7 +111,7 @@ typedef struct flush_job {
   zs_deferred *q;
   zs_kernel k;
   zs_target t;
-  int32_t d0, d1;          /* draws d0 .. d1 - 1 */
+  int32_t ndraw;           /* draws 0 .. ndraw - 1: those before the first failed */
   int nbands, row0, rows;
   int ok[MAX_BANDS];
 } flush_job;
@@ -121,7 +119,6 @@ typedef struct flush_job {
 static void setup_chunk(void *ctx, int c) {
   flush_job *j = ctx;
   zs_deferred *q = j->q;
-  const int h = j->d->cfg.height;
   /* a local copy of the chunk's batch and counters: the chunks' records
    * sit side by side, and a counter written per face beside another
    * thread's would bounce the cache line between the cores */
@@ -145,16 +142,10 @@ static void setup_chunk(void *ctx, int c) {
                        &err);
     e->fc = fc;
     if (st != ZS_OK) break;
-    int32_t row0 = h, row1 = -1;
-    for (int32_t p = poly0; p < b.npolys; p++) {
-      if (b.polys[p].row0 < row0) row0 = b.polys[p].row0;
-      if (b.polys[p].row1 > row1) row1 = b.polys[p].row1;
-    }
     e->chunk = c;
     e->poly0 = poly0;
     e->npolys = b.npolys - poly0;
-    e->row0 = row0 < 0 ? 0 : row0;
-    e->row1 = row1 > h - 1 ? h - 1 : row1;
+    zs_batch_rows(&b, poly0, e->npolys, j->d->cfg.height, &e->row0, &e->row1);
     e->set_up = 1;
   }
   q->batch[c] = b;
@@ -163,19 +154,19 @@ static void setup_chunk(void *ctx, int c) {
   q->err[c] = err;
 }
 
-/* Cuts draws d0 .. d1 - 1 into nchunks runs of about equal weight (faces,
- * plus one per draw for its fixed work). */
-static void cut_chunks(zs_deferred *q, int32_t d0, int32_t d1, int nchunks) {
+/* Cuts the queue into nchunks runs of about equal weight (faces, plus one
+ * per draw for its fixed work). */
+static void cut_chunks(zs_deferred *q, int nchunks) {
   uint64_t total = 0;
-  for (int32_t i = d0; i < d1; i++) total += (uint64_t)q->q[i].mesh->nfaces + 1;
+  for (int32_t i = 0; i < q->n; i++) total += (uint64_t)q->q[i].mesh->nfaces + 1;
   uint64_t acc = 0;
   int c = 0;
-  q->first[0] = d0;
-  for (int32_t i = d0; i < d1 && c < nchunks - 1; i++) {
+  q->first[0] = 0;
+  for (int32_t i = 0; i < q->n && c < nchunks - 1; i++) {
     acc += (uint64_t)q->q[i].mesh->nfaces + 1;
     if (acc * (uint64_t)nchunks >= total * (uint64_t)(c + 1)) q->first[++c] = i + 1;
   }
-  while (c < nchunks) q->first[++c] = d1;
+  while (c < nchunks) q->first[++c] = q->n;
 }
 
 /* ---- 2. the walk, a band of rows per task, every draw in order ---- */
@@ -183,51 +174,52 @@ static void cut_chunks(zs_deferred *q, int32_t d0, int32_t d1, int nchunks) {
 static void walk_band(void *ctx, int band) {
   flush_job *j = ctx;
   zs_deferred *q = j->q;
-  int y0 = j->row0 + (int)((int64_t)j->rows * band / j->nbands);
-  int y1 = j->row0 + (int)((int64_t)j->rows * (band + 1) / j->nbands);
-  zs_walk_counts *counts = &q->counts[(size_t)band * (size_t)(j->d1 - j->d0)];
+  int y0 = j->row0 + (int)zs_part_start(j->rows, band, j->nbands);
+  int y1 = j->row0 + (int)zs_part_start(j->rows, band + 1, j->nbands);
+  zs_walk_counts *counts = &q->counts[(size_t)band * (size_t)j->ndraw];
   int ok = 1;
-  for (int32_t i = j->d0; i < j->d1; i++) {
+  for (int32_t i = 0; i < j->ndraw; i++) {
     const queued_draw *e = &q->q[i];
-    zs_walk_counts *c = &counts[i - j->d0];
-    *c = (zs_walk_counts){0, 0, 0};
+    counts[i] = (zs_walk_counts){0, 0, 0};
     int r0 = e->row0 > y0 ? e->row0 : y0, r1 = e->row1 + 1 < y1 ? e->row1 + 1 : y1;
     if (e->npolys == 0 || r0 >= r1) continue;
     const zs_batch *b = &q->batch[e->chunk];
     /* the draw's polygons: their edges are indexed in the chunk's batch */
     zs_batch view = {b->polys + e->poly0, e->npolys, e->npolys, b->edges, b->nedges,
                      b->nedges};
-    ok &= zs_scan_batch(&view, j->k, &j->t, r0, r1, NULL, NULL, &j->d->band_scratch[band], c);
+    ok &= zs_scan_batch(&view, j->k, &j->t, r0, r1, NULL, NULL, &j->d->band_scratch[band],
+                        &counts[i]);
   }
   j->ok[band] = ok;
 }
 
-/* ---- the flush ---- */
+/* ---- 3. the flush ---- */
 
-static zs_status flush_draws(zs_device *d, flush_job *j, zs_error *err) {
+/* Sets up and walks the queue; returns the status of the first failed
+ * draw (its set-up or, for all of them, memory for the walk). */
+static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   zs_deferred *q = j->q;
   /* sixteen chunks a thread, so that the last one to finish does not keep
    * the others waiting long (four left 2 of 15 ms idle on the plant) */
   int nchunks = 16 * d->cfg.threads < MAX_CHUNKS ? 16 * d->cfg.threads : MAX_CHUNKS;
-  if (nchunks > j->d1 - j->d0) nchunks = j->d1 - j->d0;
-  cut_chunks(q, j->d0, j->d1, nchunks);
+  if (nchunks > q->n) nchunks = q->n;
+  cut_chunks(q, nchunks);
   zs_pool_run(d->pool, setup_chunk, j, nchunks);
 
   /* the first draw not set up ends the walk; its chunk holds the error */
   zs_status st = ZS_OK;
-  int32_t end = j->d1;
-  for (int32_t i = j->d0; i < j->d1; i++)
+  j->ndraw = q->n;
+  for (int32_t i = 0; i < q->n; i++)
     if (!q->q[i].set_up) {
-      end = i;
+      j->ndraw = i;
       int c = 0;
       while (q->first[c + 1] <= i) c++;
       st = zs_error_set(err, q->st[c], "%s", q->err[c].msg);
       break;
     }
-  j->d1 = end;
 
   int lo = d->cfg.height, hi = -1;
-  for (int32_t i = j->d0; i < j->d1; i++)
+  for (int32_t i = 0; i < j->ndraw; i++)
     if (q->q[i].npolys > 0) {
       if (q->q[i].row0 < lo) lo = q->q[i].row0;
       if (q->q[i].row1 > hi) hi = q->q[i].row1;
@@ -236,13 +228,10 @@ static zs_status flush_draws(zs_device *d, flush_job *j, zs_error *err) {
   if (hi >= lo) {
     j->row0 = lo;
     j->rows = hi - lo + 1;
-    /* four bands a thread, taken in turn (the rows do not hold equal
-     * work), at least 16 rows a band */
-    j->nbands = 4 * d->cfg.threads < MAX_BANDS ? 4 * d->cfg.threads : MAX_BANDS;
-    if (j->nbands > j->rows / 16) j->nbands = j->rows / 16;
+    j->nbands = zs_band_count(d->cfg.threads, j->rows);
     if (j->nbands < 1) j->nbands = 1;
-    int64_t need = (int64_t)j->nbands * (j->d1 - j->d0);
-    if (!zs_grow((void **)&q->counts, &q->cap_counts, need, sizeof *q->counts))
+    if (!zs_grow((void **)&q->counts, &q->cap_counts, (int64_t)j->nbands * j->ndraw,
+                 sizeof *q->counts))
       return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
     zs_pool_run(d->pool, walk_band, j, j->nbands);
     for (int b = 0; b < j->nbands; b++)
@@ -250,13 +239,12 @@ static zs_status flush_draws(zs_device *d, flush_job *j, zs_error *err) {
   }
 
   /* settle draw by draw, in the order issued */
-  const int32_t n = j->d1 - j->d0;
-  for (int32_t i = j->d0; i < j->d1; i++) {
+  for (int32_t i = 0; i < j->ndraw; i++) {
     const queued_draw *e = &q->q[i];
     zs_add_face_counts(&d->stats, &e->fc);
     zs_walk_counts c = {0, 0, 0};
     for (int b = 0; b < j->nbands; b++) {
-      const zs_walk_counts *bc = &q->counts[(size_t)b * (size_t)n + (size_t)(i - j->d0)];
+      const zs_walk_counts *bc = &q->counts[(size_t)b * (size_t)j->ndraw + (size_t)i];
       c.spans += bc->spans;
       c.tested += bc->tested;
       c.written += bc->written;
@@ -269,22 +257,20 @@ static zs_status flush_draws(zs_device *d, flush_job *j, zs_error *err) {
     zs_clock_gpu_command_at(d, cost, 0, e->cpu_ps);
   }
   /* the failed draw's set-up counters, as zs_device_draw would have added */
-  if (st != ZS_OK) zs_add_face_counts(&d->stats, &q->q[j->d1].fc);
+  if (st != ZS_OK) zs_add_face_counts(&d->stats, &q->q[j->ndraw].fc);
   return st;
 }
 
-zs_status zs_defer_flush(zs_device *d, zs_error *err) {
+zs_status zs_device_flush(zs_device *d, zs_error *err) {
   zs_deferred *q = d->deferred;
   if (!q || q->n == 0) return ZS_OK;
   flush_job j;
   memset(&j, 0, sizeof j);
   j.d = d;
   j.q = q;
-  j.k = d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
+  j.k = zs_draw_kernel(d);
   j.t = zs_device_frame_target(d);
-  j.d0 = 0;
-  j.d1 = q->n;
-  zs_status st = flush_draws(d, &j, err);
+  zs_status st = flush_queue(d, &j, err);
   q->n = 0;
   for (int c = 0; c < MAX_CHUNKS; c++) zs_batch_reset(&q->batch[c]);
   return st;

@@ -163,8 +163,9 @@ typedef struct clear_job {
 static void clear_part(void *ctx, int part) {
   const clear_job *j = ctx;
   zs_device *d = j->d;
-  size_t w = (size_t)d->cfg.width, h = (size_t)d->cfg.height;
-  size_t y0 = h * (size_t)part / (size_t)j->nparts, y1 = h * (size_t)(part + 1) / (size_t)j->nparts;
+  size_t w = (size_t)d->cfg.width;
+  size_t y0 = (size_t)zs_part_start(d->cfg.height, part, j->nparts);
+  size_t y1 = (size_t)zs_part_start(d->cfg.height, part + 1, j->nparts);
   size_t off = y0 * w, px = (y1 - y0) * w;
   fill_u32(d->depth + off, px, ZS_DEPTH_FAR);
   fill_u32(d->id + off, px, ZS_ID_NONE);
@@ -217,10 +218,6 @@ size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
          (sizeof(zs_clip_vert) + 3 * sizeof(double) + sizeof(unsigned) + sizeof(zs_snap_vert));
 }
 
-static zs_kernel draw_kernel(const zs_device *d) {
-  return d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
-}
-
 zs_target zs_device_frame_target(zs_device *d) {
   zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width};
   return t;
@@ -241,8 +238,8 @@ typedef struct band_job {
 
 static void walk_band(void *ctx, int band) {
   band_job *j = ctx;
-  int y0 = j->row0 + (int)((int64_t)j->rows * band / j->nbands);
-  int y1 = j->row0 + (int)((int64_t)j->rows * (band + 1) / j->nbands);
+  int y0 = j->row0 + (int)zs_part_start(j->rows, band, j->nbands);
+  int y1 = j->row0 + (int)zs_part_start(j->rows, band + 1, j->nbands);
   j->counts[band] = (zs_walk_counts){0, 0, 0};
   j->ok[band] = zs_scan_batch(&j->d->batch, j->k, &j->t, y0, y1, NULL, NULL,
                               &j->d->band_scratch[band], &j->counts[band]);
@@ -254,24 +251,15 @@ static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
   /* below a thousand polygons, waking the threads costs more than it saves
    * (a teapot's 688 faces walked in bands made the teapots 5-7 % slower
    * on two threads than on one) */
-  const int one_walk = !d->pool || d->batch.npolys < 1024;
+  if (!d->pool || d->batch.npolys < 1024)
+    return zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
   /* The rows the batch covers: bands over the whole frame would leave
    * most of them idle for an object that covers a few rows, and each band
    * still reads every polygon. */
-  int32_t lo = d->cfg.height, hi = -1;
-  for (int32_t i = 0; i < d->batch.npolys && !one_walk; i++) {
-    const zs_poly *p = &d->batch.polys[i];
-    if (p->row0 < lo) lo = p->row0;
-    if (p->row1 > hi) hi = p->row1;
-  }
-  if (lo < 0) lo = 0;
-  if (hi > d->cfg.height - 1) hi = d->cfg.height - 1;
-  int rows = hi - lo + 1;
-  /* four bands a thread, taken in turn: the rows of a picture do not hold
-   * equal work (the objects sit where they sit); at least 16 rows a band */
-  int nbands = 4 * d->cfg.threads < 64 ? 4 * d->cfg.threads : 64;
-  if (nbands > rows / 16) nbands = rows / 16;
-  if (one_walk || nbands < 2)
+  int32_t lo, hi;
+  zs_batch_rows(&d->batch, 0, d->batch.npolys, d->cfg.height, &lo, &hi);
+  int rows = hi - lo + 1, nbands = zs_band_count(d->cfg.threads, rows);
+  if (nbands < 2)
     return zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
   band_job j;
   j.d = d;
@@ -438,8 +426,8 @@ typedef struct setup_job {
 static void transform_part(void *ctx, int part) {
   setup_job *j = ctx;
   int64_t n = j->mesh->nverts;
-  zs_draw_transform(j->d, j->prep, j->mesh, &j->d->verts, (int32_t)(n * part / j->nparts),
-                    (int32_t)(n * (part + 1) / j->nparts));
+  zs_draw_transform(j->d, j->prep, j->mesh, &j->d->verts, (int32_t)zs_part_start(n, part, j->nparts),
+                    (int32_t)zs_part_start(n, part + 1, j->nparts));
 }
 
 static void setup_part(void *ctx, int part) {
@@ -448,8 +436,8 @@ static void setup_part(void *ctx, int part) {
   j->fc[part] = (zs_face_counts){0, 0, 0, 0, 0, 0, 0};
   zs_error_clear(&j->err[part]);
   j->st[part] = zs_draw_setup(j->d, j->prep, &j->d->verts, j->mesh,
-                              (int32_t)(n * part / j->nparts),
-                              (int32_t)(n * (part + 1) / j->nparts), j->id_base, j->rgb, NULL,
+                              (int32_t)zs_part_start(n, part, j->nparts),
+                              (int32_t)zs_part_start(n, part + 1, j->nparts), j->id_base, j->rgb, NULL,
                               j->batch[part], &j->fc[part], &j->err[part]);
 }
 
@@ -518,11 +506,11 @@ zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
 zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh,
                          const double model[16], uint32_t id_base, uint32_t rgb,
                          zs_error *err) {
-  zs_kernel k = draw_kernel(d);
-  if (zs_defer_wanted(d, mesh, k)) return zs_defer_push(d, mesh, model, id_base, rgb, err);
+  zs_kernel k = zs_draw_kernel(d);
+  if (zs_defer_wanted(d, mesh, k)) return zs_defer_push(d, mesh, model, id_base, rgb, k, err);
   /* a draw set up in parallel on its own, or one that cannot wait: the
    * queue goes first, so that the draws land in the order issued */
-  zs_status st = zs_defer_flush(d, err);
+  zs_status st = zs_device_flush(d, err);
   if (st != ZS_OK) return st;
   uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
@@ -586,7 +574,7 @@ static void scanline_end_row(void *user, int y) {
 zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
                            zs_error *err) {
   const int w = d->cfg.width, h = d->cfg.height;
-  zs_status st = zs_defer_flush(d, err);
+  zs_status st = zs_device_flush(d, err);
   if (st != ZS_OK) return st;
   if (d->cfg.algo != ZS_ALGO_ZBUFFER) {
     if (d->cfg.algo == ZS_ALGO_DEPTHSORT && !zs_depthsort_order(&d->depthsort, &d->batch, d->view))
@@ -595,7 +583,7 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
     zs_row_hooks hooks = {scanline_begin_row, scanline_end_row, &e};
     zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w};
     zs_walk_counts c = {0, 0, 0};
-    if (!zs_scan_batch(&d->batch, draw_kernel(d), &t, 0, h, &hooks, d->trace, &d->scratch, &c))
+    if (!zs_scan_batch(&d->batch, zs_draw_kernel(d), &t, 0, h, &hooks, d->trace, &d->scratch, &c))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
     add_counts(d, &c);
     zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);

@@ -130,6 +130,10 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *p,
                                  const zs_snap_vert *v, int n);
 
 void zs_batch_reset(zs_batch *b);
+/* The rows polygons first .. first + count - 1 of b cover, within rows
+ * 0 .. height - 1 (*lo > *hi when none). */
+void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, int32_t *lo,
+                   int32_t *hi);
 /* Appends src's polygons and edges to dst, in order (0: out of memory). */
 int zs_batch_append(zs_batch *dst, const zs_batch *src);
 void zs_batch_free(zs_batch *b);
@@ -361,6 +365,18 @@ void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc);
  * ZS_DEFER_MAX_FACES are queued (the queue is shared out by faces, so a
  * draw of a few thousand faces balances with the rest). */
 enum { ZS_PARALLEL_SETUP_FACES = 4096, ZS_DEFER_MAX_FACES = 65536 };
+/* The bands a walk of `rows` rows takes on `threads` threads: four a
+ * thread, taken in turn (the rows of a picture do not hold equal work: the
+ * objects sit where they sit), at least 16 rows a band, at most 64 bands;
+ * 0 or 1 means one walk. */
+static inline int zs_band_count(int threads, int rows) {
+  int n = 4 * threads < 64 ? 4 * threads : 64;
+  return n < rows / 16 ? n : rows / 16;
+}
+/* The kernel a draw uses in the device's shading mode. */
+static inline zs_kernel zs_draw_kernel(const zs_device *d) {
+  return d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
+}
 /* The full-frame buffers of zbuffer mode as a walk's target. */
 zs_target zs_device_frame_target(zs_device *d);
 
@@ -370,8 +386,7 @@ zs_target zs_device_frame_target(zs_device *d);
  * draw in issue order, so everything is what immediate drawing gives. */
 int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k);
 zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
-                        uint32_t id_base, uint32_t rgb, zs_error *err);
-zs_status zs_defer_flush(zs_device *d, zs_error *err);
+                        uint32_t id_base, uint32_t rgb, zs_kernel k, zs_error *err);
 void zs_defer_discard(zs_device *d);
 void zs_defer_free(zs_device *d);
 size_t zs_defer_bytes(const zs_device *d);

@@ -79,7 +79,7 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
                                uint32_t rgb, zs_error *err) {
   if (d->cfg.algo != ZS_ALGO_ZBUFFER)
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "hidden-line output needs the z-buffer mode");
-  zs_status st = zs_defer_flush(d, err); /* the edges test the faces' depths */
+  zs_status st = zs_device_flush(d, err); /* the edges test the faces' depths */
   if (st != ZS_OK) return st;
   double mv[16], mvp[16];
   if (model) zs_mat_mul(mv, d->view, model);

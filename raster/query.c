@@ -12,7 +12,7 @@ zs_status zs_device_query_begin(zs_device *d, zs_query *q, zs_error *err) {
   if (d->cfg.algo != ZS_ALGO_ZBUFFER)
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "occlusion queries need --algo zbuffer");
   if (d->query_open) return zs_error_set(err, ZS_ERR_ARG, "query_begin: a query is already open");
-  zs_status st = zs_defer_flush(d, err); /* the query counts what is drawn before it */
+  zs_status st = zs_device_flush(d, err); /* the query counts what is drawn before it */
   if (st != ZS_OK) return st;
   if (d->nqueries == d->cap_queries) {
     uint32_t cap = d->cap_queries ? 2 * d->cap_queries : 256;

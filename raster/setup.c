@@ -54,6 +54,17 @@ static int reserve(zs_batch *b, int polys, int edges) {
          zs_grow((void **)&b->edges, &b->cap_edges, (int64_t)b->nedges + edges, sizeof *b->edges);
 }
 
+void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, int32_t *lo,
+                   int32_t *hi) {
+  int32_t l = height, h = -1;
+  for (int32_t i = first; i < first + count; i++) {
+    if (b->polys[i].row0 < l) l = b->polys[i].row0;
+    if (b->polys[i].row1 > h) h = b->polys[i].row1;
+  }
+  *lo = l < 0 ? 0 : l;
+  *hi = h > height - 1 ? height - 1 : h;
+}
+
 int zs_batch_append(zs_batch *dst, const zs_batch *src) {
   if (!reserve(dst, src->npolys, src->nedges)) return 0;
   for (int32_t i = 0; i < src->npolys; i++) {

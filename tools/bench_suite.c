@@ -56,9 +56,8 @@ static int run(int (*cmd)(int, char **), char **args) {
  * (LP_NUM_THREADS=n), its output into path[9] and then here. */
 static int run_all_threads(int n, char path[][4200], const char *size, zs_error *err) {
   char self[4096], threads[16];
-  ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (len <= 0) return zs_error_set(err, ZS_ERR_IO, "cannot find the zscan executable");
-  self[len] = '\0';
+  if (!zs_self_path(self, sizeof self))
+    return zs_error_set(err, ZS_ERR_IO, "cannot find this program's path");
   snprintf(threads, sizeof threads, "%d", n);
   char *args[20] = {self, "bench", "raster", "--threads", threads, "--mesa",
                     "--csv", path[6], "--md", path[7], "--plot", path[8]};
@@ -73,10 +72,8 @@ static int run_all_threads(int n, char path[][4200], const char *size, zs_error 
   setenv("LP_NUM_THREADS", threads, 1);
   int rc = zs_spawn_wait(args, path[9], path[9]);
   setenv("LP_NUM_THREADS", "1", 1);
-  FILE *f = fopen(path[9], "r");
-  char line[512];
-  while (f && fgets(line, sizeof line, f)) fputs(line, stdout);
-  if (f) fclose(f);
+  zs_error_clear(err);
+  zs_append_file(stdout, path[9], err); /* what it printed, here too */
   if (rc != 0) return zs_error_set(err, ZS_ERR_IO, "bench raster --threads %s failed (%s)", threads, path[9]);
   return 0;
 }

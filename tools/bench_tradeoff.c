@@ -10,7 +10,6 @@
  * frame: a look in seconds, not the figures of the README. */
 #include "tools/bench_tradeoff.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,17 +43,6 @@ static const walk_case quick[] = {
     {"plant", "builtin:plant?detail=0.25", "80"},
 };
 enum { NWALKS = sizeof full / sizeof full[0] };
-
-/* Appends the file at path to f. */
-static zs_status append_file(FILE *f, const char *path, zs_error *err) {
-  FILE *in = fopen(path, "r");
-  if (!in) return zs_error_set(err, ZS_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, in)) > 0) fwrite(buf, 1, n, f);
-  fclose(in);
-  return ZS_OK;
-}
 
 int zs_cmd_bench_tradeoff(int argc, char **argv) {
   if (zs_cli_help_asked(argc, argv)) {
@@ -121,7 +109,7 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
     fprintf(f, "%s### %s\n\n```\n$ zscan walk \"%s\" --cull %s --algos %s --step %s%s%s\n```\n\n",
             k ? "\n" : "", walks[k].name, walks[k].scene, methods, modes, walks[k].step,
             size ? " --size " : "", size ? size : "");
-    if (append_file(f, path[k][1], &err)) {
+    if (zs_append_file(f, path[k][1], &err)) {
       zs_out_discard(f, tmp);
       goto fail;
     }

@@ -24,9 +24,8 @@ zs_status zs_callgrind_count(const char *const *args, uint64_t *instructions, zs
   *instructions = 0;
   if (!zs_callgrind_available(err)) return err->code;
   char self[4096];
-  ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-  if (n <= 0) return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot find this program's path");
-  self[n] = '\0';
+  if (!zs_self_path(self, sizeof self))
+    return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot find this program's path");
   const char *tmpdir = getenv("TMPDIR");
   char log[4200];
   snprintf(log, sizeof log, "%s/zscan-callgrind-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");

@@ -66,3 +66,13 @@ zs_status zs_out_dir(const char *opt, const char *dir, zs_error *err) {
     return zs_error_set(err, ZS_ERR_IO, "%s %s: cannot create: %s", opt, dir, strerror(errno));
   return ZS_OK;
 }
+
+zs_status zs_append_file(FILE *f, const char *path, zs_error *err) {
+  FILE *in = fopen(path, "r");
+  if (!in) return zs_error_set(err, ZS_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, in)) > 0) fwrite(buf, 1, n, f);
+  fclose(in);
+  return ZS_OK;
+}

@@ -20,6 +20,9 @@ zs_status zs_out_commit(FILE *f, char *tmp, const char *path, zs_error *err);
 /* Closes f, removes tmp and frees it: nothing is written (after an error). */
 void zs_out_discard(FILE *f, char *tmp);
 
+/* Appends the file at path to f. */
+zs_status zs_append_file(FILE *f, const char *path, zs_error *err);
+
 /* The directory given to option opt, created when missing (one level). */
 zs_status zs_out_dir(const char *opt, const char *dir, zs_error *err);
 

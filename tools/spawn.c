@@ -39,3 +39,10 @@ int zs_spawn_wait(char *const argv[], const char *out_path, const char *err_path
   if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
   return WEXITSTATUS(status);
 }
+
+int zs_self_path(char *buf, size_t cap) {
+  ssize_t n = readlink("/proc/self/exe", buf, cap - 1);
+  if (n <= 0) return 0;
+  buf[n] = '\0';
+  return 1;
+}
