@@ -4,10 +4,12 @@
 
 #include "raster/internal.h"
 
-void zs_device_fill_color(zs_device *d, uint32_t rgb) {
-  if (!d->rgb) return;
+zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {
+  zs_status st = zs_device_flush(d, err); /* queued faces paint before the fill */
+  if (st != ZS_OK || !d->rgb) return st;
   size_t n = (size_t)d->cfg.width * (size_t)d->cfg.height;
   for (size_t i = 0; i < n; i++) d->rgb[i] = rgb;
+  return ZS_OK;
 }
 
 /* Window position of a clip-space point: x, y in pixels (image y down),

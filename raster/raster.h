@@ -187,8 +187,8 @@ const zs_raster_stats *zs_device_stats(const zs_device *dev);
  * in parallel and walked in bands of rows with the draws in issue order.
  * The image, the counters and the modelled clock come out the same as
  * drawing at once, but they lag the queue: they hold after a flush, which
- * zs_device_flush, zs_device_finish, a query, hidden-line edges or a large
- * draw make.  Meshes must stay valid until then; a draw's error is
+ * zs_device_flush, zs_device_finish, a query, zs_device_fill_color,
+ * hidden-line edges or a large draw make.  Meshes must stay valid until then; a draw's error is
  * reported by the flush.  Off by default; no effect on one thread. */
 void zs_device_defer_draws(zs_device *dev, int on);
 zs_status zs_device_flush(zs_device *dev, zs_error *err);
@@ -328,7 +328,7 @@ int64_t zs_device_frame_ps(const zs_device *dev);
  * through the pixel the exact edge crosses at that column's (row's)
  * centre. */
 enum { ZS_EDGE_DEPTH_UNITS = 1024 };
-void zs_device_fill_color(zs_device *dev, uint32_t rgb);
+zs_status zs_device_fill_color(zs_device *dev, uint32_t rgb, zs_error *err);
 /* The twelve edges of the world box lo..hi in colour rgb, over everything
  * (no depth test): for pictures of bounding volumes. */
 zs_status zs_device_draw_box_lines(zs_device *dev, const double lo[3], const double hi[3],

@@ -27,7 +27,7 @@ static int ink(const zs_mesh *m) {
   zs_device_set_camera(d, view, proj);
   zs_device_clear(d);
   ck_assert_int_eq(zs_device_draw(d, m, NULL, 0, ZS_RGB_MESH, &err), ZS_OK);
-  zs_device_fill_color(d, 0xFFFFFF);
+  ck_assert_int_eq(zs_device_fill_color(d, 0xFFFFFF, &err), ZS_OK);
   ck_assert_int_eq(zs_device_draw_edges(d, m, NULL, 0x000000, &err), ZS_OK);
   ck_assert_int_eq(zs_device_finish(d, keep, NULL, &err), ZS_OK);
   zs_device_destroy(d);

@@ -640,6 +640,17 @@ START_TEST(deferred_small_draws_land_as_drawn_at_once) {
   ck_assert_int_eq(zs_device_flush(d, &err), ZS_OK);
   ck_assert_uint_eq(zs_device_stats(d)->polygons_in, 10 * (uint64_t)m[0].m.nfaces);
   ck_assert_uint_gt(zs_device_stats(d)->pixels_written, 0);
+  /* a fill of the colour buffer (hidden-line paper) lands after the
+   * queued draws, not under them */
+  zs_device_clear(d);
+  for (int i = 0; i < 30; i += 3)
+    ck_assert_int_eq(zs_device_draw(d, &m[i].m, NULL, 0, ZS_RGB_MESH, &err), ZS_OK);
+  ck_assert_int_eq(zs_device_fill_color(d, 0x123456, &err), ZS_OK);
+  ck_assert_uint_gt(zs_device_stats(d)->pixels_written, 0);
+  frame painted = frame_new(160, 120);
+  ck_assert_int_eq(zs_device_finish(d, frame_sink, &painted, &err), ZS_OK);
+  for (int i = 0; i < 160 * 120; i++) ck_assert_uint_eq(painted.rgb[i], 0x123456);
+  frame_free(&painted);
   zs_device_destroy(d);
   for (int i = 0; i <= SMALL_DRAWS; i++) mb_free(&m[i]);
 }

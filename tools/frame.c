@@ -48,7 +48,7 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
   if (zs_frame_draw_scene(dev, scene, err)) return err->code;
   if (hidden_line) {
     /* the faces stay in the depth buffer; the picture is their edges */
-    zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER);
+    if (zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err)) return err->code;
     for (int32_t i = 0; i < scene->ninst; i++) {
       const zs_instance *in = &scene->inst[i];
       if (zs_device_draw_edges(dev, &scene->meshes[in->mesh].mesh, in->model, ZS_HIDDEN_LINE_INK,
