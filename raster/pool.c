@@ -118,7 +118,10 @@ void zs_pool_destroy(zs_pool *p) {
 
 void zs_pool_run(zs_pool *p, void (*fn)(void *ctx, int task), void *ctx, int ntasks) {
   if (ntasks < 1) return;
-  if (ntasks > 0xFFFF) ntasks = 0xFFFF; /* callers run at most 64 */
+  /* the job word holds 16 bits of tasks (callers run at most 64): any
+   * beyond run here first, so that none is dropped */
+  for (int t = 0xFFFF; t < ntasks; t++) fn(ctx, t);
+  if (ntasks > 0xFFFF) ntasks = 0xFFFF;
   /* The previous job is finished, so no worker reads fn or ctx now. */
   p->fn = fn;
   p->ctx = ctx;
