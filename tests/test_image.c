@@ -1,5 +1,6 @@
-/* Tests of tools/image.c (PNG and PFM files, the image hash) and
- * tools/diff.c (zs_image_diff and `zscan diff`).  Every file is written
+/* Tests of tools/image.c (PNG and PFM files, the image hash),
+ * tools/diff.c (zs_image_diff and `zscan diff`) and tools/crosscheck.c
+ * (face ids against another renderer's).  Every file is written
  * below the build directory, in test_image_out/. */
 #include "tests/testutil.h"
 
@@ -15,8 +16,11 @@
 #include <unistd.h>
 
 #include "raster/rng.h"
+#include "tools/crosscheck.h"
 #include "tools/diff.h"
+#include "tools/frame.h"
 #include "tools/image.h"
+#include "tools/input.h"
 
 /* ---- Helpers ---- */
 
@@ -781,6 +785,75 @@ START_TEST(cmd_diff_lists_face_ids) {
 }
 END_TEST
 
+/* ---- tools/crosscheck.c: coverage told apart from depth ties ---- */
+
+/* Face 0 and face 1 are the same square (a tie everywhere); face 2 a
+ * square beside it; face 3 a larger square well behind both. */
+static const char crosscheck_obj[] =
+    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+    "v 1.5 -0.5 0\nv 2.5 -0.5 0\nv 2.5 0.5 0\nv 1.5 0.5 0\n"
+    "v -1.5 -1.5 -2\nv 1.5 -1.5 -2\nv 1.5 1.5 -2\nv -1.5 1.5 -2\n"
+    "f 1 2 3 4\nf 1 2 3 4\nf 5 6 7 8\nf 9 10 11 12\n";
+
+START_TEST(crosscheck_tells_ties_from_coverage) {
+  enum { W = 96, H = 64 };
+  char path[PATH_MAX_LEN], list_path[PATH_MAX_LEN];
+  spit(out_file(path, "crosscheck.obj"), crosscheck_obj, sizeof crosscheck_obj - 1);
+  zs_scene s;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_msg(zs_input_load_scene(path, &s, &err) == ZS_OK, "%s", err.msg);
+  double view[16], proj[16];
+  ck_assert_int_eq(zs_frame_camera(&s, &s.camera, W, H, view, proj, &err), ZS_OK);
+  zs_frame_opts o = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_image im;
+  ck_assert_int_eq(zs_frame_render(&s, &s.camera, &o, &im, NULL, NULL, &err), ZS_OK);
+  /* zscan's own faces: nothing differs */
+  zs_crosscheck x;
+  ck_assert_int_eq(zs_crosscheck_faces(&s, view, proj, W, H, im.rgb, NULL, &x, &err), ZS_OK);
+  ck_assert_uint_eq(x.pixels, W * H);
+  ck_assert_uint_eq(x.differ, 0);
+  ck_assert_uint_eq(x.ties, 0);
+  /* pixels where zscan shows face 0 (the lower id wins the tie with 1) */
+  int shown0[W * H], n0 = 0, covered = 0;
+  for (int i = 0; i < W * H; i++) {
+    if (im.rgb[i] == 1) shown0[n0++] = i;
+    covered += im.rgb[i] != 0;
+    ck_assert_uint_ne(im.rgb[i], 2); /* face 1 never shows */
+  }
+  ck_assert_int_gt(n0, 100);
+  ck_assert_uint_eq(x.covered, (uint64_t)covered);
+  /* the other renderer's answers at four of them: face 1 (the same plane:
+   * a tie), face 2 (does not cover it), face 3 (covers it, far behind),
+   * the background */
+  int at[4] = {shown0[n0 / 5], shown0[2 * n0 / 5], shown0[3 * n0 / 5], shown0[4 * n0 / 5]};
+  im.rgb[at[0]] = 2, im.rgb[at[1]] = 3, im.rgb[at[2]] = 4, im.rgb[at[3]] = 0;
+  FILE *list = fopen(out_file(list_path, "crosscheck.txt"), "w");
+  ck_assert_ptr_nonnull(list);
+  ck_assert_int_eq(zs_crosscheck_faces(&s, view, proj, W, H, im.rgb, list, &x, &err), ZS_OK);
+  ck_assert_int_eq(fclose(list), 0);
+  ck_assert_uint_eq(x.differ, 4);
+  ck_assert_uint_eq(x.ties, 1);
+  size_t size;
+  char *text = (char *)slurp(list_path, &size);
+  text = realloc(text, size + 1);
+  text[size] = 0;
+  char want[4][128];
+  const char *what[4] = {"1, tie (depth +0)", "2, coverage", "3, coverage", "none, coverage"};
+  for (int k = 0; k < 4; k++) {
+    snprintf(want[k], sizeof want[k], "  pixel %d,%d: zscan face 0, other face %s\n", at[k] % W,
+             at[k] / W, what[k]);
+    ck_assert_msg(strstr(text, want[k]), "missing \"%s\" in:\n%s", want[k], text);
+  }
+  int lines = 0;
+  for (const char *c = text; *c; c++) lines += *c == '\n';
+  ck_assert_int_eq(lines, 4);
+  free(text);
+  zs_image_free(&im);
+  zs_scene_free(&s);
+}
+END_TEST
+
 static Suite *suite(void) {
   Suite *s = suite_create("image");
   TCase *png = tcase_create("png");
@@ -806,6 +879,7 @@ static Suite *suite(void) {
   tcase_add_test(other, image_diff_counts_and_max);
   tcase_add_test(other, cmd_diff_exit_status_and_report);
   tcase_add_test(other, cmd_diff_lists_face_ids);
+  tcase_add_test(other, crosscheck_tells_ties_from_coverage);
   suite_add_tcase(s, other);
   return s;
 }

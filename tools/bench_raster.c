@@ -23,6 +23,7 @@
 #include "scene/scene.h"
 #include "tools/callgrind.h"
 #include "tools/cli.h"
+#include "tools/crosscheck.h"
 #include "tools/frame.h"
 #include "tools/input.h"
 #include "tools/mesa.h"
@@ -173,7 +174,7 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, int w, int h, con
 typedef struct mesa_row {
   const char *name;
   double zscan_ms, mesa_ms;
-  uint64_t differ, covered; /* pixels whose face differs; pixels zscan covers */
+  zs_crosscheck faces; /* zscan's faces against llvmpipe's (crosscheck.h) */
 } mesa_row;
 
 static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char *name,
@@ -182,13 +183,12 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
   double view[16], proj[16], *mms = malloc((size_t)o->repeat * sizeof *mms);
   uint32_t *ids = malloc((size_t)w * h * sizeof *ids);
   zs_mesa *mesa = NULL;
-  zs_device *dev = NULL, *idev = NULL;
+  zs_device *dev = NULL;
   zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0};
-  zs_device_config icfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
   zs_status st = !mms || !ids ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
   if (!st && !(st = zs_frame_camera(s, &s->camera, w, h, view, proj, err)) &&
-      !(st = zs_mesa_create(w, h, &mesa, err)) && !(st = zs_device_create(&cfg, &dev, err)))
-    st = zs_device_create(&icfg, &idev, err);
+      !(st = zs_mesa_create(w, h, &mesa, err)))
+    st = zs_device_create(&cfg, &dev, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
     double t0 = zs_wall_ms();
     zs_device_clear(dev);
@@ -200,28 +200,16 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
     ms[k] = t1 - t0;
     mms[k] = zs_wall_ms() - t1;
   }
-  /* the faces each shows: zscan's id shading is the face id + 1, as Mesa's colours */
+  /* the faces each shows, told apart into coverage and depth ties */
+  if (!st && !(st = zs_mesa_ids(mesa, s, view, proj, ids, err)))
+    st = zs_crosscheck_faces(s, view, proj, w, h, ids, NULL, &r->faces, err);
   if (!st) {
-    zs_device_clear(idev);
-    zs_device_set_camera(idev, view, proj);
-    if (!(st = zs_frame_draw_scene(idev, s, err)) && !(st = zs_device_finish(idev, NULL, NULL, err)))
-      st = zs_mesa_ids(mesa, s, view, proj, ids, err);
-  }
-  if (!st) {
-    const uint32_t *zid = zs_device_id_buffer(idev);
     r->name = name;
-    r->differ = r->covered = 0;
-    for (size_t i = 0; i < (size_t)w * h; i++) {
-      uint32_t z = zid[i] == ZS_ID_NONE ? 0 : zid[i] + 1;
-      r->differ += z != ids[i];
-      r->covered += z != 0;
-    }
     r->zscan_ms = zs_median(ms, o->repeat);
     r->mesa_ms = zs_median(mms, o->repeat);
   }
   zs_mesa_destroy(mesa);
   zs_device_destroy(dev);
-  zs_device_destroy(idev);
   free(mms);
   free(ids);
   return st;
@@ -229,23 +217,27 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
 
 static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_opts *o, int md) {
   if (md) {
-    fprintf(f, "\n| scene | zscan ms | llvmpipe ms | zscan / llvmpipe | faces differing in 10,000 pixels |\n");
-    fprintf(f, "|---|---|---|---|---|\n");
+    fprintf(f, "\n| scene | zscan ms | llvmpipe ms | zscan / llvmpipe | faces differing in 10,000 "
+               "pixels | of them, depth ties | coverage differing in 10,000 pixels |\n");
+    fprintf(f, "|---|---|---|---|---|---|---|\n");
   } else {
     fprintf(f, "\nzscan (zbuffer, %d thread%s) and llvmpipe, frames in turn, median of %d\n",
             o->threads, o->threads > 1 ? "s" : "", o->repeat);
-    fprintf(f, "%-28s %10s %12s %8s %14s\n", "scene", "zscan_ms", "llvmpipe_ms", "ratio",
-            "differ_per_10k");
+    fprintf(f, "%-28s %10s %12s %8s %14s %12s %16s\n", "scene", "zscan_ms", "llvmpipe_ms", "ratio",
+            "differ_per_10k", "ties_per_10k", "coverage_per_10k");
   }
   for (int i = 0; i < n; i++) {
     const mesa_row *r = &rows[i];
-    double per10k = 1e4 * (double)r->differ / ((double)o->width * o->height);
+    const zs_crosscheck *c = &r->faces;
+    double differ = 1e4 * (double)c->differ / (double)c->pixels;
+    double ties = 1e4 * (double)c->ties / (double)c->pixels;
+    double coverage = 1e4 * (double)(c->differ - c->ties) / (double)c->pixels;
     if (md)
-      fprintf(f, "| `%s` | %.2f | %.2f | %.2f | %.2f |\n", r->name, r->zscan_ms, r->mesa_ms,
-              r->zscan_ms / r->mesa_ms, per10k);
+      fprintf(f, "| `%s` | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", r->name, r->zscan_ms,
+              r->mesa_ms, r->zscan_ms / r->mesa_ms, differ, ties, coverage);
     else
-      fprintf(f, "%-28s %10.3f %12.3f %8.3f %14.2f\n", r->name, r->zscan_ms, r->mesa_ms,
-              r->zscan_ms / r->mesa_ms, per10k);
+      fprintf(f, "%-28s %10.3f %12.3f %8.3f %14.2f %12.2f %16.2f\n", r->name, r->zscan_ms,
+              r->mesa_ms, r->zscan_ms / r->mesa_ms, differ, ties, coverage);
   }
 }
 

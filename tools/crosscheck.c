@@ -1,0 +1,193 @@
+/* zscan's faces against another renderer's (crosscheck.h). */
+#include "tools/crosscheck.h"
+
+#include <stdlib.h>
+
+#include "raster/raster.h"
+#include "tools/frame.h"
+
+/* A differing pixel where both sides show a face: which face the other
+ * renderer shows, and what zscan makes of that face there. */
+typedef struct candidate {
+  uint32_t other;  /* the other renderer's face id */
+  uint32_t pixel;
+  int64_t delta;   /* its zscan depth minus the shown face's; -1: not covered */
+} candidate;
+
+static int by_other_then_pixel(const void *a, const void *b) {
+  const candidate *x = a, *y = b;
+  if (x->other != y->other) return x->other < y->other ? -1 : 1;
+  return (x->pixel > y->pixel) - (x->pixel < y->pixel);
+}
+
+static int by_pixel(const void *a, const void *b) {
+  const candidate *x = a, *y = b;
+  return (x->pixel > y->pixel) - (x->pixel < y->pixel);
+}
+
+static int is_tie(const candidate *c) {
+  return c->delta >= 0 && c->delta <= (int64_t)ZS_CROSSCHECK_TIE_DEPTH;
+}
+
+/* One distinct face id of the candidates and where its faces are. */
+typedef struct wanted {
+  uint32_t id;
+  int32_t inst;          /* -1: no face has this id */
+  int32_t first, count;  /* its faces in the face list */
+} wanted;
+
+static int by_id(const void *key, const void *elem) {
+  uint32_t k = *(const uint32_t *)key, id = ((const wanted *)elem)->id;
+  return (k > id) - (k < id);
+}
+
+static uint32_t face_id_of(const zs_instance *in, const zs_mesh *m, int32_t f) {
+  return in->id_base + (uint32_t)(m->face_id ? m->face_id[f] : f);
+}
+
+static zs_status render_ids(zs_device *dev, const zs_scene *s, const double view[16],
+                            const double proj[16], zs_error *err) {
+  zs_device_clear(dev);
+  zs_device_set_camera(dev, view, proj);
+  zs_status st = zs_frame_draw_scene(dev, s, err);
+  return st ? st : zs_device_finish(dev, NULL, NULL, err);
+}
+
+/* Fills delta for cand[0 .. n-1] (sorted by face): each distinct face is
+ * drawn alone into dev and its depth read at its pixels. */
+static zs_status depths_alone(zs_device *dev, const zs_scene *s, const double view[16],
+                              const double proj[16], const uint32_t *shown_depth,
+                              candidate *cand, size_t n, zs_error *err) {
+  size_t nw = 0;
+  for (size_t i = 0; i < n; i++) nw += i == 0 || cand[i].other != cand[i - 1].other;
+  wanted *want = calloc(nw ? nw : 1, sizeof *want);
+  int32_t *faces = NULL, *fstart = NULL, *fvert = NULL;
+  zs_status st = want ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
+  for (size_t i = 0, k = 0; i < n && !st; i++)
+    if (i == 0 || cand[i].other != cand[i - 1].other) want[k++] = (wanted){cand[i].other, -1, 0, 0};
+  /* the faces of each wanted id: count, then place (faces may share an id) */
+  int32_t nfaces = 0;
+  for (int pass = 0; pass < 2 && !st; pass++) {
+    for (int32_t i = 0; i < s->ninst; i++) {
+      const zs_instance *in = &s->inst[i];
+      const zs_mesh *m = &s->meshes[in->mesh].mesh;
+      for (int32_t f = 0; f < m->nfaces; f++) {
+        uint32_t id = face_id_of(in, m, f);
+        wanted *w = bsearch(&id, want, nw, sizeof *want, by_id);
+        if (!w || (w->inst >= 0 && w->inst != i)) continue;
+        w->inst = i;
+        if (pass == 0) w->count++, nfaces++;
+        else faces[w->first + w->count++] = f;
+      }
+    }
+    if (pass == 0) {
+      faces = malloc((size_t)(nfaces ? nfaces : 1) * sizeof *faces);
+      if (!faces) st = zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
+      for (int32_t k = 0, at = 0; k < (int32_t)nw; k++) {
+        want[k].first = at;
+        at += want[k].count;
+        want[k].count = 0;
+      }
+    }
+  }
+  const uint32_t *id = zs_device_id_buffer(dev), *depth = zs_device_depth_buffer(dev);
+  for (size_t i = 0, k = 0; i < n && !st; k++) {
+    const wanted *w = &want[k];
+    size_t end = i;
+    while (end < n && cand[end].other == w->id) end++;
+    if (w->inst >= 0) {
+      const zs_instance *in = &s->inst[w->inst];
+      const zs_mesh *m = &s->meshes[in->mesh].mesh;
+      int32_t nv = 0;
+      for (int32_t j = 0; j < w->count; j++) {
+        int32_t f = faces[w->first + j];
+        nv += m->face_start[f + 1] - m->face_start[f];
+      }
+      free(fstart), free(fvert);
+      fstart = malloc((size_t)(w->count + 1) * sizeof *fstart);
+      fvert = malloc((size_t)(nv ? nv : 1) * sizeof *fvert);
+      if (!fstart || !fvert) {
+        st = zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
+        break;
+      }
+      fstart[0] = 0;
+      for (int32_t j = 0; j < w->count; j++) {
+        int32_t f = faces[w->first + j], at = fstart[j];
+        for (int32_t v = m->face_start[f]; v < m->face_start[f + 1]; v++) fvert[at++] = m->face_vert[v];
+        fstart[j + 1] = at;
+      }
+      zs_mesh alone = {m->pos, m->nverts, fstart, fvert, w->count, NULL, NULL};
+      zs_device_clear(dev);
+      zs_device_set_camera(dev, view, proj);
+      if ((st = zs_device_draw(dev, &alone, in->model, 0, 0, err)) || (st = zs_device_flush(dev, err)))
+        break;
+    }
+    for (; i < end; i++) {
+      uint32_t p = cand[i].pixel;
+      cand[i].delta = w->inst < 0 || id[p] == ZS_ID_NONE
+                          ? -1
+                          : (int64_t)depth[p] - (int64_t)shown_depth[p];
+    }
+  }
+  free(want), free(faces), free(fstart), free(fvert);
+  return st;
+}
+
+static void print_face(FILE *f, uint32_t id_plus_1) {
+  if (id_plus_1 == 0) fprintf(f, "none");
+  else fprintf(f, "%u", id_plus_1 - 1);
+}
+
+zs_status zs_crosscheck_faces(const zs_scene *s, const double view[16], const double proj[16],
+                              int w, int h, const uint32_t *other, FILE *list,
+                              zs_crosscheck *out, zs_error *err) {
+  *out = (zs_crosscheck){(uint64_t)w * (uint64_t)h, 0, 0, 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_device *dev = NULL, *alone = NULL;
+  candidate *cand = NULL;
+  zs_status st = zs_device_create(&cfg, &dev, err);
+  if (!st) st = zs_device_create(&cfg, &alone, err);
+  if (!st) st = render_ids(dev, s, view, proj, err);
+  const uint32_t *ids = st ? NULL : zs_device_id_buffer(dev);
+  size_t n = 0;
+  if (!st) {
+    for (size_t i = 0; i < out->pixels; i++) {
+      uint32_t z = ids[i] == ZS_ID_NONE ? 0 : ids[i] + 1;
+      out->covered += z != 0;
+      if (z != other[i]) out->differ++, n += z != 0 && other[i] != 0;
+    }
+    if (!(cand = malloc((n ? n : 1) * sizeof *cand)))
+      st = zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
+  }
+  if (!st) {
+    size_t k = 0;
+    for (size_t i = 0; i < out->pixels; i++)
+      if (ids[i] != ZS_ID_NONE && other[i] != 0 && ids[i] + 1 != other[i])
+        cand[k++] = (candidate){other[i] - 1, (uint32_t)i, -1};
+    qsort(cand, n, sizeof *cand, by_other_then_pixel);
+    st = depths_alone(alone, s, view, proj, zs_device_depth_buffer(dev), cand, n, err);
+  }
+  if (!st) {
+    for (size_t i = 0; i < n; i++) out->ties += (uint64_t)is_tie(&cand[i]);
+    if (list) { /* every differing pixel, in pixel order */
+      qsort(cand, n, sizeof *cand, by_pixel);
+      for (size_t i = 0, k = 0; i < out->pixels; i++) {
+        uint32_t z = ids[i] == ZS_ID_NONE ? 0 : ids[i] + 1;
+        if (z == other[i]) continue;
+        fprintf(list, "  pixel %d,%d: zscan face ", (int)(i % (size_t)w), (int)(i / (size_t)w));
+        print_face(list, z);
+        fprintf(list, ", other face ");
+        print_face(list, other[i]);
+        if (k < n && cand[k].pixel == i && is_tie(&cand[k]))
+          fprintf(list, ", tie (depth +%lld)\n", (long long)cand[k].delta);
+        else
+          fprintf(list, ", coverage\n");
+        if (k < n && cand[k].pixel == i) k++;
+      }
+    }
+  }
+  free(cand);
+  zs_device_destroy(dev);
+  zs_device_destroy(alone);
+  return st;
+}
