@@ -184,12 +184,18 @@ typedef struct zs_edge_dda {
   int32_t rows;  /* rows left after the current one (the lecture's dy) */
 } zs_edge_dda;
 
-/* An entry of the active lists: a polygon and its current edge pair. */
+/* An entry of the active lists: a polygon and its current edge pair, with
+ * the polygon's fields the rows read copied in (one place to read per row,
+ * not two). */
 typedef struct zs_active {
-  int32_t poly;
-  int32_t left, left_end, right, right_end; /* current and last edge */
   zs_edge_dda l, r;
   int64_t zl;    /* depth plane at (l.x, y) */
+  int64_t dzdx, dzdy;
+  int64_t zfar;  /* ZS_DEPTH_FAR << zshift: the far plane in the plane's units */
+  uint32_t id, rgb;
+  int32_t row1, zshift;
+  int32_t poly;
+  int32_t left, left_end, right, right_end; /* current and last edge */
 } zs_active;
 
 void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row);

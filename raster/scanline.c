@@ -45,13 +45,13 @@ static inline void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
 
 void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) { dda_start(s, e, row); }
 
+/* The carry without a branch: its pattern follows the edge's slope, which
+ * the branch predictor cannot learn across thousands of small edges. */
 static inline void dda_step(zs_edge_dda *s) {
-  s->x += s->q;
-  s->rem -= s->rs;
-  if (s->rem < 0) {
-    s->rem += s->d;
-    s->x++;
-  }
+  int64_t rem = s->rem - s->rs;
+  int64_t carry = rem < 0;
+  s->rem = rem + (s->d & -carry);
+  s->x += s->q + carry;
   s->rows--;
 }
 
@@ -69,31 +69,46 @@ static inline uint32_t depth_of(int64_t z, int shift, int64_t zfar) {
   return (uint32_t)(z >> shift);
 }
 
+/* One row of the target: where a row's spans land. */
+typedef struct row_ptrs {
+  uint32_t *depth, *id, *rgb, *count;
+} row_ptrs;
+
+static inline row_ptrs row_of(const zs_target *t, int32_t y) {
+  const int64_t off = t->row_stride * y;
+  row_ptrs r = {t->depth ? t->depth + off : NULL, t->id ? t->id + off : NULL,
+                t->rgb ? t->rgb + off : NULL, t->count ? t->count + off : NULL};
+  return r;
+}
+
 /* The span kernels, one loop per kernel, chosen once per batch: the walk
- * below is inlined into a copy per kernel with k a constant. */
-static inline void fill_span(zs_kernel k, const zs_target *t, int64_t off,
-                             int x0, int x1, int64_t z, int64_t dz,
-                             int shift, uint32_t id, uint32_t rgb,
-                             int simd, uint64_t *written) {
+ * below is inlined into a copy per kernel with k a constant.  The span
+ * [x0, x1) of a's polygon, z its depth plane at x0. */
+static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, int64_t z,
+                             const zs_active *a, int simd, uint64_t *written) {
   if (k == ZS_KERNEL_OVERDRAW) {
-    uint32_t *cnt = t->count + off;
+    uint32_t *cnt = row->count;
     for (int x = x0; x < x1; x++) cnt[x]++;
     *written += (uint64_t)(x1 - x0);
     return;
   }
-  const int64_t zfar = (int64_t)ZS_DEPTH_FAR << shift;
+  const int64_t dz = a->dzdx, zfar = a->zfar;
+  const int shift = a->zshift;
   uint64_t w = 0;
   if (k == ZS_KERNEL_QUERY) {
-    const uint32_t *zr = t->depth + off;
+    const uint32_t *zr = row->depth;
     for (int x = x0; x < x1; x++, z += dz) w += depth_of(z, shift, zfar) <= zr[x];
     *written += w;
     return;
   }
-  uint32_t *zr = t->depth + off, *ir = t->id + off, *cr = t->rgb + off;
+  uint32_t *zr = row->depth, *ir = row->id, *cr = row->rgb;
+  const uint32_t id = a->id, rgb = a->rgb;
   /* z is linear along the span: when both ends lie strictly between the
-   * planes, so does every pixel, and depth_of is a shift */
+   * planes (0 < z < zfar, as one unsigned compare), so does every pixel,
+   * and depth_of is a shift */
   const int64_t zlast = z + dz * (x1 - 1 - x0);
-  if (z > 0 && zlast > 0 && z < zfar && zlast < zfar) {
+  const uint64_t inside = (uint64_t)zfar - 1u;
+  if ((uint64_t)z - 1u < inside && (uint64_t)zlast - 1u < inside) {
     if (simd && x1 - x0 >= 16) { /* AVX2 for whole steps of eight, the rest below */
       int xs = zs_fill_span_simd(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
       z += dz * (xs - x0);
@@ -213,19 +228,26 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
   dda_start(&a->l, &edges[a->left], y);
   dda_start(&a->r, &edges[a->right], y);
   a->zl = p->zc + p->dzdx * (a->l.x - p->ox) + p->dzdy * (y - p->oy);
+  a->dzdx = p->dzdx;
+  a->dzdy = p->dzdy;
+  a->id = p->id;
+  a->rgb = p->rgb;
+  a->row1 = p->row1;
+  a->zshift = p->zshift;
+  a->zfar = (int64_t)ZS_DEPTH_FAR << p->zshift;
 }
 
-/* a's span on the row at offset off, clamped to the target, filled with
- * kernel k; [*x0, *x1) is what was filled (empty when *x0 >= *x1). */
-static inline void row_span(zs_kernel k, const zs_target *t, int64_t off, const zs_active *a,
-                            const zs_poly *p, int simd, uint64_t *spans, uint64_t *tested,
+/* a's span on the row, clamped to the target's width, filled with kernel
+ * k; [*x0, *x1) is what was filled (empty when *x0 >= *x1). */
+static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const zs_active *a,
+                            int simd, uint64_t *spans, uint64_t *tested,
                             uint64_t *written, int64_t *x0_out, int64_t *x1_out) {
   int64_t x0 = a->l.x, x1 = a->r.x;
   if (x0 < 0) x0 = 0;
-  if (x1 > t->width) x1 = t->width;
+  if (x1 > width) x1 = width;
   if (x0 < x1) {
-    int64_t z = a->zl + p->dzdx * (x0 - a->l.x);
-    fill_span(k, t, off, (int)x0, (int)x1, z, p->dzdx, p->zshift, p->id, p->rgb, simd, written);
+    int64_t z = a->zl + a->dzdx * (x0 - a->l.x);
+    fill_span(k, row, (int)x0, (int)x1, z, a, simd, written);
     ++*spans;
     *tested += (uint64_t)(x1 - x0);
   }
@@ -235,13 +257,13 @@ static inline void row_span(zs_kernel k, const zs_target *t, int64_t off, const 
 
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; zl follows xl along the plane. */
-static inline void step_down(zs_active *a, const zs_poly *p, const zs_edge *edges, int32_t y) {
+static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
   int64_t old_xl = a->l.x;
   if (a->l.rows > 0) dda_step(&a->l);
   else dda_start(&a->l, &edges[++a->left], y + 1);
   if (a->r.rows > 0) dda_step(&a->r);
   else dda_start(&a->r, &edges[++a->right], y + 1);
-  a->zl += p->dzdx * (a->l.x - old_xl) + p->dzdy;
+  a->zl += a->dzdx * (a->l.x - old_xl) + a->dzdy;
 }
 
 /* The scanline z-buffer of the lecture: row by row, with the active
@@ -249,7 +271,7 @@ static inline void step_down(zs_active *a, const zs_poly *p, const zs_edge *edge
  * polygon at a time in the same order and get the same counters, but that
  * measured slower (25x25 triangles: 125 against 72 ms): rows in order
  * stream through the buffers, a polygon's rows stride across pages. */
-static inline void walk(const zs_batch *b, const zs_kernel k,
+__attribute__((always_inline)) static inline void walk(const zs_batch *b, const zs_kernel k,
                         const zs_target *t, int row_begin, int row_end,
                         const zs_row_hooks *hooks, const zs_trace_observer *obs,
                         zs_walk_scratch *s, zs_walk_counts *counts) {
@@ -272,18 +294,17 @@ static inline void walk(const zs_batch *b, const zs_kernel k,
     for (int32_t i = head[y - row_begin]; i >= 0; i = next[i])
       activate(&act[nact++], i, &polys[i], edges, y);
 
-    const int64_t off = t->row_stride * y;
+    const row_ptrs row = row_of(t, y);
     int32_t kept = 0, ntrace_spans = 0;
     for (int32_t j = 0; j < nact; j++) {
       zs_active *a = &act[j];
-      const zs_poly *p = &polys[a->poly];
-      if (obs) zs_trace_pair_of(a, p, y, &s->trace_pairs[j]);
+      if (obs) zs_trace_pair_of(a, &polys[a->poly], y, &s->trace_pairs[j]);
       int64_t x0, x1;
-      row_span(k, t, off, a, p, simd, &spans, &tested, &written, &x0, &x1);
+      row_span(k, &row, t->width, a, simd, &spans, &tested, &written, &x0, &x1);
       if (obs && x0 < x1)
-        s->trace_spans[ntrace_spans++] = (zs_trace_span){(int32_t)x0, (int32_t)x1 - 1, p->id};
-      if (y == p->row1) continue; /* the polygon ends on this row */
-      step_down(a, p, edges, y);
+        s->trace_spans[ntrace_spans++] = (zs_trace_span){(int32_t)x0, (int32_t)x1 - 1, a->id};
+      if (y == a->row1) continue; /* the polygon ends on this row */
+      step_down(a, edges, y);
       if (kept != j) act[kept] = *a;
       kept++;
     }
@@ -322,16 +343,20 @@ int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
     if (ts) s->trace_spans = ts;
     if (!tp || !ts) return 0;
   }
+  /* a copy of the walk per kernel, and per kernel a copy without hooks
+   * and observer (drawing and querying): their tests fold away there */
+#define ZS_WALK(K)                                                            \
+  do {                                                                        \
+    if (!hooks && !obs)                                                       \
+      walk(b, K, t, row_begin, row_end, NULL, NULL, s, counts);               \
+    else                                                                      \
+      walk(b, K, t, row_begin, row_end, hooks, obs, s, counts);               \
+  } while (0)
   switch (k) {
-    case ZS_KERNEL_DRAW:
-      walk(b, ZS_KERNEL_DRAW, t, row_begin, row_end, hooks, obs, s, counts);
-      break;
-    case ZS_KERNEL_OVERDRAW:
-      walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, hooks, obs, s, counts);
-      break;
-    case ZS_KERNEL_QUERY:
-      walk(b, ZS_KERNEL_QUERY, t, row_begin, row_end, hooks, obs, s, counts);
-      break;
+    case ZS_KERNEL_DRAW: ZS_WALK(ZS_KERNEL_DRAW); break;
+    case ZS_KERNEL_OVERDRAW: ZS_WALK(ZS_KERNEL_OVERDRAW); break;
+    case ZS_KERNEL_QUERY: ZS_WALK(ZS_KERNEL_QUERY); break;
   }
+#undef ZS_WALK
   return 1;
 }
