@@ -13,12 +13,22 @@
 /* A polygon may gain one vertex per clip plane (6 planes). */
 enum { ZS_CLIP_MAX_VERTS = ZS_MAX_POLY_VERTS + 6 };
 
+/* floor(v / 256): an arithmetic shift, which gcc and clang give signed
+ * values (C leaves it to the implementation; tests/test_raster.c checks
+ * it on negative coordinates). */
+static inline int32_t zs_floordiv256(int64_t v) { return (int32_t)(v >> 8); }
+
+/* First and last pixel row whose centre yc satisfies ytop < yc <= ybot. */
+static inline int32_t zs_first_row(int32_t ytop) { return zs_floordiv256((int64_t)ytop - 128) + 1; }
+static inline int32_t zs_last_row(int32_t ybot) { return zs_floordiv256((int64_t)ybot - 128); }
+
 /* One edge of a polygon's left or right chain: snapped end points in
  * subpixels, image coordinates (y down), Y0 < Y1.  It covers the pixel rows
- * whose centre yc has Y0 < yc <= Y1: rows row0 .. row1. */
+ * whose centre yc has Y0 < yc <= Y1: rows zs_first_row(Y0) ..
+ * zs_last_row(Y1), taken from the end points when needed (16 bytes an
+ * edge: a frame's tables are written and read back through the caches). */
 typedef struct zs_edge {
   int32_t X0, Y0, X1, Y1;
-  int32_t row0, row1;
 } zs_edge;
 
 /* One polygon of the sorted polygon table, ready for the scanline walk.

@@ -40,7 +40,7 @@ static inline void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
   s->rem = s->x * s->d - num;
   s->q = floor_div(256 * dx, s->d);
   s->rs = 256 * dx - s->q * s->d;
-  s->rows = e->row1 - row;
+  s->rows = zs_last_row(e->Y1) - row;
 }
 
 void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) { dda_start(s, e, row); }
@@ -59,7 +59,7 @@ static inline void dda_step(zs_edge_dda *s) {
 static int32_t edge_at(const zs_edge *edges, int32_t first, int32_t last,
                        int32_t row) {
   int32_t i = first;
-  while (i < last && edges[i].row1 < row) i++;
+  while (i < last && zs_last_row(edges[i].Y1) < row) i++;
   return i;
 }
 

@@ -29,14 +29,6 @@
 #include "raster/grow.h"
 #include "raster/internal.h"
 
-/* floor(v / 256): an arithmetic shift, which gcc and clang give signed
- * values (C leaves it to the implementation; tests/test_raster.c checks
- * it on negative coordinates). */
-static int32_t floordiv256(int64_t v) { return (int32_t)(v >> 8); }
-
-/* First and last pixel row whose centre yc satisfies ytop < yc <= ybot. */
-static int32_t first_row(int32_t ytop) { return floordiv256((int64_t)ytop - 128) + 1; }
-static int32_t last_row(int32_t ybot) { return floordiv256((int64_t)ybot - 128); }
 
 void zs_batch_reset(zs_batch *b) {
   b->npolys = 0;
@@ -109,8 +101,8 @@ static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
   double A = (dz1 * dy2 - dz2 * dy1) / det * ZS_SUBPIXEL_ONE;
   double B = (dx1 * dz2 - dx2 * dz1) / det * ZS_SUBPIXEL_ONE;
   plane p;
-  p.ox = floordiv256(X[a]);
-  p.oy = floordiv256(Y[a]);
+  p.ox = zs_floordiv256(X[a]);
+  p.oy = zs_floordiv256(Y[a]);
   /* Offsets of the origin pixel's centre from vertex a, in pixels (< 1). */
   double cx = ((double)p.ox * 256 + 128 - X[a]) / 256.0;
   double cy = ((double)p.oy * 256 + 128 - Y[a]) / 256.0;
@@ -146,7 +138,7 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
     if (Y[idx[i]] < Y[idx[top]]) top = i;
     if (Y[idx[i]] > Y[idx[bot]]) bot = i;
   }
-  int32_t row0 = first_row(Y[idx[top]]), row1 = last_row(Y[idx[bot]]);
+  int32_t row0 = zs_first_row(Y[idx[top]]), row1 = zs_last_row(Y[idx[bot]]);
   if (row0 > row1) return 1; /* between two rows of pixel centres */
   if (!reserve(b, 1, n)) return 0;
 
@@ -171,10 +163,8 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
     int step = ((side == 0) == forward_is_left) ? 1 : n - 1;
     for (int i = top, j; i != bot; i = j) {
       j = i + step < n ? i + step : i + step - n; /* (i + step) mod n */
-      zs_edge e = {X[idx[i]], Y[idx[i]], X[idx[j]], Y[idx[j]], 0, 0};
-      e.row0 = first_row(e.Y0);
-      e.row1 = last_row(e.Y1);
-      if (e.row0 > e.row1) continue; /* horizontal, or between rows */
+      zs_edge e = {X[idx[i]], Y[idx[i]], X[idx[j]], Y[idx[j]]};
+      if (zs_first_row(e.Y0) > zs_last_row(e.Y1)) continue; /* horizontal, or between rows */
       b->edges[b->nedges++] = e;
       counts[side]++;
     }
@@ -268,8 +258,8 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
    * two rows of centres always did.  Most faces of the million-triangle
    * teapot field are such specks: they skip the plane, the edges and the
    * walk. */
-  if (first_row(ymin) > last_row(ymax) ||
-      floordiv256((int64_t)xmin - 129) + 1 > floordiv256((int64_t)xmax - 128))
+  if (zs_first_row(ymin) > zs_last_row(ymax) ||
+      zs_floordiv256((int64_t)xmin - 129) + 1 > zs_floordiv256((int64_t)xmax - 128))
     return ZS_SETUP_DRAWN;
 
   /* The plane from the fan triangle (0, k, k+1) of largest area: the best

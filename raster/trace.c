@@ -61,9 +61,10 @@ void zs_trace_tables(const zs_batch *b, const zs_trace_observer *obs) {
     for (int32_t k = 0; k < p->nleft + p->nright; k++) {
       const zs_edge *e = &b->edges[p->edge0 + k];
       zs_edge_dda top;
-      zs_edge_dda_start(&top, e, e->row0);
+      const int32_t row0 = zs_first_row(e->Y0), row1 = zs_last_row(e->Y1);
+      zs_edge_dda_start(&top, e, row0);
       te[p->edge0 + k] = (zs_trace_edge){
-          p->id, k < p->nleft ? 0 : 1, e->row0, e->row1, e->X0, e->Y0, e->X1, e->Y1,
+          p->id, k < p->nleft ? 0 : 1, row0, row1, e->X0, e->Y0, e->X1, e->Y1,
           (double)top.x - (double)top.rem / (double)top.d, edge_dx(e)};
     }
   }
