@@ -7,9 +7,10 @@
  * of its chain replaces it, as the lecture's "find the new edge in the
  * sorted edge table".
  * Active polygon list / active edge list: one zs_active per polygon that
- * meets the current row, holding its edge pair (xl, dxl, dyl, xr, dxr, dyr)
- * and zl, the depth at (xl, y); dzx = dzdx and dzy = dzdy are the
- * polygon's.
+ * meets the current row, holding, as the lecture's active edge table
+ * does, its edge pair (xl, dxl, dyl, xr, dxr, dyr), zl (the depth at
+ * (xl, y)), dzx = dzdx, dzy = dzdy and the id: a row reads the entry
+ * alone.
  *
  * Edges are stepped with an exact integer DDA.  For an edge from (X0, Y0)
  * to (X1, Y1) (subpixels, Y0 < Y1, D = 256 (Y1 - Y0)), the first column
