@@ -148,16 +148,17 @@ void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, 
 int zs_batch_append(zs_batch *dst, const zs_batch *src);
 void zs_batch_free(zs_batch *b);
 
-/* ---- span_simd.c: the draw kernel's span fill with AVX2 ----
+/* ---- span_simd.c: the draw kernel's span fill with SSE2 or AVX2 ----
  * For a span whose depths z .. z + (x1 - x0 - 1) dz all lie strictly
- * inside the depth range: the scalar loop's test and writes, eight pixels
- * at a time, as far as whole steps of eight go; adds the pixels written to
- * *written and returns the column where the scalar loop takes over.
- * zs_span_simd_active: the CPU has AVX2 and zs_raster_set_simd has not
- * turned it off. */
-int zs_span_simd_active(void);
-int zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
-                      int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written);
+ * inside the depth range: the scalar loop's test and writes, eight (AVX2)
+ * or four (SSE2) pixels at a time, as far as whole steps go; adds the
+ * pixels written to *written and returns the column where the scalar loop
+ * takes over (x0 at ZS_SIMD_SCALAR).  zs_span_simd_level: the level the
+ * CPU has, capped by zs_raster_set_simd. */
+zs_simd zs_span_simd_level(void);
+int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1,
+                      int64_t z, int64_t dz, int shift, uint32_t id, uint32_t rgb,
+                      uint64_t *written);
 
 /* ---- scanline.c ---- */
 typedef enum zs_kernel {

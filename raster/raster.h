@@ -242,10 +242,16 @@ typedef struct zs_device_memory {
 } zs_device_memory;
 zs_device_memory zs_device_memory_of(const zs_device *dev);
 
-/* Whether the draw kernel may fill long spans with AVX2 (span_simd.c;
- * on by default where the CPU has it).  The images and counters are the
- * same either way; returns whether the SIMD path is now in use. */
-int zs_raster_set_simd(int on);
+/* The draw kernel's span fill (span_simd.c): long spans eight pixels at
+ * a time with AVX2 where the CPU has it, else four at a time with SSE2
+ * (every x86-64 CPU), else the scalar loop.  zs_raster_set_simd caps the
+ * level for the whole program (default ZS_SIMD_AVX2: the best there is)
+ * and returns the level now in use.  The images and counters are the same
+ * at every level. */
+typedef enum zs_simd { ZS_SIMD_SCALAR = 0, ZS_SIMD_SSE2 = 1, ZS_SIMD_AVX2 = 2 } zs_simd;
+zs_simd zs_raster_set_simd(zs_simd most);
+/* "scalar", "sse2" or "avx2". */
+const char *zs_simd_name(zs_simd level);
 
 /* ---- clock.c: the modelled clock ----
  *

@@ -70,6 +70,12 @@ static inline uint32_t depth_of(int64_t z, int shift, int64_t zfar) {
   return (uint32_t)(z >> shift);
 }
 
+/* Spans shorter than this stay with the scalar loop (raster.h, the span
+ * fill): AVX2 measured slower below 16 pixels (README, raster), and SSE2
+ * from 8 took more instructions than from 16 (25x25 triangles: 8,471
+ * against 8,041 a triangle). */
+enum { ZS_SIMD_MIN_SPAN = 16 };
+
 /* One row of the target: where a row's spans land. */
 typedef struct row_ptrs {
   uint32_t *depth, *id, *rgb, *count;
@@ -86,7 +92,7 @@ static inline row_ptrs row_of(const zs_target *t, int32_t y) {
  * below is inlined into a copy per kernel with k a constant.  The span
  * [x0, x1) of a's polygon, z its depth plane at x0. */
 static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, int64_t z,
-                             const zs_active *a, int simd, uint64_t *written) {
+                             const zs_active *a, zs_simd simd, uint64_t *written) {
   if (k == ZS_KERNEL_OVERDRAW) {
     uint32_t *cnt = row->count;
     for (int x = x0; x < x1; x++) cnt[x]++;
@@ -110,8 +116,8 @@ static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, i
   const int64_t zlast = z + dz * (x1 - 1 - x0);
   const uint64_t inside = (uint64_t)zfar - 1u;
   if ((uint64_t)z - 1u < inside && (uint64_t)zlast - 1u < inside) {
-    if (simd && x1 - x0 >= 16) { /* AVX2 for whole steps of eight, the rest below */
-      int xs = zs_fill_span_simd(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+    if (simd && x1 - x0 >= ZS_SIMD_MIN_SPAN) { /* whole vector steps, the rest below */
+      int xs = zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
       z += dz * (xs - x0);
       x0 = xs;
     }
@@ -241,7 +247,7 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
 /* a's span on the row, clamped to the target's width, filled with kernel
  * k; [*x0, *x1) is what was filled (empty when *x0 >= *x1). */
 static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const zs_active *a,
-                            int simd, uint64_t *spans, uint64_t *tested,
+                            zs_simd simd, uint64_t *spans, uint64_t *tested,
                             uint64_t *written, int64_t *x0_out, int64_t *x1_out) {
   int64_t x0 = a->l.x, x1 = a->r.x;
   if (x0 < 0) x0 = 0;
@@ -280,7 +286,7 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
   const zs_edge *edges = b->edges;
   const int32_t *head = s->bucket_head, *next = s->next;
   zs_active *act = s->active;
-  const int simd = k == ZS_KERNEL_DRAW && zs_span_simd_active();
+  const zs_simd simd = k == ZS_KERNEL_DRAW ? zs_span_simd_level() : ZS_SIMD_SCALAR;
   const int32_t nrows = row_end - row_begin;
   const int32_t first_bucket = bucket_polys(b, row_begin, row_end, s);
 

@@ -1,26 +1,76 @@
-/* The draw kernel's span fill, eight pixels at a time with AVX2
- * (internal.h, "span_simd.c").
+/* The draw kernel's span fill, eight pixels at a time with AVX2 or four
+ * with SSE2 (internal.h, "span_simd.c").
  *
  * It does what the scalar loop of scanline.c does for a span whose depth
  * stays strictly inside the range (depth = z >> shift, no clamps): the
  * same less-with-id test, the same writes, the same count.  Integers only,
- * so the results are the same bits; tests/test_raster.c renders with it on
- * and off and compares images and counters.  The test of a lane:
+ * so the results are the same bits; tests/test_raster.c renders at every
+ * level and compares images and counters with the scalar loop's.  The
+ * test of a lane:
  *   d < zb  or  (d == zb and id < ir)      (unsigned)
- * AVX2 compares signed 32-bit lanes, so both sides are offset by 2^31.
+ * SSE2 and AVX2 compare signed 32-bit lanes, so both sides are offset by
+ * 2^31.
  *
- * Chosen at run time: the CPU must have AVX2 (cpuid), and
- * zs_raster_set_simd(0) turns it off for everyone (tests, benchmarks). */
+ * Chosen at run time: AVX2 when the CPU has it (cpuid), else SSE2, which
+ * every x86-64 CPU has; zs_raster_set_simd caps the level for everyone
+ * (tests, benchmarks).  Elsewhere the scalar loop fills every span. */
 #include <stdint.h>
 
 #include "raster/internal.h"
 
-static int simd_allowed = 1;
+static zs_simd simd_most = ZS_SIMD_AVX2; /* the highest level allowed */
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
 
-#define ZS_HAVE_AVX2_PATH 1
+#define ZS_HAVE_X86_PATHS 1
+
+/* SSE2 has no blend: keep old where the mask is clear, take new where set. */
+static inline __m128i select_sse2(__m128i mask, __m128i old, __m128i new_) {
+  return _mm_or_si128(_mm_and_si128(mask, new_), _mm_andnot_si128(mask, old));
+}
+
+static int fill_sse2(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
+                     int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written) {
+  const __m128i sign = _mm_set1_epi32((int)0x80000000u);
+  const __m128i idv = _mm_set1_epi32((int)id), rgbv = _mm_set1_epi32((int)rgb);
+  const __m128i id_s = _mm_xor_si128(idv, sign);
+  const __m128i count = _mm_cvtsi32_si128(shift);
+  __m128i za = _mm_set_epi64x(z + dz, z), zb2 = _mm_set_epi64x(z + 3 * dz, z + 2 * dz);
+  const __m128i step = _mm_set1_epi64x(4 * dz);
+  uint64_t w = 0;
+  int x = x0;
+  for (; x + 4 <= x1; x += 4) {
+    /* the low 32 bits of each 64-bit lane, four in a row */
+    __m128i da = _mm_shuffle_epi32(_mm_srl_epi64(za, count), _MM_SHUFFLE(2, 0, 2, 0));
+    __m128i db = _mm_shuffle_epi32(_mm_srl_epi64(zb2, count), _MM_SHUFFLE(2, 0, 2, 0));
+    __m128i d = _mm_unpacklo_epi64(da, db);
+    __m128i zold = _mm_loadu_si128((const __m128i *)(zr + x));
+    __m128i iold = _mm_loadu_si128((const __m128i *)(ir + x));
+    __m128i less = _mm_cmpgt_epi32(_mm_xor_si128(zold, sign), _mm_xor_si128(d, sign));
+    __m128i tie = _mm_and_si128(_mm_cmpeq_epi32(d, zold),
+                                _mm_cmpgt_epi32(_mm_xor_si128(iold, sign), id_s));
+    __m128i pass = _mm_or_si128(less, tie);
+    int bits = _mm_movemask_ps(_mm_castsi128_ps(pass));
+    if (bits == 0xF) { /* all four pass: no old values to keep */
+      _mm_storeu_si128((__m128i *)(zr + x), d);
+      _mm_storeu_si128((__m128i *)(ir + x), idv);
+      _mm_storeu_si128((__m128i *)(cr + x), rgbv);
+      w += 4;
+    } else if (bits) {
+      static const uint8_t passed[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+      __m128i cold = _mm_loadu_si128((const __m128i *)(cr + x));
+      _mm_storeu_si128((__m128i *)(zr + x), select_sse2(pass, zold, d));
+      _mm_storeu_si128((__m128i *)(ir + x), select_sse2(pass, iold, idv));
+      _mm_storeu_si128((__m128i *)(cr + x), select_sse2(pass, cold, rgbv));
+      w += passed[bits];
+    }
+    za = _mm_add_epi64(za, step);
+    zb2 = _mm_add_epi64(zb2, step);
+  }
+  *written += w;
+  return x;
+}
 
 __attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir, uint32_t *cr,
                                                       int x0, int x1, int64_t z, int64_t dz,
@@ -48,7 +98,12 @@ __attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir,
                                    _mm256_cmpgt_epi32(_mm256_xor_si256(iold, sign), id_s));
     __m256i pass = _mm256_or_si256(less, tie);
     int bits = _mm256_movemask_ps(_mm256_castsi256_ps(pass));
-    if (bits) {
+    if (bits == 0xFF) { /* all eight pass: no old values to keep */
+      _mm256_storeu_si256((__m256i *)(zr + x), d);
+      _mm256_storeu_si256((__m256i *)(ir + x), idv);
+      _mm256_storeu_si256((__m256i *)(cr + x), rgbv);
+      w += 8;
+    } else if (bits) {
       __m256i cold = _mm256_loadu_si256((const __m256i *)(cr + x));
       _mm256_storeu_si256((__m256i *)(zr + x), _mm256_blendv_epi8(zold, d, pass));
       _mm256_storeu_si256((__m256i *)(ir + x), _mm256_blendv_epi8(iold, idv, pass));
@@ -65,26 +120,31 @@ __attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir,
 static int cpu_has_avx2(void) { return __builtin_cpu_supports("avx2") != 0; }
 #endif
 
-int zs_raster_set_simd(int on) {
-  simd_allowed = on != 0;
-  return zs_span_simd_active();
+zs_simd zs_raster_set_simd(zs_simd most) {
+  simd_most = most < ZS_SIMD_SCALAR ? ZS_SIMD_SCALAR : most > ZS_SIMD_AVX2 ? ZS_SIMD_AVX2 : most;
+  return zs_span_simd_level();
 }
 
-int zs_span_simd_active(void) {
-#ifdef ZS_HAVE_AVX2_PATH
-  return simd_allowed && cpu_has_avx2();
-#else
-  return 0;
+zs_simd zs_span_simd_level(void) {
+#ifdef ZS_HAVE_X86_PATHS
+  if (simd_most >= ZS_SIMD_AVX2 && cpu_has_avx2()) return ZS_SIMD_AVX2;
+  if (simd_most >= ZS_SIMD_SSE2) return ZS_SIMD_SSE2;
 #endif
+  return ZS_SIMD_SCALAR;
 }
 
-int zs_fill_span_simd(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
-                      int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written) {
-#ifdef ZS_HAVE_AVX2_PATH
-  return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
-#else
-  (void)zr, (void)ir, (void)cr, (void)x1, (void)z, (void)dz, (void)shift, (void)id, (void)rgb,
-      (void)written;
+const char *zs_simd_name(zs_simd level) {
+  return level == ZS_SIMD_AVX2 ? "avx2" : level == ZS_SIMD_SSE2 ? "sse2" : "scalar";
+}
+
+int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1,
+                      int64_t z, int64_t dz, int shift, uint32_t id, uint32_t rgb,
+                      uint64_t *written) {
+#ifdef ZS_HAVE_X86_PATHS
+  if (level == ZS_SIMD_AVX2) return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+  if (level == ZS_SIMD_SSE2) return fill_sse2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+#endif
+  (void)level, (void)zr, (void)ir, (void)cr, (void)x1, (void)z, (void)dz, (void)shift, (void)id,
+      (void)rgb, (void)written;
   return x0;
-#endif
 }

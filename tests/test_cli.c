@@ -384,6 +384,22 @@ START_TEST(bench_raster_writes_csv_and_table) {
   ck_assert_int_eq(zs_test_run_zscan(small, out, sizeof out, err, sizeof err), 1);
   ck_assert_str_eq(err, "zscan bench raster: --size: at least 500x500 (the largest triangles)\n");
   ck_assert(!zs_test_exists(csv));
+#if defined(__x86_64__)
+  /* --simd sse2: every x86-64 CPU has it, and the CSV says it was used */
+  const char *sse2[] = {"bench", "raster", "--no-scenes", "--simd", "sse2", "--case",
+                        "triangles 500x500", "--algo", "zbuffer", "--repeat", "1", "--size",
+                        "500x500", "--csv", csv, NULL};
+  f = run_for_csv(sse2, csv);
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  const char *want_sse2 = "triangles 500x500,zbuffer,1,sse2,500,500,128,16000000,";
+  ck_assert_msg(strncmp(line, want_sse2, strlen(want_sse2)) == 0, "%s", line);
+  fclose(f);
+  ck_assert_ptr_nonnull(strstr(out, "SSE2 spans"));
+#endif
+  const char *bad[] = {"bench", "raster", "--simd", "neon", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
+  ck_assert_str_eq(err, "zscan bench raster: --simd: scalar, sse2 or avx2, not 'neon'\n");
 }
 END_TEST
 

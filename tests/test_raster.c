@@ -356,33 +356,40 @@ END_TEST
 
 START_TEST(simd_spans_equal_scalar) {
   /* Large random triangles through each other, a third of them at one
-   * depth (the id decides), and a sphere: the AVX2 span fill (where the
-   * CPU has it) and the scalar loop give the same image, depth, ids and
-   * counters, in both modes. */
+   * depth (the id decides), and a sphere: the SSE2 and AVX2 span fills
+   * (where the CPU has them) and the scalar loop give the same image,
+   * depth, ids and counters, in both modes. */
   const int W = 640, H = 480;
   zs_rng rng;
   zs_rng_seed(&rng, 11);
   mesh_buf b = {0};
   random_triangles(&b, &rng, 400, W, H, 40, -9);
   mb_sphere(&b, W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
+#if defined(__x86_64__)
+  /* every x86-64 CPU has SSE2 */
+  ck_assert_int_eq(zs_raster_set_simd(ZS_SIMD_SSE2), ZS_SIMD_SSE2);
+#endif
+  ck_assert_int_eq(zs_raster_set_simd(ZS_SIMD_SCALAR), ZS_SIMD_SCALAR);
   for (int algo = 0; algo < 2; algo++) {
-    frame f[2];
-    zs_raster_stats st[2];
-    for (int simd = 0; simd < 2; simd++) {
-      zs_raster_set_simd(simd);
-      f[simd] = frame_new(W, H);
-      st[simd] = render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &f[simd]);
+    frame f[3];
+    zs_raster_stats st[3];
+    for (int level = ZS_SIMD_SCALAR; level <= ZS_SIMD_AVX2; level++) {
+      zs_raster_set_simd((zs_simd)level);
+      f[level] = frame_new(W, H);
+      st[level] = render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &f[level]);
     }
-    zs_raster_set_simd(1);
+    zs_raster_set_simd(ZS_SIMD_AVX2);
     size_t n = (size_t)W * H * 4;
-    ck_assert_int_eq(memcmp(f[0].rgb, f[1].rgb, n), 0);
-    ck_assert_int_eq(memcmp(f[0].depth, f[1].depth, n), 0);
-    ck_assert_int_eq(memcmp(f[0].id, f[1].id, n), 0);
-    ck_assert_uint_eq(st[0].pixels_written, st[1].pixels_written);
-    ck_assert_uint_eq(st[0].pixels_tested, st[1].pixels_tested);
+    for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX2; level++) {
+      ck_assert_msg(memcmp(f[0].rgb, f[level].rgb, n) == 0, "%s: colours", zs_simd_name(level));
+      ck_assert_msg(memcmp(f[0].depth, f[level].depth, n) == 0, "%s: depths", zs_simd_name(level));
+      ck_assert_msg(memcmp(f[0].id, f[level].id, n) == 0, "%s: ids", zs_simd_name(level));
+      ck_assert_uint_eq(st[0].pixels_written, st[level].pixels_written);
+      ck_assert_uint_eq(st[0].pixels_tested, st[level].pixels_tested);
+      frame_free(&f[level]);
+    }
     ck_assert_uint_gt(st[0].pixels_written, (uint64_t)W * H); /* overdrawn */
     frame_free(&f[0]);
-    frame_free(&f[1]);
   }
   mb_free(&b);
 }

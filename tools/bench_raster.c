@@ -39,7 +39,9 @@ static const char usage[] =
     "  --md FILE         the table in Markdown\n"
     "  --plot FILE.png   Mtri/s and Mpix/s against triangle size, both modes\n"
     "  --no-scenes       the triangle sizes only\n"
-    "  --no-simd         fill spans with the scalar loop only (the same pixels)\n"
+    "  --simd LEVEL      cap the span fill at scalar, sse2 or avx2 (default: the best\n"
+    "                    the CPU has; the same pixels at every level)\n"
+    "  --no-simd         the same as --simd scalar\n"
     "  --mesa            also the scenes through Mesa's llvmpipe (OSMesa), frames taken\n"
     "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n"
     "  --callgrind       also the instructions per frame of each case, one thread, counted\n"
@@ -55,7 +57,9 @@ enum { NSCENES = sizeof scenes / sizeof scenes[0] };
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {
-  int repeat, threads, width, height, scenes, simd, mesa, callgrind;
+  int repeat, threads, width, height, scenes;
+  zs_simd simd; /* the cap asked for; after parsing, the level in use */
+  int mesa, callgrind;
   int algo;               /* -1: both modes */
   const char *only_case;  /* NULL: every case */
   const char *csv, *md, *plot;
@@ -71,6 +75,10 @@ typedef struct bench_row {
 static double mtri(const bench_row *r) { return r->triangles / r->ms * 1e-3; }
 static double mpix(const bench_row *r) { return r->pixels / r->ms * 1e-3; }
 static double per(double a, double b) { return b > 0 ? a / b : 0.0; }
+
+static const char *simd_label(zs_simd level) {
+  return level == ZS_SIMD_AVX2 ? "AVX2" : level == ZS_SIMD_SSE2 ? "SSE2" : "scalar";
+}
 
 /* One layer of the tiling: each S x S square of the image as two
  * triangles, in pixel units at z = 0. */
@@ -252,8 +260,8 @@ static zs_status count_instructions(const bench_opts *o, const char *name, zs_al
   static const char *const frames[2] = {"1", "3"};
   for (int k = 0; k < 2; k++) {
     const char *args[] = {"bench", "raster", "--case", name, "--algo", zs_algo_name(algo),
-                          "--repeat", frames[k], "--size", size,
-                          o->simd ? NULL : "--no-simd", NULL};
+                          "--repeat", frames[k], "--size", size, "--simd", zs_simd_name(o->simd),
+                          NULL};
     zs_status st = zs_callgrind_count(args, &n[k], err);
     if (st) return st;
   }
@@ -287,7 +295,7 @@ static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts 
     fprintf(f, "|---|---|---|---|---|---|---|%s\n", o->callgrind ? "---|---|---|" : "");
   } else {
     fprintf(f, "raster throughput at %dx%d, %d thread%s, %s spans, median of %d frames\n",
-            o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->simd ? "AVX2" : "scalar",
+            o->width, o->height, o->threads, o->threads > 1 ? "s" : "", simd_label(o->simd),
             o->repeat);
     fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s%s\n", "case", "algo", "triangles",
             "pixels_tested", "ms", "Mtri/s", "Mpix/s",
@@ -317,7 +325,7 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
              "mpix_per_s,instructions_per_frame\n");
   for (int i = 0; i < n; i++) {
     fprintf(f, "%s,%s,%d,%s,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f,", rows[i].name, rows[i].algo,
-            o->threads, o->simd ? "avx2" : "scalar", o->width, o->height, rows[i].triangles,
+            o->threads, zs_simd_name(o->simd), o->width, o->height, rows[i].triangles,
             rows[i].pixels, rows[i].ms, mtri(&rows[i]), mpix(&rows[i]));
     if (o->callgrind) fprintf(f, "%.0f", rows[i].instructions);
     fputc('\n', f);
@@ -349,7 +357,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
   ADD("EOD\nset terminal pngcairo size 1200,500 font 'sans,11'\nset output OUT\n");
   ADD("set multiplot layout 1,2 title 'Raster throughput at %dx%d, %d thread%s, %s spans "
       "(triangles: halves of S x S squares; median of %d frames)'\n",
-      o->width, o->height, o->threads, o->threads > 1 ? "s" : "", o->simd ? "AVX2" : "scalar",
+      o->width, o->height, o->threads, o->threads > 1 ? "s" : "", simd_label(o->simd),
       o->repeat);
   ADD("set grid\nset logscale xy\nset xlabel 'triangle side S (pixels)'\nset key top right\n"
       "set ylabel 'million triangles per second'\n"
@@ -365,13 +373,19 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, 1, 0, 0, -1, NULL, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX2, 0, 0, -1, NULL, NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
       o->scenes = 0;
     } else if (strcmp(a, "--no-simd") == 0) {
-      o->simd = 0;
+      o->simd = ZS_SIMD_SCALAR;
+    } else if (strcmp(a, "--simd") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      if (strcmp(v, "scalar") == 0) o->simd = ZS_SIMD_SCALAR;
+      else if (strcmp(v, "sse2") == 0) o->simd = ZS_SIMD_SSE2;
+      else if (strcmp(v, "avx2") == 0) o->simd = ZS_SIMD_AVX2;
+      else return zs_error_set(err, ZS_ERR_ARG, "--simd: scalar, sse2 or avx2, not '%s'", v);
     } else if (strcmp(a, "--mesa") == 0) {
       if (!zs_mesa_available())
         return zs_error_set(err, ZS_ERR_UNSUPPORTED,
@@ -431,7 +445,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   int n = 0, nm = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
-  o.simd = zs_raster_set_simd(!st && o.simd); /* what is in use */
+  o.simd = zs_raster_set_simd(st ? ZS_SIMD_SCALAR : o.simd); /* what is in use */
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
   for (int i = 0; i < NSIDES && !st; i++) {
