@@ -351,17 +351,7 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
     sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
     sp.rgb = rgb != ZS_RGB_MESH ? rgb
              : mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
-    if (pr->flat) {
-      /* Newell's normal of the face in eye space */
-      double nrm[3] = {0, 0, 0};
-      for (int i = 0, j = 1; i < n; i++, j = j + 1 < n ? j + 1 : 0) {
-        const double *a = &v->eyepos[3 * fv[i]], *c = &v->eyepos[3 * fv[j]];
-        nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
-        nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
-        nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
-      }
-      sp.rgb = zs_shade_flat(sp.rgb, nrm);
-    }
+    const int32_t first_poly = b->npolys;
     zs_setup_result r;
     if (or_code) {
       for (int i = 0; i < n; i++) in[i] = v->clip[fv[i]];
@@ -375,6 +365,21 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
     } else {
       for (int i = 0; i < n; i++) snapped[i] = v->snap[fv[i]];
       r = zs_setup_snapped(b, &sp, snapped, n);
+    }
+    if (pr->flat && b->npolys > first_poly) {
+      /* Flat shading, for the faces that became polygons only (not the
+       * ones culled, off the window or too small to hold a pixel centre):
+       * Newell's normal of the face in eye space gives their colour */
+      double nrm[3] = {0, 0, 0};
+      const int32_t nv = mesh->face_start[f + 1] - s;
+      for (int i = 0, j = 1; i < nv; i++, j = j + 1 < nv ? j + 1 : 0) {
+        const double *a = &v->eyepos[3 * fv[i]], *c = &v->eyepos[3 * fv[j]];
+        nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
+        nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
+        nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
+      }
+      const uint32_t shaded = zs_shade_flat(sp.rgb, nrm);
+      for (int32_t i = first_poly; i < b->npolys; i++) b->polys[i].rgb = shaded;
     }
     if (ds && r == ZS_SETUP_DRAWN) {
       /* the sort key: distance along the view axis of the centroid of the
