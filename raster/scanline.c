@@ -24,6 +24,7 @@
  * [x_left, x_right): a centre on the left edge is in, on the right edge
  * out (raster.h, COVERAGE).
  */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -92,7 +93,8 @@ static inline row_ptrs row_of(const zs_target *t, int32_t y) {
  * below is inlined into a copy per kernel with k a constant.  The span
  * [x0, x1) of a's polygon, z its depth plane at x0. */
 static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, int64_t z,
-                             const zs_active *a, zs_simd simd, uint64_t *written) {
+                             const zs_active *a, zs_simd simd, int vector_from,
+                             uint64_t *written) {
   if (k == ZS_KERNEL_OVERDRAW) {
     uint32_t *cnt = row->count;
     for (int x = x0; x < x1; x++) cnt[x]++;
@@ -116,7 +118,7 @@ static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, i
   const int64_t zlast = z + dz * (x1 - 1 - x0);
   const uint64_t inside = (uint64_t)zfar - 1u;
   if ((uint64_t)z - 1u < inside && (uint64_t)zlast - 1u < inside) {
-    if (simd && x1 - x0 >= ZS_SIMD_MIN_SPAN) { /* whole vector steps, the rest below */
+    if (x1 - x0 >= vector_from) { /* whole vector steps, the rest below */
       int xs = zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
       z += dz * (xs - x0);
       x0 = xs;
@@ -247,14 +249,14 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
 /* a's span on the row, clamped to the target's width, filled with kernel
  * k; [*x0, *x1) is what was filled (empty when *x0 >= *x1). */
 static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const zs_active *a,
-                            zs_simd simd, uint64_t *spans, uint64_t *tested,
+                            zs_simd simd, int vector_from, uint64_t *spans, uint64_t *tested,
                             uint64_t *written, int64_t *x0_out, int64_t *x1_out) {
   int64_t x0 = a->l.x, x1 = a->r.x;
   if (x0 < 0) x0 = 0;
   if (x1 > width) x1 = width;
   if (x0 < x1) {
     int64_t z = a->zl + a->dzdx * (x0 - a->l.x);
-    fill_span(k, row, (int)x0, (int)x1, z, a, simd, written);
+    fill_span(k, row, (int)x0, (int)x1, z, a, simd, vector_from, written);
     ++*spans;
     *tested += (uint64_t)(x1 - x0);
   }
@@ -287,6 +289,8 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
   const int32_t *head = s->bucket_head, *next = s->next;
   zs_active *act = s->active;
   const zs_simd simd = k == ZS_KERNEL_DRAW ? zs_span_simd_level() : ZS_SIMD_SCALAR;
+  /* the shortest span the vector fill takes (one compare a span) */
+  const int vector_from = simd != ZS_SIMD_SCALAR ? ZS_SIMD_MIN_SPAN : INT_MAX;
   const int32_t nrows = row_end - row_begin;
   const int32_t first_bucket = bucket_polys(b, row_begin, row_end, s);
 
@@ -307,7 +311,7 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
       zs_active *a = &act[j];
       if (obs) zs_trace_pair_of(a, &polys[a->poly], y, &s->trace_pairs[j]);
       int64_t x0, x1;
-      row_span(k, &row, t->width, a, simd, &spans, &tested, &written, &x0, &x1);
+      row_span(k, &row, t->width, a, simd, vector_from, &spans, &tested, &written, &x0, &x1);
       if (obs && x0 < x1)
         s->trace_spans[ntrace_spans++] = (zs_trace_span){(int32_t)x0, (int32_t)x1 - 1, a->id};
       if (y == a->row1) continue; /* the polygon ends on this row */
