@@ -165,9 +165,7 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, int w, int h, con
   zs_status st = zs_frame_camera(s, &s->camera, w, h, view, proj, err);
   for (int k = 0; k < o->repeat && st == ZS_OK; k++) {
     double start = zs_wall_ms();
-    zs_device_clear(dev);
-    zs_device_set_camera(dev, view, proj);
-    if (!(st = zs_frame_draw_scene(dev, s, err))) st = zs_device_finish(dev, NULL, NULL, err);
+    st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err);
     ms[k] = zs_wall_ms() - start;
   }
   if (st) return st;
@@ -199,10 +197,7 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
     st = zs_device_create(&cfg, &dev, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
     double t0 = zs_wall_ms();
-    zs_device_clear(dev);
-    zs_device_set_camera(dev, view, proj);
-    if ((st = zs_frame_draw_scene(dev, s, err)) || (st = zs_device_finish(dev, NULL, NULL, err)))
-      break;
+    if ((st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err))) break;
     double t1 = zs_wall_ms();
     if ((st = zs_mesa_frame(mesa, s, view, proj, err))) break;
     ms[k] = t1 - t0;

@@ -2,6 +2,7 @@
 #include "tools/crosscheck.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "raster/raster.h"
 #include "tools/frame.h"
@@ -29,11 +30,15 @@ static int is_tie(const candidate *c) {
   return c->delta >= 0 && c->delta <= (int64_t)ZS_CROSSCHECK_TIE_DEPTH;
 }
 
-/* One distinct face id of the candidates and where its faces are. */
+/* One distinct face id of the candidates, and its faces as a mesh of
+ * their own: nfaces faces whose face_start entries begin at fstart[first +
+ * k] (k-th id, so that each has its closing entry) and whose vertex
+ * indices begin at fvert[vfirst]. */
 typedef struct wanted {
   uint32_t id;
-  int32_t inst;          /* -1: no face has this id */
-  int32_t first, count;  /* its faces in the face list */
+  int32_t inst;           /* -1: no face has this id */
+  int32_t nfaces, nverts;
+  int32_t first, vfirst;
 } wanted;
 
 static int by_id(const void *key, const void *elem) {
@@ -45,12 +50,41 @@ static uint32_t face_id_of(const zs_instance *in, const zs_mesh *m, int32_t f) {
   return in->id_base + (uint32_t)(m->face_id ? m->face_id[f] : f);
 }
 
-static zs_status render_ids(zs_device *dev, const zs_scene *s, const double view[16],
-                            const double proj[16], zs_error *err) {
-  zs_device_clear(dev);
-  zs_device_set_camera(dev, view, proj);
-  zs_status st = zs_frame_draw_scene(dev, s, err);
-  return st ? st : zs_device_finish(dev, NULL, NULL, err);
+/* The faces of each wanted id gathered into fstart and fvert: counted on
+ * the first pass, written on the second (faces may share an id). */
+static zs_status gather_faces(const zs_scene *s, wanted *want, size_t nw, int32_t **fstart,
+                              int32_t **fvert, zs_error *err) {
+  for (int pass = 0; pass < 2; pass++) {
+    for (int32_t i = 0; i < s->ninst; i++) {
+      const zs_instance *in = &s->inst[i];
+      const zs_mesh *m = &s->meshes[in->mesh].mesh;
+      for (int32_t f = 0; f < m->nfaces; f++) {
+        uint32_t id = face_id_of(in, m, f);
+        wanted *w = bsearch(&id, want, nw, sizeof *want, by_id);
+        if (!w || (w->inst >= 0 && w->inst != i)) continue;
+        w->inst = i;
+        const int32_t n = m->face_start[f + 1] - m->face_start[f];
+        if (pass == 1) {
+          int32_t *start = *fstart + w->first + (w - want);
+          memcpy(*fvert + w->vfirst + start[w->nfaces], &m->face_vert[m->face_start[f]],
+                 (size_t)n * sizeof **fvert);
+          start[w->nfaces + 1] = start[w->nfaces] + n;
+        }
+        w->nfaces++, w->nverts += n;
+      }
+    }
+    if (pass == 1) break;
+    int32_t faces = 0, verts = 0;
+    for (size_t k = 0; k < nw; k++) {
+      want[k].first = faces, want[k].vfirst = verts;
+      faces += want[k].nfaces, verts += want[k].nverts;
+      want[k].nfaces = want[k].nverts = 0;
+    }
+    *fstart = calloc((size_t)faces + nw, sizeof **fstart);
+    *fvert = malloc((size_t)(verts ? verts : 1) * sizeof **fvert);
+    if (!*fstart || !*fvert) return zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
+  }
+  return ZS_OK;
 }
 
 /* Fills delta for cand[0 .. n-1] (sorted by face): each distinct face is
@@ -61,75 +95,32 @@ static zs_status depths_alone(zs_device *dev, const zs_scene *s, const double vi
   size_t nw = 0;
   for (size_t i = 0; i < n; i++) nw += i == 0 || cand[i].other != cand[i - 1].other;
   wanted *want = calloc(nw ? nw : 1, sizeof *want);
-  int32_t *faces = NULL, *fstart = NULL, *fvert = NULL;
+  int32_t *fstart = NULL, *fvert = NULL;
   zs_status st = want ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
   for (size_t i = 0, k = 0; i < n && !st; i++)
-    if (i == 0 || cand[i].other != cand[i - 1].other) want[k++] = (wanted){cand[i].other, -1, 0, 0};
-  /* the faces of each wanted id: count, then place (faces may share an id) */
-  int32_t nfaces = 0;
-  for (int pass = 0; pass < 2 && !st; pass++) {
-    for (int32_t i = 0; i < s->ninst; i++) {
-      const zs_instance *in = &s->inst[i];
-      const zs_mesh *m = &s->meshes[in->mesh].mesh;
-      for (int32_t f = 0; f < m->nfaces; f++) {
-        uint32_t id = face_id_of(in, m, f);
-        wanted *w = bsearch(&id, want, nw, sizeof *want, by_id);
-        if (!w || (w->inst >= 0 && w->inst != i)) continue;
-        w->inst = i;
-        if (pass == 0) w->count++, nfaces++;
-        else faces[w->first + w->count++] = f;
-      }
-    }
-    if (pass == 0) {
-      faces = malloc((size_t)(nfaces ? nfaces : 1) * sizeof *faces);
-      if (!faces) st = zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
-      for (int32_t k = 0, at = 0; k < (int32_t)nw; k++) {
-        want[k].first = at;
-        at += want[k].count;
-        want[k].count = 0;
-      }
-    }
-  }
+    if (i == 0 || cand[i].other != cand[i - 1].other) want[k++] = (wanted){cand[i].other, -1, 0, 0, 0, 0};
+  if (!st) st = gather_faces(s, want, nw, &fstart, &fvert, err);
   const uint32_t *id = zs_device_id_buffer(dev), *depth = zs_device_depth_buffer(dev);
   for (size_t i = 0, k = 0; i < n && !st; k++) {
     const wanted *w = &want[k];
-    size_t end = i;
-    while (end < n && cand[end].other == w->id) end++;
     if (w->inst >= 0) {
       const zs_instance *in = &s->inst[w->inst];
       const zs_mesh *m = &s->meshes[in->mesh].mesh;
-      int32_t nv = 0;
-      for (int32_t j = 0; j < w->count; j++) {
-        int32_t f = faces[w->first + j];
-        nv += m->face_start[f + 1] - m->face_start[f];
-      }
-      free(fstart), free(fvert);
-      fstart = malloc((size_t)(w->count + 1) * sizeof *fstart);
-      fvert = malloc((size_t)(nv ? nv : 1) * sizeof *fvert);
-      if (!fstart || !fvert) {
-        st = zs_error_set(err, ZS_ERR_NOMEM, "crosscheck: out of memory");
-        break;
-      }
-      fstart[0] = 0;
-      for (int32_t j = 0; j < w->count; j++) {
-        int32_t f = faces[w->first + j], at = fstart[j];
-        for (int32_t v = m->face_start[f]; v < m->face_start[f + 1]; v++) fvert[at++] = m->face_vert[v];
-        fstart[j + 1] = at;
-      }
-      zs_mesh alone = {m->pos, m->nverts, fstart, fvert, w->count, NULL, NULL};
+      zs_mesh alone = {m->pos, m->nverts, fstart + w->first + k, fvert + w->vfirst, w->nfaces,
+                       NULL, NULL};
       zs_device_clear(dev);
       zs_device_set_camera(dev, view, proj);
       if ((st = zs_device_draw(dev, &alone, in->model, 0, 0, err)) || (st = zs_device_flush(dev, err)))
         break;
     }
-    for (; i < end; i++) {
+    for (; i < n && cand[i].other == w->id; i++) {
       uint32_t p = cand[i].pixel;
       cand[i].delta = w->inst < 0 || id[p] == ZS_ID_NONE
                           ? -1
                           : (int64_t)depth[p] - (int64_t)shown_depth[p];
     }
   }
-  free(want), free(faces), free(fstart), free(fvert);
+  free(want), free(fstart), free(fvert);
   return st;
 }
 
@@ -147,7 +138,7 @@ zs_status zs_crosscheck_faces(const zs_scene *s, const double view[16], const do
   candidate *cand = NULL;
   zs_status st = zs_device_create(&cfg, &dev, err);
   if (!st) st = zs_device_create(&cfg, &alone, err);
-  if (!st) st = render_ids(dev, s, view, proj, err);
+  if (!st) st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err);
   const uint32_t *ids = st ? NULL : zs_device_id_buffer(dev);
   size_t n = 0;
   if (!st) {

@@ -56,7 +56,7 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
         return err->code;
     }
   }
-  return zs_device_finish(dev, gather_row, &g, err);
+  return zs_device_finish(dev, out ? gather_row : NULL, &g, err);
 }
 
 zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err) {
