@@ -243,15 +243,9 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
     const queued_draw *e = &q->q[i];
     zs_add_face_counts(&d->stats, &e->fc);
     zs_walk_counts c = {0, 0, 0};
-    for (int b = 0; b < j->nbands; b++) {
-      const zs_walk_counts *bc = &q->counts[(size_t)b * (size_t)j->ndraw + (size_t)i];
-      c.spans += bc->spans;
-      c.tested += bc->tested;
-      c.written += bc->written;
-    }
-    d->stats.spans += c.spans;
-    d->stats.pixels_tested += c.tested;
-    d->stats.pixels_written += c.written;
+    for (int b = 0; b < j->nbands; b++)
+      zs_walk_counts_add(&c, &q->counts[(size_t)b * (size_t)j->ndraw + (size_t)i]);
+    zs_add_walk_counts(&d->stats, &c);
     int64_t cost = zs_clock_command_cost(d, e->mesh->nverts, e->fc.rasterized + e->fc.offscreen,
                                          &c, 0);
     zs_clock_gpu_command_at(d, cost, 0, e->cpu_ps);

@@ -273,17 +273,15 @@ static int walk_full_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
   int ok = 1;
   for (int b = 0; b < nbands; b++) {
     ok &= j.ok[b];
-    out->spans += j.counts[b].spans;
-    out->tested += j.counts[b].tested;
-    out->written += j.counts[b].written;
+    zs_walk_counts_add(out, &j.counts[b]);
   }
   return ok;
 }
 
-static void add_counts(zs_device *d, const zs_walk_counts *c) {
-  d->stats.spans += c->spans;
-  d->stats.pixels_tested += c->tested;
-  d->stats.pixels_written += c->written;
+void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c) {
+  s->spans += c->spans;
+  s->pixels_tested += c->tested;
+  s->pixels_written += c->written;
 }
 
 void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p) {
@@ -328,7 +326,9 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
   zs_snap_vert snapped[ZS_MAX_POLY_VERTS];
   zs_setup_params sp = pr->sp;
   for (int32_t f = f0; f < f1; f++) {
-    int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
+    /* nv: the face's vertices; n: its polygon's, once clipped */
+    const int32_t s = mesh->face_start[f], nv = mesh->face_start[f + 1] - s;
+    int32_t n = nv;
     fc->in++;
     if (n < 3 || n > ZS_MAX_POLY_VERTS) {
       fc->degenerate++;
@@ -371,7 +371,6 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
        * ones culled, off the window or too small to hold a pixel centre):
        * Newell's normal of the face in eye space gives their colour */
       double nrm[3] = {0, 0, 0};
-      const int32_t nv = mesh->face_start[f + 1] - s;
       for (int i = 0, j = 1; i < nv; i++, j = j + 1 < nv ? j + 1 : 0) {
         const double *a = &v->eyepos[3 * fv[i]], *c = &v->eyepos[3 * fv[j]];
         nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
@@ -385,7 +384,6 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
       /* the sort key: distance along the view axis of the centroid of the
        * face's vertices; every face in view is ordered, even one too small
        * to cover a pixel centre */
-      int32_t nv = mesh->face_start[f + 1] - s;
       double zsum = 0.0;
       for (int i = 0; i < nv; i++) zsum += v->eyepos[3 * fv[i] + 2];
       if (!zs_depthsort_note(ds, sp.id, -zsum / nv))
@@ -590,7 +588,7 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
     zs_walk_counts c = {0, 0, 0};
     if (!zs_scan_batch(&d->batch, zs_draw_kernel(d), &t, 0, h, &hooks, d->trace, &d->scratch, &c))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
-    add_counts(d, &c);
+    zs_add_walk_counts(&d->stats, &c);
     zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);
     zs_batch_reset(&d->batch);
     return ZS_OK;

@@ -180,6 +180,13 @@ typedef struct zs_walk_counts {
   uint64_t spans, tested, written;
 } zs_walk_counts;
 
+/* sum += c: the bands of a walk summed in band order. */
+static inline void zs_walk_counts_add(zs_walk_counts *sum, const zs_walk_counts *c) {
+  sum->spans += c->spans;
+  sum->tested += c->tested;
+  sum->written += c->written;
+}
+
 /* Called after each row in [row_begin, row_end) is complete, and before it
  * starts (begin_row) — scanline mode clears and emits its one-row buffers
  * there.  Either may be NULL. */
@@ -376,6 +383,8 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *p, const zs_vert
                         uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
                         zs_error *err);
 void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc);
+/* A drawn walk's counts into the device's counters. */
+void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c);
 /* Drawing at once, a draw from ZS_PARALLEL_SETUP_FACES faces is
  * transformed and set up in parts over the threads; below, handing the
  * work over costs more than it saves.  Deferred, draws below
