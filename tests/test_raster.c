@@ -541,8 +541,10 @@ END_TEST
 /* One frame of many small draws: spheres of 60 faces at seeded places,
  * every third one drawn twice at the same place in another colour (equal
  * depths: which draw writes depends on the order), with a query box in
- * the middle and, when bad >= 0, a face out of range in draw bad (the
- * last draw then).  Deferred when defer is set.  The buffers go to f; the
+ * the middle and, when bad >= 0, a face out of range in draw bad.  Deferred
+ * when defer is set: the bad draw is queued like the others, and the
+ * draws after it too until a flush reports it (the large draw 120 flushes
+ * first), so the queue holds draws behind the one that fails.  The buffers go to f; the
  * counters, the clock and the query's samples are returned through the
  * pointers; the status of the first failing call is returned. */
 enum { SMALL_DRAWS = 150 };
@@ -560,7 +562,6 @@ static zs_status small_draws_frame(const mesh_buf *m, int threads, int defer, in
     const zs_mesh *mesh = &m[i == bad ? SMALL_DRAWS : i / 3 * 3].m;
     uint32_t rgb = 0x204060u + (uint32_t)i * 0x010203u;
     st = zs_device_draw(d, mesh, NULL, (uint32_t)(i / 3 * 3) * 1000u, rgb, &err);
-    if (i == bad) break;
     if (st == ZS_OK && i == SMALL_DRAWS / 2) {
       zs_query q;
       if ((st = zs_device_query_begin(d, &q, &err)) == ZS_OK &&
@@ -584,7 +585,8 @@ START_TEST(deferred_small_draws_land_as_drawn_at_once) {
   /* Queued draws, set up in chunks and walked in bands, against the same
    * draws made at once on one thread: every buffer, every counter, the
    * modelled clock and a query's samples equal for 2 to 4 threads; with a
-   * bad face in draw 100, the same error, and the 100 draws before it. */
+   * bad face in draw 100, the same error, and the 100 draws before it
+   * (not the 19 queued behind it). */
   mesh_buf m[SMALL_DRAWS + 1];
   memset(m, 0, sizeof m);
   zs_rng rng;
