@@ -78,6 +78,7 @@ struct zs_deferred {
   zs_status st[MAX_CHUNKS];
   zs_walk_counts *counts;          /* [band][draw] */
   int32_t cap_counts;
+  int32_t rows0, rows1;            /* rows the last flush's draws covered (rows1 < rows0: none yet) */
   pthread_mutex_t lock;            /* guards the flow of a flush (below) */
   pthread_cond_t changed;
 };
@@ -97,6 +98,7 @@ void zs_device_defer_draws(zs_device *d, int on) {
       free(q);
       return;
     }
+    q->rows1 = -1; /* no rows covered yet */
     d->deferred = q;
   }
   d->deferred->on = on != 0;
@@ -143,7 +145,7 @@ typedef struct flush_job {
   zs_deferred *q;
   zs_kernel k;
   zs_target t;
-  int nbands;
+  int nbands, row0, rows;      /* bands split rows row0 .. row0 + rows - 1 */
   int nslots;                   /* chunk c is set up in batch c % nslots */
   int ok[MAX_BANDS];
   /* the flow, under q->lock */
@@ -208,13 +210,22 @@ static void cut_chunks(zs_deferred *q, int nchunks) {
   while (c < nchunks) q->first[++c] = q->n;
 }
 
+/* The first row of band b (b = nbands: the window's end).  The bands
+ * split the rows the last flush covered, the first and the last reaching
+ * out to the window's edges: which draw lands in which band changes no
+ * pixel and no counter, only how evenly the threads share the walk, and
+ * this flush's rows are known only once its draws are set up. */
+static int band_start(const flush_job *j, int b) {
+  if (b == 0) return 0;
+  if (b == j->nbands) return j->d->cfg.height;
+  return j->row0 + (int)zs_part_start(j->rows, b, j->nbands);
+}
+
 /* Walks band over chunk c's draws; returns 0 when it met a draw not set
  * up (the queue ends there). */
 static int walk_chunk(flush_job *j, int band, int c) {
   zs_deferred *q = j->q;
-  int height = j->d->cfg.height;
-  int y0 = (int)zs_part_start(height, band, j->nbands);
-  int y1 = (int)zs_part_start(height, band + 1, j->nbands);
+  int y0 = band_start(j, band), y1 = band_start(j, band + 1);
   zs_walk_counts *counts = &q->counts[(size_t)band * (size_t)q->n];
   for (int32_t i = q->first[c]; i < q->first[c + 1]; i++) {
     const queued_draw *e = &q->q[i];
@@ -294,9 +305,13 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   int nchunks = 16 * d->cfg.threads < MAX_CHUNKS ? 16 * d->cfg.threads : MAX_CHUNKS;
   if (nchunks > q->n) nchunks = q->n;
   cut_chunks(q, nchunks);
-  /* the bands split the whole window: the rows the draws cover are known
-   * only once they are set up */
-  int nbands = zs_band_count(d->cfg.threads, d->cfg.height);
+  if (q->rows1 < q->rows0) { /* no flush yet: the whole window */
+    q->rows0 = 0;
+    q->rows1 = d->cfg.height - 1;
+  }
+  j->row0 = q->rows0;
+  j->rows = q->rows1 - q->rows0 + 1;
+  int nbands = zs_band_count(d->cfg.threads, j->rows);
   j->nslots = DEFER_SLOTS_PER_THREAD * d->cfg.threads;
   if (j->nslots > MAX_CHUNKS) j->nslots = MAX_CHUNKS;
   j->nbands = nbands < 1 ? 1 : nbands;
@@ -322,6 +337,18 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
     }
   for (int b = 0; b < j->nbands; b++)
     if (!j->ok[b]) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+
+  /* the rows covered, for the next flush's bands */
+  int lo = d->cfg.height, hi = -1;
+  for (int32_t i = 0; i < ndraw; i++)
+    if (q->q[i].npolys > 0) {
+      if (q->q[i].row0 < lo) lo = q->q[i].row0;
+      if (q->q[i].row1 > hi) hi = q->q[i].row1;
+    }
+  if (hi >= lo) {
+    q->rows0 = lo > 0 ? lo : 0;
+    q->rows1 = hi < d->cfg.height - 1 ? hi : d->cfg.height - 1;
+  }
 
   /* settle draw by draw, in the order issued */
   for (int32_t i = 0; i < ndraw; i++) {

@@ -661,6 +661,37 @@ START_TEST(deferred_small_draws_land_as_drawn_at_once) {
   for (int i = 0; i < 160 * 120; i++) ck_assert_uint_eq(painted.rgb[i], 0x123456);
   frame_free(&painted);
   zs_device_destroy(d);
+
+  /* The bands of a flush split the rows the last flush covered: a frame
+   * that covers more than the one before still lands whole.  The first
+   * frame draws one small sphere, the second every draw. */
+  frame one = frame_new(160, 120), two = frame_new(160, 120);
+  zs_device *d1 = perspective_device(&one, 1, 0.0, 0.0, 4.0);
+  zs_device *d2 = perspective_device(&two, 2, 0.0, 0.0, 4.0);
+  zs_device_defer_draws(d2, 1);
+  double view[16], proj[16];
+  zs_mat_look_at(view, (double[3]){0, 0, 4.0}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
+  zs_mat_perspective(proj, 50, 160.0 / 120, 0.5, 10);
+  for (int pass = 0; pass < 2; pass++) {
+    zs_device_clear(d2);
+    zs_device_set_camera(d2, view, proj);
+    for (int i = 0; i < (pass ? SMALL_DRAWS : 1); i += 3)
+      ck_assert_int_eq(zs_device_draw(d2, &m[i].m, NULL, (uint32_t)i * 1000u, ZS_RGB_MESH, &err),
+                       ZS_OK);
+    ck_assert_int_eq(zs_device_finish(d2, frame_sink, &two, &err), ZS_OK);
+  }
+  for (int i = 0; i < SMALL_DRAWS; i += 3)
+    ck_assert_int_eq(zs_device_draw(d1, &m[i].m, NULL, (uint32_t)i * 1000u, ZS_RGB_MESH, &err),
+                     ZS_OK);
+  ck_assert_int_eq(zs_device_finish(d1, frame_sink, &one, &err), ZS_OK);
+  ck_assert_mem_eq(zs_device_stats(d1), zs_device_stats(d2), sizeof(zs_raster_stats));
+  ck_assert_mem_eq(one.rgb, two.rgb, 160 * 120 * 4);
+  ck_assert_mem_eq(one.depth, two.depth, 160 * 120 * 4);
+  ck_assert_mem_eq(one.id, two.id, 160 * 120 * 4);
+  frame_free(&one);
+  frame_free(&two);
+  zs_device_destroy(d1);
+  zs_device_destroy(d2);
   for (int i = 0; i <= SMALL_DRAWS; i++) mb_free(&m[i]);
 }
 END_TEST
