@@ -183,7 +183,7 @@ const zs_raster_stats *zs_device_stats(const zs_device *dev);
 
 /* Deferred drawing (defer.c), for a whole scene drawn on two threads or
  * more in zbuffer mode: while on, zs_device_draw queues each draw of fewer
- * than 65,536 faces, and the next flush renders the queue at once, set up
+ * than 262,144 faces, and the next flush renders the queue at once, set up
  * in parallel and walked in bands of rows with the draws in issue order.
  * The image, the counters and the modelled clock come out the same as
  * drawing at once, but they lag the queue: they hold after a flush, which
