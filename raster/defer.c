@@ -72,9 +72,9 @@ struct zs_deferred {
   queued_draw *q;
   int32_t n, cap;
   int32_t first[MAX_CHUNKS + 1];   /* chunk c: draws first[c] .. first[c + 1] - 1 */
-  zs_batch batch[MAX_CHUNKS];
-  zs_vert_scratch verts[MAX_CHUNKS];
-  zs_error err[MAX_CHUNKS];
+  zs_batch batch[MAX_CHUNKS];      /* slot s: chunks c with c % nslots == s, in turn */
+  zs_vert_scratch verts[MAX_CHUNKS];  /* the same, for their transformed vertices */
+  zs_error err[MAX_CHUNKS];        /* per chunk, as st */
   zs_status st[MAX_CHUNKS];
   zs_walk_counts *counts;          /* [band][draw] */
   int32_t cap_counts;

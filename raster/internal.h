@@ -391,7 +391,7 @@ void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c);
  * ZS_DEFER_MAX_FACES are queued (the queue is shared out by faces, so a
  * draw of a few thousand faces balances with the rest).  A queued draw is
  * set up whole by one thread, so a larger one is drawn at once in parts;
- * the ten draws of 69,868 faces of `builtin:default?level=42` ran faster
+ * the nine teapots of 69,868 faces of `builtin:default?level=42` ran faster
  * queued than drawn at once in parts (medians of twelve runs in turn at
  * 2 threads: 31.6 against 36.0 ms), whose parts are copied into one batch
  * before the walk and read back from memory by it. */
