@@ -400,6 +400,22 @@ START_TEST(bench_raster_writes_csv_and_table) {
   const char *bad[] = {"bench", "raster", "--simd", "neon", NULL};
   ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
   ck_assert_str_eq(err, "zscan bench raster: --simd: scalar, sse2 or avx2, not 'neon'\n");
+  /* --speedup: a scene on one thread and on two, frames in turn; the
+   * images are the same (the times are not asserted) */
+  const char *speedup[] = {"bench", "raster", "--case", "builtin:city", "--algo", "zbuffer",
+                           "--threads", "2", "--speedup", "--repeat", "3", "--size", "500x500",
+                           NULL};
+  ck_assert_int_eq(zs_test_run_zscan(speedup, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "zscan (zbuffer) on 1 thread and on 2, frames in turn, 3 pairs"));
+  const char *row = strstr(out, "\nbuiltin:city ");
+  row = row ? strstr(row + 1, "\nbuiltin:city ") : NULL; /* the speed-up table's row */
+  ck_assert_ptr_nonnull(row);
+  const char *eol = strchr(row + 1, '\n');
+  ck_assert_ptr_nonnull(eol);
+  ck_assert_msg(eol - row > 4 && strncmp(eol - 4, " yes", 4) == 0, "%.*s", (int)(eol - row), row);
+  const char *alone[] = {"bench", "raster", "--speedup", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(alone, out, sizeof out, err, sizeof err), 1);
+  ck_assert_str_eq(err, "zscan bench raster: --speedup: against --threads N, N of 2 or more\n");
 }
 END_TEST
 

@@ -44,6 +44,8 @@ static const char usage[] =
     "  --no-simd         the same as --simd scalar\n"
     "  --mesa            also the scenes through Mesa's llvmpipe (OSMesa), frames taken\n"
     "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n"
+    "  --speedup         also the scenes on one thread and on --threads N, frames taken in\n"
+    "                    turn: each pair's ratio, so that both see the same machine\n"
     "  --callgrind       also the instructions per frame of each case, one thread, counted\n"
     "                    by valgrind's callgrind (runs of 1 and 3 frames; the difference / 2)\n"
     "  --case NAME       only that case ('triangles 10x10', 'builtin:city', ...)\n"
@@ -59,7 +61,7 @@ static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 typedef struct bench_opts {
   int repeat, threads, width, height, scenes;
   zs_simd simd; /* the cap asked for; after parsing, the level in use */
-  int mesa, callgrind;
+  int mesa, callgrind, speedup;
   int algo;               /* -1: both modes */
   const char *only_case;  /* NULL: every case */
   const char *csv, *md, *plot;
@@ -244,6 +246,80 @@ static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_o
   }
 }
 
+/* A scene on one thread and on o->threads, frames in turn: the run-long
+ * slow spells of a shared machine fall on both sides of a pair alike, so
+ * the pairs' ratios tell the speed-up where the medians of two separate
+ * runs may not. */
+typedef struct speedup_row {
+  const char *name;
+  double one_ms, many_ms;     /* medians */
+  double ratio[3];            /* the pairs' ratios: lower quartile, median, upper quartile */
+  int same;                   /* the same faces and depths in every pixel */
+} speedup_row;
+
+static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const char *name,
+                                 double *ms, speedup_row *r, zs_error *err) {
+  const int w = o->width, h = o->height;
+  double view[16], proj[16], *many = malloc((size_t)o->repeat * sizeof *many);
+  double *ratio = malloc((size_t)o->repeat * sizeof *ratio);
+  zs_device *dev[2] = {NULL, NULL};
+  zs_status st = !many || !ratio ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
+  for (int d = 0; d < 2 && !st; d++) {
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? o->threads : 1, 0};
+    st = zs_device_create(&cfg, &dev[d], err);
+  }
+  if (!st) st = zs_frame_camera(s, &s->camera, w, h, view, proj, err);
+  for (int k = 0; k < o->repeat && !st; k++) {
+    double t0 = zs_wall_ms();
+    if ((st = zs_frame_render_on(dev[0], s, view, proj, 0, NULL, NULL, err))) break;
+    double t1 = zs_wall_ms();
+    if ((st = zs_frame_render_on(dev[1], s, view, proj, 0, NULL, NULL, err))) break;
+    ms[k] = t1 - t0;
+    many[k] = zs_wall_ms() - t1;
+    ratio[k] = ms[k] / many[k];
+  }
+  if (!st) {
+    size_t px = (size_t)w * (size_t)h * sizeof(uint32_t);
+    r->name = name;
+    r->same = memcmp(zs_device_id_buffer(dev[0]), zs_device_id_buffer(dev[1]), px) == 0 &&
+              memcmp(zs_device_depth_buffer(dev[0]), zs_device_depth_buffer(dev[1]), px) == 0;
+    r->one_ms = zs_median(ms, o->repeat);
+    r->many_ms = zs_median(many, o->repeat);
+    r->ratio[1] = zs_median(ratio, o->repeat); /* sorts ratio */
+    r->ratio[0] = ratio[(o->repeat - 1) / 4];
+    r->ratio[2] = ratio[o->repeat - 1 - (o->repeat - 1) / 4];
+  }
+  zs_device_destroy(dev[0]);
+  zs_device_destroy(dev[1]);
+  free(many);
+  free(ratio);
+  return st;
+}
+
+static void write_speedup_table(FILE *f, const speedup_row *rows, int n, const bench_opts *o,
+                                int md) {
+  if (md) {
+    fprintf(f, "\n| scene | 1 thread ms | %d threads ms | speed-up, median of the pairs | "
+               "lower and upper quartile | the same image |\n",
+            o->threads);
+    fprintf(f, "|---|---|---|---|---|---|\n");
+  } else {
+    fprintf(f, "\nzscan (zbuffer) on 1 thread and on %d, frames in turn, %d pairs\n", o->threads,
+            o->repeat);
+    fprintf(f, "%-28s %10s %10s %8s %8s %8s %5s\n", "scene", "one_ms", "many_ms", "speedup", "q1",
+            "q3", "same");
+  }
+  for (int i = 0; i < n; i++) {
+    const speedup_row *r = &rows[i];
+    if (md)
+      fprintf(f, "| `%s` | %.2f | %.2f | %.2fx | %.2fx, %.2fx | %s |\n", r->name, r->one_ms,
+              r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], r->same ? "yes" : "no");
+    else
+      fprintf(f, "%-28s %10.3f %10.3f %8.3f %8.3f %8.3f %5s\n", r->name, r->one_ms, r->many_ms,
+              r->ratio[1], r->ratio[0], r->ratio[2], r->same ? "yes" : "no");
+  }
+}
+
 /* The instructions per frame of one case and mode: this zscan runs the
  * case alone under callgrind for 1 and for 3 frames; loading and set-up
  * are the same in both, so half the difference is one frame. */
@@ -329,12 +405,14 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
 }
 
 static zs_status write_md(const char *path, const bench_row *rows, int n, const mesa_row *mrows,
-                          int nm, const bench_opts *o, zs_error *err) {
+                          int nm, const speedup_row *srows, int ns, const bench_opts *o,
+                          zs_error *err) {
   char *tmp;
   FILE *f = zs_out_open(path, &tmp, err);
   if (!f) return err->code;
   write_table(f, rows, n, o, 1);
   if (nm) write_mesa_table(f, mrows, nm, o, 1);
+  if (ns) write_speedup_table(f, srows, ns, o, 1);
   return zs_out_commit(f, tmp, path, err);
 }
 
@@ -368,7 +446,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX2, 0, 0, -1, NULL, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX2, 0, 0, 0, -1, NULL, NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
@@ -386,6 +464,8 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
         return zs_error_set(err, ZS_ERR_UNSUPPORTED,
                             "--mesa: zscan was built without OSMesa (install libosmesa6-dev, rebuild)");
       o->mesa = 1;
+    } else if (strcmp(a, "--speedup") == 0) {
+      o->speedup = 1;
     } else if (strcmp(a, "--callgrind") == 0) {
       if (!zs_callgrind_available(err)) return err->code;
       o->callgrind = 1;
@@ -421,6 +501,8 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
       return zs_error_set(err, ZS_ERR_ARG, "unexpected argument '%s' (see zscan bench raster --help)", a);
     }
   }
+  if (o->speedup && o->threads < 2)
+    return zs_error_set(err, ZS_ERR_ARG, "--speedup: against --threads N, N of 2 or more");
   if (o->width < sides[NSIDES - 1] || o->height < sides[NSIDES - 1])
     return zs_error_set(err, ZS_ERR_ARG, "--size: at least %dx%d (the largest triangles)",
                         sides[NSIDES - 1], sides[NSIDES - 1]);
@@ -437,7 +519,8 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   zs_error_clear(&err);
   bench_row rows[2 * (NSIDES + NSCENES)];
   mesa_row mrows[NSCENES];
-  int n = 0, nm = 0;
+  speedup_row srows[NSCENES];
+  int n = 0, nm = 0, ns = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
   o.simd = zs_raster_set_simd(st ? ZS_SIMD_SCALAR : o.simd); /* what is in use */
@@ -462,6 +545,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
       if (o.algo < 0 || (int)algos[a] == o.algo)
         st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
     if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], ms, &mrows[nm++], &err);
+    if (!st && o.speedup) st = compare_threads(&o, &s, scenes[i], ms, &srows[ns++], &err);
     zs_scene_free(&s);
   }
   free(ms);
@@ -472,8 +556,9 @@ int zs_cmd_bench_raster(int argc, char **argv) {
                       o.only_case ? o.only_case : "");
   if (!st) write_table(stdout, rows, n, &o, 0);
   if (!st && nm) write_mesa_table(stdout, mrows, nm, &o, 0);
+  if (!st && ns) write_speedup_table(stdout, srows, ns, &o, 0);
   if (!st && o.csv && !(st = write_csv(o.csv, rows, n, &o, &err))) printf("wrote %s\n", o.csv);
-  if (!st && o.md && !(st = write_md(o.md, rows, n, mrows, nm, &o, &err))) printf("wrote %s\n", o.md);
+  if (!st && o.md && !(st = write_md(o.md, rows, n, mrows, nm, srows, ns, &o, &err))) printf("wrote %s\n", o.md);
   if (!st && o.plot && !(st = write_plot(o.plot, rows, &o, &err))) printf("wrote %s\n", o.plot);
   if (st) {
     fprintf(stderr, "zscan bench raster: %s\n", err.msg);
