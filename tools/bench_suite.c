@@ -6,9 +6,11 @@
  *                           has it (--mesa), with the instructions per
  *                           frame when valgrind is there (--callgrind);
  *   raster-threads.csv, .md, .png, .txt   the same on every thread of the
- *                           machine, zscan and llvmpipe both (with --mesa
- *                           and 2 threads or more: a child process, as
- *                           llvmpipe reads LP_NUM_THREADS when it starts);
+ *                           machine, zscan and llvmpipe both, and zscan's
+ *                           speed-up over one thread, frames in turn
+ *                           (--speedup) (with --mesa and 2 threads or
+ *                           more: a child process, as llvmpipe reads
+ *                           LP_NUM_THREADS when it starts);
  *   tradeoff*.csv, .md, .png  bench tradeoff: run time against error, every
  *                           method and mode on every walk;
  *   depthsort.csv           bench depthsort: the depth-sort paper's Table 1;
@@ -59,15 +61,16 @@ static int run_all_threads(int n, char path[][4200], const char *size, zs_error 
   if (!zs_self_path(self, sizeof self))
     return zs_error_set(err, ZS_ERR_IO, "cannot find this program's path");
   snprintf(threads, sizeof threads, "%d", n);
-  char *args[20] = {self, "bench", "raster", "--threads", threads, "--mesa",
-                    "--csv", path[6], "--md", path[7], "--plot", path[8]};
-  int k = 12;
+  char *args[20] = {self,    "bench", "raster", "--threads", threads, "--mesa", "--speedup",
+                    "--csv", path[6], "--md",     path[7], "--plot",  path[8]};
+  int k = 13;
   if (size) {
     args[k++] = "--size";
     args[k++] = (char *)size;
   }
   args[k] = NULL;
-  printf("\n$ LP_NUM_THREADS=%s zscan bench raster --threads %s --mesa ...\n", threads, threads);
+  printf("\n$ LP_NUM_THREADS=%s zscan bench raster --threads %s --mesa --speedup ...\n", threads,
+         threads);
   fflush(stdout);
   setenv("LP_NUM_THREADS", threads, 1);
   int rc = zs_spawn_wait(args, path[9], path[9]);
