@@ -19,6 +19,8 @@ const char *zs_motion_class_name(zs_motion_class m) {
 void zs_depthsort_free(zs_depthsort *ds) {
   free(ds->face_ids);
   free(ds->face_keys);
+  free(ds->noted_ids);
+  free(ds->noted_keys);
   free(ds->key_of);
   free(ds->prev_key);
   free(ds->rank_of);
@@ -204,10 +206,74 @@ static int reserve_order(zs_depthsort *ds, uint32_t n) {
   return 1;
 }
 
+/* Whether this frame noted the faces the last frame noted, in the same
+ * order, each at its old depth plus the motion's shift: two arrays
+ * streamed side by side, no look-up per face. */
+static int same_faces_as_before(const zs_depthsort *ds, double shift) {
+  if (ds->nfaces != ds->nnoted) return 0;
+  for (uint32_t i = 0; i < ds->nfaces; i++) {
+    double expect = ds->noted_keys[i] + shift;
+    if (ds->face_ids[i] != ds->noted_ids[i] ||
+        fabs(ds->face_keys[i] - expect) > 1e-9 * (1.0 + fabs(expect)))
+      return 0;
+  }
+  return 1;
+}
+
+/* This frame's noted faces become the last frame's (the arrays swap). */
+static void keep_noted(zs_depthsort *ds) {
+  uint32_t *i = ds->noted_ids;
+  double *k = ds->noted_keys;
+  uint32_t cap = ds->cap_noted;
+  ds->noted_ids = ds->face_ids;
+  ds->noted_keys = ds->face_keys;
+  ds->cap_noted = ds->cap_faces;
+  ds->nnoted = ds->nfaces;
+  ds->face_ids = i;
+  ds->face_keys = k;
+  ds->cap_faces = cap;
+  ds->nfaces = 0; /* the next frame notes its own */
+}
+
+/* The painter's depth of every polygon: its face's rank, back to front.
+ * A polygon whose face was not ordered (outside the circle the faces are
+ * ordered in, device.c) covers no pixel and is painted farthest. */
+static void paint_depths(const zs_depthsort *ds, zs_batch *b) {
+  const int64_t n = ds->n_prev;
+  for (int32_t i = 0; i < b->npolys; i++) {
+    zs_poly *p = &b->polys[i];
+    p->zshift = 0;
+    p->dzdx = p->dzdy = 0;
+    int ordered = p->id < ds->cap_ids && ds->seen[p->id] == ds->ordered_frame;
+    p->zc = ordered ? n - 1 - ds->rank_of[p->id] : n;
+  }
+}
+
 int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
   struct timespec t0, t1;
   clock_gettime(CLOCK_MONOTONIC, &t0);
   zs_depthsort_stats st = {ZS_MOTION_FIRST, 0, 0, 0, 0, 0};
+  double shift = 0.0;
+  if (ds->has_prev) st.motion = classify(ds->prev_view, view, &shift);
+  int keep_as_is = st.motion == ZS_MOTION_STATIC || st.motion == ZS_MOTION_TRANSLATE ||
+                   st.motion == ZS_MOTION_ROLL;
+  int coherent = keep_as_is || st.motion == ZS_MOTION_SLOW_ROTATE;
+  memcpy(ds->prev_view, view, sizeof ds->prev_view);
+
+  /* The paper's roll (and a still camera over a still scene): the same
+   * faces at the same depths.  The old order stands whole, with every
+   * rank; nothing per face but the check. */
+  if (ds->has_prev && keep_as_is && same_faces_as_before(ds, shift)) {
+    ds->drift += shift;
+    st.faces = st.reused = ds->n_prev;
+    keep_noted(ds);
+    paint_depths(ds, b);
+    ds->stats = st;
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    ds->ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
+    return 1;
+  }
+
   uint32_t max_id = 0;
   for (uint32_t i = 0; i < ds->nfaces; i++)
     if (ds->face_ids[i] > max_id) max_id = ds->face_ids[i];
@@ -223,14 +289,9 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
     ds->key_of[id] = ds->face_keys[i];
     ds->order[n++] = id; /* scratch: the faces in drawing order */
   }
-  ds->nfaces = 0; /* the next frame notes its own */
+  keep_noted(ds);
   st.faces = n;
-
-  double shift = 0.0;
-  if (ds->has_prev) st.motion = classify(ds->prev_view, view, &shift);
-  int keep_as_is = st.motion == ZS_MOTION_STATIC || st.motion == ZS_MOTION_TRANSLATE ||
-                   st.motion == ZS_MOTION_ROLL;
-  int coherent = keep_as_is || st.motion == ZS_MOTION_SLOW_ROTATE;
+  shift += ds->drift; /* prev_key is as old as the last frame sorted here */
 
   /* The old queue: last frame's order, less the faces gone, and (when the
    * motion says depths are kept or shifted) less the faces that moved. */
@@ -244,10 +305,12 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
       ds->was[id] = frame; /* in the old queue */
       ds->tmp[nold++] = id;
     }
-    for (uint32_t i = 0; i < n; i++)
-      if (ds->was[ds->order[i]] != frame) ds->fresh[nfresh++] = ds->order[i];
-    /* Mostly new faces (fast motion): coherence has nothing to offer. */
-    if (2 * (uint64_t)nfresh > n) coherent = 0;
+    /* Mostly new faces (fast motion): coherence has nothing to offer.
+     * Else the new ones, unless every face is in the old queue. */
+    if (2 * (uint64_t)(n - nold) > n) coherent = 0;
+    else if (nold < n)
+      for (uint32_t i = 0; i < n; i++)
+        if (ds->was[ds->order[i]] != frame) ds->fresh[nfresh++] = ds->order[i];
   }
   if (!coherent) {
     st.full_sort = 1;
@@ -258,25 +321,32 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
     st.reused = nold;
     st.inserted = nfresh;
     if (!keep_as_is) insertion_sort(ds, ds->tmp, nold, &st.comparisons);
-    merge_sort(ds, ds->fresh, ds->prev_order, nfresh, &st.comparisons);
-    merge(ds, ds->tmp, nold, ds->fresh, nfresh, ds->order, &st.comparisons);
+    if (nfresh == 0) { /* the old queue is the order: no merge, no copy */
+      uint32_t *t = ds->order;
+      ds->order = ds->tmp;
+      ds->tmp = t;
+    } else {
+      merge_sort(ds, ds->fresh, ds->prev_order, nfresh, &st.comparisons);
+      merge(ds, ds->tmp, nold, ds->fresh, nfresh, ds->order, &st.comparisons);
+    }
   }
 
-  /* Ranks, painter's depths, and the memory for the next frame. */
-  for (uint32_t i = 0; i < n; i++) {
-    uint32_t id = ds->order[i];
-    ds->rank_of[id] = (int32_t)i;
-    ds->prev_key[id] = ds->key_of[id];
-    ds->prev_order[i] = id;
-  }
+  /* Ranks, and the memory for the next frame: this order and these keys
+   * are the next frame's old ones.  When the old order was kept whole
+   * (nothing gone, nothing new, nothing moved) every rank stands. */
+  int ranks_stand = coherent && keep_as_is && nfresh == 0 && nold == ds->n_prev;
+  if (!ranks_stand)
+    for (uint32_t i = 0; i < n; i++) ds->rank_of[ds->order[i]] = (int32_t)i;
+  uint32_t *t = ds->prev_order;
+  ds->prev_order = ds->order;
+  ds->order = t;
+  double *k = ds->prev_key;
+  ds->prev_key = ds->key_of;
+  ds->key_of = k;
   ds->n_prev = n;
-  for (int32_t i = 0; i < b->npolys; i++) {
-    zs_poly *p = &b->polys[i];
-    p->zshift = 0;
-    p->dzdx = p->dzdy = 0;
-    p->zc = (int64_t)n - 1 - ds->rank_of[p->id];
-  }
-  memcpy(ds->prev_view, view, sizeof ds->prev_view);
+  ds->ordered_frame = frame;
+  ds->drift = 0.0;
+  paint_depths(ds, b);
   ds->has_prev = 1;
   ds->stats = st;
   clock_gettime(CLOCK_MONOTONIC, &t1);

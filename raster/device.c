@@ -148,6 +148,19 @@ void zs_device_set_camera(zs_device *d, const double view[16],
     d->znear = (b + 1.0) / a;
     d->zfar = (b - 1.0) / a;
   }
+  /* Where the view axis lands in NDC: (-P02, -P12) under a perspective
+   * (x_ndc = (P00 x + P02 z) / -z), (P03, P13) under a parallel
+   * projection; the image plane's units are NDC over P00 and P11. */
+  d->sort_cx = d->perspective ? -proj[2] : proj[3];
+  d->sort_cy = d->perspective ? -proj[6] : proj[7];
+  d->sort_sx = proj[0] != 0.0 ? 1.0 / proj[0] : 0.0;
+  d->sort_sy = proj[5] != 0.0 ? 1.0 / proj[5] : 0.0;
+  d->sort_r2 = 0.0;
+  for (int corner = 0; corner < 4; corner++) { /* the farthest corner */
+    double u = ((corner & 1 ? 1.0 : -1.0) - d->sort_cx) * d->sort_sx;
+    double v = ((corner & 2 ? 1.0 : -1.0) - d->sort_cy) * d->sort_sy;
+    if (u * u + v * v > d->sort_r2) d->sort_r2 = u * u + v * v;
+  }
 }
 
 static void fill_u32(uint32_t *p, size_t n, uint32_t v) {
@@ -316,6 +329,91 @@ void zs_draw_transform(const zs_device *d, const zs_draw_prep *pr, const zs_mesh
   }
 }
 
+/* Whether the polygon p[0..n-1] (clip space, w > 0) meets depth sort's
+ * circle around the window: some edge passes within its radius (a corner
+ * inside is an edge's end inside), or the polygon holds its centre (by
+ * the crossings of the ray from the centre along +u). */
+static int meets_sort_circle(const zs_device *d, const zs_clip_vert *p, int n) {
+  double u0 = (p[n - 1].x / p[n - 1].w - d->sort_cx) * d->sort_sx;
+  double v0 = (p[n - 1].y / p[n - 1].w - d->sort_cy) * d->sort_sy;
+  int inside = 0;
+  for (int i = 0; i < n; i++) {
+    double u = (p[i].x / p[i].w - d->sort_cx) * d->sort_sx;
+    double v = (p[i].y / p[i].w - d->sort_cy) * d->sort_sy;
+    /* the point of the edge (u0, v0)-(u, v) nearest the centre */
+    double du = u - u0, dv = v - v0, len2 = du * du + dv * dv;
+    double t = len2 > 0.0 ? -(u0 * du + v0 * dv) / len2 : 0.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    double nu = u0 + t * du, nv = v0 + t * dv;
+    if (nu * nu + nv * nv <= d->sort_r2) return 1;
+    if ((v0 > 0.0) != (v > 0.0) && u0 - v0 * du / dv > 0.0) inside = !inside;
+    u0 = u;
+    v0 = v;
+  }
+  return inside;
+}
+
+/* Whether a face that set-up found turned away or without area may be
+ * turned to the eye after all: its area in pixels from the unsnapped
+ * corners is at most what snapping to 1/256 pixel can move it by (half a
+ * subpixel a coordinate: under 1/256 of the lengths of the corners'
+ * neighbour chords, which no rotation changes).  Set-up's back test is on
+ * snapped corners, so a face far off or seen edge-on turns from drawn to
+ * back or to no area as the view rolls; this test does not. */
+static int nearly_turned_to_eye(const zs_setup_params *sp, const zs_clip_vert *p, int n) {
+  double X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
+  for (int i = 0; i < n; i++) { /* window pixels, y down, as snapped */
+    X[i] = (p[i].x / p[i].w + 1.0) * 0.5 * sp->width;
+    Y[i] = sp->height - (p[i].y / p[i].w + 1.0) * 0.5 * sp->height;
+  }
+  double area2 = 0.0, chords = 0.0;
+  for (int i = 0, j = n - 1, k = n - 2; i < n; k = j, j = i++) {
+    area2 += X[j] * Y[i] - X[i] * Y[j];
+    double cx = X[i] - X[k], cy = Y[i] - Y[k]; /* the chord around corner j */
+    chords += sqrt(cx * cx + cy * cy);
+  }
+  return area2 <= chords / 256.0 + n / 65536.0; /* back faces: area2 > 0 */
+}
+
+/* Whether depth sort orders a face set-up has seen (result r): whether
+ * it meets the circle, and, where back faces are culled, is or may be
+ * turned to the eye.  An unclipped face (clipped NULL; its corners fv,
+ * snapped to sn) drawn with a corner in the window does, and one plainly
+ * turned away does not; else the tests run on the clipped polygon or on
+ * the corners copied to scratch. */
+static int ordered_by_painter(const zs_device *d, const zs_setup_params *sp,
+                              zs_setup_result r, const zs_vert_scratch *v, const int32_t *fv,
+                              const zs_snap_vert *sn, const zs_clip_vert *clipped, int n,
+                              zs_clip_vert *scratch) {
+  const zs_clip_vert *poly = clipped;
+  if (!clipped) {
+    if (r == ZS_SETUP_BACK && sp->cull_back) {
+      /* Most back faces are plainly so: twice their snapped area (in
+       * subpixels) beyond four times their L1 perimeter (which bounds
+       * twice the chords) plus the corners, more than snapping can take
+       * away and nearly_turned_to_eye allow. */
+      int64_t area2 = 0, perimeter = 0;
+      for (int i = 0, j = n - 1; i < n; j = i++) {
+        area2 += (int64_t)sn[j].x * sn[i].y - (int64_t)sn[i].x * sn[j].y;
+        perimeter += llabs((int64_t)sn[i].x - sn[j].x) + llabs((int64_t)sn[i].y - sn[j].y);
+      }
+      if (area2 > 4 * perimeter + n + 1) return 0;
+    }
+    if (r == ZS_SETUP_DRAWN) {
+      const int64_t wx = (int64_t)sp->width * ZS_SUBPIXEL_ONE;
+      const int64_t wy = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
+      for (int i = 0; i < n; i++)
+        if (sn[i].x >= 0 && sn[i].x <= wx && sn[i].y >= 0 && sn[i].y <= wy) return 1;
+    }
+    for (int i = 0; i < n; i++) scratch[i] = v->clip[fv[i]];
+    poly = scratch;
+  }
+  if ((r == ZS_SETUP_BACK || r == ZS_SETUP_DEGENERATE) && sp->cull_back &&
+      !nearly_turned_to_eye(sp, poly, n))
+    return 0;
+  return meets_sort_circle(d, poly, n);
+}
+
 /* Faces [f0, f1): trivial reject, flat colour, clipping where a face
  * crosses a plane. */
 zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
@@ -380,14 +478,20 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
       const uint32_t shaded = zs_shade_flat(sp.rgb, nrm);
       for (int32_t i = first_poly; i < b->npolys; i++) b->polys[i].rgb = shaded;
     }
-    if (ds && r == ZS_SETUP_DRAWN) {
-      /* the sort key: distance along the view axis of the centroid of the
-       * face's vertices; every face in view is ordered, even one too small
-       * to cover a pixel centre */
-      double zsum = 0.0;
-      for (int i = 0; i < nv; i++) zsum += v->eyepos[3 * fv[i] + 2];
-      if (!zs_depthsort_note(ds, sp.id, -zsum / nv))
-        return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    /* The painter orders the faces that meet the circle around the
+     * window, drawn or not, turned to the eye or nearly: a roll keeps that
+     * set whole, so the faces that turn into the window are in the old
+     * order already.  A face drawn outside it (its box met a pixel centre,
+     * the face does not) covers no pixel and is painted farthest. */
+    if (ds && r != ZS_SETUP_NOMEM) {
+      if (ordered_by_painter(d, &sp, r, v, fv, snapped, or_code ? clipped : NULL, n, in)) {
+        /* the sort key: distance along the view axis of the centroid of
+         * the face's vertices */
+        double zsum = 0.0;
+        for (int i = 0; i < nv; i++) zsum += v->eyepos[3 * fv[i] + 2];
+        if (!zs_depthsort_note(ds, sp.id, -zsum / nv))
+          return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+      }
     }
     switch (r) {
       case ZS_SETUP_DRAWN: fc->rasterized++; break;

@@ -270,6 +270,9 @@ typedef struct zs_depthsort {
   uint32_t *face_ids;    /* this frame's faces in view, as drawn */
   double *face_keys;     /* and their sort keys */
   uint32_t nfaces, cap_faces;
+  uint32_t *noted_ids;   /* the last frame's face_ids and face_keys */
+  double *noted_keys;
+  uint32_t nnoted, cap_noted;
   /* per face id (dense, grown to the largest id seen) */
   double *key_of, *prev_key;
   int32_t *rank_of;      /* this frame's place, back to front */
@@ -279,6 +282,8 @@ typedef struct zs_depthsort {
   uint32_t *order, *prev_order, *tmp, *fresh;  /* ids */
   uint32_t n_prev, cap_order;
   uint32_t frame;
+  uint32_t ordered_frame; /* the seen stamp of the faces in prev_order */
+  double drift;           /* the depth shift since prev_key was written */
   double prev_view[16];
   int has_prev;
   zs_depthsort_stats stats;
@@ -343,6 +348,11 @@ struct zs_device {
   double znear, zfar;
   int perspective;
   double gx, gy;                  /* guard band half-widths, NDC units */
+  /* Depth sort orders the faces that meet the circle around the window,
+   * centred where the view axis meets the image plane: a roll keeps that
+   * set whole.  A point's place on the image plane is u = (x_ndc - cx) *
+   * sx, v = (y_ndc - cy) * sy; the circle is u^2 + v^2 <= r2. */
+  double sort_cx, sort_cy, sort_sx, sort_sy, sort_r2;
   zs_raster_stats stats;
 
   uint32_t *depth, *id, *rgb, *count;  /* full frame (zbuffer mode) */
