@@ -54,7 +54,7 @@ enum { ZS_PATH_MAX_FRAMES = 1000000 };
 #define ZS_PATH_TRANSLATE_STEP 0.005 /* of the viewing distance, per frame */
 #define ZS_PATH_ROLL_DEG 2.0         /* degrees per frame */
 #define ZS_PATH_YAW_DEG 0.5          /* degrees per frame */
-#define ZS_PATH_FAST_STEP 1.0        /* of the viewing distance, per frame */
+#define ZS_PATH_FAST_STEP 2.5         /* of the viewing distance, per frame */
 
 /* The names zs_path_named knows, for messages: "static, translate, roll,
  * yaw, fast". */

@@ -319,9 +319,9 @@ END_TEST
 
 START_TEST(bench_depthsort_coherence_pays_where_depths_are_kept) {
   /* The comparisons are exact: translation and roll keep the order and
-   * insert a few faces (under 2 % of a full sort's comparisons); slow yaw
-   * re-sorts (less than a full sort, more than a tenth); fast motion
-   * replaces half the faces (more than a tenth). */
+   * insert a few faces (under 2 % of a full sort's comparisons; roll
+   * none); slow yaw re-sorts (less than a full sort, more than a tenth);
+   * fast motion replaces most faces (more than a tenth). */
   char csv[4096];
   fresh_path(csv, sizeof csv, "cli-depthsort.csv");
   const char *args[] = {"bench", "depthsort", "--frames", "6", "--size", "256x192", "--csv",
@@ -332,6 +332,7 @@ START_TEST(bench_depthsort_coherence_pays_where_depths_are_kept) {
   ck_assert_str_eq(line, "motion,faces,reused_pct,full_sort_ms,coherent_sort_ms,"
                          "full_comparisons,coherent_comparisons,diff_pixels\n");
   static const char *const motions[4] = {"translate", "roll", "yaw", "fast"};
+  double share[4]; /* coherent comparisons over a full sort's */
   for (int m = 0; m < 4; m++) {
     ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
     char name[32];
@@ -342,7 +343,14 @@ START_TEST(bench_depthsort_coherence_pays_where_depths_are_kept) {
     ck_assert_msg(full > faces, "%s: %s", motions[m], line);
     if (m < 2) ck_assert_msg(coherent < 0.02 * full, "%s: %s", motions[m], line);
     else ck_assert_msg(coherent > 0.1 * full && coherent < full, "%s: %s", motions[m], line);
+    share[m] = coherent / full;
+    /* the paper's roll: every face kept, nothing compared */
+    if (m == 1) ck_assert_msg(reused == 100.0 && coherent == 0.0, "roll: %s", line);
   }
+  /* the paper's order: roll cheapest, then translation, slow yaw, and
+   * fast motion gaining least */
+  ck_assert_msg(share[1] < share[0] && share[0] < share[2] && share[2] < share[3],
+                "shares %g %g %g %g", share[0], share[1], share[2], share[3]);
   fclose(f);
 }
 END_TEST
