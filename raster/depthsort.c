@@ -12,7 +12,8 @@
 #include "raster/internal.h"
 
 const char *zs_motion_class_name(zs_motion_class m) {
-  static const char *names[] = {"first", "static", "translate", "roll", "slow-rotate", "fast"};
+  static const char *names[] = {"first", "static", "translate", "roll",
+                                "slow-rotate", "fast", "dolly"};
   return (unsigned)m < sizeof names / sizeof names[0] ? names[m] : "?";
 }
 
@@ -164,7 +165,10 @@ static zs_motion_class classify(const double prev[16], const double view[16], do
   const double eps = 1e-12;
   int rotated = cosang < 1.0 - eps;
   int moved = fabs(t[0]) > eps || fabs(t[1]) > eps || fabs(t[2]) > eps;
-  if (!rotated) return moved ? ZS_MOTION_TRANSLATE : ZS_MOTION_STATIC;
+  if (!rotated) {
+    if (!moved) return ZS_MOTION_STATIC;
+    return fabs(t[2]) > eps ? ZS_MOTION_DOLLY : ZS_MOTION_TRANSLATE;
+  }
   /* a rotation about the view axis leaves every z: R's third row is (0,0,1) */
   if (fabs(R[6]) < 1e-9 && fabs(R[7]) < 1e-9) return ZS_MOTION_ROLL;
   return cosang > cos(2.0 * ZS_PI / 180.0) ? ZS_MOTION_SLOW_ROTATE : ZS_MOTION_FAST;
@@ -256,7 +260,7 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
   double shift = 0.0;
   if (ds->has_prev) st.motion = classify(ds->prev_view, view, &shift);
   int keep_as_is = st.motion == ZS_MOTION_STATIC || st.motion == ZS_MOTION_TRANSLATE ||
-                   st.motion == ZS_MOTION_ROLL;
+                   st.motion == ZS_MOTION_DOLLY || st.motion == ZS_MOTION_ROLL;
   int coherent = keep_as_is || st.motion == ZS_MOTION_SLOW_ROTATE;
   memcpy(ds->prev_view, view, sizeof ds->prev_view);
 

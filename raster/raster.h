@@ -355,7 +355,8 @@ zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh,
  * Frame coherence (the depth-sort paper): each face keeps its place from
  * the previous frame.  The camera's motion between frames is classified
  * from the two view matrices:
- *   static, translation, roll about the view axis: depths are unchanged or
+ *   static, translation in the view plane, translation along the view
+ *     axis (a dolly), roll about the view axis: depths are unchanged or
  *     shift all by the same amount, so the old order is kept as it is;
  *     only new faces are sorted and merged in (a few among many gallop
  *     to their places: O(log gap) comparisons each);
@@ -369,10 +370,11 @@ zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh,
 typedef enum zs_motion_class {
   ZS_MOTION_FIRST,        /* no previous frame */
   ZS_MOTION_STATIC,
-  ZS_MOTION_TRANSLATE,    /* translation (any direction) */
+  ZS_MOTION_TRANSLATE,    /* translation in the view plane */
   ZS_MOTION_ROLL,         /* roll about the view axis (and translation) */
   ZS_MOTION_SLOW_ROTATE,  /* slow pitch / yaw */
-  ZS_MOTION_FAST          /* anything else: a full sort */
+  ZS_MOTION_FAST,         /* anything else: a full sort */
+  ZS_MOTION_DOLLY         /* translation with a part along the view axis */
 } zs_motion_class;
 
 typedef struct zs_depthsort_stats {

@@ -174,7 +174,7 @@ START_TEST(kept_frames_carry_the_depth_shift) {
   for (int k = 1; k <= 4; k++) {
     eye[2] = 30 - 0.5 * k;
     frame(d, &b.m, eye, origin, 0, NULL);
-    ck_assert_int_eq(s->motion, ZS_MOTION_TRANSLATE);
+    ck_assert_int_eq(s->motion, ZS_MOTION_DOLLY);
     ck_assert_uint_eq(s->comparisons, 0);
     ck_assert_uint_eq(s->reused, faces);
   }
@@ -183,7 +183,8 @@ START_TEST(kept_frames_carry_the_depth_shift) {
   eye[2] = 27.5;
   frame_ids painted;
   frame(d, &b.m, eye, origin, 0, &painted);
-  ck_assert_int_eq(s->motion, ZS_MOTION_TRANSLATE);
+  ck_assert_int_eq(s->motion, ZS_MOTION_DOLLY);
+  ck_assert_str_eq(zs_motion_class_name(s->motion), "dolly");
   ck_assert(!s->full_sort);
   ck_assert_uint_eq(s->reused, faces);
   ck_assert_uint_eq(s->inserted, 1);
