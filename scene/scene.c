@@ -379,8 +379,8 @@ static void tangent(const zs_path *p, int32_t k, int which, double out[3]) {
 
 /* Makes up unit length and orthogonal to the view eye -> target; leaves
  * it merely normalised when that is not possible (up along the view), and
- * at +y when it is zero. */
-static void orthonormal_up(const double eye[3], const double target[3], double up[3]) {
+ * at +y when it is zero.  Returns 0 in those two cases. */
+static int orthonormal_up(const double eye[3], const double target[3], double up[3]) {
   double d[3], dl2 = 0.0, u[3], ul2 = 0.0, dot = 0.0;
   for (int i = 0; i < 3; i++) {
     d[i] = target[i] - eye[i];
@@ -393,17 +393,37 @@ static void orthonormal_up(const double eye[3], const double target[3], double u
   }
   double l2 = 0.0;
   for (int i = 0; i < 3; i++) l2 += up[i] * up[i];
-  if (dl2 > 0.0 && ul2 > 1e-24 * l2) memcpy(up, u, sizeof u);
+  int ok = dl2 > 0.0 && ul2 > 1e-24 * l2;
+  if (ok) memcpy(up, u, sizeof u);
   else ul2 = l2;
   if (!(ul2 > 0.0)) {
     up[0] = 0.0, up[1] = 1.0, up[2] = 0.0;
-    return;
+    return 0;
   }
   double len = sqrt(ul2);
   for (int i = 0; i < 3; i++) up[i] /= len;
+  return ok;
 }
 
+static int path_eval_at(const zs_path *p, double f, zs_keyframe *out);
+
 void zs_path_eval(const zs_path *p, double f, zs_keyframe *out) {
+  if (path_eval_at(p, f, out)) return;
+  /* The view runs along the up vector here (a key looking straight down
+   * with up +y, say): no image orientation follows from this frame alone.
+   * It takes the orientation of the path a thousandth of a frame before
+   * (or after), where the view leans a little: the limit the frames
+   * around it approach, so the picture does not turn at this frame. */
+  static const double nudge[] = {-1e-3, 1e-3, -0.25, 0.25};
+  for (size_t i = 0; i < sizeof nudge / sizeof nudge[0]; i++) {
+    zs_keyframe near;
+    if (!path_eval_at(p, f + nudge[i], &near)) continue;
+    memcpy(out->up, near.up, sizeof out->up);
+    if (orthonormal_up(out->eye, out->target, out->up)) return;
+  }
+}
+
+static int path_eval_at(const zs_path *p, double f, zs_keyframe *out) {
   int32_t n = p->nkeys;
   int32_t k = key_before(p, f);
   if (n == 1 || f <= p->keys[0].frame || k == n - 1) {
@@ -426,7 +446,7 @@ void zs_path_eval(const zs_path *p, double f, zs_keyframe *out) {
     }
   }
   out->frame = (int32_t)floor(f);
-  orthonormal_up(out->eye, out->target, out->up);
+  return orthonormal_up(out->eye, out->target, out->up);
 }
 
 void zs_path_camera(const zs_scene *s, int32_t f, zs_camera *out) {

@@ -18,6 +18,7 @@
 
 #include "raster/raster.h"
 #include "scene/builtin.h"
+#include "scene/camera.h"
 #include "scene/generate.h"
 #include "scene/model.h"
 #include "scene/scene.h"
@@ -497,6 +498,15 @@ START_TEST(paths) {
         d += fabs(c.target[a] - c.eye[a]);
       }
       ck_assert_msg(d > 0.0, "%s: frame %d looks nowhere", cases[i].spec, (int)f);
+      /* and has an image orientation: the plant's path looks straight
+       * down at frame 258, where its up vector lay along the view */
+      zs_camera full = c;
+      zs_camera_complete(&full, s.lo, s.hi, 4.0 / 3.0);
+      double view[16], proj[16];
+      zs_error err;
+      zs_error_clear(&err);
+      ck_assert_msg(zs_camera_matrices(&full, 4.0 / 3.0, view, proj, &err) == ZS_OK,
+                    "%s: frame %d: %s", cases[i].spec, (int)f, err.msg);
       /* The walks stay above the ground. */
       if (strncmp(cases[i].spec, "city", 4) == 0 || strncmp(cases[i].spec, "plant", 5) == 0)
         ck_assert_msg(c.eye[1] > 1.0, "%s: frame %d: eye at y = %g", cases[i].spec, (int)f,
