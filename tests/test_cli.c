@@ -139,6 +139,11 @@ static const bad_option bad_options[] = {
      "--clock-set per_pixel_ns: expected nanoseconds from 0 to 1e12, got -3"},
     {{"render", "--clock-set", "bogus_ns=3", NULL}, "--clock-set bogus_ns: unknown clock parameter"},
     {{"render", "--clock-set", "per_pixel_ns", NULL}, "--clock-set: expected KEY=VALUE"},
+    {{"render", "--cost-set", "w1", NULL}, "--cost-set: expected KEY=VALUE, got 'w1'"},
+    {{"render", "--cost-set", "w1=1.5", NULL},
+     "--cost-set w1: expected a probability from 0 to 1, got 1.5"},
+    {{"render", "--cost-set", "tq_ns=x", NULL}, "--cost-set tq_ns: expected a finite number"},
+    {{"render", "--cost-set", "beta=1", NULL}, "--cost-set beta: unknown cost-model parameter"},
     {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open"},
 };
 
@@ -548,6 +553,19 @@ START_TEST(render_stats_show_the_culling_work) {
   long long evals = json_int(out, "cost_evals"), queries = json_int(out, "queries");
   ck_assert_int_gt(evals, 0);
   ck_assert_int_lt(queries, evals);
+  /* --cost-set: a query that costs a second never pays, so none is asked,
+   * and the picture is the same */
+  char hash[32];
+  const char *h = strstr(out, "\"image_hash\":\"");
+  ck_assert_ptr_nonnull(h);
+  snprintf(hash, sizeof hash, "%.16s", h + 14);
+  const char *dear[] = {"render", "builtin:city", "--size", "256x192", "--cull", "chc-prob",
+                        "--cost-set", "t_ns=1e9", "--stats", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(dear, out, sizeof out, err, sizeof err), 0);
+  ck_assert_int_gt(queries, 0);
+  ck_assert_int_eq(json_int(out, "queries"), 0);
+  ck_assert_int_gt(json_int(out, "cost_evals"), 0); /* it still weighed each */
+  ck_assert_msg(strstr(out, hash) != NULL, "image %s not in %s", hash, out);
 }
 END_TEST
 

@@ -21,6 +21,17 @@ zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *e
   return ZS_OK;
 }
 
+zs_status zs_cli_assignment(const char *opt, const char *s, char *key, size_t cap,
+                            double *value, zs_error *err) {
+  const char *eq = strchr(s, '=');
+  if (!eq || eq == s || (size_t)(eq - s) >= cap)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected KEY=VALUE, got '%s'", opt, s);
+  snprintf(key, cap, "%.*s", (int)(eq - s), s);
+  char where[160];
+  snprintf(where, sizeof where, "%s %s", opt, key);
+  return zs_cli_double(where, eq + 1, value, err);
+}
+
 zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
                      zs_error *err) {
   char *end;

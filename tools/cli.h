@@ -7,11 +7,17 @@
 #ifndef ZS_TOOLS_CLI_H
 #define ZS_TOOLS_CLI_H
 
+#include <stddef.h>
+
 #include "raster/error.h"
 
 zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err);
 zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
                      zs_error *err);
+/* "KEY=VALUE" with a number for VALUE: the key into key (cap bytes), the
+ * number into *value; opt names the option in messages. */
+zs_status zs_cli_assignment(const char *opt, const char *s, char *key, size_t cap,
+                            double *value, zs_error *err);
 /* "x,y,z" */
 zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err);
 /* "WxH", each side 1 .. max */

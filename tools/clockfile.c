@@ -40,14 +40,9 @@ static zs_status set_value(const char *where, const char *name, double v, zs_clo
 }
 
 zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err) {
-  const char *eq = strchr(assignment, '=');
-  if (!eq) return zs_error_set(err, ZS_ERR_ARG, "--clock-set: expected KEY=VALUE, got '%s'", assignment);
   char name[64];
-  snprintf(name, sizeof name, "%.*s", (int)(eq - assignment), assignment);
   double v;
-  char opt[96];
-  snprintf(opt, sizeof opt, "--clock-set %s", name);
-  if (zs_cli_double(opt, eq + 1, &v, err)) return err->code;
+  if (zs_cli_assignment("--clock-set", assignment, name, sizeof name, &v, err)) return err->code;
   return set_value("--clock-set ", name, v, p, err);
 }
 

@@ -13,6 +13,7 @@
 #include "scene/model.h"
 #include "tools/cli.h"
 #include "tools/clockfile.h"
+#include "tools/costset.h"
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
@@ -39,7 +40,9 @@ static const char usage_tail[] =
     "                      grey outside, red queried hidden, green queried visible,\n"
     "                      blue entered without a query\n"
     "  --clock FILE.json   the device clock's constants (zscan calibrate writes one)\n"
-    "  --clock-set K=V     set one clock constant, in ns (e.g. query_latency_ns=0)\n";
+    "  --clock-set K=V     set one clock constant, in ns (e.g. query_latency_ns=0)\n"
+    "  --cost-set K=V      with --cull: set one parameter of the cost model (w1, w2,\n"
+    "                      ttri_ns, tcall_ns, t_ns, tq_ns, rho)\n";
 
 typedef struct render_opts {
   const char *input, *out_png, *out_pfm;
@@ -49,6 +52,7 @@ typedef struct render_opts {
   int threads, repeat, stats, hidden_line, cull, overlay;
   zs_query_bounds bounds;
   zs_clock_params clock;
+  zs_cost_params cost;
 } render_opts;
 
 static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
@@ -59,6 +63,7 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
   o->repeat = 1;
   o->cull = -1;
   zs_clock_params_default(&o->clock);
+  zs_cost_params_default(&o->cost);
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
 #define VALUE() \
@@ -119,6 +124,9 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
     } else if (strcmp(a, "--clock-set") == 0) {
       VALUE();
       if (zs_clock_set(v, &o->clock, err)) return err->code;
+    } else if (strcmp(a, "--cost-set") == 0) {
+      VALUE();
+      if (zs_cost_set(v, &o->cost, err)) return err->code;
     } else if (a[0] == '-' && a[1] != '\0') {
       return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan render --help)", a);
     } else if (!o->input) {
@@ -263,7 +271,7 @@ static zs_status run(const render_opts *o, zs_error *err) {
       /* each repeat is a fresh first frame: the culler starts again */
       zs_culler_destroy(culler);
       culler = NULL;
-      if ((st = zs_culler_create((zs_cull_method)o->cull, NULL, &culler, err)) ||
+      if ((st = zs_culler_create((zs_cull_method)o->cull, &o->cost, &culler, err)) ||
           (st = zs_culler_set_bounds(culler, o->bounds, err)) ||
           (st = zs_culler_frame(culler, dev, &model, &tree, view, proj, &cs, err)))
         goto done;

@@ -22,6 +22,7 @@
 #include "scene/scene.h"
 #include "tools/cli.h"
 #include "tools/clockfile.h"
+#include "tools/costset.h"
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
@@ -42,6 +43,8 @@ static const char usage[] =
     "  --frames-dir DIR    each method's image of every frame\n"
     "  --clock FILE.json   the device clock's constants\n"
     "  --clock-set K=V     set one clock constant, ns\n"
+    "  --cost-set K=V      set one parameter of the cost model (chc-prob, auto,\n"
+    "                      chcpp-prob): w1, w2, ttri_ns, tcall_ns, t_ns, tq_ns, rho\n"
     "  --latency-frames X  query latency as X times none's mean frame time\n"
     "  --depth D --looseness K   the loose octree (default 4, 2; a scene of at most 16\n"
     "                      objects gets none: its root lists them)\n"
@@ -61,6 +64,7 @@ typedef struct walk_opts {
   int frames, width, height, quiet, depth, step;
   double looseness, latency_frames;
   zs_clock_params clock;
+  zs_cost_params cost;
   zs_query_bounds bounds;
 } walk_opts;
 
@@ -81,6 +85,7 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   o->latency_frames = -1;
   o->step = 1;
   zs_clock_params_default(&o->clock);
+  zs_cost_params_default(&o->cost);
   o->methods[o->nmethods++] = ZS_CULL_NONE;
   int have_cull = 0;
   for (int i = 1; i < argc; i++) {
@@ -147,6 +152,9 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     } else if (strcmp(a, "--clock-set") == 0) {
       VALUE();
       if (zs_clock_set(v, &o->clock, err)) return err->code;
+    } else if (strcmp(a, "--cost-set") == 0) {
+      VALUE();
+      if (zs_cost_set(v, &o->cost, err)) return err->code;
     } else if (strcmp(a, "--latency-frames") == 0) {
       VALUE();
       if (zs_cli_double(a, v, &o->latency_frames, err)) return err->code;
@@ -359,7 +367,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     r->m = (zs_cull_method)o->methods[k];
     zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
     if ((st = zs_device_create(&cfg, &r->dev, err))) goto done;
-    if ((st = zs_culler_create(r->m, NULL, &r->culler, err)) ||
+    if ((st = zs_culler_create(r->m, &o->cost, &r->culler, err)) ||
         (st = zs_culler_set_bounds(r->culler, o->bounds, err)))
       goto done;
     if ((st = zs_device_set_clock(r->dev, &clock, err))) goto done;

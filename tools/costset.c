@@ -1,0 +1,43 @@
+#include "tools/costset.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "tools/cli.h"
+
+typedef struct cost_field {
+  const char *name;
+  size_t offset;
+  double lo, hi;
+  const char *what;
+} cost_field;
+
+#define FIELD(name, lo, hi, what) {#name, offsetof(zs_cost_params, name), lo, hi, what}
+static const cost_field fields[] = {
+    FIELD(w1, 0.0, 1.0, "a probability from 0 to 1"),
+    FIELD(w2, 0.0, 1.0, "a probability from 0 to 1"),
+    FIELD(ttri_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
+    FIELD(tcall_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
+    FIELD(t_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
+    FIELD(tq_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
+    FIELD(rho, 0.0, 1e6, "pixels per unit of S from 0 to 1e6"),
+};
+#undef FIELD
+
+zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) {
+  char name[64];
+  double v;
+  if (zs_cli_assignment("--cost-set", assignment, name, sizeof name, &v, err)) return err->code;
+  for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
+    if (strcmp(fields[i].name, name) != 0) continue;
+    if (v < fields[i].lo || v > fields[i].hi)
+      return zs_error_set(err, ZS_ERR_ARG, "--cost-set %s: expected %s, got %g", name,
+                          fields[i].what, v);
+    *(double *)((char *)p + fields[i].offset) = v;
+    return ZS_OK;
+  }
+  return zs_error_set(err, ZS_ERR_ARG,
+                      "--cost-set %s: unknown cost-model parameter (w1, w2, ttri_ns, tcall_ns, "
+                      "t_ns, tq_ns, rho)",
+                      name);
+}
