@@ -363,8 +363,8 @@ static int meets_sort_circle(const zs_device *d, const zs_clip_vert *p, int n) {
 static int nearly_turned_to_eye(const zs_setup_params *sp, const zs_clip_vert *p, int n) {
   double X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
   for (int i = 0; i < n; i++) { /* window pixels, y down, as snapped */
-    X[i] = (p[i].x / p[i].w + 1.0) * 0.5 * sp->width;
-    Y[i] = sp->height - (p[i].y / p[i].w + 1.0) * 0.5 * sp->height;
+    zs_window_xy(sp->width, sp->height, &p[i], &X[i], &Y[i]);
+    Y[i] = sp->height - Y[i];
   }
   double area2 = 0.0, chords = 0.0;
   for (int i = 0, j = n - 1, k = n - 2; i < n; k = j, j = i++) {

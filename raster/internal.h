@@ -125,12 +125,20 @@ typedef struct zs_snap_vert {
   double z;
 } zs_snap_vert;
 
+/* Where a vertex (w > 0) lands in a width x height window, in pixels: x
+ * from the left, y from the bottom (the image's rows run down from
+ * height - y). */
+static inline void zs_window_xy(int width, int height, const zs_clip_vert *v, double *xw,
+                                double *yw) {
+  *xw = (v->x / v->w + 1.0) * (0.5 * width);
+  *yw = (v->y / v->w + 1.0) * (0.5 * height);
+}
+
 static inline void zs_snap_vertex(const zs_setup_params *sp, const zs_clip_vert *v,
                                   zs_snap_vert *out) {
-  const double half_w = 0.5 * sp->width, half_h = 0.5 * sp->height;
   const int64_t h_sub = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
-  double xw = (v->x / v->w + 1.0) * half_w;
-  double yw = (v->y / v->w + 1.0) * half_h;
+  double xw, yw;
+  zs_window_xy(sp->width, sp->height, v, &xw, &yw);
   double zw = (v->z / v->w + 1.0) * 0.5;
   out->x = (int32_t)lrint(xw * ZS_SUBPIXEL_ONE);
   out->y = (int32_t)(h_sub - lrint(yw * ZS_SUBPIXEL_ONE));

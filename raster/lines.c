@@ -15,8 +15,8 @@ zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {
 /* Window position of a clip-space point: x, y in pixels (image y down),
  * z the window depth. */
 static void to_window(const zs_device *d, const zs_clip_vert *v, double out[3]) {
-  out[0] = (v->x / v->w + 1.0) * 0.5 * d->cfg.width;
-  out[1] = d->cfg.height - (v->y / v->w + 1.0) * 0.5 * d->cfg.height;
+  zs_window_xy(d->cfg.width, d->cfg.height, v, &out[0], &out[1]);
+  out[1] = d->cfg.height - out[1];
   out[2] = (v->z / v->w + 1.0) * 0.5;
 }
 
