@@ -3,7 +3,7 @@
  *   --cost-set KEY=VALUE    set one parameter of chc-prob's (and auto's,
  *                           chcpp-prob's) cost model, cull/cull.h:
  *     w1, w2                P(a visible node stays visible), P(a hidden one
- *                           stays hidden), 0 .. 1
+ *                           stays hidden), 0 .. 1 (auto learns its own)
  *     ttri_ns, tcall_ns,    Ttri, Tcall, T and Tq of formulas (6) and (10),
  *     t_ns, tq_ns           in ns, 0 .. 1e12 (by default the device clock's)
  *     rho                   pixels per unit of the box area S, 0 .. 1e6

@@ -45,6 +45,7 @@ static const char usage[] =
     "  --clock-set K=V     set one clock constant, ns\n"
     "  --cost-set K=V      set one parameter of the cost model (chc-prob, auto,\n"
     "                      chcpp-prob): w1, w2, ttri_ns, tcall_ns, t_ns, tq_ns, rho\n"
+    "                      (auto learns w1 and w2 from its own outcomes)\n"
     "  --latency-frames X  query latency as X times none's mean frame time\n"
     "  --depth D --looseness K   the loose octree (default 4, 2; a scene of at most 16\n"
     "                      objects gets none: its root lists them)\n"
