@@ -46,6 +46,10 @@ typedef struct zs_poly {
   int32_t edge0;
   uint8_t nleft, nright;
   uint8_t zshift;
+  /* Every span in columns [0, width) and every depth strictly between the
+   * planes: the walk neither clamps its spans nor tests their depths
+   * (setup.c, spans_inner; width is the device's, every target's). */
+  uint8_t inner;
 } zs_poly;
 
 /* The polygons and edges of a batch: one draw in zbuffer mode, the whole
@@ -215,14 +219,24 @@ typedef struct zs_edge_dda {
  * not two). */
 typedef struct zs_active {
   zs_edge_dda l, r;
-  int64_t zl;    /* depth plane at (l.x, y) */
+  uint64_t zrow; /* depth plane at (0, y), modulo 2^64 (zs_plane_at) */
   int64_t dzdx, dzdy;
   int64_t zfar;  /* ZS_DEPTH_FAR << zshift: the far plane in the plane's units */
   uint32_t id, rgb;
   int32_t row1, zshift;
   int32_t poly;
   int32_t left, left_end, right, right_end; /* current and last edge */
+  int32_t inner; /* the polygon's */
 } zs_active;
+
+/* The depth plane at column x of a row whose plane at column 0 is zrow.
+ * The sum is taken modulo 2^64: column 0 may lie far outside the polygon,
+ * where the plane does not fit 64 bits, but at a column of the polygon's
+ * box it does (setup.c, make_plane), and there the wrapped sum is exact.
+ * One multiply a span; going down a row adds dzdy to zrow. */
+static inline int64_t zs_plane_at(uint64_t zrow, int64_t dzdx, int64_t x) {
+  return (int64_t)(zrow + (uint64_t)dzdx * (uint64_t)x);
+}
 
 void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row);
 

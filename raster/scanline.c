@@ -8,9 +8,10 @@
  * sorted edge table".
  * Active polygon list / active edge list: one zs_active per polygon that
  * meets the current row, holding, as the lecture's active edge table
- * does, its edge pair (xl, dxl, dyl, xr, dxr, dyr), zl (the depth at
- * (xl, y)), dzx = dzdx, dzy = dzdy and the id: a row reads the entry
- * alone.
+ * does, its edge pair (xl, dxl, dyl, xr, dxr, dyr), the depth on the row
+ * (kept at column 0, zrow, where the lecture keeps zl at xl: a span's
+ * first depth is one multiply from it and a row one add), dzx = dzdx,
+ * dzy = dzdy and the id: a row reads the entry alone.
  *
  * Edges are stepped with an exact integer DDA.  For an edge from (X0, Y0)
  * to (X1, Y1) (subpixels, Y0 < Y1, D = 256 (Y1 - Y0)), the first column
@@ -106,7 +107,10 @@ static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, i
   uint64_t w = 0;
   if (k == ZS_KERNEL_QUERY) {
     const uint32_t *zr = row->depth;
-    for (int x = x0; x < x1; x++, z += dz) w += depth_of(z, shift, zfar) <= zr[x];
+    if (a->inner)
+      for (int x = x0; x < x1; x++, z += dz) w += (uint32_t)(z >> shift) <= zr[x];
+    else
+      for (int x = x0; x < x1; x++, z += dz) w += depth_of(z, shift, zfar) <= zr[x];
     *written += w;
     return;
   }
@@ -114,10 +118,9 @@ static inline void fill_span(zs_kernel k, const row_ptrs *row, int x0, int x1, i
   const uint32_t id = a->id, rgb = a->rgb;
   /* z is linear along the span: when both ends lie strictly between the
    * planes (0 < z < zfar, as one unsigned compare), so does every pixel,
-   * and depth_of is a shift */
-  const int64_t zlast = z + dz * (x1 - 1 - x0);
-  const uint64_t inside = (uint64_t)zfar - 1u;
-  if ((uint64_t)z - 1u < inside && (uint64_t)zlast - 1u < inside) {
+   * and depth_of is a shift; an inner polygon's spans all do */
+  if (a->inner || ((uint64_t)z - 1u < (uint64_t)zfar - 1u &&
+                   (uint64_t)(z + dz * (x1 - 1 - x0)) - 1u < (uint64_t)zfar - 1u)) {
     if (x1 - x0 >= vector_from) { /* whole vector steps, the rest below */
       int xs = zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
       z += dz * (xs - x0);
@@ -236,7 +239,8 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
   a->right = edge_at(edges, a->left_end + 1, a->right_end, y);
   dda_start(&a->l, &edges[a->left], y);
   dda_start(&a->r, &edges[a->right], y);
-  a->zl = p->zc + p->dzdx * (a->l.x - p->ox) + p->dzdy * (y - p->oy);
+  a->zrow = (uint64_t)p->zc - (uint64_t)p->dzdx * (uint64_t)(int64_t)p->ox +
+            (uint64_t)p->dzdy * (uint64_t)((int64_t)y - p->oy);
   a->dzdx = p->dzdx;
   a->dzdy = p->dzdy;
   a->id = p->id;
@@ -244,6 +248,7 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
   a->row1 = p->row1;
   a->zshift = p->zshift;
   a->zfar = (int64_t)ZS_DEPTH_FAR << p->zshift;
+  a->inner = p->inner;
 }
 
 /* a's span on the row, clamped to the target's width, filled with kernel
@@ -252,10 +257,12 @@ static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const z
                             zs_simd simd, int vector_from, uint64_t *spans, uint64_t *tested,
                             uint64_t *written, int64_t *x0_out, int64_t *x1_out) {
   int64_t x0 = a->l.x, x1 = a->r.x;
-  if (x0 < 0) x0 = 0;
-  if (x1 > width) x1 = width;
+  if (!a->inner) {
+    if (x0 < 0) x0 = 0;
+    if (x1 > width) x1 = width;
+  }
   if (x0 < x1) {
-    int64_t z = a->zl + a->dzdx * (x0 - a->l.x);
+    int64_t z = zs_plane_at(a->zrow, a->dzdx, x0);
     fill_span(k, row, (int)x0, (int)x1, z, a, simd, vector_from, written);
     ++*spans;
     *tested += (uint64_t)(x1 - x0);
@@ -265,14 +272,13 @@ static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const z
 }
 
 /* Down one row from y: step both edges, or replace an edge that ran out
- * with the next of its chain; zl follows xl along the plane. */
+ * with the next of its chain; the plane at column 0 moves by dzdy. */
 static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
-  int64_t old_xl = a->l.x;
   if (a->l.rows > 0) dda_step(&a->l);
   else dda_start(&a->l, &edges[++a->left], y + 1);
   if (a->r.rows > 0) dda_step(&a->r);
   else dda_start(&a->r, &edges[++a->right], y + 1);
-  a->zl += a->dzdx * (a->l.x - old_xl) + a->dzdy;
+  a->zrow += (uint64_t)a->dzdy;
 }
 
 /* The scanline z-buffer of the lecture: row by row, with the active

@@ -128,11 +128,30 @@ static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
   return p;
 }
 
+/* Whether the walk may skip, for every span of p, the clamp to the
+ * window's columns and the test of its depths against the planes (the
+ * zs_poly's inner).  The exact DDA keeps each span to the columns whose
+ * centres lie in [xmin, xmax], p's extent in subpixels, and each row to
+ * row0 .. row1; the plane, linear, takes its extremes at the corners of
+ * that box, where make_plane's bound keeps it within 64 bits.  One test a
+ * polygon instead of two a span. */
+static uint8_t spans_inner(int width, const zs_poly *p, int32_t xmin, int32_t xmax) {
+  const int32_t c0 = zs_floordiv256((int64_t)xmin + 127); /* first centre >= xmin */
+  const int32_t c1 = zs_floordiv256((int64_t)xmax - 128); /* last centre <= xmax */
+  if (c0 < 0 || c1 >= width || c0 > c1) return 0;
+  const int64_t x0 = p->dzdx * (c0 - p->ox), x1 = p->dzdx * (c1 - p->ox);
+  const int64_t y0 = p->dzdy * (p->row0 - p->oy), y1 = p->dzdy * (p->row1 - p->oy);
+  const int64_t zmin = p->zc + (x0 < x1 ? x0 : x1) + (y0 < y1 ? y0 : y1);
+  const int64_t zmax = p->zc + (x0 < x1 ? x1 : x0) + (y0 < y1 ? y1 : y0);
+  return zmin > 0 && zmax < ((int64_t)ZS_DEPTH_FAR << p->zshift);
+}
+
 /* Appends the polygon idx[0..n-1] (convex, y-monotone, area2 != 0) with
- * the given plane.  Returns 0 when out of memory. */
+ * the given plane; [xmin, xmax] holds its corners' X (the whole face's,
+ * for a piece of a fan).  Returns 0 when out of memory. */
 static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
                 const int32_t *X, const int32_t *Y, const int *idx, int n,
-                int64_t area2) {
+                int64_t area2, int32_t xmin, int32_t xmax) {
   int top = 0, bot = 0;
   for (int i = 1; i < n; i++) {
     if (Y[idx[i]] < Y[idx[top]]) top = i;
@@ -154,6 +173,8 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   p->dzdy = pl->dzdy;
   p->zshift = pl->zshift;
   p->edge0 = b->nedges;
+  /* a polygon of a few rows would pay more for the test than it saves */
+  p->inner = row1 - row0 >= 3 && spans_inner(sp->width, p, xmin, xmax);
 
   /* Walking forward (increasing index) from the top vertex runs down the
    * right side when area2 > 0 (clockwise on the screen), else the left. */
@@ -279,7 +300,7 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
 
   /* (a triangle of non-zero area always is) */
   if (m == 3 || convex_monotone(X, Y, idx, m, area2))
-    return emit(b, sp, &pl, X, Y, idx, m, area2) ? ZS_SETUP_DRAWN
+    return emit(b, sp, &pl, X, Y, idx, m, area2, xmin, xmax) ? ZS_SETUP_DRAWN
                                                  : ZS_SETUP_NOMEM;
   /* Snapping bent the polygon: draw it as a fan of triangles that share its
    * plane; their common edges split the pixels between them exactly. */
@@ -287,7 +308,7 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
     int tri[3] = {0, k, k + 1};
     int64_t a = cross3(X, Y, 0, k, k + 1);
     if (a == 0) continue;
-    if (!emit(b, sp, &pl, X, Y, tri, 3, a)) return ZS_SETUP_NOMEM;
+    if (!emit(b, sp, &pl, X, Y, tri, 3, a, xmin, xmax)) return ZS_SETUP_NOMEM;
   }
   return ZS_SETUP_DRAWN;
 }

@@ -36,9 +36,9 @@ void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_
   out->dxr_num = a->r.q * a->r.d + a->r.rs;
   out->dyl = a->l.rows;
   out->dyr = a->r.rows;
-  out->zl = a->zl;
+  out->zl = zs_plane_at(a->zrow, a->dzdx, a->l.x); /* the lecture's zl, at xl */
   out->zshift = p->zshift;
-  out->zl_real = depth_real(a->zl, p->zshift);
+  out->zl_real = depth_real(out->zl, p->zshift);
   out->dzx = depth_real(p->dzdx, p->zshift);
   out->dzy = depth_real(p->dzdy, p->zshift);
 }

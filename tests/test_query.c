@@ -86,6 +86,14 @@ START_TEST(box_behind_wall_is_zero) {
   zs_device_query_box(d, (double[3]){10, 10, -4}, (double[3]){30, 30, -2}, &err);
   zs_device_query_end(d, &err);
   ck_assert_uint_eq(zs_device_query_result(d, in_front), 400);
+  /* and from a ten-millionth of the range before the near plane: pulled
+   * nearer by the query's bias, its front depths fall below 0 and count
+   * as 0, in front of the wall, not as a wrapped depth behind it */
+  zs_query at_near;
+  zs_device_query_begin(d, &at_near, &err);
+  zs_device_query_box(d, (double[3]){10, 10, -2}, (double[3]){30, 30, -1e-7}, &err);
+  zs_device_query_end(d, &err);
+  ck_assert_uint_eq(zs_device_query_result(d, at_near), 400);
   mb_free(&wall);
   zs_device_destroy(d);
 }

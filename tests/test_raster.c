@@ -435,33 +435,43 @@ END_TEST
 START_TEST(depth_stepping_equals_evaluation) {
   /* Steep and shallow planes: the depth the walk wrote at each pixel equals
    * the plane evaluated there in double, to within one unit of the 32-bit
-   * depth (the plane is quantized once; stepping adds nothing). */
+   * depth (the plane is quantized once; stepping adds nothing).  The
+   * second face runs from the near plane to the far one across the whole
+   * window: its depths are clamped at both ends, and the walk may skip
+   * neither the clamp of its spans nor the test of its depths (setup.c,
+   * spans_inner). */
   const int W = 64, H = 64;
-  mesh_buf b = {0};
-  int32_t v[3] = {mb_vert(&b, 1, 1, -1), mb_vert(&b, 63, 5, -9), mb_vert(&b, 20, 62, -4)};
-  mb_face(&b, v, 3, 0xFFFFFF);
-  frame f = frame_new(W, H);
-  render(&b.m, W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, NULL, NULL, &f);
-  /* window depth = (z_eye_dist + 10) / 20 with ortho near -10 far 10, and
-   * z_eye_dist = -z; the plane through the three vertices: */
-  double P[3][3] = {{1, 1, 1}, {63, 5, 9}, {20, 62, 4}}; /* x, y_win, distance */
-  double ux = P[1][0] - P[0][0], uy = P[1][1] - P[0][1], uz = P[1][2] - P[0][2];
-  double vx = P[2][0] - P[0][0], vy = P[2][1] - P[0][1], vz = P[2][2] - P[0][2];
-  double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-  int checked = 0;
-  for (int y = 0; y < H; y++)
-    for (int x = 0; x < W; x++) {
-      if (f.id[y * W + x] == ZS_ID_NONE) continue;
-      double cx = x + 0.5, cy = H - (y + 0.5);
-      double dist = P[0][2] - (nx * (cx - P[0][0]) + ny * (cy - P[0][1])) / nz;
-      double want = (dist + 10.0) / 20.0 * 4294967296.0;
-      ck_assert_msg(fabs(f.depth[y * W + x] - want) <= 2.0, "pixel %d,%d: %u vs %.1f", x, y,
-                    f.depth[y * W + x], want);
-      checked++;
-    }
-  ck_assert_int_gt(checked, 1500);
-  frame_free(&f);
-  mb_free(&b);
+  /* x, y_win, distance along the view axis (ortho near -10 far 10) */
+  const double faces[2][3][3] = {{{1, 1, 1}, {63, 5, 9}, {20, 62, 4}},
+                                 {{0, 0, -10}, {64, 3, 10}, {10, 64, 0}}};
+  for (int k = 0; k < 2; k++) {
+    const double(*P)[3] = faces[k];
+    mesh_buf b = {0};
+    int32_t v[3];
+    for (int i = 0; i < 3; i++) v[i] = mb_vert(&b, P[i][0], P[i][1], -P[i][2]);
+    mb_face(&b, v, 3, 0xFFFFFF);
+    frame f = frame_new(W, H);
+    render(&b.m, W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, NULL, NULL, &f);
+    /* window depth = (distance + 10) / 20, on the plane through P */
+    double ux = P[1][0] - P[0][0], uy = P[1][1] - P[0][1], uz = P[1][2] - P[0][2];
+    double vx = P[2][0] - P[0][0], vy = P[2][1] - P[0][1], vz = P[2][2] - P[0][2];
+    double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    int checked = 0;
+    for (int y = 0; y < H; y++)
+      for (int x = 0; x < W; x++) {
+        if (f.id[y * W + x] == ZS_ID_NONE) continue;
+        double cx = x + 0.5, cy = H - (y + 0.5);
+        double dist = P[0][2] - (nx * (cx - P[0][0]) + ny * (cy - P[0][1])) / nz;
+        double want = (dist + 10.0) / 20.0 * 4294967296.0;
+        want = want < 0.0 ? 0.0 : want > 4294967295.0 ? 4294967295.0 : want;
+        ck_assert_msg(fabs(f.depth[y * W + x] - want) <= 2.0, "face %d pixel %d,%d: %u vs %.1f",
+                      k, x, y, f.depth[y * W + x], want);
+        checked++;
+      }
+    ck_assert_int_gt(checked, 1500);
+    frame_free(&f);
+    mb_free(&b);
+  }
 }
 END_TEST
 
