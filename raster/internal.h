@@ -211,7 +211,7 @@ typedef struct zs_row_hooks {
 /* An edge being walked: the exact integer DDA of scanline.c. */
 typedef struct zs_edge_dda {
   int64_t x, rem, q, rs, d;
-  int32_t rows;  /* rows left after the current one (the lecture's dy) */
+  int32_t last;  /* the last row it covers (the lecture's dy: last - y) */
 } zs_edge_dda;
 
 /* An entry of the active lists: a polygon and its current edge pair, with

@@ -43,7 +43,7 @@ static inline void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
   s->rem = s->x * s->d - num;
   s->q = floor_div(256 * dx, s->d);
   s->rs = 256 * dx - s->q * s->d;
-  s->rows = zs_last_row(e->Y1) - row;
+  s->last = zs_last_row(e->Y1);
 }
 
 void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) { dda_start(s, e, row); }
@@ -55,7 +55,6 @@ static inline void dda_step(zs_edge_dda *s) {
   int64_t carry = rem < 0;
   s->rem = rem + (s->d & -carry);
   s->x += s->q + carry;
-  s->rows--;
 }
 
 /* Index of the edge of chain [first, last] that covers row. */
@@ -274,9 +273,9 @@ static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const z
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; the plane at column 0 moves by dzdy. */
 static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
-  if (a->l.rows > 0) dda_step(&a->l);
+  if (y < a->l.last) dda_step(&a->l);
   else dda_start(&a->l, &edges[++a->left], y + 1);
-  if (a->r.rows > 0) dda_step(&a->r);
+  if (y < a->r.last) dda_step(&a->r);
   else dda_start(&a->r, &edges[++a->right], y + 1);
   a->zrow += (uint64_t)a->dzdy;
 }

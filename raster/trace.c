@@ -18,7 +18,6 @@ static double edge_dx(const zs_edge *e) {
 }
 
 void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_pair *out) {
-  (void)y;
   out->id = p->id;
   out->dy = p->row1 - y;
   out->xl = a->l.x;
@@ -34,8 +33,8 @@ void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_
   out->dxr = (double)a->r.q + (double)a->r.rs / (double)a->r.d;
   out->dxl_num = a->l.q * a->l.d + a->l.rs;
   out->dxr_num = a->r.q * a->r.d + a->r.rs;
-  out->dyl = a->l.rows;
-  out->dyr = a->r.rows;
+  out->dyl = a->l.last - y;
+  out->dyr = a->r.last - y;
   out->zl = zs_plane_at(a->zrow, a->dzdx, a->l.x); /* the lecture's zl, at xl */
   out->zshift = p->zshift;
   out->zl_real = depth_real(out->zl, p->zshift);
