@@ -378,15 +378,16 @@ static int nearly_turned_to_eye(const zs_setup_params *sp, const zs_clip_vert *p
 /* Whether depth sort orders a face set-up has seen (result r): whether
  * it meets the circle, and, where back faces are culled, is or may be
  * turned to the eye.  An unclipped face (clipped NULL; its corners fv,
- * snapped to sn) drawn with a corner in the window does, and one plainly
+ * snapped in v->snap) drawn with a corner in the window does, and one plainly
  * turned away does not; else the tests run on the clipped polygon or on
  * the corners copied to scratch. */
 static int ordered_by_painter(const zs_device *d, const zs_setup_params *sp,
                               zs_setup_result r, const zs_vert_scratch *v, const int32_t *fv,
-                              const zs_snap_vert *sn, const zs_clip_vert *clipped, int n,
-                              zs_clip_vert *scratch) {
+                              const zs_clip_vert *clipped, int n, zs_clip_vert *scratch) {
   const zs_clip_vert *poly = clipped;
   if (!clipped) {
+    zs_snap_vert sn[ZS_MAX_POLY_VERTS];
+    for (int i = 0; i < n; i++) sn[i] = v->snap[fv[i]];
     if (r == ZS_SETUP_BACK && sp->cull_back) {
       /* Most back faces are plainly so: twice their snapped area (in
        * subpixels) beyond four times their L1 perimeter (which bounds
@@ -421,7 +422,6 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
                         uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
                         zs_error *err) {
   zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
-  zs_snap_vert snapped[ZS_MAX_POLY_VERTS];
   zs_setup_params sp = pr->sp;
   for (int32_t f = f0; f < f1; f++) {
     /* nv: the face's vertices; n: its polygon's, once clipped */
@@ -461,8 +461,7 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
       }
       r = zs_setup_polygon(b, &sp, clipped, n);
     } else {
-      for (int i = 0; i < n; i++) snapped[i] = v->snap[fv[i]];
-      r = zs_setup_snapped(b, &sp, snapped, n);
+      r = zs_setup_snapped(b, &sp, v->snap, fv, n);
     }
     if (pr->flat && b->npolys > first_poly) {
       /* Flat shading, for the faces that became polygons only (not the
@@ -484,7 +483,7 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
      * order already.  A face drawn outside it (its box met a pixel centre,
      * the face does not) covers no pixel and is painted farthest. */
     if (ds && r != ZS_SETUP_NOMEM) {
-      if (ordered_by_painter(d, &sp, r, v, fv, snapped, or_code ? clipped : NULL, n, in)) {
+      if (ordered_by_painter(d, &sp, r, v, fv, or_code ? clipped : NULL, n, in)) {
         /* the sort key: distance along the view axis of the centroid of
          * the face's vertices */
         double zsum = 0.0;

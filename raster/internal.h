@@ -123,7 +123,7 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *p,
 /* A vertex snapped: window x and image y in 1/256 pixel, window depth in
  * [0, 1].  zs_setup_polygon snaps each vertex with zs_snap_vertex; a draw
  * snaps each vertex of its mesh once and hands an unclipped face's
- * vertices to zs_setup_snapped, which gives the same result. */
+ * vertex indices to zs_setup_snapped, which gives the same result. */
 typedef struct zs_snap_vert {
   int32_t x, y;
   double z;
@@ -148,8 +148,9 @@ static inline void zs_snap_vertex(const zs_setup_params *sp, const zs_clip_vert 
   out->y = (int32_t)(h_sub - lrint(yw * ZS_SUBPIXEL_ONE));
   out->z = zw < 0.0 ? 0.0 : zw > 1.0 ? 1.0 : zw;
 }
+/* The polygon v[vi[0]], .., v[vi[n - 1]]. */
 zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *p,
-                                 const zs_snap_vert *v, int n);
+                                 const zs_snap_vert *v, const int32_t *vi, int n);
 
 void zs_batch_reset(zs_batch *b);
 /* The rows polygons first .. first + count - 1 of b cover, within rows

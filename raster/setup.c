@@ -146,18 +146,18 @@ static uint8_t spans_inner(int width, const zs_poly *p, int32_t xmin, int32_t xm
   return zmin > 0 && zmax < ((int64_t)ZS_DEPTH_FAR << p->zshift);
 }
 
-/* Appends the polygon idx[0..n-1] (convex, y-monotone, area2 != 0) with
+/* Appends the polygon (X, Y)[0..n-1] (convex, y-monotone, area2 != 0) with
  * the given plane; [xmin, xmax] holds its corners' X (the whole face's,
  * for a piece of a fan).  Returns 0 when out of memory. */
 static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
-                const int32_t *X, const int32_t *Y, const int *idx, int n,
+                const int32_t *X, const int32_t *Y, int n,
                 int64_t area2, int32_t xmin, int32_t xmax) {
   int top = 0, bot = 0;
   for (int i = 1; i < n; i++) {
-    if (Y[idx[i]] < Y[idx[top]]) top = i;
-    if (Y[idx[i]] > Y[idx[bot]]) bot = i;
+    if (Y[i] < Y[top]) top = i;
+    if (Y[i] > Y[bot]) bot = i;
   }
-  int32_t row0 = zs_first_row(Y[idx[top]]), row1 = zs_last_row(Y[idx[bot]]);
+  int32_t row0 = zs_first_row(Y[top]), row1 = zs_last_row(Y[bot]);
   if (row0 > row1) return 1; /* between two rows of pixel centres */
   if (!reserve(b, 1, n)) return 0;
 
@@ -184,7 +184,7 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
     int step = ((side == 0) == forward_is_left) ? 1 : n - 1;
     for (int i = top, j; i != bot; i = j) {
       j = i + step < n ? i + step : i + step - n; /* (i + step) mod n */
-      zs_edge e = {X[idx[i]], Y[idx[i]], X[idx[j]], Y[idx[j]]};
+      zs_edge e = {X[i], Y[i], X[j], Y[j]};
       if (zs_first_row(e.Y0) > zs_last_row(e.Y1)) continue; /* horizontal, or between rows */
       b->edges[b->nedges++] = e;
       counts[side]++;
@@ -204,13 +204,12 @@ static int64_t cross3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
 /* Convex (every turn the way of area2, or straight) and y-monotone: one
  * left and one right chain, one span per row.  Local turns alone would let
  * a star that winds twice through; monotony catches it. */
-static int convex_monotone(const int32_t *X, const int32_t *Y, const int *idx,
-                           int n, int64_t area2) {
+static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t area2) {
   /* (neighbours by comparison, not %: a division per vertex showed in the
    * profile of the teapots, whose quads all come here) */
   for (int i = 0, prev = n - 1; i < n; prev = i++) {
     int next = i + 1 < n ? i + 1 : 0;
-    int64_t t = cross3(X, Y, idx[prev], idx[i], idx[next]);
+    int64_t t = cross3(X, Y, prev, i, next);
     if ((t > 0 && area2 < 0) || (t < 0 && area2 > 0)) return 0;
   }
   /* Going round, the vertical direction may change only at the top and
@@ -218,7 +217,7 @@ static int convex_monotone(const int32_t *X, const int32_t *Y, const int *idx,
   int changes = 0, first = 0, last = 0;
   for (int i = 0; i < n; i++) {
     int next = i + 1 < n ? i + 1 : 0;
-    int64_t d = (int64_t)Y[idx[next]] - Y[idx[i]];
+    int64_t d = (int64_t)Y[next] - Y[i];
     int s = (d > 0) - (d < 0);
     if (!s) continue;
     if (!first) first = s;
@@ -232,23 +231,25 @@ static int convex_monotone(const int32_t *X, const int32_t *Y, const int *idx,
 zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
                                  const zs_clip_vert *v, int n) {
   zs_snap_vert s[ZS_CLIP_MAX_VERTS];
-  for (int i = 0; i < n; i++) zs_snap_vertex(sp, &v[i], &s[i]);
-  return zs_setup_snapped(b, sp, s, n);
+  int32_t in_order[ZS_CLIP_MAX_VERTS];
+  for (int i = 0; i < n; i++) {
+    zs_snap_vertex(sp, &v[i], &s[i]);
+    in_order[i] = i;
+  }
+  return zs_setup_snapped(b, sp, s, in_order, n);
 }
 
 zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
-                                 const zs_snap_vert *v, int n) {
+                                 const zs_snap_vert *v, const int32_t *vi, int n) {
   int32_t X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
   double Z[ZS_CLIP_MAX_VERTS];
-  int idx[ZS_CLIP_MAX_VERTS];
   int m = 0;
   for (int i = 0; i < n; i++) {
-    X[m] = v[i].x;
-    Y[m] = v[i].y;
-    Z[m] = v[i].z;
+    X[m] = v[vi[i]].x;
+    Y[m] = v[vi[i]].y;
+    Z[m] = v[vi[i]].z;
     /* drop a vertex that snapped onto its predecessor */
     if (m > 0 && X[m] == X[m - 1] && Y[m] == Y[m - 1]) continue;
-    idx[m] = m;
     m++;
   }
   while (m > 1 && X[m - 1] == X[0] && Y[m - 1] == Y[0]) m--;
@@ -299,16 +300,16 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
   plane pl = make_plane(X, Y, Z, 0, best, best + 1, box_w, box_h);
 
   /* (a triangle of non-zero area always is) */
-  if (m == 3 || convex_monotone(X, Y, idx, m, area2))
-    return emit(b, sp, &pl, X, Y, idx, m, area2, xmin, xmax) ? ZS_SETUP_DRAWN
+  if (m == 3 || convex_monotone(X, Y, m, area2))
+    return emit(b, sp, &pl, X, Y, m, area2, xmin, xmax) ? ZS_SETUP_DRAWN
                                                  : ZS_SETUP_NOMEM;
   /* Snapping bent the polygon: draw it as a fan of triangles that share its
    * plane; their common edges split the pixels between them exactly. */
   for (int k = 1; k + 1 < m; k++) {
-    int tri[3] = {0, k, k + 1};
     int64_t a = cross3(X, Y, 0, k, k + 1);
     if (a == 0) continue;
-    if (!emit(b, sp, &pl, X, Y, tri, 3, a, xmin, xmax)) return ZS_SETUP_NOMEM;
+    const int32_t tx[3] = {X[0], X[k], X[k + 1]}, ty[3] = {Y[0], Y[k], Y[k + 1]};
+    if (!emit(b, sp, &pl, tx, ty, 3, a, xmin, xmax)) return ZS_SETUP_NOMEM;
   }
   return ZS_SETUP_DRAWN;
 }
