@@ -20,6 +20,8 @@ static void issue_one_visible(frame_ctx *f) {
 void cull_walk_chcpp(frame_ctx *f, int batch, int defer, int prob) {
   zs_culler *c = f->c;
   const uint32_t frame = c->frame;
+  double w1, w2; /* (11)'s, for chcpp-prob */
+  cull_weights(c, c->method, &w1, &w2);
   c->nheap = 0;
   c->qhead = c->qtail = 0;
   c->ni = c->nv = c->ngm = 0;
@@ -48,7 +50,7 @@ void cull_walk_chcpp(frame_ctx *f, int batch, int defer, int prob) {
     if (!cull_next_in_frustum(f, &e, &mask)) continue;
     elem_state *es = cull_state(f, e);
     int was_visible = es->visible && es->last_visited == frame - 1;
-    double pv = cull_predict(es, c->cost.w1, c->cost.w2);
+    double pv = cull_predict(es, w1, w2);
     es->visible = 0;
     es->last_visited = frame;
     if (cull_too_close(f, e)) {

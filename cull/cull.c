@@ -36,7 +36,7 @@ int zs_cull_method_parse(const char *name) {
 void zs_cost_params_default(zs_cost_params *p) {
   /* w1, w2: the transition rates auto measured over 20 frames of the plant
    * walk (builtin:plant?detail=1), rounded */
-  *p = (zs_cost_params){0.93, 0.97, -1.0, -1.0, -1.0, -1.0, 1.0};
+  *p = (zs_cost_params){0.93, 0.97, -1.0, -1.0, -1.0, -1.0, 1.0, 0.0};
 }
 
 zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_culler **out,
@@ -104,11 +104,8 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
   const uint32_t frame = c->frame;
-  double w1 = c->cost.w1, w2 = c->cost.w2;
-  if (m == ZS_CULL_AUTO) { /* learnt from the outcomes, with one prior each way */
-    w1 = (double)(c->vv + 1) / (double)(c->vv + c->vh + 2);
-    w2 = (double)(c->hh + 1) / (double)(c->hv + c->hh + 2);
-  }
+  double w1, w2;
+  cull_weights(c, m, &w1, &w2);
   c->nheap = 0;
   c->qhead = c->qtail = 0;
   c->ni = 0;

@@ -145,16 +145,23 @@ enum { ZS_CHCPP_BATCH = 50, ZS_CHCPP_VISIBLE_FRAMES = 5 };
 const char *zs_cull_method_name(zs_cull_method m);
 int zs_cull_method_parse(const char *name);
 
-/* The cost model's parameters (chc-prob, auto).  Negative values take the
- * device clock's: Ttri = per_polygon, Tcall = per_call + cpu_per_call,
- * T = per_call + 2 cpu_per_query + 2 switch (the work a query costs: its
- * box, its begin/end, and the change to querying and back that a query
- * between draws makes; its latency is what the query queue hides),
- * Tq = per_query_pixel. */
+/* The cost model's parameters (chc-prob, chcpp-prob, auto).  w1 and w2
+ * default to the rates auto measured over 20 frames of the plant walk
+ * (builtin:plant?detail=1), rounded.  With learn > 0 they are learnt from
+ * the outcomes of the culler's own queries (the share of the elements
+ * asked about when visible that stayed visible, and of those hidden that
+ * stayed hidden), starting from w1 and w2 as if learn outcomes had borne
+ * them out; auto always learns them, from one outcome each way.
+ * Negative times take the device clock's: Ttri = per_polygon, Tcall =
+ * per_call + cpu_per_call, T = per_call + 2 cpu_per_query + 2 switch (the
+ * work a query costs: its box, its begin/end, and the change to querying
+ * and back that a query between draws makes; its latency is what the
+ * query queue hides), Tq = per_query_pixel. */
 typedef struct zs_cost_params {
   double w1, w2;        /* P(stays visible), P(stays invisible) */
   double ttri_ns, tcall_ns, t_ns, tq_ns;
   double rho;           /* pixels per unit of S: 1, S is in pixels */
+  double learn;         /* 0: w1, w2 as given; else the weight of their prior */
 } zs_cost_params;
 
 void zs_cost_params_default(zs_cost_params *p);

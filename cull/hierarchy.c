@@ -169,6 +169,29 @@ int cull_query_pays(frame_ctx *f, elem e, double pv) {
   return cr > pv * cr + cq;                                                          /* (2), (3) */
 }
 
+/* A rate learnt from counted outcomes (stay of stay + change), starting
+ * from prior as if weight outcomes had been seen. */
+static double learnt_rate(uint64_t stay, uint64_t change, double prior, double weight) {
+  return ((double)stay + weight * prior) / ((double)(stay + change) + weight);
+}
+
+/* w1 and w2: as given, or with cost.learn > 0 learnt from what this
+ * culler's queries found, starting from the given ones as if cost.learn
+ * outcomes had borne each out.  auto always learns them, from one outcome
+ * each way. */
+void cull_weights(const zs_culler *c, zs_cull_method m, double *w1, double *w2) {
+  if (m == ZS_CULL_AUTO) {
+    *w1 = learnt_rate(c->vv, c->vh, 0.5, 2.0);
+    *w2 = learnt_rate(c->hh, c->hv, 0.5, 2.0);
+  } else if (c->cost.learn > 0.0) {
+    *w1 = learnt_rate(c->vv, c->vh, c->cost.w1, c->cost.learn);
+    *w2 = learnt_rate(c->hh, c->hv, c->cost.w2, c->cost.learn);
+  } else {
+    *w1 = c->cost.w1;
+    *w2 = c->cost.w2;
+  }
+}
+
 /* (11): the chance that an element is visible this frame, from its state. */
 double cull_predict(const elem_state *es, double w1, double w2) {
   return w1 * es->pv + (1.0 - w2) * (1.0 - es->pv);

@@ -90,7 +90,9 @@ struct zs_culler {
   int32_t cap_inst;
   int32_t *owner;          /* face id -> instance */
   uint32_t nowner;
-  /* auto: transitions seen by its queries, and the mode of the next frame */
+  /* the transitions the queries saw (visible or hidden when asked, then
+   * visible or hidden): the cost model's w1 and w2 are learnt from them;
+   * auto's mode of the next frame */
   uint64_t vv, vh, hv, hh;
   int use_queries;
   /* chcpp: the queue of invisible elements to batch, of visible objects
@@ -148,6 +150,8 @@ int cull_too_close(const frame_ctx *f, elem e);
 double cull_render_cost(const frame_ctx *f, elem e);
 int cull_query_pays(frame_ctx *f, elem e, double pv);
 double cull_predict(const elem_state *es, double w1, double w2);
+/* The w1 and w2 of (11) method m predicts with this frame. */
+void cull_weights(const zs_culler *c, zs_cull_method m, double *w1, double *w2);
 /* Appends the boxes a query over e draws to the culler's query boxes. */
 int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n);
 /* One query over the boxes of members[0 .. n-1], queued as qe. */

@@ -144,6 +144,8 @@ static const bad_option bad_options[] = {
      "--cost-set w1: expected a probability from 0 to 1, got 1.5"},
     {{"render", "--cost-set", "tq_ns=x", NULL}, "--cost-set tq_ns: expected a finite number"},
     {{"render", "--cost-set", "beta=1", NULL}, "--cost-set beta: unknown cost-model parameter"},
+    {{"render", "--cost-set", "learn=-1", NULL},
+     "--cost-set learn: expected a number of outcomes from 0 to 1e6, got -1"},
     {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open"},
 };
 

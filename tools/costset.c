@@ -21,6 +21,7 @@ static const cost_field fields[] = {
     FIELD(t_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
     FIELD(tq_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
     FIELD(rho, 0.0, 1e6, "pixels per unit of S from 0 to 1e6"),
+    FIELD(learn, 0.0, 1e6, "a number of outcomes from 0 to 1e6"),
 };
 #undef FIELD
 
@@ -38,6 +39,6 @@ zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) 
   }
   return zs_error_set(err, ZS_ERR_ARG,
                       "--cost-set %s: unknown cost-model parameter (w1, w2, ttri_ns, tcall_ns, "
-                      "t_ns, tq_ns, rho)",
+                      "t_ns, tq_ns, rho, learn)",
                       name);
 }

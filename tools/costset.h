@@ -7,6 +7,10 @@
  *     ttri_ns, tcall_ns,    Ttri, Tcall, T and Tq of formulas (6) and (10),
  *     t_ns, tq_ns           in ns, 0 .. 1e12 (by default the device clock's)
  *     rho                   pixels per unit of the box area S, 0 .. 1e6
+ *     learn                 0 (the default): w1 and w2 as given; else
+ *                           learnt from the method's own query outcomes,
+ *                           starting from w1 and w2 as if this many
+ *                           outcomes had borne them out, 0 .. 1e6
  * An unknown key or a value out of its range is an error naming the key. */
 #ifndef ZS_TOOLS_COSTSET_H
 #define ZS_TOOLS_COSTSET_H
