@@ -378,16 +378,15 @@ static int nearly_turned_to_eye(const zs_setup_params *sp, const zs_clip_vert *p
 /* Whether depth sort orders a face set-up has seen (result r): whether
  * it meets the circle, and, where back faces are culled, is or may be
  * turned to the eye.  An unclipped face (clipped NULL; its corners fv,
- * snapped in v->snap) drawn with a corner in the window does, and one plainly
- * turned away does not; else the tests run on the clipped polygon or on
- * the corners copied to scratch. */
+ * snapped in v->snap) drawn with a corner in the window does, and one
+ * plainly turned away does not; else the tests run on the clipped polygon
+ * or on the corners copied to scratch. */
 static int ordered_by_painter(const zs_device *d, const zs_setup_params *sp,
                               zs_setup_result r, const zs_vert_scratch *v, const int32_t *fv,
                               const zs_clip_vert *clipped, int n, zs_clip_vert *scratch) {
   const zs_clip_vert *poly = clipped;
   if (!clipped) {
-    zs_snap_vert sn[ZS_MAX_POLY_VERTS];
-    for (int i = 0; i < n; i++) sn[i] = v->snap[fv[i]];
+    const zs_snap_vert *sn = v->snap; /* corner i at sn[fv[i]] */
     if (r == ZS_SETUP_BACK && sp->cull_back) {
       /* Most back faces are plainly so: twice their snapped area (in
        * subpixels) beyond four times their L1 perimeter (which bounds
@@ -395,16 +394,19 @@ static int ordered_by_painter(const zs_device *d, const zs_setup_params *sp,
        * away and nearly_turned_to_eye allow. */
       int64_t area2 = 0, perimeter = 0;
       for (int i = 0, j = n - 1; i < n; j = i++) {
-        area2 += (int64_t)sn[j].x * sn[i].y - (int64_t)sn[i].x * sn[j].y;
-        perimeter += llabs((int64_t)sn[i].x - sn[j].x) + llabs((int64_t)sn[i].y - sn[j].y);
+        const zs_snap_vert *si = &sn[fv[i]], *sj = &sn[fv[j]];
+        area2 += (int64_t)sj->x * si->y - (int64_t)si->x * sj->y;
+        perimeter += llabs((int64_t)si->x - sj->x) + llabs((int64_t)si->y - sj->y);
       }
       if (area2 > 4 * perimeter + n + 1) return 0;
     }
     if (r == ZS_SETUP_DRAWN) {
       const int64_t wx = (int64_t)sp->width * ZS_SUBPIXEL_ONE;
       const int64_t wy = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
-      for (int i = 0; i < n; i++)
-        if (sn[i].x >= 0 && sn[i].x <= wx && sn[i].y >= 0 && sn[i].y <= wy) return 1;
+      for (int i = 0; i < n; i++) {
+        const zs_snap_vert *si = &sn[fv[i]];
+        if (si->x >= 0 && si->x <= wx && si->y >= 0 && si->y <= wy) return 1;
+      }
     }
     for (int i = 0; i < n; i++) scratch[i] = v->clip[fv[i]];
     poly = scratch;
