@@ -170,6 +170,12 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
         continue;
       }
       cull_issue_query(f, e, mask, (unsigned char)was_visible);
+      /* CHC draws a leaf visible last frame without waiting: its answer is
+       * for the next frame.  The cost model's methods ask only where the
+       * answer pays for itself, so they wait for it (the paper's flow: an
+       * element asked goes to the query queue, only one not asked is drawn
+       * at once), and a leaf found hidden is not drawn this frame. */
+      if (m != ZS_CULL_CHC) continue;
     }
     if (was_visible) cull_traverse(f, e, mask);
   }

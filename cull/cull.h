@@ -36,7 +36,10 @@
  *             clock's), Abb its tight box's surface
  *             area, Dis the distance from the eye to the box's centre, theta
  *             the vertical field of view, h the viewport height; a node not
- *             queried is drawn as if visible.
+ *             queried is drawn as if visible, and a node queried waits in the
+ *             query queue and is drawn on its answer, a leaf visible last
+ *             frame too (the paper's flow; E(A2) = P(V) Cr + Cq counts its
+ *             draw only when visible).
  *   ideal     an oracle: draws exactly the instances that own a pixel of
  *             the final image (found by a separate full render that the
  *             clock does not see) and issues no query: the lower bound.
