@@ -276,6 +276,10 @@ const char *zs_simd_name(zs_simd level);
  *        the latency (a stall: what CHC-style methods hide).  With latency
  *        0 nothing ever stalls.
  *   A frame's modelled time is the later of the two clocks at its end.
+ *   The GPU's part of it is split four ways: drawing commands (clears and
+ *   draws), query boxes, switches, and idle (waiting for the CPU to issue
+ *   the next command, or at the end for the CPU to finish); the four add
+ *   up to the frame (zs_clock_gpu_split).
  * Times are kept in integer picoseconds; parameters are nanoseconds. */
 typedef struct zs_clock_params {
   double per_call_ns;         /* GPU: fixed cost of a draw or query box */
@@ -307,7 +311,17 @@ typedef struct zs_clock_stats {
   int64_t sync_ps;            /* CPU waiting for queued GPU work */
   int64_t stall_ps;           /* CPU waiting for query latency */
   int64_t gpu_ps, cpu_ps;     /* the two clocks now */
+  /* GPU time so far: drawing commands, query boxes, switches, and gaps
+   * waiting for the CPU to issue a command */
+  int64_t draw_ps, query_ps, switch_ps, idle_ps;
 } zs_clock_stats;
+
+/* The frame so far on the GPU, in picoseconds: draw + query + switch + idle
+ * = zs_device_frame_ps, idle counting the gaps and the time the CPU runs
+ * on after the GPU's last command. */
+typedef struct zs_gpu_split {
+  int64_t draw_ps, query_ps, switch_ps, idle_ps;
+} zs_gpu_split;
 
 /* The documented defaults (clock.c). */
 void zs_clock_params_default(zs_clock_params *p);
@@ -319,6 +333,7 @@ const zs_clock_stats *zs_device_clock(const zs_device *dev);
 const zs_clock_params *zs_device_clock_params(const zs_device *dev);
 /* The frame's modelled time so far: the later of the two clocks. */
 int64_t zs_device_frame_ps(const zs_device *dev);
+zs_gpu_split zs_clock_gpu_split(const zs_device *dev);
 
 /* ---- lines.c: hidden-line output ----
  *

@@ -451,10 +451,22 @@ START_TEST(walk_compares_hidden_surface_modes) {
   char line[512];
   int scan = 0, sort = 0;
   uint64_t sort_wrong = 0;
+  /* diff_pixels by its name in the header, and the GPU's split of every
+   * frame adding up to its modelled time */
+  ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
+  ck_assert_str_eq(line, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
+                         "faces_drawn,objects_drawn,nodes_visited,diff_pixels,gpu_draw_ms,"
+                         "gpu_query_ms,gpu_switch_ms,gpu_idle_ms\n");
   while (fgets(line, sizeof line, f)) {
-    const char *last = strrchr(line, ',');
-    ck_assert_ptr_nonnull(last);
-    unsigned long long wrong = strtoull(last + 1, NULL, 10);
+    double col[16];
+    int ncol = 0;
+    for (const char *p = line; p && ncol < 16; p = strchr(p, ','), p = p ? p + 1 : NULL)
+      col[ncol++] = strtod(p, NULL);
+    ck_assert_int_eq(ncol, 16);
+    unsigned long long wrong = (unsigned long long)col[11];
+    double sum = col[12] + col[13] + col[14] + col[15];
+    ck_assert_msg(fabs(sum - col[3]) < 5e-6, "split %.6f, modelled %.6f: %s", sum, col[3], line);
+    ck_assert_msg(col[12] > 0.0, "no drawing: %s", line);
     if (strstr(line, ",scanline,")) {
       scan++;
       ck_assert_msg(wrong == 0, "scanline differs: %s", line);

@@ -206,6 +206,9 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
          (unsigned long long)k->queries, (unsigned long long)k->query_waits,
          (unsigned long long)k->stalls, k->stall_ps * 1e-9, k->sync_ps * 1e-9, k->gpu_ps * 1e-9,
          k->cpu_ps * 1e-9, zs_device_frame_ps(dev) * 1e-9);
+  const zs_gpu_split gs = zs_clock_gpu_split(dev);
+  printf("\"gpu_draw_ms\":%.6f,\"gpu_query_ms\":%.6f,\"gpu_switch_ms\":%.6f,\"gpu_idle_ms\":%.6f,",
+         gs.draw_ps * 1e-9, gs.query_ps * 1e-9, gs.switch_ps * 1e-9, gs.idle_ps * 1e-9);
   zs_device_memory mem = zs_device_memory_of(dev);
   printf("\"buffer_bytes\":%zu,\"table_bytes\":%zu,\"vertex_bytes\":%zu,", mem.pixel_buffers,
          mem.tables, mem.vertices);

@@ -77,6 +77,7 @@ typedef struct method_run {
   zs_culler *culler;
   zs_device *dev;
   double modelled_ms, stall_ms, wall_ms, queries, faces, objects, nodes;
+  double gpu_ms[4];       /* the GPU's split: draw, query, switch, idle */
   uint64_t diff_pixels, frames_with_diff;
   uint64_t chose_queries; /* auto: frames it ran with queries */
 } method_run;
@@ -409,7 +410,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       goto done;
     }
     fprintf(csv, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
-                 "faces_drawn,objects_drawn,nodes_visited,diff_pixels\n");
+                 "faces_drawn,objects_drawn,nodes_visited,diff_pixels,"
+                 "gpu_draw_ms,gpu_query_ms,gpu_switch_ms,gpu_idle_ms\n");
   }
 
   for (int f = 0; f < frames && st == ZS_OK; f++) {
@@ -428,6 +430,10 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       double wall = zs_wall_ms() - t0;
       const zs_clock_stats *ck = zs_device_clock(r->dev);
       double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
+      const zs_gpu_split gs = zs_clock_gpu_split(r->dev);
+      const double split[4] = {gs.draw_ps * 1e-9, gs.query_ps * 1e-9, gs.switch_ps * 1e-9,
+                               gs.idle_ps * 1e-9};
+      for (int i = 0; i < 4; i++) r->gpu_ms[i] += split[i];
       const uint32_t *ids = zs_device_id_buffer(r->dev);
       uint64_t diff = 0;
       if (k == 0) memcpy(ref_ids, ids, (size_t)w * (size_t)h * sizeof *ids);
@@ -446,11 +452,12 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
       frame_wall[(size_t)k * (size_t)frames + (size_t)f] = wall;
       if (csv)
-        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu\n", f * o->step,
-                zs_cull_method_name(r->m), zs_cull_method_name(cs.chosen), modelled, stall, wall,
-                (unsigned long long)cs.queries, (unsigned long long)cs.queries_hidden,
-                (unsigned long long)cs.faces_drawn, (unsigned long long)cs.objects_drawn,
-                (unsigned long long)cs.nodes_visited, (unsigned long long)diff);
+        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu,%.6f,%.6f,%.6f,%.6f\n",
+                f * o->step, zs_cull_method_name(r->m), zs_cull_method_name(cs.chosen), modelled,
+                stall, wall, (unsigned long long)cs.queries,
+                (unsigned long long)cs.queries_hidden, (unsigned long long)cs.faces_drawn,
+                (unsigned long long)cs.objects_drawn, (unsigned long long)cs.nodes_visited,
+                (unsigned long long)diff, split[0], split[1], split[2], split[3]);
       if (o->frames_dir && (st = write_frame(o, r, f, err))) break;
     }
     for (int k = 0; k < o->nalgos && st == ZS_OK; k++) { /* everything, in another mode */
@@ -472,9 +479,13 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       r->wall_ms += wall;
       r->diff_pixels += diff;
       frame_wall[(size_t)(o->nmethods + k) * (size_t)frames + (size_t)f] = wall;
-      if (csv)
-        fprintf(csv, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu\n", f * o->step, zs_algo_name(r->a),
-                modelled, wall, (unsigned long long)faces, (int)s.ninst, (unsigned long long)diff);
+      if (csv) {
+        const zs_gpu_split gs = zs_clock_gpu_split(r->dev);
+        fprintf(csv, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu,%.6f,%.6f,%.6f,%.6f\n", f * o->step,
+                zs_algo_name(r->a), modelled, wall, (unsigned long long)faces, (int)s.ninst,
+                (unsigned long long)diff, gs.draw_ps * 1e-9, gs.query_ps * 1e-9,
+                gs.switch_ps * 1e-9, gs.idle_ps * 1e-9);
+      }
     }
     progress(o, f, frames);
   }
@@ -502,6 +513,15 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   printf("%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
          (unsigned long long)zs_scene_faces(&s));
   write_summary(stdout, 0, rows, nrows);
+  /* Where each method's modelled frame goes on the GPU: a method that
+   * draws less but leaves the GPU idle, or pays in queries and switches,
+   * shows it here. */
+  printf("\nthe GPU's share of the modelled frame, ms a frame\n%-13s %9s %9s %9s %9s\n", "method",
+         "draw", "query", "switch", "idle");
+  for (int k = 0; k < o->nmethods; k++)
+    printf("%-13s %9.3f %9.3f %9.3f %9.3f\n", zs_cull_method_name(runs[k].m),
+           runs[k].gpu_ms[0] / frames, runs[k].gpu_ms[1] / frames, runs[k].gpu_ms[2] / frames,
+           runs[k].gpu_ms[3] / frames);
   if (o->md) {
     char *md_tmp;
     FILE *md = zs_out_open(o->md, &md_tmp, err);
