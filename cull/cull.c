@@ -148,6 +148,12 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
     /* chc, chc-prob, auto, nohc */
     int seen_last = es->last_visited == frame - 1;
     int was_visible = es->visible && seen_last;
+    /* Hidden in the frame before: found so, or not reached because a node
+     * above it was found so (its parent is visited before it, this frame) */
+    elem up = cull_parent_of(f, e);
+    es->hidden_before = seen_last ? !es->visible
+                                  : up != ZS_OCTREE_NONE && cull_state(f, up)->last_visited == frame &&
+                                        cull_state(f, up)->hidden_before;
     es->visible = 0;
     es->last_visited = frame;
     if (cull_too_close(f, e)) { /* cannot be asked: taken as visible */
@@ -163,7 +169,11 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
       continue;
     }
     if (is_object(e) || !was_visible) {
-      /* (11) from last frame's P(V): es->pv is unchanged so far */
+      /* (11) from last frame's P(V): es->pv is unchanged so far, but an
+       * element under a node found hidden was hidden too, P_{t-1}(V) = 0,
+       * whatever it was when last seen (one outside the frustum then keeps
+       * that) */
+      if (!seen_last && es->hidden_before) es->pv = 0.0;
       double pv = cull_predict(es, w1, w2);
       if (m != ZS_CULL_CHC && !cull_query_pays(f, e, pv)) {
         cull_draw_unasked(f, e, mask, pv);
@@ -233,8 +243,8 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
    * octree frees and reuses keeps its state: at worst a node is opened
    * without a query once, which costs time, never pixels.) */
-  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){0, 0, 0, 0.5, 0, 0, 0, -1};
-  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){0, 0, 0, 0.5, 0, 0, 0, -1};
+  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){.pv = 0.5, .asked_class = -1};
+  for (; c->init_os < s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){.pv = 0.5, .asked_class = -1};
   /* The near plane's corners lie at most near * sqrt(1 + tx^2 + ty^2) from
    * the eye (tx, ty the tangents of the half fields of view). */
   const zs_device_config *cfg = zs_device_config_of(dev);

@@ -39,7 +39,9 @@
  *             queried is drawn as if visible, and a node queried waits in the
  *             query queue and is drawn on its answer, a leaf visible last
  *             frame too (the paper's flow; E(A2) = P(V) Cr + Cq counts its
- *             draw only when visible).
+ *             draw only when visible).  An element not reached in the last
+ *             frame because a node above it was found hidden takes
+ *             P_{t-1}(V) = 0.
  *   ideal     an oracle: draws exactly the instances that own a pixel of
  *             the final image (found by a separate full render that the
  *             clock does not see) and issues no query: the lower bound.

@@ -30,7 +30,7 @@ void cull_decide(frame_ctx *f, elem e, zs_node_decision d) {
   if (!is_object(e) && e < f->c->ndecision) f->c->decision[e] = (uint8_t)d;
 }
 
-static elem parent_of(const frame_ctx *f, elem e) {
+elem cull_parent_of(const frame_ctx *f, elem e) {
   return is_object(e) ? f->t->home[object_of(e)] : f->t->node[e].parent;
 }
 
@@ -125,7 +125,7 @@ void cull_traverse(frame_ctx *f, elem e, unsigned mask) {
 void cull_pull_up_visibility(frame_ctx *f, elem e) {
   while (e != ZS_OCTREE_NONE && !cull_state(f, e)->visible) {
     cull_state(f, e)->visible = 1;
-    e = parent_of(f, e);
+    e = cull_parent_of(f, e);
   }
 }
 

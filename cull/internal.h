@@ -26,6 +26,7 @@ typedef struct elem_state {
   uint32_t last_visited;   /* frame (frames count from 1) */
   uint32_t done;           /* frame it was rendered (object) or opened (node) */
   uint8_t visible;
+  uint8_t hidden_before;   /* hidden in the frame before: found so, or under a node found so */
   double pv;               /* P(V) for the next frame */
   uint32_t next_query;     /* chcpp: the frame a visible object is asked again;
                             * nohc: the frame its draw is measured again */
@@ -133,6 +134,7 @@ typedef struct frame_ctx {
 /* ---- hierarchy.c: elements, drawing, the traversal, queries ---- */
 
 elem_state *cull_state(frame_ctx *f, elem e);
+elem cull_parent_of(const frame_ctx *f, elem e);
 /* The box of an element: a node's tight box, an object's own box. */
 void cull_elem_box(const frame_ctx *f, elem e, const double **lo, const double **hi);
 /* Records the decision on node e for the overlay. */
