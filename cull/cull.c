@@ -149,11 +149,11 @@ static void walk_tree(frame_ctx *f, zs_cull_method m) {
     int seen_last = es->last_visited == frame - 1;
     int was_visible = es->visible && seen_last;
     /* Hidden in the frame before: found so, or not reached because a node
-     * above it was found so (its parent is visited before it, this frame) */
+     * above it was found so (its parent, which pushed it, was visited
+     * before it this frame and set its own flag) */
     elem up = cull_parent_of(f, e);
     es->hidden_before = seen_last ? !es->visible
-                                  : up != ZS_OCTREE_NONE && cull_state(f, up)->last_visited == frame &&
-                                        cull_state(f, up)->hidden_before;
+                                  : up != ZS_OCTREE_NONE && cull_state(f, up)->hidden_before;
     es->visible = 0;
     es->last_visited = frame;
     if (cull_too_close(f, e)) { /* cannot be asked: taken as visible */

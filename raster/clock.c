@@ -91,10 +91,7 @@ int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query) {
 
 int64_t zs_clock_gpu_command_at(zs_device *d, int64_t cost, int is_query, int64_t cpu_ps) {
   /* The GPU cannot start a command before the CPU has issued it. */
-  if (d->clock.gpu_ps < cpu_ps) {
-    d->clock.idle_ps += cpu_ps - d->clock.gpu_ps;
-    d->clock.gpu_ps = cpu_ps;
-  }
+  if (d->clock.gpu_ps < cpu_ps) d->clock.gpu_ps = cpu_ps;
   if (is_query != d->last_was_query) {
     d->clock.switches++;
     d->clock.gpu_ps += d->costs.switch_cost;
@@ -120,8 +117,10 @@ int64_t zs_device_frame_ps(const zs_device *d) {
   return d->clock.gpu_ps > d->clock.cpu_ps ? d->clock.gpu_ps : d->clock.cpu_ps;
 }
 
+/* The GPU clock starts the frame at 0 and moves only by the three sums and
+ * by waiting for the CPU, so idle is what the sums leave of the frame. */
 zs_gpu_split zs_clock_gpu_split(const zs_device *d) {
   const zs_clock_stats *c = &d->clock;
-  int64_t tail = c->cpu_ps > c->gpu_ps ? c->cpu_ps - c->gpu_ps : 0;
-  return (zs_gpu_split){c->draw_ps, c->query_ps, c->switch_ps, c->idle_ps + tail};
+  int64_t busy = c->draw_ps + c->query_ps + c->switch_ps;
+  return (zs_gpu_split){c->draw_ps, c->query_ps, c->switch_ps, zs_device_frame_ps(d) - busy};
 }

@@ -311,9 +311,9 @@ typedef struct zs_clock_stats {
   int64_t sync_ps;            /* CPU waiting for queued GPU work */
   int64_t stall_ps;           /* CPU waiting for query latency */
   int64_t gpu_ps, cpu_ps;     /* the two clocks now */
-  /* GPU time so far: drawing commands, query boxes, switches, and gaps
-   * waiting for the CPU to issue a command */
-  int64_t draw_ps, query_ps, switch_ps, idle_ps;
+  /* GPU time so far: drawing commands, query boxes, switches (the rest of
+   * the frame it waited for the CPU: zs_clock_gpu_split) */
+  int64_t draw_ps, query_ps, switch_ps;
 } zs_clock_stats;
 
 /* The frame so far on the GPU, in picoseconds: draw + query + switch + idle
