@@ -26,12 +26,13 @@ typedef struct walk_result {
   int64_t modelled_ps[ZS_CULL_METHODS];
 } walk_result;
 
-/* Runs methods[0..n-1] (methods[0] must be none) in lockstep over frames
- * frames of spec's walk (every step-th frame of its path), with the query
- * latency given in ns (negative: the default). */
 /* The cost model's parameters of each method of the next walk (NULL: the
  * defaults). */
 static const zs_cost_params *const *walk_costs;
+
+/* Runs methods[0..n-1] (methods[0] must be none) in lockstep over frames
+ * frames of spec's walk (every step-th frame of its path), with the query
+ * latency given in ns (negative: the default). */
 
 static void walk(const char *spec, int frames, int step, const zs_cull_method *methods, int n,
                  double latency_ns, walk_result *out) {

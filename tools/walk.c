@@ -224,6 +224,16 @@ static zs_status write_frame(const walk_opts *o, const method_run *r, int f, zs_
   return st;
 }
 
+/* The GPU's split of the device's frame, in ms: draw, query, switch, idle
+ * (the last four columns of the CSV). */
+static void gpu_split_ms(const zs_device *d, double ms[4]) {
+  const zs_gpu_split g = zs_clock_gpu_split(d);
+  ms[0] = g.draw_ps * 1e-9;
+  ms[1] = g.query_ps * 1e-9;
+  ms[2] = g.switch_ps * 1e-9;
+  ms[3] = g.idle_ps * 1e-9;
+}
+
 /* A hidden-surface mode drawing everything (--algos), against none. */
 typedef struct algo_run {
   zs_algo a;
@@ -430,9 +440,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       double wall = zs_wall_ms() - t0;
       const zs_clock_stats *ck = zs_device_clock(r->dev);
       double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
-      const zs_gpu_split gs = zs_clock_gpu_split(r->dev);
-      const double split[4] = {gs.draw_ps * 1e-9, gs.query_ps * 1e-9, gs.switch_ps * 1e-9,
-                               gs.idle_ps * 1e-9};
+      double split[4];
+      gpu_split_ms(r->dev, split);
       for (int i = 0; i < 4; i++) r->gpu_ms[i] += split[i];
       const uint32_t *ids = zs_device_id_buffer(r->dev);
       uint64_t diff = 0;
@@ -480,11 +489,11 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       r->diff_pixels += diff;
       frame_wall[(size_t)(o->nmethods + k) * (size_t)frames + (size_t)f] = wall;
       if (csv) {
-        const zs_gpu_split gs = zs_clock_gpu_split(r->dev);
+        double split[4];
+        gpu_split_ms(r->dev, split);
         fprintf(csv, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu,%.6f,%.6f,%.6f,%.6f\n", f * o->step,
                 zs_algo_name(r->a), modelled, wall, (unsigned long long)faces, (int)s.ninst,
-                (unsigned long long)diff, gs.draw_ps * 1e-9, gs.query_ps * 1e-9,
-                gs.switch_ps * 1e-9, gs.idle_ps * 1e-9);
+                (unsigned long long)diff, split[0], split[1], split[2], split[3]);
       }
     }
     progress(o, f, frames);
