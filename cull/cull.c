@@ -274,6 +274,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
       return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
     c->ndecision = t->nslots;
     memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
+    f.measure_draws = m == ZS_CULL_CHCPP_PROB;
     cull_walk_chcpp(&f, m != ZS_CULL_CHCPP_NOBATCH, m != ZS_CULL_CHCPP_NODEFER, m == ZS_CULL_CHCPP_PROB);
     return f.status;
   }
@@ -292,6 +293,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
   c->ndecision = t->nslots;
   memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
+  f.measure_draws = m == ZS_CULL_CHC_PROB || m == ZS_CULL_AUTO;
   walk_tree(&f, m);
   if (c->method == ZS_CULL_AUTO && f.status == ZS_OK) {
     /* Queries pay when the draws show hidden objects (vfc frames), or

@@ -39,9 +39,14 @@
  *             queried is drawn as if visible, and a node queried waits in the
  *             query queue and is drawn on its answer, a leaf visible last
  *             frame too (the paper's flow; E(A2) = P(V) Cr + Cq counts its
- *             draw only when visible).  An element not reached in the last
- *             frame because a node above it was found hidden takes
- *             P_{t-1}(V) = 0.
+ *             draw only when visible).  P_{t-1}(V) is what the last frame
+ *             saw: 1 or 0 for an element it asked about; for an object it
+ *             drew, whether the draw wrote a pixel (every draw goes inside
+ *             a query, read the next frame; the paper's P^{t-1}(V) is the
+ *             object's visibility in the last frame, and only a draw
+ *             that wrote a pixel pulls visibility up); 0 for an element not
+ *             reached because a node above it was found hidden; for a node
+ *             drawn unasked, its prediction.
  *   ideal     an oracle: draws exactly the instances that own a pixel of
  *             the final image (found by a separate full render that the
  *             clock does not see) and issues no query: the lower bound.
@@ -68,7 +73,8 @@
  *   chcpp-prob  chcpp with chc-prob's test (formulas 2, 3, 6, 9, 10)
  *             before each query chcpp would issue, of a hidden element or
  *             of a visible object that falls due: when the query does not
- *             pay, the element is drawn unasked and its P(V) follows (11).
+ *             pay, the element is drawn unasked; P(V) follows (11) from
+ *             what the last frame saw, as for chc-prob.
  *             The combination neither paper tried.
  *   nohc      near-optimal hierarchical culling (Guthe, Balazs, Klein
  *             2006): every termination element (an object, visible or
@@ -180,6 +186,10 @@ typedef struct zs_cull_stats {
   uint64_t objects_drawn;
   uint64_t faces_drawn;     /* polygons submitted by the draws */
   uint64_t cost_evals;      /* cost-model evaluations */
+  uint64_t draws_measured;  /* objects drawn inside a query that counts what
+                             * they write (chc-prob, auto's chc-prob frames,
+                             * chcpp-prob, nohc); not in queries, which ask
+                             * about boxes */
   zs_cull_method chosen;    /* auto: what it ran this frame */
 } zs_cull_stats;
 

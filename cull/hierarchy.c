@@ -50,18 +50,27 @@ void cull_draw_instance(frame_ctx *f, int32_t i) {
   const zs_instance *in = &f->s->inst[i];
   const zs_mesh *m = &f->s->meshes[in->mesh].mesh;
   const int nohc = f->c->method == ZS_CULL_NOHC;
-  /* nohc draws some objects inside a query, to learn what they write */
-  const int measure = nohc && cull_nohc_measure_due(f, i);
+  /* nohc draws some objects inside a query, to learn what they write;
+   * chc-prob and chcpp-prob every object they draw */
+  const int measure = f->measure_draws || (nohc && cull_nohc_measure_due(f, i));
   uint64_t before = zs_device_stats(f->dev)->pixels_written;
   zs_query q;
   if (measure && (f->status = zs_device_query_begin(f->dev, &q, f->err))) return;
   f->status = zs_device_draw(f->dev, m, in->model, in->id_base, in->rgb, f->err);
   if (measure && f->status == ZS_OK) f->status = zs_device_query_end(f->dev, f->err);
   f->st->objects_drawn++;
+  f->st->draws_measured += (uint64_t)measure;
   f->st->faces_drawn += (uint64_t)m->nfaces;
   uint64_t written = zs_device_stats(f->dev)->pixels_written - before;
   if (written == 0) f->hidden_objects++;
   if (nohc) cull_nohc_drawn(f, i, measure, written);
+  /* P_{t-1}(V) of (11) for the next frame: whether the draw wrote a pixel
+   * (the query's count, long there when the next frame reads it), not
+   * the prediction it was drawn on */
+  if (f->measure_draws) {
+    f->c->os[i].pv = written > 0 ? 1.0 : 0.0;
+    if (written > 0) cull_pull_up_visibility(f, object_elem(i));
+  }
 }
 
 /* ---- the traversal queue: a min-heap on (distance, element) ---- */
@@ -289,7 +298,8 @@ void cull_take_result(frame_ctx *f) {
     es->next_query = c->frame + (q.was_visible ? (uint32_t)ZS_CHCPP_VISIBLE_FRAMES
                                                : 1 + (uint32_t)zs_rng_below(&c->rng, ZS_CHCPP_VISIBLE_FRAMES));
   }
-  cull_pull_up_visibility(f, q.e);
+  /* a measured object's visibility is what its draw writes */
+  if (!(is_object(q.e) && f->measure_draws)) cull_pull_up_visibility(f, q.e);
   cull_traverse(f, q.e, q.mask);
 }
 
@@ -365,11 +375,13 @@ void cull_flush_invisible(frame_ctx *f) {
   c->ni = 0;
 }
 
-/* Draws e as if visible without asking (chcpp-prob, when the query does
- * not pay); its P(V) carries the prediction to the next frame. */
+/* Draws e as if visible without asking (when the query does not pay);
+ * its P(V) carries the prediction to the next frame, unless e is an
+ * object whose draw is measured (then the draw sets P(V) and, if it wrote
+ * a pixel, pulls visibility up). */
 void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv) {
   cull_state(f, e)->pv = pv;
-  cull_pull_up_visibility(f, e);
+  if (!(is_object(e) && f->measure_draws)) cull_pull_up_visibility(f, e);
   cull_traverse(f, e, mask);
 }
 

@@ -125,6 +125,9 @@ typedef struct frame_ctx {
   double ttri, tcall, tq, tquery; /* cost model constants, ns */
   zs_cull_stats *st;
   uint64_t hidden_objects; /* auto: objects drawn that wrote no pixel */
+  int measure_draws;       /* chc-prob's and chcpp-prob's frames: every
+                            * object drawn inside a query, whose count is
+                            * its P(V) and its visibility of this frame */
   zs_error *err;
   zs_status status;
 } frame_ctx;

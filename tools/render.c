@@ -149,7 +149,8 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
 
 /* The culling method's work in the frame (render --cull): what it skipped
  * shows as frustum tests below nodes found inside (none), queries the cost
- * model judged not worth asking (cost_evals - queries), objects drawn. */
+ * model judged not worth asking (cost_evals less the queries that asked
+ * about boxes: queries - draws_measured), objects drawn. */
 typedef struct cull_report {
   const char *method;
   const zs_cull_stats *st;
@@ -195,11 +196,12 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
   }
   if (cr)
     printf("\"cull\":\"%s\",\"octree\":\"%s\",\"octree_nodes\":%d,\"nodes_visited\":%llu,\"frustum_tests\":%llu,"
-           "\"cost_evals\":%llu,\"queries_hidden\":%llu,\"objects_drawn\":%llu,\"faces_drawn\":%llu,",
+           "\"cost_evals\":%llu,\"queries_hidden\":%llu,\"objects_drawn\":%llu,\"faces_drawn\":%llu,"
+           "\"draws_measured\":%llu,",
            cr->method, cr->flat ? "flat" : "loose", (int)cr->octree_nodes, (unsigned long long)cr->st->nodes_visited,
            (unsigned long long)cr->st->frustum_tests, (unsigned long long)cr->st->cost_evals,
            (unsigned long long)cr->st->queries_hidden, (unsigned long long)cr->st->objects_drawn,
-           (unsigned long long)cr->st->faces_drawn);
+           (unsigned long long)cr->st->faces_drawn, (unsigned long long)cr->st->draws_measured);
   const zs_clock_stats *k = zs_device_clock(dev);
   printf("\"queries\":%llu,\"query_waits\":%llu,\"stalls\":%llu,\"stall_ms\":%.6f,"
          "\"sync_ms\":%.6f,\"gpu_ms\":%.6f,\"cpu_ms\":%.6f,\"modelled_ms\":%.6f,",
