@@ -36,7 +36,7 @@ int zs_cull_method_parse(const char *name) {
 void zs_cost_params_default(zs_cost_params *p) {
   /* w1, w2: the transition rates auto measured over 20 frames of the plant
    * walk (builtin:plant?detail=1), rounded */
-  *p = (zs_cost_params){0.93, 0.97, -1.0, -1.0, -1.0, -1.0, 1.0, 0.0};
+  *p = (zs_cost_params){0.93, 0.97, -1.0, -1.0, -1.0, -1.0, 1.0, 0.0, 1.0};
 }
 
 zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_culler **out,
@@ -274,7 +274,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
       return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
     c->ndecision = t->nslots;
     memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
-    f.measure_draws = m == ZS_CULL_CHCPP_PROB;
+    f.measure_draws = m == ZS_CULL_CHCPP_PROB && c->cost.measure != 0.0;
     cull_walk_chcpp(&f, m != ZS_CULL_CHCPP_NOBATCH, m != ZS_CULL_CHCPP_NODEFER, m == ZS_CULL_CHCPP_PROB);
     return f.status;
   }
@@ -293,7 +293,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
     return zs_error_set(err, ZS_ERR_NOMEM, "culling: out of memory");
   c->ndecision = t->nslots;
   memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
-  f.measure_draws = m == ZS_CULL_CHC_PROB || m == ZS_CULL_AUTO;
+  f.measure_draws = (m == ZS_CULL_CHC_PROB || m == ZS_CULL_AUTO) && c->cost.measure != 0.0;
   walk_tree(&f, m);
   if (c->method == ZS_CULL_AUTO && f.status == ZS_OK) {
     /* Queries pay when the draws show hidden objects (vfc frames), or

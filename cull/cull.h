@@ -173,6 +173,9 @@ typedef struct zs_cost_params {
   double ttri_ns, tcall_ns, t_ns, tq_ns;
   double rho;           /* pixels per unit of S: 1, S is in pixels */
   double learn;         /* 0: w1, w2 as given; else the weight of their prior */
+  double measure;       /* 1: P_{t-1}(V) of an object drawn is whether its
+                         * draw wrote a pixel (a query around every draw);
+                         * 0: the prediction it was drawn on */
 } zs_cost_params;
 
 void zs_cost_params_default(zs_cost_params *p);

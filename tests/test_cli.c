@@ -146,6 +146,8 @@ static const bad_option bad_options[] = {
     {{"render", "--cost-set", "beta=1", NULL}, "--cost-set beta: unknown cost-model parameter"},
     {{"render", "--cost-set", "learn=-1", NULL},
      "--cost-set learn: expected a number of outcomes from 0 to 1e6, got -1"},
+    {{"render", "--cost-set", "measure=0.5", NULL},
+     "--cost-set measure: expected 0 (off) or 1 (on), got 0.5"},
     {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open"},
 };
 

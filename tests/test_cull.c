@@ -201,23 +201,46 @@ START_TEST(chcpp_prob_asks_least_on_the_plant) {
 }
 END_TEST
 
+/* chc-prob on the small plant's walk twice, as [1] with the cost model's
+ * parameters p and as [2] with the defaults, both drawing none's pixels. */
+static void walk_chc_prob_against_defaults(const zs_cost_params *p, walk_result *r) {
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_CHC_PROB, ZS_CULL_CHC_PROB};
+  const zs_cost_params *const costs[] = {NULL, p, NULL};
+  walk_costs = costs;
+  walk("plant?detail=0.25", 12, 8, m, 3, -1, r);
+  walk_costs = NULL;
+  ck_assert_uint_eq(r->diff[1], 0);
+  ck_assert_uint_eq(r->diff[2], 0);
+}
+
 START_TEST(cost_model_learns_w1_w2_when_asked) {
   /* With learn, chc-prob predicts P(V) with w1 and w2 learnt from what its
    * queries find instead of the given ones: other decisions, the same
    * pixels.  (On this small plant the learnt weights ask fewer queries.) */
-  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_CHC_PROB, ZS_CULL_CHC_PROB};
   zs_cost_params learnt;
   zs_cost_params_default(&learnt);
   learnt.learn = 10;
-  const zs_cost_params *const costs[] = {NULL, &learnt, NULL};
   walk_result r;
-  walk_costs = costs;
-  walk("plant?detail=0.25", 12, 8, m, 3, -1, &r);
-  walk_costs = NULL;
-  ck_assert_uint_eq(r.diff[1], 0);
-  ck_assert_uint_eq(r.diff[2], 0);
+  walk_chc_prob_against_defaults(&learnt, &r);
   ck_assert_msg(r.queries[1] < r.queries[2], "learnt %llu queries, given %llu",
                 (unsigned long long)r.queries[1], (unsigned long long)r.queries[2]);
+}
+END_TEST
+
+START_TEST(chc_prob_measures_what_it_draws) {
+  /* chc-prob takes an object's P_{t-1}(V) from what its draw wrote: an
+   * object drawn unasked that wrote nothing is asked about in the next
+   * frame, not drawn again on a prediction.  With measure=0 it predicts
+   * from the prediction it drew on: the same pixels, more objects drawn
+   * and a longer modelled frame. */
+  zs_cost_params predicted;
+  zs_cost_params_default(&predicted);
+  predicted.measure = 0;
+  walk_result r;
+  walk_chc_prob_against_defaults(&predicted, &r);
+  ck_assert_msg(r.objects[2] < r.objects[1], "measured %llu objects drawn, predicted %llu",
+                (unsigned long long)r.objects[2], (unsigned long long)r.objects[1]);
+  ck_assert_int_lt(r.modelled_ps[2], r.modelled_ps[1]);
 }
 END_TEST
 
@@ -398,6 +421,7 @@ int main(void) {
   tcase_add_test(tc, chcpp_features_each_pay_on_the_plant);
   tcase_add_test(tc, chcpp_prob_asks_least_on_the_plant);
   tcase_add_test(tc, cost_model_learns_w1_w2_when_asked);
+  tcase_add_test(tc, chc_prob_measures_what_it_draws);
   tcase_add_test(tc, method_list_names_every_method);
   tcase_add_test(tc, frustum_planes_and_masking);
   tcase_add_test(tc, auto_costs_nothing_without_occlusion);

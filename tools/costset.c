@@ -22,6 +22,7 @@ static const cost_field fields[] = {
     FIELD(tq_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
     FIELD(rho, 0.0, 1e6, "pixels per unit of S from 0 to 1e6"),
     FIELD(learn, 0.0, 1e6, "a number of outcomes from 0 to 1e6"),
+    FIELD(measure, 0.0, 1.0, "0 (off) or 1 (on)"),
 };
 #undef FIELD
 
@@ -31,7 +32,9 @@ zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) 
   if (zs_cli_assignment("--cost-set", assignment, name, sizeof name, &v, err)) return err->code;
   for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
     if (strcmp(fields[i].name, name) != 0) continue;
-    if (v < fields[i].lo || v > fields[i].hi)
+    /* measure is a switch: 0 or 1, nothing between */
+    int is_switch = fields[i].offset == offsetof(zs_cost_params, measure);
+    if (v < fields[i].lo || v > fields[i].hi || (is_switch && v != 0.0 && v != 1.0))
       return zs_error_set(err, ZS_ERR_ARG, "--cost-set %s: expected %s, got %g", name,
                           fields[i].what, v);
     *(double *)((char *)p + fields[i].offset) = v;
@@ -39,6 +42,6 @@ zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) 
   }
   return zs_error_set(err, ZS_ERR_ARG,
                       "--cost-set %s: unknown cost-model parameter (w1, w2, ttri_ns, tcall_ns, "
-                      "t_ns, tq_ns, rho, learn)",
+                      "t_ns, tq_ns, rho, learn, measure)",
                       name);
 }
