@@ -42,7 +42,7 @@ static const char usage_tail[] =
     "  --clock FILE.json   the device clock's constants (zscan calibrate writes one)\n"
     "  --clock-set K=V     set one clock constant, in ns (e.g. query_latency_ns=0)\n"
     "  --cost-set K=V      with --cull: set one parameter of the cost model (w1, w2,\n"
-    "                      ttri_ns, tcall_ns, t_ns, tq_ns, rho, learn)\n";
+    "                      ttri_ns, tcall_ns, t_ns, tq_ns, rho, learn, measure)\n";
 
 typedef struct render_opts {
   const char *input, *out_png, *out_pfm;
