@@ -16,11 +16,12 @@ typedef struct mesh_parts {
   int32_t *vert;
 } mesh_parts;
 
-/* An instance's boxes, and its placement when they were made. */
+/* An instance's boxes (lo[0 .. n-1], then hi[0 .. n-1], in one block of
+ * its mesh's parts), and its placement when they were made. */
 typedef struct inst_parts {
   int n;                          /* 0: not made yet */
   double at_model[16];
-  double lo[ZS_PARTS_MAX][3], hi[ZS_PARTS_MAX][3];
+  double (*box)[3];
 } inst_parts;
 
 struct zs_parts {
@@ -35,6 +36,7 @@ zs_parts *zs_parts_create(void) { return calloc(1, sizeof(zs_parts)); }
 void zs_parts_destroy(zs_parts *p) {
   if (!p) return;
   for (int32_t m = 0; m < p->cap_mesh; m++) free(p->mesh[m].vert);
+  for (int32_t i = 0; i < p->cap_inst; i++) free(p->inst[i].box);
   free(p->mesh);
   free(p->inst);
   free(p);
@@ -115,9 +117,10 @@ static void best_split(group *g, const int32_t *face, const double *centroid, co
   }
 }
 
-/* Splits the faces of m into at most ZS_PARTS_MAX groups, each time
- * splitting the group whose split saves the most volume, while a split
- * saves at least 2 % of the mesh's box. */
+/* Splits the faces of m into at most one group per ZS_FACES_PER_PART
+ * faces (and ZS_PARTS_MAX), each time splitting the group whose split
+ * saves the most volume, while a split saves at least 0.2 % of the mesh's
+ * box. */
 static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
   int32_t nf = m->nfaces > 0 ? m->nfaces : 1;
   int32_t *face = malloc((size_t)nf * sizeof *face);
@@ -146,9 +149,11 @@ static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
     box_add(&g[0].box, &fbox[f]);
   }
   int ng = 1;
-  const double worth = 0.02 * box_volume(&g[0].box);
-  best_split(&g[0], face, centroid, fbox);
-  while (ng < ZS_PARTS_MAX) {
+  const double worth = 0.002 * box_volume(&g[0].box);
+  const int most = m->nfaces / ZS_FACES_PER_PART < ZS_PARTS_MAX ? m->nfaces / ZS_FACES_PER_PART
+                                                                  : ZS_PARTS_MAX;
+  if (most > 1) best_split(&g[0], face, centroid, fbox);
+  while (ng < most) {
     int best = 0;
     for (int i = 1; i < ng; i++)
       if (g[i].gain > g[best].gain) best = i;
@@ -199,25 +204,29 @@ static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
 
 /* The world boxes of the parts of instance in, transformed as
  * zs_scene_instance_bounds transforms its vertices. */
-static void make_inst_parts(inst_parts *ip, const mesh_parts *mp, const zs_mesh *m,
-                            const zs_instance *in) {
+static int make_inst_parts(inst_parts *ip, const mesh_parts *mp, const zs_mesh *m,
+                           const zs_instance *in) {
   const double *t = in->model;
+  const int n = mp->n < 2 ? 1 : mp->n;
+  if (!ip->box && !(ip->box = malloc((size_t)(2 * n) * sizeof *ip->box))) return 0;
+  double(*lo)[3] = ip->box, (*hi)[3] = ip->box + n;
   for (int k = 0; k < mp->n; k++) {
     for (int32_t j = mp->start[k]; j < mp->start[k + 1]; j++) {
       const double *p = m->pos + 3 * (size_t)mp->vert[j];
       for (int r = 0; r < 3; r++) {
         double w = t[4 * r] * p[0] + t[4 * r + 1] * p[1] + t[4 * r + 2] * p[2] + t[4 * r + 3];
-        if (j == mp->start[k] || w < ip->lo[k][r]) ip->lo[k][r] = w;
-        if (j == mp->start[k] || w > ip->hi[k][r]) ip->hi[k][r] = w;
+        if (j == mp->start[k] || w < lo[k][r]) lo[k][r] = w;
+        if (j == mp->start[k] || w > hi[k][r]) hi[k][r] = w;
       }
     }
   }
-  ip->n = mp->n < 2 ? 1 : mp->n;
+  ip->n = n;
   if (mp->n < 2) { /* one part, or none: the object's own box */
-    memcpy(ip->lo[0], in->lo, sizeof ip->lo[0]);
-    memcpy(ip->hi[0], in->hi, sizeof ip->hi[0]);
+    memcpy(lo[0], in->lo, sizeof lo[0]);
+    memcpy(hi[0], in->hi, sizeof hi[0]);
   }
   memcpy(ip->at_model, in->model, sizeof ip->at_model);
+  return 1;
 }
 
 int zs_parts_of(zs_parts *p, const zs_scene *s, int32_t i, const double (**lo)[3],
@@ -233,10 +242,11 @@ int zs_parts_of(zs_parts *p, const zs_scene *s, int32_t i, const double (**lo)[3
   mesh_parts *mp = &p->mesh[in->mesh];
   if (!mp->done && !make_mesh_parts(mp, m)) return 0;
   inst_parts *ip = &p->inst[i];
-  if (ip->n == 0 || memcmp(ip->at_model, in->model, sizeof ip->at_model) != 0)
-    make_inst_parts(ip, mp, m, in);
-  *lo = (const double(*)[3])ip->lo;
-  *hi = (const double(*)[3])ip->hi;
+  if ((ip->n == 0 || memcmp(ip->at_model, in->model, sizeof ip->at_model) != 0) &&
+      !make_inst_parts(ip, mp, m, in))
+    return 0;
+  *lo = (const double(*)[3])ip->box;
+  *hi = (const double(*)[3])(ip->box + ip->n);
   *n = ip->n;
   return 1;
 }
