@@ -20,6 +20,7 @@ typedef struct mesh_parts {
  * its mesh's parts), and its placement when they were made. */
 typedef struct inst_parts {
   int n;                          /* 0: not made yet */
+  int cap;                        /* boxes box holds room for, lo and hi */
   double at_model[16];
   double (*box)[3];
 } inst_parts;
@@ -208,7 +209,12 @@ static int make_inst_parts(inst_parts *ip, const mesh_parts *mp, const zs_mesh *
                            const zs_instance *in) {
   const double *t = in->model;
   const int n = mp->n < 2 ? 1 : mp->n;
-  if (!ip->box && !(ip->box = malloc((size_t)(2 * n) * sizeof *ip->box))) return 0;
+  if (n > ip->cap) { /* an instance not seen before */
+    double(*box)[3] = realloc(ip->box, (size_t)(2 * n) * sizeof *box);
+    if (!box) return 0;
+    ip->box = box;
+    ip->cap = n;
+  }
   double(*lo)[3] = ip->box, (*hi)[3] = ip->box + n;
   for (int k = 0; k < mp->n; k++) {
     for (int32_t j = mp->start[k]; j < mp->start[k + 1]; j++) {
