@@ -138,6 +138,13 @@ void cull_pull_up_visibility(frame_ctx *f, elem e) {
   }
 }
 
+/* An element found visible or drawn unasked is visible up the tree; a
+ * measured object's visibility is what its draw writes
+ * (cull_draw_instance pulls it up only if it wrote a pixel). */
+void cull_pull_up_before_draw(frame_ctx *f, elem e) {
+  if (!(is_object(e) && f->measure_draws)) cull_pull_up_visibility(f, e);
+}
+
 /* A box that the near plane could cut, or that holds the eye: its query
  * would miss what lies before the plane, so it is not asked. */
 int cull_too_close(const frame_ctx *f, elem e) {
@@ -298,8 +305,7 @@ void cull_take_result(frame_ctx *f) {
     es->next_query = c->frame + (q.was_visible ? (uint32_t)ZS_CHCPP_VISIBLE_FRAMES
                                                : 1 + (uint32_t)zs_rng_below(&c->rng, ZS_CHCPP_VISIBLE_FRAMES));
   }
-  /* a measured object's visibility is what its draw writes */
-  if (!(is_object(q.e) && f->measure_draws)) cull_pull_up_visibility(f, q.e);
+  cull_pull_up_before_draw(f, q.e);
   cull_traverse(f, q.e, q.mask);
 }
 
@@ -381,7 +387,7 @@ void cull_flush_invisible(frame_ctx *f) {
  * a pixel, pulls visibility up). */
 void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv) {
   cull_state(f, e)->pv = pv;
-  if (!(is_object(e) && f->measure_draws)) cull_pull_up_visibility(f, e);
+  cull_pull_up_before_draw(f, e);
   cull_traverse(f, e, mask);
 }
 

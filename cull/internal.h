@@ -149,6 +149,9 @@ int cull_heap_push(frame_ctx *f, elem e, unsigned mask);
 /* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
 void cull_traverse(frame_ctx *f, elem e, unsigned mask);
 void cull_pull_up_visibility(frame_ctx *f, elem e);
+/* The same for an element about to be drawn or opened, but a measured
+ * object's draw decides its visibility. */
+void cull_pull_up_before_draw(frame_ctx *f, elem e);
 /* Whether the near plane could cut e's box (a query would miss pixels). */
 int cull_too_close(const frame_ctx *f, elem e);
 /* The cost model: Cr (6), whether a query pays (2, 3, 6, 9, 10), P(V) (11). */

@@ -1,5 +1,6 @@
 #include "tools/costset.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -9,20 +10,21 @@ typedef struct cost_field {
   const char *name;
   size_t offset;
   double lo, hi;
+  int whole;              /* only whole numbers (measure: 0 or 1) */
   const char *what;
 } cost_field;
 
-#define FIELD(name, lo, hi, what) {#name, offsetof(zs_cost_params, name), lo, hi, what}
+#define FIELD(name, lo, hi, whole, what) {#name, offsetof(zs_cost_params, name), lo, hi, whole, what}
 static const cost_field fields[] = {
-    FIELD(w1, 0.0, 1.0, "a probability from 0 to 1"),
-    FIELD(w2, 0.0, 1.0, "a probability from 0 to 1"),
-    FIELD(ttri_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
-    FIELD(tcall_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
-    FIELD(t_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
-    FIELD(tq_ns, 0.0, 1e12, "nanoseconds from 0 to 1e12"),
-    FIELD(rho, 0.0, 1e6, "pixels per unit of S from 0 to 1e6"),
-    FIELD(learn, 0.0, 1e6, "a number of outcomes from 0 to 1e6"),
-    FIELD(measure, 0.0, 1.0, "0 (off) or 1 (on)"),
+    FIELD(w1, 0.0, 1.0, 0, "a probability from 0 to 1"),
+    FIELD(w2, 0.0, 1.0, 0, "a probability from 0 to 1"),
+    FIELD(ttri_ns, 0.0, 1e12, 0, "nanoseconds from 0 to 1e12"),
+    FIELD(tcall_ns, 0.0, 1e12, 0, "nanoseconds from 0 to 1e12"),
+    FIELD(t_ns, 0.0, 1e12, 0, "nanoseconds from 0 to 1e12"),
+    FIELD(tq_ns, 0.0, 1e12, 0, "nanoseconds from 0 to 1e12"),
+    FIELD(rho, 0.0, 1e6, 0, "pixels per unit of S from 0 to 1e6"),
+    FIELD(learn, 0.0, 1e6, 0, "a number of outcomes from 0 to 1e6"),
+    FIELD(measure, 0.0, 1.0, 1, "0 (off) or 1 (on)"),
 };
 #undef FIELD
 
@@ -32,9 +34,7 @@ zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) 
   if (zs_cli_assignment("--cost-set", assignment, name, sizeof name, &v, err)) return err->code;
   for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
     if (strcmp(fields[i].name, name) != 0) continue;
-    /* measure is a switch: 0 or 1, nothing between */
-    int is_switch = fields[i].offset == offsetof(zs_cost_params, measure);
-    if (v < fields[i].lo || v > fields[i].hi || (is_switch && v != 0.0 && v != 1.0))
+    if (v < fields[i].lo || v > fields[i].hi || (fields[i].whole && v != floor(v)))
       return zs_error_set(err, ZS_ERR_ARG, "--cost-set %s: expected %s, got %g", name,
                           fields[i].what, v);
     *(double *)((char *)p + fields[i].offset) = v;
