@@ -1,7 +1,9 @@
 /* Culling: every exact method gives, in every frame of a walk (moving
- * objects included), the image of drawing everything; the approximate
+ * objects included) and from random cameras (orthographic, wide, with the
+ * eye inside objects), the image of drawing everything; the approximate
  * vfc-box reports how far it is off; the images stay exact whatever the
  * query latency; and the counters are the same on every run. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +12,7 @@
 #include "cull/frustum.h"
 #include "cull/octree.h"
 #include "cull/parts.h"
+#include "raster/rng.h"
 #include "scene/generate.h"
 #include "scene/scene.h"
 #include "scene/scenefile.h"
@@ -29,6 +32,9 @@ typedef struct walk_result {
 /* The cost model's parameters of each method of the next walk (NULL: the
  * defaults). */
 static const zs_cost_params *const *walk_costs;
+
+/* The camera of frame f of the next walk (NULL: the scene's path's). */
+static void (*walk_camera)(int f, const zs_scene *s, zs_camera *cam);
 
 /* Runs methods[0..n-1] (methods[0] must be none) in lockstep over frames
  * frames of spec's walk (every step-th frame of its path), with the query
@@ -63,7 +69,8 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
       ck_assert_int_eq(zs_octree_update(&t, &s, NULL, &err), ZS_OK);
     }
     zs_camera cam = s.camera;
-    if (s.path.nkeys > 0) zs_path_camera(&s, (f * step) % path_frames, &cam);
+    if (walk_camera) walk_camera(f, &s, &cam);
+    else if (s.path.nkeys > 0) zs_path_camera(&s, (f * step) % path_frames, &cam);
     zs_camera_complete(&cam, s.lo, s.hi, (double)W / H);
     double view[16], proj[16];
     ck_assert_int_eq(zs_camera_matrices(&cam, (double)W / H, view, proj, &err), ZS_OK);
@@ -112,6 +119,52 @@ START_TEST(exact_methods_match_none_on_every_walk) {
                   zs_cull_method_name(exact[k]), (unsigned long long)r.diff[k]);
   /* and they cull: ideal never draws more than none */
   ck_assert_uint_le(r.objects[5], drawn_all);
+}
+END_TEST
+
+/* A camera anywhere: the eye in or around the scene's box (inside
+ * objects too), looking anywhere in it; the field of view from 5 to 175
+ * degrees, or orthographic one frame in four; the near plane from 1e-8
+ * to 0.05 of the scene's size.  Each frame jumps, so nothing a culler
+ * remembers of the last frame holds.  Seeded: the same cameras every run. */
+static zs_rng camera_rng;
+static void random_camera(int f, const zs_scene *s, zs_camera *cam) {
+  (void)f;
+  zs_camera_default(cam);
+  double size = 0.0;
+  for (int k = 0; k < 3; k++) size = fmax(size, s->hi[k] - s->lo[k]);
+  for (int k = 0; k < 3; k++) {
+    double pad = 0.3 * (s->hi[k] - s->lo[k]);
+    cam->eye[k] = zs_rng_range(&camera_rng, s->lo[k] - pad, s->hi[k] + pad);
+    cam->target[k] = zs_rng_range(&camera_rng, s->lo[k], s->hi[k]);
+  }
+  cam->fovy = zs_rng_range(&camera_rng, 5.0, 175.0);
+  if (zs_rng_below(&camera_rng, 4) == 0) {
+    double e = zs_rng_range(&camera_rng, 0.01, 1.0) * size;
+    cam->ortho = 1;
+    cam->extent[0] = -e;
+    cam->extent[1] = e;
+    cam->extent[2] = -0.75 * e;
+    cam->extent[3] = 0.75 * e;
+  }
+  cam->znear = size * pow(10.0, zs_rng_range(&camera_rng, -8.0, -1.3));
+  cam->zfar = 4.0 * size;
+  cam->has_eye = cam->has_target = cam->has_near = cam->has_far = 1;
+}
+
+START_TEST(exact_from_random_cameras) {
+  walk_result r;
+  zs_rng_seed(&camera_rng, 0xCA3 + (uint64_t)_i);
+  walk_camera = random_camera;
+  walk(scenes[_i], 40, 1, exact, NEXACT, -1, &r);
+  walk_camera = NULL;
+  for (int k = 1; k < NEXACT; k++)
+    ck_assert_msg(r.diff[k] == 0, "%s, random cameras: %s differs from none in %llu pixels",
+                  scenes[_i], zs_cull_method_name(exact[k]), (unsigned long long)r.diff[k]);
+  /* the cameras see the scene, and the methods cull and ask */
+  ck_assert_uint_gt(r.objects[5], 0);       /* ideal */
+  ck_assert_uint_lt(r.objects[5], r.objects[0]);
+  ck_assert_uint_gt(r.queries[2], 0);       /* hsw */
 }
 END_TEST
 
@@ -426,6 +479,7 @@ int main(void) {
   tcase_set_timeout(tc, 900);
   tcase_add_loop_test(tc, exact_methods_match_none_on_every_walk, 0,
                       (int)(sizeof scenes / sizeof scenes[0]));
+  tcase_add_loop_test(tc, exact_from_random_cameras, 0, (int)(sizeof scenes / sizeof scenes[0]));
   tcase_add_test(tc, exact_at_every_latency);
   tcase_add_test(tc, vfc_box_reports_its_error);
   tcase_add_test(tc, query_ordering_on_the_plant);
