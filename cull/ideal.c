@@ -13,6 +13,7 @@
  * one of them). */
 void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16], int boxes) {
   zs_culler *c = f->c;
+  if (f->s->ninst == 0) return; /* nothing to draw, nothing to own a pixel */
   const zs_device_config *cfg = zs_device_config_of(f->dev);
   if (!c->oracle) {
     zs_device_config oc = *cfg;

@@ -4,8 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/obj.h"
-#include "scene/scene.h"
+#include "tests/fuzz/fuzz_obj_scene.h"
 #include "tools/frame.h"
 
 static uint64_t render(const zs_scene *s, zs_algo algo) {
@@ -22,16 +21,8 @@ static uint64_t render(const zs_scene *s, zs_algo algo) {
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  zs_model m;
-  zs_error err;
-  zs_error_clear(&err);
-  if (zs_obj_parse((const char *)data, size, "fuzz.obj", NULL, &m, &err) != ZS_OK) return 0;
   zs_scene s;
-  zs_scene_init(&s);
-  if (zs_scene_from_model(&s, &m, &err) != ZS_OK || zs_scene_finish(&s, &err) != ZS_OK) {
-    zs_scene_free(&s);
-    return 0;
-  }
+  if (!fuzz_obj_scene(data, size, &s)) return 0;
   if (render(&s, ZS_ALGO_ZBUFFER) != render(&s, ZS_ALGO_SCANLINE)) abort();
   zs_scene_free(&s);
   return 0;
