@@ -207,15 +207,23 @@ const uint32_t *zs_device_id_buffer(const zs_device *dev);
  * turned inwards, when the eye is inside) with the test "less or equal"
  * and no writes, so a box touching geometry already drawn (a cube's own
  * faces) counts as visible, and each pixel of its outline counts once.
- * The box is brought ZS_QUERY_DEPTH_BIAS depth units (2^-28 of the depth
- * range) towards the eye: a box flush with geometry reaches the same depth
- * through different rounding (model x view on the mesh, view on the box's
- * world corners), and a visible node must never test as hidden.  A
+ * The box is brought towards the eye by ZS_QUERY_DEPTH_BIAS depth units
+ * (2^-28 of the depth range) plus its faces' depth change over 1/16 pixel
+ * (|dz/dx| + |dz/dy| >> ZS_QUERY_SLOPE_SHIFT), as glPolygonOffset(factor,
+ * units) does: a box flush with geometry reaches the same depth through
+ * different rounding, and a visible node must never test as hidden.  The
+ * constant covers the transforms (model x view on the mesh, view on the
+ * box's world corners); the slope covers snapping, which moves each corner
+ * of both planes by up to 1/256 pixel and so each plane's depth by up to
+ * a few hundredths of a pixel's depth change (more than the constant where
+ * a face is seen edge-on or through a wide lens: fuzz_cull found three
+ * objects sharing one quad, seen through a 152-degree lens, where 16 units
+ * alone let hsw cull the copy with the lowest id).  A
  * box cut by the near plane counts only what lies beyond the plane: callers
  * treat such boxes as visible without asking.  Queries need the full-frame
  * depth buffer: zbuffer mode only.  Several queries may be in flight while
  * draws go on, as on a GPU; ids count from 0 each frame. */
-enum { ZS_QUERY_DEPTH_BIAS = 16 };
+enum { ZS_QUERY_DEPTH_BIAS = 16, ZS_QUERY_SLOPE_SHIFT = 4 };
 typedef uint32_t zs_query;
 
 zs_status zs_device_query_begin(zs_device *dev, zs_query *q, zs_error *err);

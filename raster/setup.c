@@ -169,6 +169,10 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   p->ox = pl->ox;
   p->oy = pl->oy;
   p->zc = pl->zc - ((int64_t)sp->depth_bias << pl->zshift);
+  if (sp->depth_bias) { /* and by the depth change over 1/16 pixel (raster.h, queries) */
+    const int64_t ax = pl->dzdx < 0 ? -pl->dzdx : pl->dzdx, ay = pl->dzdy < 0 ? -pl->dzdy : pl->dzdy;
+    p->zc -= (ax + ay) >> ZS_QUERY_SLOPE_SHIFT;
+  }
   p->dzdx = pl->dzdx;
   p->dzdy = pl->dzdy;
   p->zshift = pl->zshift;

@@ -24,9 +24,16 @@ cp "$root"/tests/data/*/*.obj "$corpus/obj/"
 cp "$root"/tests/data/*/*.obj "$corpus/render/"
 cp "$root"/tests/data/*/*.obj "$corpus/cull/"
 cp "$root"/scene/examples/*.json "$root"/tests/data/bad_scene/*.json "$corpus/scene/"
+# (the status is the fuzzer's own: under pipefail, "| grep ... || true"
+# would turn a crash into success)
 for t in obj scene render cull; do
   echo "fuzz_$t: $seconds s"
+  status=0
   "$build/fuzz_$t" "$corpus/$t" -seed=1 -max_total_time="$seconds" -max_len=8192 \
-    -print_final_stats=1 2>&1 | grep -E "^stat::number_of_executed_units|ERROR|SUMMARY" || true
-  test "${PIPESTATUS[0]}" -eq 0
+    -print_final_stats=1 >"$build/fuzz_$t.log" 2>&1 || status=$?
+  grep -E "^stat::number_of_executed_units|DONE|ERROR|SUMMARY|differs" "$build/fuzz_$t.log" || true
+  if [ "$status" -ne 0 ]; then
+    echo "fuzz_$t failed (exit $status); its log: $build/fuzz_$t.log" >&2
+    exit 1
+  fi
 done

@@ -4,6 +4,7 @@
  * byte, that of drawing everything.  Extreme geometry is the point: specks,
  * flat and huge boxes, objects far off, the eye inside one. */
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -75,7 +76,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
       }
       const uint32_t *ids = zs_device_id_buffer(dev[k]);
       if (k == 0) memcpy(ref, ids, (size_t)W * H * sizeof *ref);
-      else if (memcmp(ref, ids, (size_t)W * H * sizeof *ref) != 0) abort();
+      else if (memcmp(ref, ids, (size_t)W * H * sizeof *ref) != 0) {
+        int n = 0;
+        for (int p = 0; p < W * H; p++) n += ids[p] != ref[p];
+        fprintf(stderr, "camera %d: %s differs from none in %d pixels\n", f,
+                zs_cull_method_name(methods[k]), n);
+        abort();
+      }
     }
   }
 done:
