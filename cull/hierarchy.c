@@ -145,12 +145,15 @@ void cull_pull_up_before_draw(frame_ctx *f, elem e) {
   if (!(is_object(e) && f->measure_draws)) cull_pull_up_visibility(f, e);
 }
 
-/* A box that the near plane could cut, or that holds the eye: its query
- * would miss what lies before the plane, so it is not asked. */
+/* A box that the near plane could cut, or that holds the eye, once grown
+ * by the query's margin (raster.h): its query would miss what lies before
+ * the plane, so it is not asked.  (The grown box lies within sqrt(3)
+ * margins of the box.) */
 int cull_too_close(const frame_ctx *f, elem e) {
   const double *lo, *hi;
   cull_elem_box(f, e, &lo, &hi);
-  return box_distance2(f->eye, lo, hi) <= f->near_reach * f->near_reach;
+  const double reach = f->near_reach + 1.7320508075688772 * zs_device_query_margin(f->dev, lo, hi);
+  return box_distance2(f->eye, lo, hi) <= reach * reach;
 }
 
 /* ---- the cost model (chc-prob, auto) ---- */

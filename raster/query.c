@@ -4,6 +4,7 @@
  * its last box or draw is done; what the clock models is when the answer
  * may be read: query_latency after the GPU finished the query's last
  * command.  Reading earlier makes the CPU wait (a stall). */
+#include <math.h>
 #include <stdlib.h>
 
 #include "raster/internal.h"
@@ -44,6 +45,30 @@ static void corner(const double lo[3], const double hi[3], int b, double *out) {
   out[2] = (b & 4) ? hi[2] : lo[2];
 }
 
+/* raster.h.  1/32 of a pixel at the box's farthest point: under a
+ * perspective a pixel spans more of the world the farther it is, so the
+ * margin is at least that everywhere in the box.  Snapping moves each vertex of a face by up to 1/512 pixel along
+ * each axis, the box's corners as much: without the margin, a face whose
+ * vertex lies on the box could cover a pixel centre just outside the
+ * box's snapped picture (fuzz_cull: a world-flat triangle, its box a
+ * segment with no pixel, that snapping turned into a sliver holding one). */
+double zs_device_query_margin(const zs_device *d, const double lo[3], const double hi[3]) {
+  const double *v = d->view, *p = d->proj;
+  double sx = 2.0 / (fabs(p[0]) * d->cfg.width), sy = 2.0 / (fabs(p[5]) * d->cfg.height);
+  double pixel = sx > sy ? sx : sy; /* world units a pixel spans, at view depth 1 if perspective */
+  if (d->perspective) {
+    double far = 0.0;
+    for (int b = 0; b < 8; b++) {
+      double c[3];
+      corner(lo, hi, b, c);
+      double z = -(v[8] * c[0] + v[9] * c[1] + v[10] * c[2] + v[11]);
+      if (z > far) far = z;
+    }
+    pixel *= far;
+  }
+  return pixel / 32.0;
+}
+
 zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const double (*hi)[3],
                                 int n, zs_error *err) {
   if (!d->query_open) return zs_error_set(err, ZS_ERR_ARG, "query_box: no query is open");
@@ -65,15 +90,18 @@ zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const doubl
   }
   int32_t nf = 0;
   for (int i = 0; i < n; i++) {
-    for (int b = 0; b < 8; b++) corner(lo[i], hi[i], b, &pos[24 * i + 3 * b]);
+    const double m = zs_device_query_margin(d, lo[i], hi[i]);
+    const double blo[3] = {lo[i][0] - m, lo[i][1] - m, lo[i][2] - m};
+    const double bhi[3] = {hi[i][0] + m, hi[i][1] + m, hi[i][2] + m};
+    for (int b = 0; b < 8; b++) corner(blo, bhi, b, &pos[24 * i + 3 * b]);
     int inside = 1;
     for (int a = 0; a < 3; a++)
-      if (d->eye[a] < lo[i][a] || d->eye[a] > hi[i][a]) inside = 0;
+      if (d->eye[a] < blo[a] || d->eye[a] > bhi[a]) inside = 0;
     /* Only the faces turned to the eye: over a convex box they cover each
      * pixel of its outline once.  From inside, every face, seen from within. */
     for (int f = 0; f < 6; f++) {
       int a = f / 2;
-      int facing = (f % 2) ? d->eye[a] > hi[i][a] : d->eye[a] < lo[i][a];
+      int facing = (f % 2) ? d->eye[a] > bhi[a] : d->eye[a] < blo[a];
       if (!facing && !inside) continue;
       start[nf] = 4 * nf;
       for (int k = 0; k < 4; k++) vert[4 * nf + k] = 8 * i + faces[f][inside ? 3 - k : k];

@@ -218,7 +218,10 @@ const uint32_t *zs_device_id_buffer(const zs_device *dev);
  * a few hundredths of a pixel's depth change (more than the constant where
  * a face is seen edge-on or through a wide lens: fuzz_cull found three
  * objects sharing one quad, seen through a 152-degree lens, where 16 units
- * alone let hsw cull the copy with the lowest id).  A
+ * alone let hsw cull the copy with the lowest id).  And the box is grown
+ * by zs_device_query_margin on every side, so that its picture holds the
+ * snapped picture of whatever lies in it (snapping may move a face's
+ * corner on the box's side out past the box's own snapped outline).  A
  * box cut by the near plane counts only what lies beyond the plane: callers
  * treat such boxes as visible without asking.  Queries need the full-frame
  * depth buffer: zbuffer mode only.  Several queries may be in flight while
@@ -227,6 +230,10 @@ enum { ZS_QUERY_DEPTH_BIAS = 16, ZS_QUERY_SLOPE_SHIFT = 4 };
 typedef uint32_t zs_query;
 
 zs_status zs_device_query_begin(zs_device *dev, zs_query *q, zs_error *err);
+/* How far a query box lo..hi grows on every side, in world units, with
+ * the camera set now: 1/32 pixel at its farthest point.  Callers that
+ * keep boxes cut by the near plane from being asked grow them as much. */
+double zs_device_query_margin(const zs_device *dev, const double lo[3], const double hi[3]);
 zs_status zs_device_query_end(zs_device *dev, zs_error *err);
 zs_status zs_device_query_box(zs_device *dev, const double lo[3],
                               const double hi[3], zs_error *err);

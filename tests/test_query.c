@@ -86,12 +86,16 @@ START_TEST(box_behind_wall_is_zero) {
   zs_device_query_box(d, (double[3]){10, 10, -4}, (double[3]){30, 30, -2}, &err);
   zs_device_query_end(d, &err);
   ck_assert_uint_eq(zs_device_query_result(d, in_front), 400);
-  /* and from a ten-millionth of the range before the near plane: pulled
-   * nearer by the query's bias, its front depths fall below 0 and count
-   * as 0, in front of the wall, not as a wrapped depth behind it */
+  /* and from a ten-millionth of the range before the near plane, once
+   * grown by the query's margin: pulled nearer by the query's bias, its
+   * front depths fall below 0 and count as 0, in front of the wall, not
+   * as a wrapped depth behind it */
   zs_query at_near;
+  const double far_side[3] = {10, 10, -2}, near_side[3] = {30, 30, -1};
+  const double m = zs_device_query_margin(d, far_side, near_side);
+  ck_assert(m == 1.0 / 32); /* a pixel is a unit here: 1/32 pixel */
   zs_device_query_begin(d, &at_near, &err);
-  zs_device_query_box(d, (double[3]){10, 10, -2}, (double[3]){30, 30, -1e-7}, &err);
+  zs_device_query_box(d, far_side, (double[3]){30, 30, -1e-7 - m}, &err);
   zs_device_query_end(d, &err);
   ck_assert_uint_eq(zs_device_query_result(d, at_near), 400);
   mb_free(&wall);
@@ -118,7 +122,8 @@ START_TEST(counts_equal_pixels_written) {
    * query's samples are the pixels that draw wrote; and after the frame, a
    * query of each cube's own box counts every pixel it owns, and more only
    * where another cube cuts through its faces closer than the box's bias
-   * (raster.h, queries): 5 pixels of the 12,562 owned here. */
+   * or closer to its outline than the box's margin (raster.h, queries):
+   * 75 pixels of the 12,562 owned here. */
   const uint64_t seed = 99;
   zs_rng rng;
   zs_rng_seed(&rng, seed);
@@ -170,7 +175,7 @@ START_TEST(counts_equal_pixels_written) {
     extra += box - owned;
   }
   ck_assert_uint_eq(owned_all, 12562);
-  ck_assert_uint_eq(extra, 5);
+  ck_assert_uint_eq(extra, 75);
   for (int i = 0; i < N; i++) mb_free(&cubes[i]);
   zs_device_destroy(d);
 }
