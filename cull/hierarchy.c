@@ -110,6 +110,20 @@ static heap_entry heap_pop(zs_culler *c) {
   return top;
 }
 
+/* The objects flagged in draw[], drawn front to back as the traversal
+ * would reach them (by their boxes' distance, ties by element), the
+ * ordering itself free: the oracles' way of drawing what they know. */
+void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw) {
+  zs_culler *c = f->c;
+  c->nheap = 0;
+  for (int32_t i = 0; i < f->s->ninst; i++)
+    if (draw[i] && !cull_heap_push(f, object_elem(i), 0)) {
+      f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+      return;
+    }
+  while (c->nheap > 0 && f->status == ZS_OK) cull_draw_instance(f, object_of(heap_pop(c).e));
+}
+
 /* TraverseNode of the paper, once per frame per element: an object is
  * rendered; a node pushes its children and its objects. */
 void cull_traverse(frame_ctx *f, elem e, unsigned mask) {

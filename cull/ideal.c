@@ -1,6 +1,7 @@
 /* The oracles: ideal draws exactly the objects that own a pixel of the
  * full image, ideal-box those whose query bounds have a sample against its
- * depth buffer.  Neither asks the device a query: they are the floors. */
+ * depth buffer, both front to back.  Neither asks the device a query:
+ * they are the floors. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -74,6 +75,9 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
       return;
     c->owns_pixel[i] = zs_device_query_result(c->oracle, q) > 0;
   }
-  for (int32_t i = 0; i < f->s->ninst; i++)
-    if (c->owns_pixel[i]) cull_draw_instance(f, i);
+  /* front to back, as every method that traverses draws: drawn in the
+   * scene's order, nearer objects would come after farther ones and write
+   * over them, and the floor would cost more than vfc where few objects
+   * hide (the cubes' walk: 0.598 ms a frame against vfc's 0.552) */
+  cull_draw_front_to_back(f, c->owns_pixel);
 }

@@ -146,6 +146,7 @@ void cull_decide(frame_ctx *f, elem e, zs_node_decision d);
 void cull_draw_instance(frame_ctx *f, int32_t i);
 /* Pushes e on the traversal queue (0 when out of memory). */
 int cull_heap_push(frame_ctx *f, elem e, unsigned mask);
+void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw);
 /* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
 void cull_traverse(frame_ctx *f, elem e, unsigned mask);
 void cull_pull_up_visibility(frame_ctx *f, elem e);
