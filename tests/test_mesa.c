@@ -86,11 +86,35 @@ START_TEST(faces_match_llvmpipe) {
 }
 END_TEST
 
+START_TEST(bench_draws_the_tilings_through_llvmpipe) {
+  /* `bench raster --mesa` times the triangle tilings through llvmpipe too,
+   * built as a scene of layers with the tiling's orthographic camera: both
+   * show the same face at every pixel (the diagonals put thousands of
+   * pixel centres on edges, so the edge rule is checked as well) */
+  static char out[1 << 14], err[1 << 12];
+  const char *args[] = {"bench", "raster", "--mesa", "--no-scenes", "--case", "triangles 10x10",
+                        "--algo", "zbuffer", "--repeat", "1", "--size", "500x500", NULL};
+  ck_assert_msg(zs_test_run_zscan(args, out, sizeof out, err, sizeof err) == 0, "%s", err);
+  const char *row = strstr(out, "zscan (zbuffer, 1 thread) and llvmpipe");
+  ck_assert_ptr_nonnull(row);
+  row = strstr(row, "\ntriangles 10x10 ");
+  ck_assert_ptr_nonnull(row);
+  double zscan_ms, mesa_ms, ratio, mtri, differ, ties, coverage;
+  ck_assert_int_eq(sscanf(row + 1, "triangles 10x10 %lf %lf %lf %lf %lf %lf %lf", &zscan_ms,
+                          &mesa_ms, &ratio, &mtri, &differ, &ties, &coverage),
+                   7);
+  ck_assert(zscan_ms > 0 && mesa_ms > 0);
+  ck_assert_msg(differ == 0 && ties == 0 && coverage == 0, "%.2f %.2f %.2f in 10,000", differ,
+                ties, coverage);
+}
+END_TEST
+
 int main(void) {
   Suite *s = suite_create("mesa");
   TCase *tc = tcase_create("llvmpipe");
   tcase_set_timeout(tc, 600);
   tcase_add_loop_test(tc, faces_match_llvmpipe, 0, (int)(sizeof cases / sizeof cases[0]));
+  tcase_add_test(tc, bench_draws_the_tilings_through_llvmpipe);
   suite_add_tcase(s, tc);
   setenv("CK_FORK", "no", 0);
   return zs_test_run(s);

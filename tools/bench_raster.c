@@ -42,7 +42,7 @@ static const char usage[] =
     "  --simd LEVEL      cap the span fill at scalar, sse2 or avx2 (default: the best\n"
     "                    the CPU has; the same pixels at every level)\n"
     "  --no-simd         the same as --simd scalar\n"
-    "  --mesa            also the scenes through Mesa's llvmpipe (OSMesa), frames taken\n"
+    "  --mesa            also each case through Mesa's llvmpipe (OSMesa), frames taken\n"
     "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n"
     "  --speedup         also the scenes on one thread and on --threads N, frames taken in\n"
     "                    turn: each pair's ratio, so that both see the same machine\n"
@@ -53,6 +53,9 @@ static const char usage[] =
 
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
+static const char *const sides_names[NSIDES] = {"triangles 4x4", "triangles 10x10",
+                                                "triangles 25x25", "triangles 100x100",
+                                                "triangles 500x500"};
 static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
                                      "builtin:default?level=42"};
 enum { NSCENES = sizeof scenes / sizeof scenes[0] };
@@ -132,13 +135,22 @@ static zs_status tiling_make(int side, int w, int h, tiling *t, zs_error *err) {
   return ZS_OK;
 }
 
+/* The tiling's camera: the image in pixel units, the layers between the
+ * planes. */
+static void tiling_camera(const tiling *t, int w, int h, double view[16], double proj[16]) {
+  zs_mat_identity(view);
+  zs_mat_ortho(proj, 0.0, w, 0.0, h, 0.5, t->layers + 1.0);
+}
+
 /* Times o->repeat frames of the layers of t on dev; the counters of the
  * last go to r. */
 static zs_status time_tiling(zs_device *dev, const tiling *t, int w, int h, const bench_opts *o,
                              double *ms, bench_row *r, zs_error *err) {
   double view[16], proj[16];
-  zs_mat_identity(view);
-  zs_mat_ortho(proj, 0.0, w, 0.0, h, 0.5, t->layers + 1.0);
+  tiling_camera(t, w, h, view, proj);
+  /* on two threads or more the layers are queued and rendered together,
+   * as a scene's draws are (tools/frame.c) */
+  zs_device_defer_draws(dev, 1);
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
     zs_device_clear(dev);
@@ -178,25 +190,59 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, int w, int h, con
   return ZS_OK;
 }
 
-/* A scene through zscan (zbuffer mode) and llvmpipe, frames in turn. */
+/* The tiling as a scene: one mesh, an instance a layer at the depth
+ * time_tiling draws it, the same ids; for llvmpipe, which draws scenes. */
+static zs_status tiling_scene(const tiling *t, zs_scene *s, zs_error *err) {
+  zs_scene_init(s);
+  zs_model m;
+  zs_model_init(&m);
+  zs_status st = ZS_OK;
+  for (int32_t v = 0; v < t->mesh.nverts && !st; v++) {
+    const double *p = t->mesh.pos + 3 * (size_t)v;
+    if (zs_model_add_vertex(&m, p[0], p[1], p[2]) < 0)
+      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  for (int32_t f = 0; f < t->mesh.nfaces && !st; f++) {
+    const int32_t *idx = t->mesh.face_vert + t->mesh.face_start[f];
+    if (zs_model_add_polygon(&m, idx, t->mesh.face_start[f + 1] - t->mesh.face_start[f], 0x808080,
+                             -1))
+      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  int32_t mesh = st ? -1 : zs_scene_add_mesh(s, &m);
+  zs_model_free(&m);
+  if (!st && mesh < 0) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  for (int l = 0; l < t->layers && !st; l++) {
+    double model[16];
+    char name[32];
+    zs_mat_translate(model, 0.0, 0.0, -(double)(t->layers - l));
+    snprintf(name, sizeof name, "layer %d", l);
+    if (zs_scene_add_instance(s, mesh, model, 0x808080, name) < 0)
+      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  if (!st) st = zs_scene_finish(s, err);
+  if (st) zs_scene_free(s);
+  return st;
+}
+
+/* A case through zscan (zbuffer mode) and llvmpipe, frames in turn. */
 typedef struct mesa_row {
   const char *name;
   double zscan_ms, mesa_ms;
+  double triangles;    /* what llvmpipe is sent a frame: each face fanned */
   zs_crosscheck faces; /* zscan's faces against llvmpipe's (crosscheck.h) */
 } mesa_row;
 
 static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char *name,
-                              double *ms, mesa_row *r, zs_error *err) {
+                              const double view[16], const double proj[16], double *ms,
+                              mesa_row *r, zs_error *err) {
   const int w = o->width, h = o->height;
-  double view[16], proj[16], *mms = malloc((size_t)o->repeat * sizeof *mms);
+  double *mms = malloc((size_t)o->repeat * sizeof *mms);
   uint32_t *ids = malloc((size_t)w * h * sizeof *ids);
   zs_mesa *mesa = NULL;
   zs_device *dev = NULL;
   zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0};
   zs_status st = !mms || !ids ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
-  if (!st && !(st = zs_frame_camera(s, &s->camera, w, h, view, proj, err)) &&
-      !(st = zs_mesa_create(w, h, &mesa, err)))
-    st = zs_device_create(&cfg, &dev, err);
+  if (!st && !(st = zs_mesa_create(w, h, &mesa, err))) st = zs_device_create(&cfg, &dev, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
     double t0 = zs_wall_ms();
     if ((st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err))) break;
@@ -212,6 +258,12 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
     r->name = name;
     r->zscan_ms = zs_median(ms, o->repeat);
     r->mesa_ms = zs_median(mms, o->repeat);
+    r->triangles = 0;
+    for (int32_t i = 0; i < s->ninst; i++) {
+      const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
+      for (int32_t f = 0; f < m->nfaces; f++)
+        r->triangles += m->face_start[f + 1] - m->face_start[f] - 2;
+    }
   }
   zs_mesa_destroy(mesa);
   zs_device_destroy(dev);
@@ -222,14 +274,15 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
 
 static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_opts *o, int md) {
   if (md) {
-    fprintf(f, "\n| scene | zscan ms | llvmpipe ms | zscan / llvmpipe | faces differing in 10,000 "
-               "pixels | of them, depth ties | coverage differing in 10,000 pixels |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|\n");
+    fprintf(f, "\n| case | zscan ms | llvmpipe ms | zscan / llvmpipe | llvmpipe Mtri/s | faces "
+               "differing in 10,000 pixels | of them, depth ties | coverage differing in 10,000 "
+               "pixels |\n");
+    fprintf(f, "|---|---|---|---|---|---|---|---|\n");
   } else {
     fprintf(f, "\nzscan (zbuffer, %d thread%s) and llvmpipe, frames in turn, median of %d\n",
             o->threads, o->threads > 1 ? "s" : "", o->repeat);
-    fprintf(f, "%-28s %10s %12s %8s %14s %12s %16s\n", "scene", "zscan_ms", "llvmpipe_ms", "ratio",
-            "differ_per_10k", "ties_per_10k", "coverage_per_10k");
+    fprintf(f, "%-28s %10s %12s %8s %14s %14s %12s %16s\n", "case", "zscan_ms", "llvmpipe_ms",
+            "ratio", "llvmpipe_Mtri/s", "differ_per_10k", "ties_per_10k", "coverage_per_10k");
   }
   for (int i = 0; i < n; i++) {
     const mesa_row *r = &rows[i];
@@ -237,12 +290,15 @@ static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_o
     double differ = 1e4 * (double)c->differ / (double)c->pixels;
     double ties = 1e4 * (double)c->ties / (double)c->pixels;
     double coverage = 1e4 * (double)(c->differ - c->ties) / (double)c->pixels;
+    const double mtri_mesa = r->triangles / r->mesa_ms * 1e-3;
     if (md)
-      fprintf(f, "| `%s` | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", r->name, r->zscan_ms,
-              r->mesa_ms, r->zscan_ms / r->mesa_ms, differ, ties, coverage);
+      fprintf(f, "| `%s` | %.2f | %.2f | %.2f | %.3g | %.2f | %.2f | %.2f |\n", r->name,
+              r->zscan_ms, r->mesa_ms, r->zscan_ms / r->mesa_ms, mtri_mesa, differ, ties,
+              coverage);
     else
-      fprintf(f, "%-28s %10.3f %12.3f %8.3f %14.2f %12.2f %16.2f\n", r->name, r->zscan_ms,
-              r->mesa_ms, r->zscan_ms / r->mesa_ms, differ, ties, coverage);
+      fprintf(f, "%-28s %10.3f %12.3f %8.3f %15.3g %14.2f %12.2f %16.2f\n", r->name,
+              r->zscan_ms, r->mesa_ms, r->zscan_ms / r->mesa_ms, mtri_mesa, differ, ties,
+              coverage);
   }
 }
 
@@ -518,7 +574,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   zs_error err;
   zs_error_clear(&err);
   bench_row rows[2 * (NSIDES + NSCENES)];
-  mesa_row mrows[NSCENES];
+  mesa_row mrows[NSIDES + NSCENES];
   speedup_row srows[NSCENES];
   int n = 0, nm = 0, ns = 0;
   double *ms = NULL;
@@ -527,14 +583,20 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
   for (int i = 0; i < NSIDES && !st; i++) {
-    char name[64];
-    snprintf(name, sizeof name, "triangles %dx%d", sides[i], sides[i]);
+    const char *name = sides_names[i];
     if (o.only_case && strcmp(o.only_case, name) != 0) continue;
     tiling t;
     if ((st = tiling_make(sides[i], o.width, o.height, &t, &err))) break;
     for (int a = 0; a < 2 && !st; a++)
       if (o.algo < 0 || (int)algos[a] == o.algo)
         st = run_case(&o, a, name, &t, NULL, ms, &rows[n++], &err);
+    zs_scene ts;
+    if (!st && o.mesa && !(st = tiling_scene(&t, &ts, &err))) {
+      double view[16], proj[16];
+      tiling_camera(&t, o.width, o.height, view, proj);
+      st = compare_mesa(&o, &ts, name, view, proj, ms, &mrows[nm++], &err);
+      zs_scene_free(&ts);
+    }
     tiling_free(&t);
   }
   for (int i = 0; i < NSCENES && o.scenes && !st; i++) {
@@ -544,7 +606,11 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     for (int a = 0; a < 2 && !st; a++)
       if (o.algo < 0 || (int)algos[a] == o.algo)
         st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
-    if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], ms, &mrows[nm++], &err);
+    if (!st && o.mesa) {
+      double view[16], proj[16];
+      if (!(st = zs_frame_camera(&s, &s.camera, o.width, o.height, view, proj, &err)))
+        st = compare_mesa(&o, &s, scenes[i], view, proj, ms, &mrows[nm++], &err);
+    }
     if (!st && o.speedup) st = compare_threads(&o, &s, scenes[i], ms, &srows[ns++], &err);
     zs_scene_free(&s);
   }
