@@ -85,143 +85,78 @@ static const char *simd_label(zs_simd level) {
   return level == ZS_SIMD_AVX2 ? "AVX2" : level == ZS_SIMD_SSE2 ? "SSE2" : "scalar";
 }
 
-/* One layer of the tiling: each S x S square of the image as two
- * triangles, in pixel units at z = 0. */
+/* A tiling: each S x S square of the image as two triangles, in pixel
+ * units, one mesh drawn as layers (instances) from the farthest to the
+ * nearest, with an orthographic camera that puts the image in pixel units
+ * and the layers between the planes.  A scene like the others, so that
+ * zscan (time_scene) and llvmpipe (compare_mesa) draw it as they draw
+ * those. */
 typedef struct tiling {
-  zs_mesh mesh;
-  int layers;
+  zs_scene scene;
+  double view[16], proj[16];
 } tiling;
 
-static void tiling_free(tiling *t) {
-  free(t->mesh.pos);
-  free(t->mesh.face_start);
-  free(t->mesh.face_vert);
-}
-
 static zs_status tiling_make(int side, int w, int h, tiling *t, zs_error *err) {
-  memset(t, 0, sizeof *t);
+  zs_scene_init(&t->scene);
   int nx = w / side, ny = h / side;
   if (nx < 1 || ny < 1) return zs_error_set(err, ZS_ERR_ARG, "--size: smaller than %d pixels", side);
-  int64_t verts = (int64_t)(nx + 1) * (ny + 1), faces = 2 * (int64_t)nx * ny;
-  t->mesh.pos = malloc((size_t)verts * 3 * sizeof *t->mesh.pos);
-  t->mesh.face_start = malloc((size_t)(faces + 1) * sizeof *t->mesh.face_start);
-  t->mesh.face_vert = malloc((size_t)faces * 3 * sizeof *t->mesh.face_vert);
-  if (!t->mesh.pos || !t->mesh.face_start || !t->mesh.face_vert) {
-    tiling_free(t);
-    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  }
-  for (int j = 0; j <= ny; j++)
-    for (int i = 0; i <= nx; i++) {
-      double *p = t->mesh.pos + 3 * ((size_t)j * (nx + 1) + i);
-      p[0] = (double)i * side, p[1] = (double)j * side, p[2] = 0.0;
-    }
-  int32_t f = 0;
-  for (int j = 0; j < ny; j++)
-    for (int i = 0; i < nx; i++) {
+  zs_model m;
+  zs_model_init(&m);
+  zs_status st = ZS_OK;
+  for (int j = 0; j <= ny && !st; j++)
+    for (int i = 0; i <= nx && !st; i++)
+      if (zs_model_add_vertex(&m, (double)i * side, (double)j * side, 0.0) < 0)
+        st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  for (int j = 0; j < ny && !st; j++)
+    for (int i = 0; i < nx && !st; i++) {
       int32_t a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
       const int32_t tri[2][3] = {{a, b, c}, {a, c, d}};
-      for (int k = 0; k < 2; k++, f++) {
-        t->mesh.face_start[f] = 3 * f;
-        memcpy(t->mesh.face_vert + 3 * f, tri[k], sizeof tri[k]);
-      }
+      for (int k = 0; k < 2 && !st; k++)
+        if (zs_model_add_polygon(&m, tri[k], 3, 0x808080, -1))
+          st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
     }
-  t->mesh.face_start[f] = 3 * f;
-  t->mesh.nverts = (int32_t)verts;
-  t->mesh.nfaces = f;
-  double pixels = (double)nx * side * ny * side;
-  int by_pixels = (int)ceil(8e6 / pixels), by_tris = (int)ceil(2e5 / (double)faces);
-  t->layers = by_pixels > by_tris ? by_pixels : by_tris;
-  if (t->layers > 64) t->layers = 64;
+  int32_t mesh = st ? -1 : zs_scene_add_mesh(&t->scene, &m);
+  zs_model_free(&m);
+  if (!st && mesh < 0) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  /* enough layers for 8 M pixels and 200,000 triangles a frame, at most 64 */
+  double pixels = (double)nx * side * ny * side, faces = 2.0 * nx * ny;
+  int by_pixels = (int)ceil(8e6 / pixels), by_tris = (int)ceil(2e5 / faces);
+  int layers = by_pixels > by_tris ? by_pixels : by_tris;
+  if (layers > 64) layers = 64;
+  for (int l = 0; l < layers && !st; l++) {
+    double model[16];
+    char name[32];
+    zs_mat_translate(model, 0.0, 0.0, -(double)(layers - l));
+    snprintf(name, sizeof name, "layer %d", l);
+    if (zs_scene_add_instance(&t->scene, mesh, model, 0x808080, name) < 0)
+      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  if (!st) st = zs_scene_finish(&t->scene, err);
+  if (st) {
+    zs_scene_free(&t->scene);
+    return st;
+  }
+  zs_mat_identity(t->view);
+  zs_mat_ortho(t->proj, 0.0, w, 0.0, h, 0.5, layers + 1.0);
   return ZS_OK;
 }
 
-/* The tiling's camera: the image in pixel units, the layers between the
- * planes. */
-static void tiling_camera(const tiling *t, int w, int h, double view[16], double proj[16]) {
-  zs_mat_identity(view);
-  zs_mat_ortho(proj, 0.0, w, 0.0, h, 0.5, t->layers + 1.0);
-}
-
-/* Times o->repeat frames of the layers of t on dev; the counters of the
- * last go to r. */
-static zs_status time_tiling(zs_device *dev, const tiling *t, int w, int h, const bench_opts *o,
-                             double *ms, bench_row *r, zs_error *err) {
-  double view[16], proj[16];
-  tiling_camera(t, w, h, view, proj);
-  /* on two threads or more the layers are queued and rendered together,
-   * as a scene's draws are (tools/frame.c) */
-  zs_device_defer_draws(dev, 1);
+/* Times o->repeat frames of s from the camera (view, proj) on dev; the
+ * counters of the last go to r. */
+static zs_status time_scene(zs_device *dev, const zs_scene *s, const double view[16],
+                            const double proj[16], const bench_opts *o, double *ms, bench_row *r,
+                            zs_error *err) {
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
-    zs_device_clear(dev);
-    zs_device_set_camera(dev, view, proj);
-    for (int l = 0; l < t->layers; l++) { /* the farthest first */
-      double model[16];
-      zs_mat_translate(model, 0.0, 0.0, -(double)(t->layers - l));
-      zs_status st = zs_device_draw(dev, &t->mesh, model, (uint32_t)l * (uint32_t)t->mesh.nfaces,
-                                    0x808080, err);
-      if (st) return st;
-    }
-    zs_status st = zs_device_finish(dev, NULL, NULL, err);
+    zs_status st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err);
     if (st) return st;
     ms[k] = zs_wall_ms() - start;
   }
-  const zs_raster_stats *s = zs_device_stats(dev);
-  r->triangles = (double)s->polygons_rasterized;
-  r->pixels = (double)s->pixels_tested;
-  r->ms = zs_median(ms, o->repeat);
-  return ZS_OK;
-}
-
-static zs_status time_scene(zs_device *dev, const zs_scene *s, int w, int h, const bench_opts *o,
-                            double *ms, bench_row *r, zs_error *err) {
-  double view[16], proj[16];
-  zs_status st = zs_frame_camera(s, &s->camera, w, h, view, proj, err);
-  for (int k = 0; k < o->repeat && st == ZS_OK; k++) {
-    double start = zs_wall_ms();
-    st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err);
-    ms[k] = zs_wall_ms() - start;
-  }
-  if (st) return st;
   const zs_raster_stats *c = zs_device_stats(dev);
   r->triangles = (double)c->polygons_rasterized;
   r->pixels = (double)c->pixels_tested;
   r->ms = zs_median(ms, o->repeat);
   return ZS_OK;
-}
-
-/* The tiling as a scene: one mesh, an instance a layer at the depth
- * time_tiling draws it, the same ids; for llvmpipe, which draws scenes. */
-static zs_status tiling_scene(const tiling *t, zs_scene *s, zs_error *err) {
-  zs_scene_init(s);
-  zs_model m;
-  zs_model_init(&m);
-  zs_status st = ZS_OK;
-  for (int32_t v = 0; v < t->mesh.nverts && !st; v++) {
-    const double *p = t->mesh.pos + 3 * (size_t)v;
-    if (zs_model_add_vertex(&m, p[0], p[1], p[2]) < 0)
-      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  }
-  for (int32_t f = 0; f < t->mesh.nfaces && !st; f++) {
-    const int32_t *idx = t->mesh.face_vert + t->mesh.face_start[f];
-    if (zs_model_add_polygon(&m, idx, t->mesh.face_start[f + 1] - t->mesh.face_start[f], 0x808080,
-                             -1))
-      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  }
-  int32_t mesh = st ? -1 : zs_scene_add_mesh(s, &m);
-  zs_model_free(&m);
-  if (!st && mesh < 0) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  for (int l = 0; l < t->layers && !st; l++) {
-    double model[16];
-    char name[32];
-    zs_mat_translate(model, 0.0, 0.0, -(double)(t->layers - l));
-    snprintf(name, sizeof name, "layer %d", l);
-    if (zs_scene_add_instance(s, mesh, model, 0x808080, name) < 0)
-      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  }
-  if (!st) st = zs_scene_finish(s, err);
-  if (st) zs_scene_free(s);
-  return st;
 }
 
 /* A case through zscan (zbuffer mode) and llvmpipe, frames in turn. */
@@ -314,9 +249,10 @@ typedef struct speedup_row {
 } speedup_row;
 
 static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const char *name,
-                                 double *ms, speedup_row *r, zs_error *err) {
+                                 const double view[16], const double proj[16], double *ms,
+                                 speedup_row *r, zs_error *err) {
   const int w = o->width, h = o->height;
-  double view[16], proj[16], *many = malloc((size_t)o->repeat * sizeof *many);
+  double *many = malloc((size_t)o->repeat * sizeof *many);
   double *ratio = malloc((size_t)o->repeat * sizeof *ratio);
   zs_device *dev[2] = {NULL, NULL};
   zs_status st = !many || !ratio ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
@@ -324,7 +260,6 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
     zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? o->threads : 1, 0};
     st = zs_device_create(&cfg, &dev[d], err);
   }
-  if (!st) st = zs_frame_camera(s, &s->camera, w, h, view, proj, err);
   for (int k = 0; k < o->repeat && !st; k++) {
     double t0 = zs_wall_ms();
     if ((st = zs_frame_render_on(dev[0], s, view, proj, 0, NULL, NULL, err))) break;
@@ -396,10 +331,11 @@ static zs_status count_instructions(const bench_opts *o, const char *name, zs_al
   return ZS_OK;
 }
 
-/* One case (the tiling t, or the scene s) in mode algos[a], on a device of
- * its own. */
-static zs_status run_case(const bench_opts *o, int a, const char *name, const tiling *t,
-                          const zs_scene *s, double *ms, bench_row *r, zs_error *err) {
+/* One case, the scene s from the camera (view, proj), in mode algos[a], on
+ * a device of its own. */
+static zs_status run_case(const bench_opts *o, int a, const char *name, const zs_scene *s,
+                          const double view[16], const double proj[16], double *ms, bench_row *r,
+                          zs_error *err) {
   zs_device_config cfg = {o->width, o->height, algos[a], ZS_SHADE_FLAT, 0,
                           algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0};
   zs_device *dev;
@@ -407,8 +343,7 @@ static zs_status run_case(const bench_opts *o, int a, const char *name, const ti
   if (st) return st;
   snprintf(r->name, sizeof r->name, "%s", name);
   r->algo = zs_algo_name(algos[a]);
-  st = t ? time_tiling(dev, t, o->width, o->height, o, ms, r, err)
-         : time_scene(dev, s, o->width, o->height, o, ms, r, err);
+  st = time_scene(dev, s, view, proj, o, ms, r, err);
   zs_device_destroy(dev);
   r->instructions = 0;
   if (!st && o->callgrind) st = count_instructions(o, name, algos[a], &r->instructions, err);
@@ -589,29 +524,21 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     if ((st = tiling_make(sides[i], o.width, o.height, &t, &err))) break;
     for (int a = 0; a < 2 && !st; a++)
       if (o.algo < 0 || (int)algos[a] == o.algo)
-        st = run_case(&o, a, name, &t, NULL, ms, &rows[n++], &err);
-    zs_scene ts;
-    if (!st && o.mesa && !(st = tiling_scene(&t, &ts, &err))) {
-      double view[16], proj[16];
-      tiling_camera(&t, o.width, o.height, view, proj);
-      st = compare_mesa(&o, &ts, name, view, proj, ms, &mrows[nm++], &err);
-      zs_scene_free(&ts);
-    }
-    tiling_free(&t);
+        st = run_case(&o, a, name, &t.scene, t.view, t.proj, ms, &rows[n++], &err);
+    if (!st && o.mesa) st = compare_mesa(&o, &t.scene, name, t.view, t.proj, ms, &mrows[nm++], &err);
+    zs_scene_free(&t.scene);
   }
   for (int i = 0; i < NSCENES && o.scenes && !st; i++) {
     if (o.only_case && strcmp(o.only_case, scenes[i]) != 0) continue;
     zs_scene s;
     if ((st = zs_input_load_scene(scenes[i], &s, &err))) break;
+    double view[16], proj[16];
+    st = zs_frame_camera(&s, &s.camera, o.width, o.height, view, proj, &err);
     for (int a = 0; a < 2 && !st; a++)
       if (o.algo < 0 || (int)algos[a] == o.algo)
-        st = run_case(&o, a, scenes[i], NULL, &s, ms, &rows[n++], &err);
-    if (!st && o.mesa) {
-      double view[16], proj[16];
-      if (!(st = zs_frame_camera(&s, &s.camera, o.width, o.height, view, proj, &err)))
-        st = compare_mesa(&o, &s, scenes[i], view, proj, ms, &mrows[nm++], &err);
-    }
-    if (!st && o.speedup) st = compare_threads(&o, &s, scenes[i], ms, &srows[ns++], &err);
+        st = run_case(&o, a, scenes[i], &s, view, proj, ms, &rows[n++], &err);
+    if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], view, proj, ms, &mrows[nm++], &err);
+    if (!st && o.speedup) st = compare_threads(&o, &s, scenes[i], view, proj, ms, &srows[ns++], &err);
     zs_scene_free(&s);
   }
   free(ms);

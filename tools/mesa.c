@@ -33,14 +33,14 @@ int zs_mesa_available(void) { return 1; }
 zs_status zs_mesa_create(int w, int h, zs_mesa **out, zs_error *err) {
   *out = NULL;
 #ifdef __GLIBC__
-  /* llvmpipe allocates its bins and frees them every frame.  glibc gives
-   * the freed top of the heap back to the kernel (it trims) until a large
-   * block has once been freed, so the first context of a process faulted
-   * the same pages in every frame, the kernel's page faults first in the
-   * profile: the teapots took 141 to 218 ms a frame there against 70 to 77
-   * in a second context.  A high trim threshold keeps llvmpipe at its
-   * steady speed from the first frame; zscan allocates nothing per frame,
-   * and its times did not move (README, "Against Mesa's llvmpipe"). */
+  /* llvmpipe allocates its bins and frees them every frame, and glibc
+   * gives the freed top of the heap back to the kernel (it trims), so the
+   * same pages were faulted in again every frame, the kernel's page faults
+   * first in the profile: the teapots took 141 to 218 ms a frame, against
+   * 70 to 77 with this threshold.  (glibc's thresholds adapt once a large
+   * block has been freed, so a second context was often, not always,
+   * faster.)  zscan allocates nothing per frame, and its times did not
+   * move (README, "Against Mesa's llvmpipe"). */
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
 #endif
   zs_mesa *m = calloc(1, sizeof *m);
