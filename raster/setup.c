@@ -243,22 +243,14 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
   return zs_setup_snapped(b, sp, s, in_order, n);
 }
 
-zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
-                                 const zs_snap_vert *v, const int32_t *vi, int n) {
-  int32_t X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
-  double Z[ZS_CLIP_MAX_VERTS];
-  int m = 0;
-  for (int i = 0; i < n; i++) {
-    X[m] = v[vi[i]].x;
-    Y[m] = v[vi[i]].y;
-    Z[m] = v[vi[i]].z;
-    /* drop a vertex that snapped onto its predecessor */
-    if (m > 0 && X[m] == X[m - 1] && Y[m] == Y[m - 1]) continue;
-    m++;
-  }
-  while (m > 1 && X[m - 1] == X[0] && Y[m - 1] == Y[0]) m--;
-  if (m < 3) return ZS_SETUP_DEGENERATE;
-
+/* The face (X, Y, Z)[0..m-1], no corner on its predecessor, set up.
+ * Inlined three times, so that for a triangle and a quad, m a constant,
+ * the loops over the corners unroll: 10x10 triangles 2,782 to 2,651
+ * instructions a triangle, the teapots 1,456 to 1,303 a face, the plant
+ * 1,476 to 1,357 (README, raster). */
+__attribute__((always_inline)) static inline zs_setup_result
+setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32_t *Y,
+           const double *Z, const int m) {
   int64_t area2 = 0;
   int32_t xmin = X[0], xmax = X[0], ymin = Y[0], ymax = Y[0];
   for (int i = 0; i < m; i++) {
@@ -316,4 +308,32 @@ zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
     if (!emit(b, sp, &pl, tx, ty, 3, a, xmin, xmax)) return ZS_SETUP_NOMEM;
   }
   return ZS_SETUP_DRAWN;
+}
+
+zs_setup_result zs_setup_snapped(zs_batch *b, const zs_setup_params *sp,
+                                 const zs_snap_vert *v, const int32_t *vi, int n) {
+  int32_t X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
+  double Z[ZS_CLIP_MAX_VERTS];
+  if (n == 3) {
+    /* Two corners snapped together leave no area: degenerate below, as
+     * dropping one would have made it. */
+    for (int i = 0; i < 3; i++) {
+      X[i] = v[vi[i]].x;
+      Y[i] = v[vi[i]].y;
+      Z[i] = v[vi[i]].z;
+    }
+    return setup_face(b, sp, X, Y, Z, 3);
+  }
+  int m = 0;
+  for (int i = 0; i < n; i++) {
+    X[m] = v[vi[i]].x;
+    Y[m] = v[vi[i]].y;
+    Z[m] = v[vi[i]].z;
+    /* drop a vertex that snapped onto its predecessor */
+    if (m > 0 && X[m] == X[m - 1] && Y[m] == Y[m - 1]) continue;
+    m++;
+  }
+  while (m > 1 && X[m - 1] == X[0] && Y[m - 1] == Y[0]) m--;
+  if (m < 3) return ZS_SETUP_DEGENERATE;
+  return m == 4 ? setup_face(b, sp, X, Y, Z, 4) : setup_face(b, sp, X, Y, Z, m);
 }
