@@ -112,6 +112,15 @@ uint64_t zs_scene_faces(const zs_scene *s) {
   return n;
 }
 
+uint64_t zs_scene_triangles(const zs_scene *s) {
+  uint64_t n = 0;
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
+    n += (uint64_t)(m->face_start[m->nfaces] - 2LL * m->nfaces);
+  }
+  return n;
+}
+
 /* p' = the affine part of model applied to p (instances are affine). */
 static void apply_affine(const double m[16], const double p[3], double out[3]) {
   for (int r = 0; r < 3; r++)

@@ -103,6 +103,11 @@ zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err);
  * of their mesh's nsource_faces. */
 uint64_t zs_scene_faces(const zs_scene *s);
 
+/* Number of triangles the scene's polygons make as fans (a face of n
+ * corners, n - 2), summed over instances: what a triangle renderer is
+ * sent a frame. */
+uint64_t zs_scene_triangles(const zs_scene *s);
+
 /* World box of instance i from its mesh and model matrix (exact box of the
  * transformed vertices). */
 void zs_scene_instance_bounds(const zs_scene *s, int32_t i, double lo[3], double hi[3]);

@@ -53,9 +53,6 @@ static const char usage[] =
 
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
-static const char *const sides_names[NSIDES] = {"triangles 4x4", "triangles 10x10",
-                                                "triangles 25x25", "triangles 100x100",
-                                                "triangles 500x500"};
 static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
                                      "builtin:default?level=42"};
 enum { NSCENES = sizeof scenes / sizeof scenes[0] };
@@ -161,7 +158,7 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, const double view
 
 /* A case through zscan (zbuffer mode) and llvmpipe, frames in turn. */
 typedef struct mesa_row {
-  const char *name;
+  char name[64];
   double zscan_ms, mesa_ms;
   double triangles;    /* what llvmpipe is sent a frame: each face fanned */
   zs_crosscheck faces; /* zscan's faces against llvmpipe's (crosscheck.h) */
@@ -190,15 +187,10 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
   if (!st && !(st = zs_mesa_ids(mesa, s, view, proj, ids, err)))
     st = zs_crosscheck_faces(s, view, proj, w, h, ids, NULL, &r->faces, err);
   if (!st) {
-    r->name = name;
+    snprintf(r->name, sizeof r->name, "%s", name);
     r->zscan_ms = zs_median(ms, o->repeat);
     r->mesa_ms = zs_median(mms, o->repeat);
-    r->triangles = 0;
-    for (int32_t i = 0; i < s->ninst; i++) {
-      const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
-      for (int32_t f = 0; f < m->nfaces; f++)
-        r->triangles += m->face_start[f + 1] - m->face_start[f] - 2;
-    }
+    r->triangles = (double)zs_scene_triangles(s);
   }
   zs_mesa_destroy(mesa);
   zs_device_destroy(dev);
@@ -518,7 +510,8 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
   for (int i = 0; i < NSIDES && !st; i++) {
-    const char *name = sides_names[i];
+    char name[64];
+    snprintf(name, sizeof name, "triangles %dx%d", sides[i], sides[i]);
     if (o.only_case && strcmp(o.only_case, name) != 0) continue;
     tiling t;
     if ((st = tiling_make(sides[i], o.width, o.height, &t, &err))) break;

@@ -164,15 +164,11 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
          zs_algo_name(o->algo));
-  /* triangles: what the polygons would be as triangle fans */
-  long long triangles = 0, vertices = 0;
-  for (int32_t i = 0; i < sc->ninst; i++) {
-    const zs_mesh *m = &sc->meshes[sc->inst[i].mesh].mesh;
-    triangles += m->face_start[m->nfaces] - 2LL * m->nfaces;
-    vertices += m->nverts;
-  }
-  printf("\"objects\":%d,\"faces\":%llu,\"triangles\":%lld,\"vertices\":%lld,\"draws\":%llu,",
-         (int)sc->ninst, (unsigned long long)zs_scene_faces(sc), triangles, vertices,
+  long long vertices = 0;
+  for (int32_t i = 0; i < sc->ninst; i++) vertices += sc->meshes[sc->inst[i].mesh].mesh.nverts;
+  printf("\"objects\":%d,\"faces\":%llu,\"triangles\":%llu,\"vertices\":%lld,\"draws\":%llu,",
+         (int)sc->ninst, (unsigned long long)zs_scene_faces(sc),
+         (unsigned long long)zs_scene_triangles(sc), vertices,
          (unsigned long long)s->draws);
   printf("\"polygons_in\":%llu,\"polygons_outside\":%llu,\"polygons_clipped\":%llu,"
          "\"polygons_culled_back\":%llu,\"polygons_degenerate\":%llu,"
