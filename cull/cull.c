@@ -87,6 +87,7 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->gm);
   free(c->owns_pixel);
   free(c->owner);
+  cull_churn_free(&c->churn);
   zs_coverage_free(&c->cov);
   free(c->qlo);
   free(c->qhi);

@@ -194,6 +194,14 @@ typedef struct zs_cull_stats {
                              * chcpp-prob, nohc); not in queries, which ask
                              * about boxes */
   zs_cull_method chosen;    /* auto: what it ran this frame */
+  /* ideal-box only, against its set of the last frame (all 0 in the first
+   * frame and for the other methods; cull/churn.h): objects that entered
+   * the set, of those the ones outside the frustum in the last frame;
+   * objects that left it, of those the ones outside the frustum now; and
+   * two floors, in ps, of what a method that learns visibility from the
+   * last frame pays over ideal-box for that change */
+  uint64_t set_entered, set_entered_outside, set_left, set_left_outside;
+  int64_t churn_known_ps, churn_ranked_ps;
 } zs_cull_stats;
 
 typedef struct zs_culler zs_culler;

@@ -2,6 +2,7 @@
  * full image, ideal-box those whose query bounds have a sample against its
  * depth buffer, both front to back.  Neither asks the device a query:
  * they are the floors. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,12 +27,30 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
+  if (boxes && !cull_churn_begin(&c->churn, f->s->ninst)) {
+    f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
+    return;
+  }
+  /* ideal-box's churn: the floor of each object's draw at this camera, in
+   * the method's clock (churn.h); what it sets up and tests does not
+   * depend on the order of drawing */
+  const zs_clock_params *ck = zs_device_clock_params(f->dev);
+  const int64_t call_ps = llround(ck->per_call_ns * 1000.0);
+  const int64_t polygon_ps = llround(ck->per_polygon_ns * 1000.0);
+  const int64_t pixel_ps = llround(ck->per_pixel_ns * 1000.0);
   zs_device_clear(c->oracle);
   zs_device_set_camera(c->oracle, view, proj);
   for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) {
     const zs_instance *in = &f->s->inst[i];
+    const zs_raster_stats before = *zs_device_stats(c->oracle);
     f->status = zs_device_draw(c->oracle, &f->s->meshes[in->mesh].mesh, in->model, in->id_base,
                                in->rgb, f->err);
+    if (boxes) {
+      const zs_raster_stats *after = zs_device_stats(c->oracle);
+      c->churn.draw_ps[i] =
+          call_ps + polygon_ps * (int64_t)(zs_polygons_set_up(after) - zs_polygons_set_up(&before)) +
+          pixel_ps * (int64_t)(after->pixels_tested - before.pixels_tested);
+    }
   }
   if (f->status) return;
   /* The instance each face id belongs to (ids are id_base + face id). */
@@ -58,8 +77,13 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
   memset(c->owns_pixel, 0, (size_t)f->s->ninst);
   const uint32_t *ids = zs_device_id_buffer(c->oracle);
   size_t npx = (size_t)cfg->width * (size_t)cfg->height;
+  uint32_t *owned = boxes ? c->churn.pixels[0] : NULL; /* pixels per instance, for the churn */
   for (size_t p = 0; p < npx; p++)
-    if (ids[p] < c->nowner) c->owns_pixel[c->owner[ids[p]]] = 1;
+    if (ids[p] < c->nowner) {
+      const int32_t o = c->owner[ids[p]];
+      c->owns_pixel[o] = 1;
+      if (owned) owned[o]++;
+    }
   for (int32_t i = 0; boxes && i < f->s->ninst && f->status == ZS_OK; i++) {
     zs_query q;
     if (c->owns_pixel[i]) continue;
@@ -74,6 +98,17 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
         (f->status = zs_device_query_end(c->oracle, f->err)))
       return;
     c->owns_pixel[i] = zs_device_query_result(c->oracle, q) > 0;
+  }
+  if (boxes) { /* the set against the last frame's */
+    for (int32_t i = 0; i < f->s->ninst; i++) {
+      unsigned mask = ZS_FRUSTUM_ALL_PLANES;
+      uint64_t tests = 0;
+      c->churn.visible[0][i] = c->owns_pixel[i];
+      c->churn.inside[0][i] = zs_frustum_test_box(&f->frustum, f->s->inst[i].lo,
+                                                   f->s->inst[i].hi, &mask, &tests) !=
+                              ZS_FRUSTUM_OUTSIDE;
+    }
+    cull_churn_compare(&c->churn, call_ps, f->st);
   }
   /* front to back, as every method that traverses draws: drawn in the
    * scene's order, nearer objects would come after farther ones and write

@@ -479,6 +479,69 @@ START_TEST(ideal_box_bounds_every_box_query_method) {
 }
 END_TEST
 
+START_TEST(ideal_box_churn_adds_up) {
+  /* ideal-box's set against the last frame (cull/churn.h): what entered
+   * and what left make up the change in its size; the floor knowing the
+   * changes is one call a change inside the frustum; the ranked floor is
+   * never below it, nor above asking about the whole last set; the first
+   * frame has nothing to compare with. */
+  zs_scene s;
+  ck_assert_msg(zs_gen_scene("teapots?count=300&moving=40", &s, &err) == ZS_OK, "%s", err.msg);
+  zs_octree t;
+  ck_assert_int_eq(zs_octree_build(&t, &s, NULL, &err), ZS_OK);
+  zs_device_config cfg = {walk_w, walk_h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_device *dev;
+  zs_culler *cul;
+  ck_assert_int_eq(zs_device_create(&cfg, &dev, &err), ZS_OK);
+  ck_assert_int_eq(zs_culler_create(ZS_CULL_IDEAL_BOX, NULL, &cul, &err), ZS_OK);
+  const int64_t call = llround(zs_device_clock_params(dev)->per_call_ns * 1000.0);
+  uint64_t last_set = 0, entered = 0, left = 0, outside = 0;
+  int ranked_above_known = 0;
+  for (int f = 0; f < 12; f++) {
+    for (int k = 0; k < 7 && f > 0; k++) {
+      zs_scene_advance(&s);
+      ck_assert_int_eq(zs_octree_update(&t, &s, NULL, &err), ZS_OK);
+    }
+    zs_camera cam = s.camera;
+    if (s.path.nkeys > 0) zs_path_camera(&s, (f * 7) % (s.path.frames > 0 ? s.path.frames : 1), &cam);
+    zs_camera_complete(&cam, s.lo, s.hi, (double)walk_w / walk_h);
+    double view[16], proj[16];
+    ck_assert_int_eq(zs_camera_matrices(&cam, (double)walk_w / walk_h, view, proj, &err), ZS_OK);
+    zs_cull_stats st;
+    ck_assert_int_eq(zs_culler_frame(cul, dev, &s, &t, view, proj, &st, &err), ZS_OK);
+    ck_assert_int_eq(zs_device_finish(dev, NULL, NULL, &err), ZS_OK);
+    if (f == 0) {
+      ck_assert(st.set_entered == 0 && st.set_left == 0 && st.churn_known_ps == 0 &&
+                st.churn_ranked_ps == 0);
+    } else {
+      ck_assert_int_eq((int64_t)st.objects_drawn - (int64_t)last_set,
+                       (int64_t)st.set_entered - (int64_t)st.set_left);
+      ck_assert_uint_le(st.set_entered_outside, st.set_entered);
+      ck_assert_uint_le(st.set_left_outside, st.set_left);
+      const int64_t in_entered = (int64_t)(st.set_entered - st.set_entered_outside);
+      ck_assert_int_eq(st.churn_known_ps,
+                       (in_entered + (int64_t)(st.set_left - st.set_left_outside)) * call);
+      ck_assert_int_le(st.churn_known_ps, st.churn_ranked_ps);
+      ck_assert_int_le(st.churn_ranked_ps, (in_entered + (int64_t)last_set) * call);
+      ranked_above_known += st.churn_ranked_ps > st.churn_known_ps;
+      entered += st.set_entered;
+      left += st.set_left;
+      outside += st.set_entered_outside + st.set_left_outside;
+    }
+    last_set = st.objects_drawn;
+  }
+  /* the walk has churn to measure, inside the frustum and across it */
+  ck_assert_uint_gt(entered, 0);
+  ck_assert_uint_gt(left, 0);
+  ck_assert_uint_gt(outside, 0);
+  ck_assert_int_gt(ranked_above_known, 0);
+  zs_culler_destroy(cul);
+  zs_device_destroy(dev);
+  zs_octree_free(&t);
+  zs_scene_free(&s);
+}
+END_TEST
+
 /* Checks the parts of every instance of scene spec: every face lies in
  * one part's box, every part's box in the object's, and an object has at
  * most one part per ZS_FACES_PER_PART faces.  Returns how many objects
@@ -648,6 +711,7 @@ int main(void) {
   tcase_add_test(tc, query_ordering_on_the_plant);
   tcase_add_test(tc, counters_identical_every_run);
   tcase_add_test(tc, ideal_box_bounds_every_box_query_method);
+  tcase_add_test(tc, ideal_box_churn_adds_up);
   tcase_add_test(tc, parts_hold_every_face_inside_the_box);
   tcase_add_test(tc, parts_are_exact_and_tighter_than_boxes);
   tcase_add_test(tc, chcpp_features_each_pay_on_the_plant);

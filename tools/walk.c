@@ -81,6 +81,8 @@ typedef struct method_run {
   double gpu_ms[4];       /* the GPU's split: draw, query, switch, idle */
   uint64_t diff_pixels, frames_with_diff;
   uint64_t chose_queries; /* auto: frames it ran with queries */
+  /* ideal-box: its set against the last frame's, summed over frames */
+  double set_size, entered, entered_outside, left, left_outside, known_ms, ranked_ms;
 } method_run;
 
 static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
@@ -329,21 +331,28 @@ typedef struct summary_row {
   uint64_t diff_pixels; /* over all frames */
 } summary_row;
 
-static void write_summary(FILE *f, int md, const summary_row *rows, int n) {
+/* ideal_ms > 0: the ideal ran, and a column gives each row's modelled
+ * time over the ideal's. */
+static void write_summary(FILE *f, int md, const summary_row *rows, int n, double ideal_ms) {
+  const int x = ideal_ms > 0;
   if (md)
-    fputs("| method or mode | queries | faces drawn | objects | modelled ms | modelled fps | "
-          "stall ms | wall ms (mean) | pixels wrong (all frames) |\n"
-          "|---|---|---|---|---|---|---|---|---|\n", f);
+    fprintf(f, "| method or mode | queries | faces drawn | objects | modelled ms | %s"
+               "modelled fps | stall ms | wall ms (mean) | pixels wrong (all frames) |\n"
+               "|---|---|---|---|---|%s---|---|---|---|\n",
+            x ? "x ideal | " : "", x ? "---|" : "");
   else
-    fprintf(f, "%-9s %9s %12s %9s %10s %10s %9s %9s %11s\n", "method", "queries", "faces_drawn",
-            "objects", "model_ms", "model_fps", "stall_ms", "wall_ms", "diff_pixels");
+    fprintf(f, "%-9s %9s %12s %9s %10s %s%10s %9s %9s %11s\n", "method", "queries",
+            "faces_drawn", "objects", "model_ms", x ? "  x_ideal " : "", "model_fps", "stall_ms",
+            "wall_ms", "diff_pixels");
   for (int k = 0; k < n; k++) {
     const summary_row *r = &rows[k];
     double fps = r->modelled_ms > 0 ? 1000.0 / r->modelled_ms : 0.0;
+    char ratio[32] = "";
+    if (x) snprintf(ratio, sizeof ratio, md ? "%.3f | " : "%9.3f ", r->modelled_ms / ideal_ms);
     fprintf(f,
-            md ? "| %s | %.1f | %.0f | %.1f | %.3f | %.1f | %.3f | %.3f | %llu |\n"
-               : "%-9s %9.1f %12.0f %9.1f %10.3f %10.1f %9.3f %9.3f %11llu\n",
-            r->name, r->queries, r->faces, r->objects, r->modelled_ms, fps, r->stall_ms,
+            md ? "| %s | %.1f | %.0f | %.1f | %.3f | %s%.1f | %.3f | %.3f | %llu |\n"
+               : "%-9s %9.1f %12.0f %9.1f %10.3f %s%10.1f %9.3f %9.3f %11llu\n",
+            r->name, r->queries, r->faces, r->objects, r->modelled_ms, ratio, fps, r->stall_ms,
             r->wall_ms, (unsigned long long)r->diff_pixels);
   }
 }
@@ -459,6 +468,15 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       r->diff_pixels += diff;
       r->frames_with_diff += diff > 0;
       r->chose_queries += cs.chosen == ZS_CULL_CHC_PROB;
+      if (f > 0) { /* the churn compares with the frame before */
+        r->set_size += (double)cs.objects_drawn;
+        r->entered += (double)cs.set_entered;
+        r->entered_outside += (double)cs.set_entered_outside;
+        r->left += (double)cs.set_left;
+        r->left_outside += (double)cs.set_left_outside;
+        r->known_ms += cs.churn_known_ps * 1e-9;
+        r->ranked_ms += cs.churn_ranked_ps * 1e-9;
+      }
       frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
       frame_wall[(size_t)k * (size_t)frames + (size_t)f] = wall;
       if (csv)
@@ -520,9 +538,12 @@ static zs_status run(const walk_opts *o, zs_error *err) {
                                           (double)s.ninst, r->modelled_ms / frames, 0.0,
                                           r->wall_ms / frames, r->diff_pixels};
   }
+  double ideal_ms = 0.0; /* the ideal's modelled ms a frame, when it ran */
+  for (int k = 0; k < o->nmethods; k++)
+    if (runs[k].m == ZS_CULL_IDEAL) ideal_ms = runs[k].modelled_ms / frames;
   printf("%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
          (unsigned long long)zs_scene_faces(&s));
-  write_summary(stdout, 0, rows, nrows);
+  write_summary(stdout, 0, rows, nrows, ideal_ms);
   /* Where each method's modelled frame goes on the GPU: a method that
    * draws less but leaves the GPU idle, or pays in queries and switches,
    * shows it here. */
@@ -532,6 +553,22 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     printf("%-13s %9.3f %9.3f %9.3f %9.3f\n", zs_cull_method_name(runs[k].m),
            runs[k].gpu_ms[0] / frames, runs[k].gpu_ms[1] / frames, runs[k].gpu_ms[2] / frames,
            runs[k].gpu_ms[3] / frames);
+  for (int k = 0; k < o->nmethods && frames > 1; k++) {
+    const method_run *r = &runs[k];
+    if (r->m != ZS_CULL_IDEAL_BOX) continue;
+    /* What carrying visibility over from the last frame must cost at the
+     * least (cull/churn.h): the floor under every method that does. */
+    const double n = frames - 1;
+    printf("\nideal-box's set against the frame before, objects a frame (frames 2 to %d)\n"
+           "  in the set %.1f; entered %.1f (%.1f from outside the frustum); "
+           "left %.1f (%.1f to outside the frustum)\n"
+           "the least a method that learns from the last frame pays for it over ideal-box, "
+           "ms a frame\n"
+           "  a query's call for each change, asking nowhere else: %.3f\n"
+           "  asking the last frame's set fewest pixels first, the best cut-off each frame: %.3f\n",
+           frames, r->set_size / n, r->entered / n, r->entered_outside / n, r->left / n,
+           r->left_outside / n, r->known_ms / n, r->ranked_ms / n);
+  }
   if (o->md) {
     char *md_tmp;
     FILE *md = zs_out_open(o->md, &md_tmp, err);
@@ -539,7 +576,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       st = err->code;
       goto done;
     }
-    write_summary(md, 1, rows, nrows);
+    write_summary(md, 1, rows, nrows, ideal_ms);
     if ((st = zs_out_commit(md, md_tmp, o->md, err))) goto done;
   }
   if (o->tradeoff) {
