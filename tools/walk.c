@@ -58,7 +58,10 @@ static const char usage[] =
     "                      scanline and/or depthsort, against none (zbuffer)\n"
     "  --tradeoff FILE.png time against pixels wrong, one point per method and mode\n"
     "  --md FILE           the table of means per frame in Markdown\n"
-    "  --quiet             no progress on stderr\n";
+    "  --quiet             no progress on stderr\n"
+    "With ideal: a column of each method's time over the ideal's.  With ideal-box:\n"
+    "how its set changes from frame to frame, and the least that change costs a\n"
+    "method that learns from the last frame (cull/churn.h).\n";
 
 typedef struct walk_opts {
   const char *scene, *csv, *plot, *frames_dir, *tradeoff, *md;
