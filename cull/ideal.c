@@ -27,7 +27,8 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
-  if (boxes && !cull_churn_begin(&c->churn, f->s->ninst)) {
+  /* the churn's arrays hold the pixels each instance owns for both */
+  if (!cull_churn_begin(&c->churn, f->s->ninst)) {
     f->status = zs_error_set(f->err, ZS_ERR_NOMEM, "culling: out of memory");
     return;
   }
@@ -74,16 +75,12 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
         c->owner[f->s->inst[i].id_base + (uint32_t)(m->face_id ? m->face_id[k] : k)] = i;
     }
   }
-  memset(c->owns_pixel, 0, (size_t)f->s->ninst);
   const uint32_t *ids = zs_device_id_buffer(c->oracle);
   size_t npx = (size_t)cfg->width * (size_t)cfg->height;
-  uint32_t *owned = boxes ? c->churn.pixels[0] : NULL; /* pixels per instance, for the churn */
+  uint32_t *owned = c->churn.pixels[0]; /* zeroed by cull_churn_begin */
   for (size_t p = 0; p < npx; p++)
-    if (ids[p] < c->nowner) {
-      const int32_t o = c->owner[ids[p]];
-      c->owns_pixel[o] = 1;
-      if (owned) owned[o]++;
-    }
+    if (ids[p] < c->nowner) owned[c->owner[ids[p]]]++;
+  for (int32_t i = 0; i < f->s->ninst; i++) c->owns_pixel[i] = owned[i] > 0;
   for (int32_t i = 0; boxes && i < f->s->ninst && f->status == ZS_OK; i++) {
     zs_query q;
     if (c->owns_pixel[i]) continue;

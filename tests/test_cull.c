@@ -40,6 +40,8 @@ static int walk_w = W, walk_h = H;
 
 /* The camera of frame f of the next walk (NULL: the scene's path's). */
 static void (*walk_camera)(int f, const zs_scene *s, zs_camera *cam);
+/* When set, walk hands it the stats of method k in frame f. */
+static void (*walk_stats)(int f, int k, const zs_cull_stats *st);
 
 /* Runs methods[0..n-1] (methods[0] must be none) in lockstep over frames
  * frames of spec's walk (every step-th frame of its path; frames 0: the
@@ -90,6 +92,7 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
       const uint32_t *ids = zs_device_id_buffer(dev[k]);
       if (k == 0) memcpy(ref, ids, (size_t)walk_w * walk_h * sizeof *ref);
       for (int i = 0; i < walk_w * walk_h; i++) out->diff[k] += ids[i] != ref[i];
+      if (walk_stats) walk_stats(f, k, &st);
       out->queries[k] += st.queries;
       out->objects[k] += st.objects_drawn;
       out->modelled_ps[k] += zs_device_frame_ps(dev[k]);
@@ -479,66 +482,54 @@ START_TEST(ideal_box_bounds_every_box_query_method) {
 }
 END_TEST
 
+/* ideal_box_churn_adds_up: the frames' checks, and what they saw */
+static uint64_t churn_last_set, churn_entered, churn_left, churn_outside;
+static int churn_ranked_above_known;
+
+static void check_churn(int f, int k, const zs_cull_stats *st) {
+  (void)k;
+  zs_clock_params clock;
+  zs_clock_params_default(&clock);
+  const int64_t call = llround(clock.per_call_ns * 1000.0);
+  if (f == 0) {
+    ck_assert(st->set_entered == 0 && st->set_left == 0 && st->churn_known_ps == 0 &&
+              st->churn_ranked_ps == 0);
+  } else {
+    ck_assert_int_eq((int64_t)st->objects_drawn - (int64_t)churn_last_set,
+                     (int64_t)st->set_entered - (int64_t)st->set_left);
+    ck_assert_uint_le(st->set_entered_outside, st->set_entered);
+    ck_assert_uint_le(st->set_left_outside, st->set_left);
+    const int64_t in_entered = (int64_t)(st->set_entered - st->set_entered_outside);
+    ck_assert_int_eq(st->churn_known_ps,
+                     (in_entered + (int64_t)(st->set_left - st->set_left_outside)) * call);
+    ck_assert_int_le(st->churn_known_ps, st->churn_ranked_ps);
+    ck_assert_int_le(st->churn_ranked_ps, (in_entered + (int64_t)churn_last_set) * call);
+    churn_ranked_above_known += st->churn_ranked_ps > st->churn_known_ps;
+    churn_entered += st->set_entered;
+    churn_left += st->set_left;
+    churn_outside += st->set_entered_outside + st->set_left_outside;
+  }
+  churn_last_set = st->objects_drawn;
+}
+
 START_TEST(ideal_box_churn_adds_up) {
   /* ideal-box's set against the last frame (cull/churn.h): what entered
    * and what left make up the change in its size; the floor knowing the
    * changes is one call a change inside the frustum; the ranked floor is
    * never below it, nor above asking about the whole last set; the first
    * frame has nothing to compare with. */
-  zs_scene s;
-  ck_assert_msg(zs_gen_scene("teapots?count=300&moving=40", &s, &err) == ZS_OK, "%s", err.msg);
-  zs_octree t;
-  ck_assert_int_eq(zs_octree_build(&t, &s, NULL, &err), ZS_OK);
-  zs_device_config cfg = {walk_w, walk_h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
-  zs_device *dev;
-  zs_culler *cul;
-  ck_assert_int_eq(zs_device_create(&cfg, &dev, &err), ZS_OK);
-  ck_assert_int_eq(zs_culler_create(ZS_CULL_IDEAL_BOX, NULL, &cul, &err), ZS_OK);
-  const int64_t call = llround(zs_device_clock_params(dev)->per_call_ns * 1000.0);
-  uint64_t last_set = 0, entered = 0, left = 0, outside = 0;
-  int ranked_above_known = 0;
-  for (int f = 0; f < 12; f++) {
-    for (int k = 0; k < 7 && f > 0; k++) {
-      zs_scene_advance(&s);
-      ck_assert_int_eq(zs_octree_update(&t, &s, NULL, &err), ZS_OK);
-    }
-    zs_camera cam = s.camera;
-    if (s.path.nkeys > 0) zs_path_camera(&s, (f * 7) % (s.path.frames > 0 ? s.path.frames : 1), &cam);
-    zs_camera_complete(&cam, s.lo, s.hi, (double)walk_w / walk_h);
-    double view[16], proj[16];
-    ck_assert_int_eq(zs_camera_matrices(&cam, (double)walk_w / walk_h, view, proj, &err), ZS_OK);
-    zs_cull_stats st;
-    ck_assert_int_eq(zs_culler_frame(cul, dev, &s, &t, view, proj, &st, &err), ZS_OK);
-    ck_assert_int_eq(zs_device_finish(dev, NULL, NULL, &err), ZS_OK);
-    if (f == 0) {
-      ck_assert(st.set_entered == 0 && st.set_left == 0 && st.churn_known_ps == 0 &&
-                st.churn_ranked_ps == 0);
-    } else {
-      ck_assert_int_eq((int64_t)st.objects_drawn - (int64_t)last_set,
-                       (int64_t)st.set_entered - (int64_t)st.set_left);
-      ck_assert_uint_le(st.set_entered_outside, st.set_entered);
-      ck_assert_uint_le(st.set_left_outside, st.set_left);
-      const int64_t in_entered = (int64_t)(st.set_entered - st.set_entered_outside);
-      ck_assert_int_eq(st.churn_known_ps,
-                       (in_entered + (int64_t)(st.set_left - st.set_left_outside)) * call);
-      ck_assert_int_le(st.churn_known_ps, st.churn_ranked_ps);
-      ck_assert_int_le(st.churn_ranked_ps, (in_entered + (int64_t)last_set) * call);
-      ranked_above_known += st.churn_ranked_ps > st.churn_known_ps;
-      entered += st.set_entered;
-      left += st.set_left;
-      outside += st.set_entered_outside + st.set_left_outside;
-    }
-    last_set = st.objects_drawn;
-  }
+  const zs_cull_method m[] = {ZS_CULL_IDEAL_BOX};
+  walk_result r;
+  churn_last_set = churn_entered = churn_left = churn_outside = 0;
+  churn_ranked_above_known = 0;
+  walk_stats = check_churn;
+  walk("teapots?count=300&moving=40", 12, 7, m, 1, -1, &r);
+  walk_stats = NULL;
   /* the walk has churn to measure, inside the frustum and across it */
-  ck_assert_uint_gt(entered, 0);
-  ck_assert_uint_gt(left, 0);
-  ck_assert_uint_gt(outside, 0);
-  ck_assert_int_gt(ranked_above_known, 0);
-  zs_culler_destroy(cul);
-  zs_device_destroy(dev);
-  zs_octree_free(&t);
-  zs_scene_free(&s);
+  ck_assert_uint_gt(churn_entered, 0);
+  ck_assert_uint_gt(churn_left, 0);
+  ck_assert_uint_gt(churn_outside, 0);
+  ck_assert_int_gt(churn_ranked_above_known, 0);
 }
 END_TEST
 

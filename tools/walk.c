@@ -560,7 +560,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     const method_run *r = &runs[k];
     if (r->m != ZS_CULL_IDEAL_BOX) continue;
     /* What carrying visibility over from the last frame must cost at the
-     * least (cull/churn.h): the floor under every method that does. */
+     * least a method that finds each change with a query (cull/churn.h) */
     const double n = frames - 1;
     printf("\nideal-box's set against the frame before, objects a frame (frames 2 to %d)\n"
            "  in the set %.1f; entered %.1f (%.1f from outside the frustum); "
