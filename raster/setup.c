@@ -91,7 +91,7 @@ static int binary_exponent(double v) {
 /* The fixed-point plane through vertices a, b, c (indices into X, Y, Z),
  * whose doubled area det must be non-zero; box is the polygon's extent in
  * pixels. */
-static plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
+__attribute__((always_inline)) static inline plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
                         int a, int b, int c, double box_w, double box_h) {
   double dx1 = (double)X[b] - X[a], dy1 = (double)Y[b] - Y[a];
   double dx2 = (double)X[c] - X[a], dy2 = (double)Y[c] - Y[a];
