@@ -430,6 +430,21 @@ START_TEST(bench_raster_writes_csv_and_table) {
   const char *eol = strchr(row + 1, '\n');
   ck_assert_ptr_nonnull(eol);
   ck_assert_msg(eol - row > 4 && strncmp(eol - 4, " yes", 4) == 0, "%.*s", (int)(eol - row), row);
+  /* and the ceiling: one thread on each of the 2 CPUs at once (or "-"
+   * where the CPUs cannot be pinned) */
+  ck_assert_ptr_nonnull(strstr(out, "thread on each of 2 CPUs at once: the ceiling of the speed-up"));
+  char fast[32], slow[32], ceiling[32], share[32];
+  double one, many, ratio, q1, q3;
+  ck_assert_int_eq(sscanf(row, " builtin:city %lf %lf %lf %lf %lf %31s %31s %31s %31s", &one,
+                          &many, &ratio, &q1, &q3, fast, slow, ceiling, share),
+                   9);
+  if (strcmp(ceiling, "-") != 0) {
+    ck_assert_double_le(atof(fast), atof(slow));
+    ck_assert_double_gt(atof(ceiling), 0.0);
+    ck_assert_double_gt(atof(share), 0.0);
+  } else {
+    ck_assert_str_eq(fast, "-");
+  }
   const char *alone[] = {"bench", "raster", "--speedup", NULL};
   ck_assert_int_eq(zs_test_run_zscan(alone, out, sizeof out, err, sizeof err), 1);
   ck_assert_str_eq(err, "zscan bench raster: --speedup: against --threads N, N of 2 or more\n");

@@ -12,9 +12,12 @@
  *              and a teapot field of about a million triangles.
  * It reports ms per frame, million triangles per second and million pixels
  * tested per second, and writes a CSV, a Markdown table and a plot. */
+#define _GNU_SOURCE /* pthread_setaffinity_np, sched_getaffinity: the ceiling of --speedup */
 #include "tools/bench_raster.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,7 +48,8 @@ static const char usage[] =
     "  --mesa            also each case through Mesa's llvmpipe (OSMesa), frames taken\n"
     "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n"
     "  --speedup         also the scenes on one thread and on --threads N, frames taken in\n"
-    "                    turn: each pair's ratio, so that both see the same machine\n"
+    "                    turn: each pair's ratio, so that both see the same machine; and one\n"
+    "                    thread on each of N CPUs at once, pinned: the speed-up's ceiling\n"
     "  --callgrind       also the instructions per frame of each case, one thread, counted\n"
     "                    by valgrind's callgrind (runs of 1 and 3 frames; the difference / 2)\n"
     "  --case NAME       only that case ('triangles 10x10', 'builtin:city', ...)\n"
@@ -232,25 +236,109 @@ static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_o
 /* A scene on one thread and on o->threads, frames in turn: the run-long
  * slow spells of a shared machine fall on both sides of a pair alike, so
  * the pairs' ratios tell the speed-up where the medians of two separate
- * runs may not. */
+ * runs may not.
+ *
+ * The CPUs of a virtual machine need not be equal: one may share its core
+ * with another guest's busy thread and run this frame far slower than the
+ * other (on this VM, at times, 41 against 28 ms a frame of 10x10
+ * triangles).  N threads then cannot reach N times one thread.  So each
+ * round also renders the frame on N one-thread devices at once, each
+ * pinned to one of the first N CPUs the process may use: with t_i the
+ * time on CPU i, the CPUs together do 1 / t_i frames a ms each, and a
+ * speed-up of
+ *   ceiling = t_one * sum_i 1 / t_i
+ * is the most a perfect split of the frame could give that round, the
+ * CPUs' interference with each other (caches, memory, a shared core)
+ * included.  A speed-up near its ceiling leaves nothing to the code. */
 typedef struct speedup_row {
   const char *name;
   double one_ms, many_ms;     /* medians */
   double ratio[3];            /* the pairs' ratios: lower quartile, median, upper quartile */
   int same;                   /* the same faces and depths in every pixel */
+  int pinned;                 /* the ceiling was measured (the CPUs could be pinned) */
+  double cpu_ms[2];           /* median frame on the fastest and the slowest CPU, pinned */
+  double ceiling;             /* median of the rounds' ceilings */
+  double share;               /* median of the rounds' speed-up / ceiling */
 } speedup_row;
+
+enum { MAX_PINNED = 64 }; /* the most threads a device takes */
+
+typedef struct pinned_frame {
+  zs_device *dev;
+  const zs_scene *s;
+  const double *view, *proj;
+  int cpu, pinned;
+  double ms;
+  zs_status st;
+  zs_error err;
+} pinned_frame;
+
+static void *render_pinned(void *arg) {
+  pinned_frame *p = arg;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(p->cpu, &set);
+  p->pinned = pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+  double t0 = zs_wall_ms();
+  p->st = zs_frame_render_on(p->dev, p->s, p->view, p->proj, 0, NULL, NULL, &p->err);
+  p->ms = zs_wall_ms() - t0;
+  return NULL;
+}
+
+/* The first n CPUs this process may run on, into cpus; 0 when it may use
+ * fewer than n. */
+static int first_cpus(int n, int *cpus) {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 0;
+  int k = 0;
+  for (int c = 0; c < CPU_SETSIZE && k < n; c++)
+    if (CPU_ISSET(c, &set)) cpus[k++] = c;
+  return k == n;
+}
+
+/* One frame on each of the pinned devices at once; the times into ms[]
+ * (0 when a thread could not be started or pinned: no ceiling). */
+static zs_status render_on_each_cpu(pinned_frame *pf, int n, int *pinned, zs_error *err) {
+  pthread_t th[MAX_PINNED];
+  int started = 0;
+  for (; started < n; started++)
+    if (pthread_create(&th[started], NULL, render_pinned, &pf[started]) != 0) break;
+  for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+  *pinned = started == n;
+  for (int i = 0; i < started; i++) {
+    if (pf[i].st) return zs_error_set(err, pf[i].st, "%s", pf[i].err.msg);
+    *pinned &= pf[i].pinned;
+  }
+  return ZS_OK;
+}
 
 static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const char *name,
                                  const double view[16], const double proj[16], double *ms,
                                  speedup_row *r, zs_error *err) {
-  const int w = o->width, h = o->height;
+  const int w = o->width, h = o->height, n = o->threads;
   double *many = malloc((size_t)o->repeat * sizeof *many);
   double *ratio = malloc((size_t)o->repeat * sizeof *ratio);
+  double *ceiling = malloc((size_t)o->repeat * sizeof *ceiling);
+  double *share = malloc((size_t)o->repeat * sizeof *share);
+  double *cpu_ms = malloc((size_t)o->repeat * (size_t)n * sizeof *cpu_ms); /* [cpu][round] */
+  double *fast = malloc((size_t)o->repeat * sizeof *fast);
+  double *slow = malloc((size_t)o->repeat * sizeof *slow);
   zs_device *dev[2] = {NULL, NULL};
-  zs_status st = !many || !ratio ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
+  pinned_frame pf[MAX_PINNED];
+  memset(pf, 0, sizeof pf);
+  int cpus[MAX_PINNED];
+  int pinned = n <= MAX_PINNED && first_cpus(n, cpus);
+  zs_status st = !many || !ratio || !ceiling || !share || !cpu_ms || !fast || !slow
+                     ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory")
+                     : ZS_OK;
   for (int d = 0; d < 2 && !st; d++) {
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? o->threads : 1, 0};
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? n : 1, 0};
     st = zs_device_create(&cfg, &dev[d], err);
+  }
+  for (int i = 0; i < n && pinned && !st; i++) {
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0};
+    st = zs_device_create(&cfg, &pf[i].dev, err);
+    pf[i] = (pinned_frame){pf[i].dev, s, view, proj, cpus[i], 0, 0.0, ZS_OK, {0}};
   }
   for (int k = 0; k < o->repeat && !st; k++) {
     double t0 = zs_wall_ms();
@@ -260,6 +348,20 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
     ms[k] = t1 - t0;
     many[k] = zs_wall_ms() - t1;
     ratio[k] = ms[k] / many[k];
+    if (!pinned) continue;
+    int ok = 0;
+    if ((st = render_on_each_cpu(pf, n, &ok, err))) break;
+    pinned = ok;
+    double rate = 0.0;
+    fast[k] = slow[k] = pf[0].ms;
+    for (int i = 0; i < n; i++) {
+      cpu_ms[(size_t)i * (size_t)o->repeat + (size_t)k] = pf[i].ms;
+      rate += 1.0 / pf[i].ms;
+      if (pf[i].ms < fast[k]) fast[k] = pf[i].ms;
+      if (pf[i].ms > slow[k]) slow[k] = pf[i].ms;
+    }
+    ceiling[k] = ms[k] * rate;
+    share[k] = ratio[k] / ceiling[k];
   }
   if (!st) {
     size_t px = (size_t)w * (size_t)h * sizeof(uint32_t);
@@ -271,11 +373,28 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
     r->ratio[1] = zs_median(ratio, o->repeat); /* sorts ratio */
     r->ratio[0] = ratio[(o->repeat - 1) / 4];
     r->ratio[2] = ratio[o->repeat - 1 - (o->repeat - 1) / 4];
+    r->pinned = pinned;
+    if (pinned) {
+      /* the CPUs by their median frame: the fastest and the slowest */
+      for (int i = 0; i < n; i++) {
+        double m = zs_median(&cpu_ms[(size_t)i * (size_t)o->repeat], o->repeat);
+        if (i == 0 || m < r->cpu_ms[0]) r->cpu_ms[0] = m;
+        if (i == 0 || m > r->cpu_ms[1]) r->cpu_ms[1] = m;
+      }
+      r->ceiling = zs_median(ceiling, o->repeat);
+      r->share = zs_median(share, o->repeat);
+    }
   }
   zs_device_destroy(dev[0]);
   zs_device_destroy(dev[1]);
+  for (int i = 0; i < n && i < MAX_PINNED; i++) zs_device_destroy(pf[i].dev);
   free(many);
   free(ratio);
+  free(ceiling);
+  free(share);
+  free(cpu_ms);
+  free(fast);
+  free(slow);
   return st;
 }
 
@@ -283,23 +402,34 @@ static void write_speedup_table(FILE *f, const speedup_row *rows, int n, const b
                                 int md) {
   if (md) {
     fprintf(f, "\n| scene | 1 thread ms | %d threads ms | speed-up, median of the pairs | "
-               "lower and upper quartile | the same image |\n",
+               "lower and upper quartile | one thread on each CPU at once, ms: fastest, "
+               "slowest | ceiling | speed-up / ceiling | the same image |\n",
             o->threads);
-    fprintf(f, "|---|---|---|---|---|---|\n");
+    fprintf(f, "|---|---|---|---|---|---|---|---|---|\n");
   } else {
-    fprintf(f, "\nzscan (zbuffer) on 1 thread and on %d, frames in turn, %d pairs\n", o->threads,
-            o->repeat);
-    fprintf(f, "%-28s %10s %10s %8s %8s %8s %5s\n", "scene", "one_ms", "many_ms", "speedup", "q1",
-            "q3", "same");
+    fprintf(f, "\nzscan (zbuffer) on 1 thread and on %d, frames in turn, %d pairs; then one\n"
+               "thread on each of %d CPUs at once: the ceiling of the speed-up\n",
+            o->threads, o->repeat, o->threads);
+    fprintf(f, "%-28s %10s %10s %8s %8s %8s %9s %9s %8s %8s %5s\n", "scene", "one_ms", "many_ms",
+            "speedup", "q1", "q3", "cpu_fast", "cpu_slow", "ceiling", "share", "same");
   }
   for (int i = 0; i < n; i++) {
     const speedup_row *r = &rows[i];
+    char fast[32] = "-", slow[32] = "-", ceil[32] = "-", share[32] = "-";
+    if (r->pinned) {
+      snprintf(fast, sizeof fast, "%.2f", r->cpu_ms[0]);
+      snprintf(slow, sizeof slow, "%.2f", r->cpu_ms[1]);
+      snprintf(ceil, sizeof ceil, md ? "%.2fx" : "%.3f", r->ceiling);
+      snprintf(share, sizeof share, md ? "%.0f %%" : "%.3f", md ? 100.0 * r->share : r->share);
+    }
     if (md)
-      fprintf(f, "| `%s` | %.2f | %.2f | %.2fx | %.2fx, %.2fx | %s |\n", r->name, r->one_ms,
-              r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], r->same ? "yes" : "no");
+      fprintf(f, "| `%s` | %.2f | %.2f | %.2fx | %.2fx, %.2fx | %s, %s | %s | %s | %s |\n",
+              r->name, r->one_ms, r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], fast, slow,
+              ceil, share, r->same ? "yes" : "no");
     else
-      fprintf(f, "%-28s %10.3f %10.3f %8.3f %8.3f %8.3f %5s\n", r->name, r->one_ms, r->many_ms,
-              r->ratio[1], r->ratio[0], r->ratio[2], r->same ? "yes" : "no");
+      fprintf(f, "%-28s %10.3f %10.3f %8.3f %8.3f %8.3f %9s %9s %8s %8s %5s\n", r->name,
+              r->one_ms, r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], fast, slow, ceil,
+              share, r->same ? "yes" : "no");
   }
 }
 
