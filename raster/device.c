@@ -46,6 +46,7 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
   zs_device *d = calloc(1, sizeof *d);
   if (!d) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   d->cfg = *cfg;
+  d->prefetchw = zs_cpu_has_prefetchw();
   size_t w = (size_t)cfg->width, px = w * (size_t)cfg->height;
   int ok = 1;
   if (cfg->algo == ZS_ALGO_ZBUFFER) { /* else scanline or depthsort: one row */
@@ -304,7 +305,8 @@ void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs
   p->flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
   p->need_eye = p->flat || d->cfg.algo == ZS_ALGO_DEPTHSORT;
   p->sp = (zs_setup_params){d->cfg.width, d->cfg.height, d->cfg.cull_back && k != ZS_KERNEL_QUERY,
-                            0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0};
+                            0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0,
+                            d->pool != NULL && d->prefetchw};
 }
 
 /* Vertices [i0, i1): to eye space (for the normals of flat shading and

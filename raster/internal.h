@@ -104,7 +104,12 @@ typedef struct zs_setup_params {
   int cull_back;
   uint32_t id, rgb;
   uint32_t depth_bias;  /* depth units (2^-32) to pull the plane nearer */
+  int prefetch_write;   /* ask for the batch's lines ahead of the writes (setup.c) */
 } zs_setup_params;
+
+/* Whether the CPU has PREFETCHW (cpuid): set-up asks for the batch's lines
+ * with it when the device has threads. */
+int zs_cpu_has_prefetchw(void);
 
 typedef enum zs_setup_result {
   ZS_SETUP_DRAWN,
@@ -397,6 +402,7 @@ struct zs_device {
   zs_depthsort depthsort;
   /* threads: zbuffer mode walks large batches in bands of rows */
   struct zs_pool *pool;
+  int prefetchw;                  /* the CPU has PREFETCHW (setup.c) */
   zs_walk_scratch *band_scratch;  /* one per band */
   zs_batch *setup_parts;          /* a large draw's faces set up by thread
                                    * t > 0 (thread 0 uses batch) */

@@ -70,6 +70,28 @@ int zs_batch_append(zs_batch *dst, const zs_batch *src) {
   return 1;
 }
 
+/* Asks for the cache line at p, to be written (PREFETCHW).  With two
+ * threads or more a batch's lines were last read by the other cores, which
+ * walked the chunk set up in it before; a store to such a line waits for
+ * them to give it up, and set-up, which writes a polygon and its edges a
+ * face, stalled on it (README, "Two threads on the plant"). */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <cpuid.h>
+
+int zs_cpu_has_prefetchw(void) {
+  unsigned a, b, c, d;
+  return __get_cpuid(0x80000001u, &a, &b, &c, &d) && (c & (1u << 8)) != 0;
+}
+
+static inline void prefetch_write(const void *p) {
+  __asm__ volatile("prefetchw %0" : : "m"(*(const char *)p));
+}
+#else
+int zs_cpu_has_prefetchw(void) { return 0; }
+
+static inline void prefetch_write(const void *p) { __builtin_prefetch(p, 1, 3); }
+#endif
+
 typedef struct plane {
   int32_t ox, oy;
   int64_t zc, dzdx, dzdy;
@@ -160,6 +182,10 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   int32_t row0 = zs_first_row(Y[top]), row1 = zs_last_row(Y[bot]);
   if (row0 > row1) return 1; /* between two rows of pixel centres */
   if (!reserve(b, 1, n)) return 0;
+  if (sp->prefetch_write) { /* a few faces ahead */
+    if (b->npolys + 16 < b->cap_polys) prefetch_write(&b->polys[b->npolys + 16]);
+    if (b->nedges + 64 < b->cap_edges) prefetch_write(&b->edges[b->nedges + 64]);
+  }
 
   zs_poly *p = &b->polys[b->npolys];
   p->id = sp->id;
