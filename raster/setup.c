@@ -25,6 +25,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <cpuid.h> /* PREFETCHW, below */
+#endif
 
 #include "raster/grow.h"
 #include "raster/internal.h"
@@ -76,8 +79,6 @@ int zs_batch_append(zs_batch *dst, const zs_batch *src) {
  * them to give it up, and set-up, which writes a polygon and its edges a
  * face, stalled on it (README, "Two threads on the plant"). */
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <cpuid.h>
-
 int zs_cpu_has_prefetchw(void) {
   unsigned a, b, c, d;
   return __get_cpuid(0x80000001u, &a, &b, &c, &d) && (c & (1u << 8)) != 0;
@@ -112,9 +113,12 @@ static int binary_exponent(double v) {
 
 /* The fixed-point plane through vertices a, b, c (indices into X, Y, Z),
  * whose doubled area det must be non-zero; box is the polygon's extent in
- * pixels. */
-__attribute__((always_inline)) static inline plane make_plane(const int32_t *X, const int32_t *Y, const double *Z,
-                        int a, int b, int c, double box_w, double box_h) {
+ * pixels.  Inlined: called, it returned the plane through memory, two
+ * 8-byte stores read back by one 16-byte load that must wait for the
+ * store queue to drain (README, "Two threads on the plant"). */
+__attribute__((always_inline)) static inline plane
+make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, int c,
+           double box_w, double box_h) {
   double dx1 = (double)X[b] - X[a], dy1 = (double)Y[b] - Y[a];
   double dx2 = (double)X[c] - X[a], dy2 = (double)Y[c] - Y[a];
   double dz1 = Z[b] - Z[a], dz2 = Z[c] - Z[a];
