@@ -46,7 +46,6 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
   zs_device *d = calloc(1, sizeof *d);
   if (!d) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   d->cfg = *cfg;
-  d->prefetchw = zs_cpu_has_prefetchw();
   size_t w = (size_t)cfg->width, px = w * (size_t)cfg->height;
   int ok = 1;
   if (cfg->algo == ZS_ALGO_ZBUFFER) { /* else scanline or depthsort: one row */
@@ -74,6 +73,7 @@ zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
     d->band_scratch = calloc(64, sizeof *d->band_scratch); /* one per band */
     d->setup_parts = calloc((size_t)cfg->threads, sizeof *d->setup_parts);
     ok = d->pool && d->band_scratch && d->setup_parts;
+    d->prefetch_write = zs_cpu_has_prefetchw();
     if (!ok) {
       zs_device_destroy(d);
       return zs_error_set(err, ZS_ERR_NOMEM, "threads: cannot start %d threads", cfg->threads);
@@ -306,7 +306,7 @@ void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs
   p->need_eye = p->flat || d->cfg.algo == ZS_ALGO_DEPTHSORT;
   p->sp = (zs_setup_params){d->cfg.width, d->cfg.height, d->cfg.cull_back && k != ZS_KERNEL_QUERY,
                             0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0,
-                            d->pool != NULL && d->prefetchw};
+                            d->prefetch_write};
 }
 
 /* Vertices [i0, i1): to eye space (for the normals of flat shading and

@@ -402,7 +402,7 @@ struct zs_device {
   zs_depthsort depthsort;
   /* threads: zbuffer mode walks large batches in bands of rows */
   struct zs_pool *pool;
-  int prefetchw;                  /* the CPU has PREFETCHW (setup.c) */
+  int prefetch_write;             /* threads, and the CPU has PREFETCHW (setup.c) */
   zs_walk_scratch *band_scratch;  /* one per band */
   zs_batch *setup_parts;          /* a large draw's faces set up by thread
                                    * t > 0 (thread 0 uses batch) */

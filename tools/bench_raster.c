@@ -273,12 +273,18 @@ typedef struct pinned_frame {
   zs_error err;
 } pinned_frame;
 
+/* Pinning is Linux's (sched.h, pthread_setaffinity_np); elsewhere no
+ * CPU is pinned and the table shows no ceiling. */
 static void *render_pinned(void *arg) {
   pinned_frame *p = arg;
+#ifdef __linux__
   cpu_set_t set;
   CPU_ZERO(&set);
   CPU_SET(p->cpu, &set);
   p->pinned = pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+#else
+  p->pinned = 0;
+#endif
   double t0 = zs_wall_ms();
   p->st = zs_frame_render_on(p->dev, p->s, p->view, p->proj, 0, NULL, NULL, &p->err);
   p->ms = zs_wall_ms() - t0;
@@ -288,12 +294,17 @@ static void *render_pinned(void *arg) {
 /* The first n CPUs this process may run on, into cpus; 0 when it may use
  * fewer than n. */
 static int first_cpus(int n, int *cpus) {
+#ifdef __linux__
   cpu_set_t set;
   if (sched_getaffinity(0, sizeof set, &set) != 0) return 0;
   int k = 0;
   for (int c = 0; c < CPU_SETSIZE && k < n; c++)
     if (CPU_ISSET(c, &set)) cpus[k++] = c;
   return k == n;
+#else
+  (void)n, (void)cpus;
+  return 0;
+#endif
 }
 
 /* One frame on each of the pinned devices at once; the times into ms[]
@@ -321,14 +332,12 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
   double *ceiling = malloc((size_t)o->repeat * sizeof *ceiling);
   double *share = malloc((size_t)o->repeat * sizeof *share);
   double *cpu_ms = malloc((size_t)o->repeat * (size_t)n * sizeof *cpu_ms); /* [cpu][round] */
-  double *fast = malloc((size_t)o->repeat * sizeof *fast);
-  double *slow = malloc((size_t)o->repeat * sizeof *slow);
   zs_device *dev[2] = {NULL, NULL};
   pinned_frame pf[MAX_PINNED];
   memset(pf, 0, sizeof pf);
   int cpus[MAX_PINNED];
   int pinned = n <= MAX_PINNED && first_cpus(n, cpus);
-  zs_status st = !many || !ratio || !ceiling || !share || !cpu_ms || !fast || !slow
+  zs_status st = !many || !ratio || !ceiling || !share || !cpu_ms
                      ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory")
                      : ZS_OK;
   for (int d = 0; d < 2 && !st; d++) {
@@ -353,12 +362,9 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
     if ((st = render_on_each_cpu(pf, n, &ok, err))) break;
     pinned = ok;
     double rate = 0.0;
-    fast[k] = slow[k] = pf[0].ms;
     for (int i = 0; i < n; i++) {
       cpu_ms[(size_t)i * (size_t)o->repeat + (size_t)k] = pf[i].ms;
       rate += 1.0 / pf[i].ms;
-      if (pf[i].ms < fast[k]) fast[k] = pf[i].ms;
-      if (pf[i].ms > slow[k]) slow[k] = pf[i].ms;
     }
     ceiling[k] = ms[k] * rate;
     share[k] = ratio[k] / ceiling[k];
@@ -393,8 +399,6 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
   free(ceiling);
   free(share);
   free(cpu_ms);
-  free(fast);
-  free(slow);
   return st;
 }
 
