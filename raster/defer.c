@@ -136,9 +136,17 @@ zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16
  * Two kinds of task: set-up of a chunk (a run of consecutive draws), and
  * the walk of one band over one chunk.  Band b walks chunk c once chunk c
  * is set up and band b has walked chunk c - 1, so every pixel still sees
- * the draws in issue order.  A free thread takes a walk when one is ready
- * (the chunk's polygons are still in the caches) and a set-up otherwise;
- * it sleeps only while every task it could take waits on one running. */
+ * the draws in issue order.  Each band has an owner, the task (thread)
+ * that takes its walks first: task t owns a run of nbands / nthreads
+ * bands in a row, so a band's rows of the frame stay in one core's caches
+ * from chunk to chunk.  A free task takes, in turn of preference, a ready
+ * walk of a band it owns (the chunk's polygons are still in the caches),
+ * a set-up, a ready walk of another task's band; it sleeps only while
+ * every task it could take waits on one running.  When any task took any
+ * ready band, a band's rows went back and forth between the cores: on the
+ * plant at 2 threads the load of the old depth in the span fill held 15 %
+ * of the walk's samples (perf, cpu-clock), against 11 % at 1 thread and
+ * 10 % with owners (README: the speed-up, before and after). */
 
 typedef struct flush_job {
   zs_device *d;
@@ -147,6 +155,7 @@ typedef struct flush_job {
   zs_target t;
   int nbands, row0, rows;      /* bands split rows row0 .. row0 + rows - 1 */
   int nslots;                   /* chunk c is set up in batch c % nslots */
+  int nthreads;                 /* tasks; task t owns the bands band_owner gives t */
   int ok[MAX_BANDS];
   /* the flow, under q->lock */
   int next_setup;               /* the next chunk to set up */
@@ -251,23 +260,32 @@ static int slot_free(const flush_job *j, int c) {
   return 1;
 }
 
-/* A band free to walk its next chunk, or -1. */
-static int ready_band(const flush_job *j) {
+/* The task that owns band b: runs of bands in a row, one a task. */
+static int band_owner(const flush_job *j, int b) {
+  return (int)((int64_t)b * j->nthreads / j->nbands);
+}
+
+/* A band free to walk its next chunk, or -1: among the bands task owns
+ * when own is set, else among the others. */
+static int ready_band(const flush_job *j, int task, int own) {
   for (int b = 0; b < j->nbands; b++) {
     int c = j->band_next[b];
-    if (!j->band_busy[b] && c <= j->last_chunk && j->set_up[c]) return b;
+    if ((band_owner(j, b) == task) == own && !j->band_busy[b] && c <= j->last_chunk &&
+        j->set_up[c])
+      return b;
   }
   return -1;
 }
 
 /* One thread's share of the flush: tasks until every band is through. */
 static void flush_worker(void *ctx, int task) {
-  (void)task;
   flush_job *j = ctx;
   zs_deferred *q = j->q;
   pthread_mutex_lock(&q->lock);
   while (j->bands_left > 0) {
-    int band = ready_band(j);
+    int band = ready_band(j, task, 1);
+    int setup = j->next_setup <= j->last_chunk && slot_free(j, j->next_setup);
+    if (band < 0 && !setup) band = ready_band(j, task, 0);
     if (band >= 0) {
       int c = j->band_next[band];
       j->band_busy[band] = 1;
@@ -280,7 +298,7 @@ static void flush_worker(void *ctx, int task) {
         j->band_next[band] = MAX_CHUNKS; /* through */
         j->bands_left--;
       }
-    } else if (j->next_setup <= j->last_chunk && slot_free(j, j->next_setup)) {
+    } else if (setup) {
       int c = j->next_setup++;
       pthread_mutex_unlock(&q->lock);
       setup_chunk(j, c);
@@ -315,6 +333,7 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   j->nslots = DEFER_SLOTS_PER_THREAD * d->cfg.threads;
   if (j->nslots > MAX_CHUNKS) j->nslots = MAX_CHUNKS;
   j->nbands = nbands < 1 ? 1 : nbands;
+  j->nthreads = d->cfg.threads;
   if (!zs_grow((void **)&q->counts, &q->cap_counts, (int64_t)j->nbands * q->n,
                sizeof *q->counts))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
