@@ -17,7 +17,7 @@ int cull_churn_begin(zs_churn *ch, int32_t n) {
                            sizeof(uint64_t)};
     int32_t cap = ch->cap;
     for (size_t k = 0; k < sizeof size / sizeof size[0]; k++) {
-      cap = ch->cap;
+      cap = ch->cap; /* each array grows from the same capacity to the same */
       if (!zs_grow(arr[k], &cap, n, size[k])) return 0;
     }
     ch->cap = cap;

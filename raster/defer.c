@@ -284,7 +284,8 @@ static void flush_worker(void *ctx, int task) {
   pthread_mutex_lock(&q->lock);
   while (j->bands_left > 0) {
     int band = ready_band(j, task, 1);
-    int setup = j->next_setup <= j->last_chunk && slot_free(j, j->next_setup);
+    /* a set-up only when none of its own bands is ready */
+    int setup = band < 0 && j->next_setup <= j->last_chunk && slot_free(j, j->next_setup);
     if (band < 0 && !setup) band = ready_band(j, task, 0);
     if (band >= 0) {
       int c = j->band_next[band];
