@@ -147,12 +147,13 @@ zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16
  * bands in a row, so a band's rows of the frame stay in one core's caches
  * from chunk to chunk.  A free task takes, in turn of preference, a ready
  * walk of a band it owns (the chunk's polygons are still in the caches),
- * a set-up, a ready walk of another task's band; it sleeps only while
- * every task it could take waits on one running.  When any task took any
- * ready band, a band's rows went back and forth between the cores: on the
- * plant at 2 threads the load of the old depth in the span fill held 15 %
- * of the walk's samples (perf, cpu-clock), against 11 % at 1 thread and
- * 10 % with owners (README: the speed-up, before and after). */
+ * a set-up, a ready walk of another task's band; it waits (polling, then
+ * asleep: FLUSH_SPINS) only while every task it could take waits on one
+ * running.  When any task took any ready band, a band's rows went back
+ * and forth between the cores: on the plant at 2 threads the load of the
+ * old depth in the span fill held 15 % of the walk's samples (perf,
+ * cpu-clock), against 11 % at 1 thread and 10 % with owners (README: the
+ * speed-up, before and after). */
 
 typedef struct flush_job {
   zs_device *d;
