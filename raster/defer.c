@@ -143,7 +143,7 @@ zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16
  * the walk of one band over one chunk.  Band b walks chunk c once chunk c
  * is set up and band b has walked chunk c - 1, so every pixel still sees
  * the draws in issue order.  Each band has an owner, the task (thread)
- * that takes its walks first: task t owns a run of nbands / nthreads
+ * that takes its walks first: task t owns a run of nbands / threads
  * bands in a row, so a band's rows of the frame stay in one core's caches
  * from chunk to chunk.  A free task takes, in turn of preference, a ready
  * walk of a band it owns (the chunk's polygons are still in the caches),
@@ -162,7 +162,6 @@ typedef struct flush_job {
   zs_target t;
   int nbands, row0, rows;      /* bands split rows row0 .. row0 + rows - 1 */
   int nslots;                   /* chunk c is set up in batch c % nslots */
-  int nthreads;                 /* tasks; task t owns the bands band_owner gives t */
   int ok[MAX_BANDS];
   /* the flow, under q->lock */
   int next_setup;               /* the next chunk to set up */
@@ -171,7 +170,6 @@ typedef struct flush_job {
   uint8_t set_up[MAX_CHUNKS];   /* chunk set up (whole, or up to its failed draw) */
   int band_next[MAX_BANDS];     /* the next chunk each band walks */
   uint8_t band_busy[MAX_BANDS];
-  int sleepers;                 /* tasks waiting on q->changed */
   _Atomic uint32_t changes;     /* bumped under q->lock at each change of the flow */
 } flush_job;
 
@@ -281,7 +279,7 @@ static int slot_free(const flush_job *j, int c) {
 
 /* The task that owns band b: runs of bands in a row, one a task. */
 static int band_owner(const flush_job *j, int b) {
-  return (int)((int64_t)b * j->nthreads / j->nbands);
+  return (int)((int64_t)b * j->d->cfg.threads / j->nbands);
 }
 
 /* A band free to walk its next chunk, or -1: among the bands task owns
@@ -344,15 +342,12 @@ static void flush_worker(void *ctx, int task) {
            i++)
         cpu_relax();
       pthread_mutex_lock(&q->lock);
-      if (atomic_load_explicit(&j->changes, memory_order_relaxed) == seen) {
-        j->sleepers++;
+      if (atomic_load_explicit(&j->changes, memory_order_relaxed) == seen)
         pthread_cond_wait(&q->changed, &q->lock);
-        j->sleepers--;
-      }
       continue;
     }
     atomic_fetch_add_explicit(&j->changes, 1, memory_order_release);
-    if (j->sleepers > 0) pthread_cond_broadcast(&q->changed);
+    pthread_cond_broadcast(&q->changed); /* a system call only when a task sleeps */
   }
   pthread_mutex_unlock(&q->lock);
 }
@@ -385,7 +380,6 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   j->nslots = DEFER_SLOTS_PER_THREAD * d->cfg.threads;
   if (j->nslots > MAX_CHUNKS) j->nslots = MAX_CHUNKS;
   j->nbands = nbands < 1 ? 1 : nbands;
-  j->nthreads = d->cfg.threads;
   if (!zs_grow((void **)&q->counts, &q->cap_counts, (int64_t)j->nbands * q->n,
                sizeof *q->counts))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");

@@ -307,8 +307,9 @@ static int first_cpus(int n, int *cpus) {
 #endif
 }
 
-/* One frame on each of the pinned devices at once; the times into ms[]
- * (0 when a thread could not be started or pinned: no ceiling). */
+/* One frame on each of the pinned devices at once, its time into pf[i].ms;
+ * *pinned is 0 when a thread could not be started or pinned (no
+ * ceiling). */
 static zs_status render_on_each_cpu(pinned_frame *pf, int n, int *pinned, zs_error *err) {
   pthread_t th[MAX_PINNED];
   int started = 0;
