@@ -117,8 +117,11 @@ static const bad_option bad_options[] = {
     {{"render", "--eye", "0,10,0", "--target", "0,0,0", "--up", "0,1,0", NULL},
      "up 0,1,0: zero or parallel to the view direction"},
     {{"render", "--eye", "1,1,1", "--target", "1,1,1", NULL}, "eye and target are the same point"},
-    {{"render", "-o", "/nonexistent-dir/x.png", NULL}, "cannot write in /nonexistent-dir"},
-    {{"render", "--depth", "/nonexistent-dir/x.pfm", NULL}, "cannot write in /nonexistent-dir"},
+    {{"render", "-o", "/nonexistent-dir/x.png", NULL},
+     "-o /nonexistent-dir/x.png: no such directory: /nonexistent-dir"},
+    {{"render", "--depth", "/nonexistent-dir/x.pfm", NULL},
+     "--depth /nonexistent-dir/x.pfm: no such directory: /nonexistent-dir"},
+    {{"render", "-o", "/", NULL}, "-o /: is a directory"},
     {{"render", "--frobnicate", NULL}, "unknown option '--frobnicate'"},
     {{"render", "--algo", "painter", NULL}, "--algo: expected zbuffer, scanline or depthsort"},
     {{"render", "--style", "sketch", NULL}, "--style: expected solid or hidden-line"},
@@ -179,6 +182,7 @@ START_TEST(bad_option_refused) {
   const bad_option *b = &bad_options[_i];
   char png[4096];
   snprintf(png, sizeof png, "%s/cli-opt-%d.png", ZS_BINARY_DIR, _i);
+  unlink(png); /* an earlier run's image must not read as this run's */
   /* "render -o PNG" first, unless the case names its own output */
   const char *args[16];
   int n = 0, has_o = 0;

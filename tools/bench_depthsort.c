@@ -178,25 +178,29 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
       goto fail;
     }
   zs_scene_free(&s);
-  printf("depth sort with frame coherence: %s, %d frames per motion at %dx%d\n", spec, frames, w, h);
-  printf("%-10s %8s %10s %14s %18s %14s %18s %12s\n", "motion", "faces", "reused_pct",
+  FILE *report = csv_path && zs_out_is_stdout(csv_path) ? stderr : stdout;
+  fprintf(report, "depth sort with frame coherence: %s, %d frames per motion at %dx%d\n", spec, frames, w, h);
+  fprintf(report, "%-10s %8s %10s %14s %18s %14s %18s %12s\n", "motion", "faces", "reused_pct",
          "full_sort_ms", "coherent_sort_ms", "full_cmp", "coherent_cmp", "diff_pixels");
   for (int m = 0; m < 4; m++)
-    printf("%-10s %8.0f %10.2f %14.3f %18.3f %14.0f %18.0f %12.1f\n", motions[m], rows[m].faces,
+    fprintf(report, "%-10s %8.0f %10.2f %14.3f %18.3f %14.0f %18.0f %12.1f\n", motions[m], rows[m].faces,
            rows[m].reused_pct, rows[m].full_ms, rows[m].coherent_ms, rows[m].full_cmp,
            rows[m].coherent_cmp, rows[m].diff);
   if (csv_path) {
-    char *tmp;
-    FILE *f = zs_out_open(csv_path, &tmp, &err);
-    if (!f) goto fail;
+    zs_out out;
+    if (zs_out_open(&out, csv_path, &err)) {
+      zs_out_error_option(&err, "--csv");
+      goto fail;
+    }
+    FILE *f = out.fp;
     fprintf(f, "motion,faces,reused_pct,full_sort_ms,coherent_sort_ms,full_comparisons,"
                "coherent_comparisons,diff_pixels\n");
     for (int m = 0; m < 4; m++)
       fprintf(f, "%s,%.0f,%.2f,%.4f,%.4f,%.0f,%.0f,%.1f\n", motions[m], rows[m].faces,
               rows[m].reused_pct, rows[m].full_ms, rows[m].coherent_ms, rows[m].full_cmp,
               rows[m].coherent_cmp, rows[m].diff);
-    if (zs_out_commit(f, tmp, csv_path, &err)) goto fail;
-    printf("wrote %s\n", csv_path);
+    if (zs_out_commit(&out, &err)) goto fail;
+    if (report == stdout) fprintf(report, "wrote %s\n", csv_path);
   }
   return 0;
 fail:

@@ -111,8 +111,8 @@ static double us_per_object(const bench_row *r, int k) {
   return r->moving > 0 ? 1000.0 * r->ms[k] / r->moving : 0.0;
 }
 
-static void print_row(const bench_row *r, int frames) {
-  printf("%6d %9.4f %9.4f %8.4f %8.4f %10.1f %10.1f %8.1f %8.1f %7.1f\n", r->moving, r->ms[0],
+static void print_row(FILE *report, const bench_row *r, int frames) {
+  fprintf(report, "%6d %9.4f %9.4f %8.4f %8.4f %10.1f %10.1f %8.1f %8.1f %7.1f\n", r->moving, r->ms[0],
          r->ms[1], us_per_object(r, 0), us_per_object(r, 1),
          per_frame(zs_octree_work_nodes(&r->work[0]), frames),
          per_frame(zs_octree_work_nodes(&r->work[1]), frames),
@@ -122,28 +122,28 @@ static void print_row(const bench_row *r, int frames) {
   fflush(stdout);
 }
 
-static void print_shape(const bench_row *r, const bench_opts *o) {
+static void print_shape(FILE *report, const bench_row *r, const bench_opts *o) {
   static const char *names[2] = {"loose", "plain"};
-  printf("\ntrees after %d frames with %d of %d spheres moving (depth limit %d, split %d):\n",
+  fprintf(report, "\ntrees after %d frames with %d of %d spheres moving (depth limit %d, split %d):\n",
          o->frames, r->moving, o->count, o->depth, o->split);
-  printf("%-6s %5s %6s %6s %11s  objects per level (nodes)\n", "tree", "depth", "nodes",
+  fprintf(report, "%-6s %5s %6s %6s %11s  objects per level (nodes)\n", "tree", "depth", "nodes",
          "leaves", "max/node");
   for (int k = 0; k < 2; k++) {
     const zs_octree_stats *st = &r->stats[k];
-    printf("%-6s %5d %6d %6d %11d ", names[k], st->depth, st->nodes, st->leaves,
+    fprintf(report, "%-6s %5d %6d %6d %11d ", names[k], st->depth, st->nodes, st->leaves,
            st->max_objects);
     for (int l = 0; l <= o->depth; l++)
-      printf(" L%d: %d (%d)", l, st->objects_per_level[l], st->nodes_per_level[l]);
-    if (st->outside) printf("  outside: %d", st->outside);
-    printf("\n");
+      fprintf(report, " L%d: %d (%d)", l, st->objects_per_level[l], st->nodes_per_level[l]);
+    if (st->outside) fprintf(report, "  outside: %d", st->outside);
+    fprintf(report, "\n");
   }
 }
 
 static zs_status write_csv(const char *path, const bench_row *rows, int n, int frames,
                            zs_error *err) {
-  char *tmp;
-  FILE *f = zs_out_open(path, &tmp, err);
-  if (!f) return err->code;
+  zs_out out;
+  if (zs_out_open(&out, path, err)) return err->code;
+  FILE *f = out.fp;
   fprintf(f,
           "moving,loose_ms,plain_ms,loose_us_per_object,plain_us_per_object,"
           "loose_nodes_touched,plain_nodes_touched,loose_scanned,plain_scanned,"
@@ -164,7 +164,7 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, int f
             per_frame(r->work[1].nodes_created, frames), r->stats[0].nodes, r->stats[1].nodes,
             r->stats[0].depth, r->stats[1].depth, r->build_ms[0], r->build_ms[1]);
   }
-  return zs_out_commit(f, tmp, path, err);
+  return zs_out_commit(&out, err);
 }
 
 /* The plot: update time per frame and per moved object, both trees, drawn
@@ -248,31 +248,40 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   }
   if (o.csv && zs_cli_output_path("--csv", o.csv, &err)) goto fail;
   if (o.plot && zs_cli_output_path("--plot", o.plot, &err)) goto fail;
+  FILE *report;
+  const char *outs[] = {o.csv, o.plot};
+  if (zs_out_report(outs, 2, "--csv and --plot", &report, &err)) goto fail;
   if (o.plot && !zs_plot_available()) {
     zs_error_set(&err, ZS_ERR_UNSUPPORTED,
                  "--plot: gnuplot is not installed (apt-get install gnuplot-nox)");
     goto fail;
   }
 
-  printf("octree update, %d spheres (spheres?count=%d&seed=1), depth %d, looseness %g, "
+  fprintf(report, "octree update, %d spheres (spheres?count=%d&seed=1), depth %d, looseness %g, "
          "split %d, median of %d frames\n",
          o.count, o.count, o.depth, o.looseness, o.split, o.frames);
-  printf("%6s %9s %9s %8s %8s %10s %10s %8s %8s %7s\n", "moving", "loose_ms", "plain_ms",
+  fprintf(report, "%6s %9s %9s %8s %8s %10s %10s %8s %8s %7s\n", "moving", "loose_ms", "plain_ms",
          "loose_us", "plain_us", "loose_node", "plain_node", "l_scan", "p_scan", "same%");
-  printf("%6s %9s %9s %8s %8s %10s %10s %8s %8s %7s\n", "", "/frame", "/frame", "/object",
+  fprintf(report, "%6s %9s %9s %8s %8s %10s %10s %8s %8s %7s\n", "", "/frame", "/frame", "/object",
          "/object", "s/frame", "s/frame", "/frame", "/frame", "cell");
   for (int j = 0; j < STEPS; j++) {
     if (run_one(&o, o.count * (j + 1) / STEPS, &rows[j], &err)) goto fail;
-    print_row(&rows[j], o.frames);
+    print_row(report, &rows[j], o.frames);
   }
-  print_shape(&rows[STEPS - 1], &o);
+  print_shape(report, &rows[STEPS - 1], &o);
   if (o.csv) {
-    if (write_csv(o.csv, rows, STEPS, o.frames, &err)) goto fail;
-    printf("wrote %s\n", o.csv);
+    if (write_csv(o.csv, rows, STEPS, o.frames, &err)) {
+      zs_out_error_option(&err, "--csv");
+      goto fail;
+    }
+    if (!zs_out_is_stdout(o.csv)) fprintf(report, "wrote %s\n", o.csv);
   }
   if (o.plot) {
-    if (write_plot(o.plot, rows, STEPS, &o, &err)) goto fail;
-    printf("wrote %s\n", o.plot);
+    if (write_plot(o.plot, rows, STEPS, &o, &err)) {
+      zs_out_error_option(&err, "--plot");
+      goto fail;
+    }
+    if (!zs_out_is_stdout(o.plot)) fprintf(report, "wrote %s\n", o.plot);
   }
   return 0;
 fail:

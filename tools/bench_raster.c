@@ -507,9 +507,9 @@ static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts 
 
 static zs_status write_csv(const char *path, const bench_row *rows, int n, const bench_opts *o,
                            zs_error *err) {
-  char *tmp;
-  FILE *f = zs_out_open(path, &tmp, err);
-  if (!f) return err->code;
+  zs_out out;
+  if (zs_out_open(&out, path, err)) return err->code;
+  FILE *f = out.fp;
   fprintf(f, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,mtri_per_s,"
              "mpix_per_s,instructions_per_frame\n");
   for (int i = 0; i < n; i++) {
@@ -519,19 +519,19 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
     if (o->callgrind) fprintf(f, "%.0f", rows[i].instructions);
     fputc('\n', f);
   }
-  return zs_out_commit(f, tmp, path, err);
+  return zs_out_commit(&out, err);
 }
 
 static zs_status write_md(const char *path, const bench_row *rows, int n, const mesa_row *mrows,
                           int nm, const speedup_row *srows, int ns, const bench_opts *o,
                           zs_error *err) {
-  char *tmp;
-  FILE *f = zs_out_open(path, &tmp, err);
-  if (!f) return err->code;
+  zs_out out;
+  if (zs_out_open(&out, path, err)) return err->code;
+  FILE *f = out.fp;
   write_table(f, rows, n, o, 1);
   if (nm) write_mesa_table(f, mrows, nm, o, 1);
   if (ns) write_speedup_table(f, srows, ns, o, 1);
-  return zs_out_commit(f, tmp, path, err);
+  return zs_out_commit(&out, err);
 }
 
 /* Mtri/s and Mpix/s against the triangles' side, both modes (rows: the
@@ -675,12 +675,18 @@ int zs_cmd_bench_raster(int argc, char **argv) {
                       "--case '%s': no such case (triangles SxS for S = 4, 10, 25, 100, 500; "
                       "builtin:teapots, builtin:city, builtin:plant, builtin:default?level=42)",
                       o.only_case ? o.only_case : "");
-  if (!st) write_table(stdout, rows, n, &o, 0);
-  if (!st && nm) write_mesa_table(stdout, mrows, nm, &o, 0);
-  if (!st && ns) write_speedup_table(stdout, srows, ns, &o, 0);
-  if (!st && o.csv && !(st = write_csv(o.csv, rows, n, &o, &err))) printf("wrote %s\n", o.csv);
-  if (!st && o.md && !(st = write_md(o.md, rows, n, mrows, nm, srows, ns, &o, &err))) printf("wrote %s\n", o.md);
-  if (!st && o.plot && !(st = write_plot(o.plot, rows, &o, &err))) printf("wrote %s\n", o.plot);
+  FILE *report = stdout;
+  const char *outs[] = {o.csv, o.md, o.plot};
+  if (!st) st = zs_out_report(outs, 3, "--csv, --md and --plot", &report, &err);
+  if (!st) write_table(report, rows, n, &o, 0);
+  if (!st && nm) write_mesa_table(report, mrows, nm, &o, 0);
+  if (!st && ns) write_speedup_table(report, srows, ns, &o, 0);
+  if (!st && o.csv && (st = write_csv(o.csv, rows, n, &o, &err))) zs_out_error_option(&err, "--csv");
+  if (!st && o.md && (st = write_md(o.md, rows, n, mrows, nm, srows, ns, &o, &err)))
+    zs_out_error_option(&err, "--md");
+  if (!st && o.plot && (st = write_plot(o.plot, rows, &o, &err))) zs_out_error_option(&err, "--plot");
+  for (int k = 0; k < 3 && !st; k++)
+    if (outs[k] && !zs_out_is_stdout(outs[k])) fprintf(report, "wrote %s\n", outs[k]);
   if (st) {
     fprintf(stderr, "zscan bench raster: %s\n", err.msg);
     return 1;

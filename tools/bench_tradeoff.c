@@ -102,20 +102,20 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
   /* the tables together, each under its command */
   char summary[4200];
   snprintf(summary, sizeof summary, "%s/tradeoff.md", dir);
-  char *tmp;
-  FILE *f = zs_out_open(summary, &tmp, &err);
-  if (!f) goto fail;
+  zs_out out;
+  if (zs_out_open(&out, summary, &err)) goto fail;
+  FILE *f = out.fp;
   for (int k = 0; k < NWALKS; k++) {
     fprintf(f, "%s### %s\n\n```\n$ zscan walk \"%s\" --cull %s --algos %s --step %s%s%s\n```\n\n",
             k ? "\n" : "", walks[k].name, walks[k].scene, methods, modes, walks[k].step,
             size ? " --size " : "", size ? size : "");
     if (zs_append_file(f, path[k][1], &err)) {
-      zs_out_discard(f, tmp);
+      zs_out_discard(&out);
       goto fail;
     }
     fprintf(f, "\n![run time against error: %s](tradeoff-%s.png)\n", walks[k].name, walks[k].name);
   }
-  if (zs_out_commit(f, tmp, summary, &err)) goto fail;
+  if (zs_out_commit(&out, &err)) goto fail;
   printf("wrote %s and, per walk, tradeoff-NAME.csv, .md and .png\n", summary);
   return 0;
 fail:

@@ -31,6 +31,7 @@
 #include "scene/generate.h"
 #include "scene/camera.h"
 #include "tools/clockfile.h"
+#include "tools/outfile.h"
 #include "tools/cli.h"
 #include "tools/frame.h"
 
@@ -364,7 +365,10 @@ int zs_cmd_calibrate(int argc, char **argv) {
   p.query_latency_ns = 0.0; /* the CPU raster is synchronous */
   p.switch_ns = 0.0;
   for (int i = 0; i < NTERMS; i++) printf("%-20s %10.4f ns\n", term_names[i], x[i] * 1e6);
-  if (zs_clockfile_write(out, &p, &err)) goto fail;
+  if (zs_clockfile_write(out, &p, &err)) {
+    zs_out_error_option(&err, "-o");
+    goto fail;
+  }
   printf("wrote %s\n", out);
   return 0;
 fail:

@@ -1,5 +1,7 @@
 #include "tools/cli.h"
 
+#include "tools/outfile.h"
+
 #include "scene/text.h"
 
 #include <errno.h>
@@ -87,15 +89,7 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
 }
 
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err) {
-  if (!*path) return zs_error_set(err, ZS_ERR_ARG, "%s: empty path", opt);
-  char dir[PATH_MAX];
-  const char *slash = strrchr(path, '/');
-  if (!slash) snprintf(dir, sizeof dir, ".");
-  else if (slash == path) snprintf(dir, sizeof dir, "/");
-  else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
-  if (access(dir, W_OK) != 0)
-    return zs_error_set(err, ZS_ERR_IO, "%s: %s: cannot write in %s: %s", opt, path, dir,
-                        strerror(errno));
+  if (zs_out_check(path, err)) return zs_out_error_option(err, opt);
   return ZS_OK;
 }
 

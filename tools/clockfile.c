@@ -82,9 +82,9 @@ void zs_clock_print(FILE *f, const zs_clock_params *p) {
 }
 
 zs_status zs_clockfile_write(const char *path, const zs_clock_params *p, zs_error *err) {
-  char *tmp;
-  FILE *f = zs_out_open(path, &tmp, err);
-  if (!f) return err->code;
+  zs_out out;
+  if (zs_out_open(&out, path, err)) return err->code;
+  FILE *f = out.fp;
   zs_clock_print(f, p);
-  return zs_out_commit(f, tmp, path, err);
+  return zs_out_commit(&out, err);
 }

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tools/outfile.h"
+
 #define RGB_MASK 0xFFFFFFu
 #define DIFF_RED 0xFF0000u
 
@@ -186,7 +188,10 @@ int zs_cmd_diff(int argc, char **argv) {
     zs_error_clear(&err);
     goto done;
   }
-  if (args.out && zs_png_write(args.out, &diff, &err) != ZS_OK) goto done;
+  if (args.out && zs_png_write(args.out, &diff, &err) != ZS_OK) {
+    zs_out_error_option(&err, "-o");
+    goto done;
+  }
 
   printf("pixels_differing %llu of %llu\n", (unsigned long long)res.differing,
          (unsigned long long)res.total);

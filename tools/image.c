@@ -92,34 +92,6 @@ static void unpack_rgb(const unsigned char *bytes, uint32_t *rgb, int width) {
              (uint32_t)bytes[3 * x + 2];
 }
 
-/* ---- Files written under a temporary name (tools/outfile.c) ----
- * A PNG's file and its temporary name travel together through the libpng
- * writer's state. */
-
-typedef struct tmp_file {
-  char *name; /* PATH.tmp.XXXXXX, NULL when closed */
-  FILE *fp;
-} tmp_file;
-
-static zs_status tmpfile_open(tmp_file *f, const char *path, zs_error *err) {
-  f->fp = zs_out_open(path, &f->name, err);
-  return f->fp ? ZS_OK : err->code;
-}
-
-static void tmpfile_discard(tmp_file *f) {
-  if (!f->name) return;
-  zs_out_discard(f->fp, f->name);
-  f->name = NULL;
-  f->fp = NULL;
-}
-
-static zs_status tmpfile_commit(tmp_file *f, const char *path, zs_error *err) {
-  zs_status st = zs_out_commit(f->fp, f->name, path, err);
-  f->name = NULL;
-  f->fp = NULL;
-  return st;
-}
-
 /* ---- libpng callbacks ----
  * The error pointer of every png_struct is a char[REASON_MAX] that receives
  * the message.  Warnings are dropped: the library never prints. */
@@ -138,8 +110,8 @@ static void on_png_warning(png_structp png, png_const_charp msg) {
 /* ---- Writing PNG, row by row ---- */
 
 struct zs_png_stream {
-  char *path;            /* the target */
-  tmp_file file;         /* where the bytes go until the commit */
+  char *path;            /* the target, for messages */
+  zs_out file;           /* where the bytes go (tools/outfile.h) */
   png_structp png;       /* NULL after a failure */
   png_infop info;
   int width, height;
@@ -166,7 +138,7 @@ static void flush_data(png_structp png) {
  * stream stays allocated until zs_png_stream_close. */
 static zs_status stream_fail(zs_png_stream *s, zs_status code, zs_error *err) {
   s->failure = code;
-  tmpfile_discard(&s->file);
+  zs_out_discard(&s->file);
   if (s->png) png_destroy_write_struct(&s->png, &s->info);
   return zs_error_set(err, code, "%s: %s", s->path, s->reason);
 }
@@ -197,7 +169,7 @@ static int png_end(zs_png_stream *s) {
 }
 
 static void stream_free(zs_png_stream *s) {
-  tmpfile_discard(&s->file);
+  zs_out_discard(&s->file);
   if (s->png) png_destroy_write_struct(&s->png, &s->info);
   free(s->bytes);
   free(s->path);
@@ -221,7 +193,7 @@ zs_status zs_png_stream_open(zs_png_stream **out, const char *path, int width,
     stream_free(s);
     return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   }
-  zs_status st = tmpfile_open(&s->file, path, err);
+  zs_status st = zs_out_open(&s->file, path, err);
   if (st != ZS_OK) {
     stream_free(s);
     return st;
@@ -271,7 +243,7 @@ zs_status zs_png_stream_close(zs_png_stream *s, int commit, zs_error *err) {
   } else if (png_end(s)) {
     st = stream_fail(s, ZS_ERR_IO, err);
   } else {
-    st = tmpfile_commit(&s->file, s->path, err);
+    st = zs_out_commit(&s->file, err);
   }
   stream_free(s);
   return st;
@@ -426,8 +398,8 @@ zs_status zs_pfm_write(const char *path, int width, int height,
   size_t row_bytes = 4 * (size_t)width;
   unsigned char *bytes = malloc(row_bytes);
   if (!bytes) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  tmp_file f;
-  zs_status st = tmpfile_open(&f, path, err);
+  zs_out f;
+  zs_status st = zs_out_open(&f, path, err);
   if (st != ZS_OK) {
     free(bytes);
     return st;
@@ -448,8 +420,8 @@ zs_status zs_pfm_write(const char *path, int width, int height,
   if (!ok) {
     st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", path,
                       strerror(errno));
-    tmpfile_discard(&f);
+    zs_out_discard(&f);
     return st;
   }
-  return tmpfile_commit(&f, path, err);
+  return zs_out_commit(&f, err);
 }

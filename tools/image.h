@@ -6,13 +6,11 @@
  *   reading).
  *
  * WRITING FILES
- *   A file is never left half written.  Every writer creates a temporary
- *   file in the target's directory, named PATH.tmp.XXXXXX (mkstemp), and
- *   rename()s it over PATH only once it is complete and closed; on any error
- *   the temporary is removed and PATH is left as it was.  (The data are not
- *   fsync()ed: the rule protects against errors and interrupted runs, not
- *   against power loss.)  The new file gets the mode 0666 minus the umask,
- *   as fopen() would give it.
+ *   Every file goes through the output primitive (tools/outfile.h): a
+ *   regular file is written under a temporary name and renamed over PATH
+ *   only once complete, a symbolic link is followed, a device, FIFO or
+ *   socket is written directly, and "-" is standard output.  On any error
+ *   PATH is left as it was.
  *
  *   PNGs are written deterministically: 8-bit RGB, not interlaced, zlib
  *   level 6, the fixed row filter "Up", and only the IHDR, IDAT and IEND

@@ -1,5 +1,6 @@
 #include "tools/plot.h"
 
+#include "tools/outfile.h"
 #include "tools/spawn.h"
 
 #include <errno.h>
@@ -21,58 +22,65 @@ static void quoted(FILE *f, const char *s) {
   fputc('\'', f);
 }
 
+/* gnuplot draws into a private scratch folder; the finished PNG is then
+ * copied through the output primitive, so a plot's path is treated like
+ * every other output (a link followed, a device written directly). */
 zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
   if (!zs_plot_available())
     return zs_error_set(err, ZS_ERR_IO, "%s: gnuplot is not installed (apt-get install gnuplot-nox)",
                         png);
-  char tmp_png[4200], tmp_gp[4200];
-  snprintf(tmp_png, sizeof tmp_png, "%s.tmp.png", png);
-  snprintf(tmp_gp, sizeof tmp_gp, "%s.tmp.gp", png);
+  const char *tmpdir = getenv("TMPDIR");
+  char dir[4096], tmp_png[4200], tmp_gp[4200];
+  snprintf(dir, sizeof dir, "%s/zscan-plot-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
+  if (!mkdtemp(dir))
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create a scratch folder: %s", png,
+                        strerror(errno));
+  snprintf(tmp_png, sizeof tmp_png, "%s/plot.png", dir);
+  snprintf(tmp_gp, sizeof tmp_gp, "%s/plot.gp", dir);
+  zs_status st = ZS_OK;
   FILE *f = fopen(tmp_gp, "w");
-  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", tmp_gp, strerror(errno));
-  fputs("OUT = ", f);
-  quoted(f, tmp_png);
-  fputs("\n", f);
-  fputs(script, f);
-  if (fclose(f) != 0) {
-    unlink(tmp_gp);
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write", tmp_gp);
+  if (f) {
+    fputs("OUT = ", f);
+    quoted(f, tmp_png);
+    fputs("\n", f);
+    fputs(script, f);
   }
-  char *args[] = {"gnuplot", tmp_gp, NULL};
-  int rc = zs_spawn_wait(args, NULL, NULL);
+  if (!f || fclose(f) != 0) {
+    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write the gnuplot script", png);
+  } else {
+    char *args[] = {"gnuplot", tmp_gp, NULL};
+    if (zs_spawn_wait(args, NULL, NULL) != 0) st = zs_error_set(err, ZS_ERR_IO, "%s: gnuplot failed", png);
+  }
+  zs_out out;
+  if (st == ZS_OK && (st = zs_out_open(&out, png, err)) == ZS_OK) {
+    st = zs_append_file(out.fp, tmp_png, err);
+    if (st == ZS_OK) st = zs_out_commit(&out, err);
+    else zs_out_discard(&out);
+  }
   unlink(tmp_gp);
-  if (rc != 0) {
-    unlink(tmp_png);
-    return zs_error_set(err, ZS_ERR_IO, "%s: gnuplot failed", png);
-  }
-  if (rename(tmp_png, png) != 0) {
-    unlink(tmp_png);
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", png, strerror(errno));
-  }
-  return ZS_OK;
+  unlink(tmp_png);
+  rmdir(dir);
+  return st;
 }
 
 zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
                          const char *ylabel, const double *y, int n, int nseries,
                          const char *const *names, double x0, double dx, int logy, zs_error *err) {
-  char dat[4200];
-  snprintf(dat, sizeof dat, "%s.tmp.dat", png);
-  FILE *f = fopen(dat, "w");
-  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", dat, strerror(errno));
-  for (int i = 0; i < n; i++) {
-    fprintf(f, "%.9g", x0 + i * dx);
-    for (int j = 0; j < nseries; j++) fprintf(f, " %.9g", y[(size_t)i * (size_t)nseries + (size_t)j]);
-    fputc('\n', f);
-  }
-  fclose(f);
-  size_t cap = 4096 + (size_t)nseries * 256;
+  /* the data inline, as a datablock: no data file beside the plot */
+  size_t cap = 4096 + (size_t)nseries * 256 + (size_t)n * (size_t)(nseries + 1) * 18;
   char *script = malloc(cap);
-  if (!script) {
-    unlink(dat);
-    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  if (!script) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  int len = snprintf(script, cap, "$data << EOD\n");
+  for (int i = 0; i < n && len > 0 && (size_t)len < cap; i++) {
+    len += snprintf(script + len, cap - (size_t)len, "%.9g", x0 + i * dx);
+    for (int j = 0; j < nseries && (size_t)len < cap; j++)
+      len += snprintf(script + len, cap - (size_t)len, " %.9g",
+                      y[(size_t)i * (size_t)nseries + (size_t)j]);
+    if ((size_t)len < cap) len += snprintf(script + len, cap - (size_t)len, "\n");
   }
-  int len = snprintf(script, cap,
-                     "set terminal pngcairo size 1000,560 noenhanced\n"
+  if ((size_t)len < cap)
+    len += snprintf(script + len, cap - (size_t)len,
+                     "EOD\nset terminal pngcairo size 1000,560 noenhanced\n"
                      "set output OUT\nset title '%s'\nset xlabel '%s'\nset ylabel '%s'\n"
                      "set key outside right\nset grid\n%splot ",
                      title, xlabel, ylabel, logy ? "set logscale y\n" : "");
@@ -83,11 +91,11 @@ zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
                                          "#bcbd22", "#17becf", "#000000", "#aec7e8"};
   for (int j = 0; j < nseries && len > 0 && (size_t)len < cap; j++)
     len += snprintf(script + len, cap - (size_t)len,
-                    "%s'%s' using 1:%d with lines lw 2 lc rgb '%s' dt %d title '%s'",
-                    j ? ", " : "", dat, j + 2, colour[j % 12], 1 + j / 12, names[j]);
-  if (len > 0 && (size_t)len < cap) snprintf(script + len, cap - (size_t)len, "\n");
-  zs_status st = zs_plot_run(png, script, err);
+                    "%s$data using 1:%d with lines lw 2 lc rgb '%s' dt %d title '%s'",
+                    j ? ", " : "", j + 2, colour[j % 12], 1 + j / 12, names[j]);
+  zs_status st = len > 0 && (size_t)len + 1 < cap
+                     ? (strcat(script, "\n"), zs_plot_run(png, script, err))
+                     : zs_error_set(err, ZS_ERR_NOMEM, "%s: plot script too long", png);
   free(script);
-  unlink(dat);
   return st;
 }

@@ -1,8 +1,8 @@
 /* zscan tools — plots through gnuplot (Debian's gnuplot-nox).
  *
- * The data go to a temporary file, gnuplot draws a PNG to a temporary name
- * in the target's directory, and the PNG is renamed over the target only
- * when gnuplot succeeded: no half-written plot is ever left. */
+ * gnuplot draws into a private scratch folder; the PNG reaches its path
+ * through the output primitive (tools/outfile.h) only when gnuplot
+ * succeeded: no half-written plot is ever left. */
 #ifndef ZS_TOOLS_PLOT_H
 #define ZS_TOOLS_PLOT_H
 
@@ -19,7 +19,7 @@ zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
 
 /* Runs gnuplot on script, which must `set output` to the path it is given
  * as its %s-free variable OUT (the temporary PNG): the script text is
- * prefixed with `OUT = '...'`.  Renames the result over png. */
+ * prefixed with `OUT = '...'`.  The result is written to png. */
 zs_status zs_plot_run(const char *png, const char *script, zs_error *err);
 
 #endif

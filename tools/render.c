@@ -17,6 +17,7 @@
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
+#include "tools/outfile.h"
 #include "tools/viewopts.h"
 
 static const char usage_head[] =
@@ -24,7 +25,7 @@ static const char usage_head[] =
     "  INPUT               FILE.obj, FILE.json (a scene), another model format\n"
     "                      (through assimp), or builtin:NAME[?k=v]: default, teapots,\n"
     "                      spheres, city, plant, cubes (default: the teapot field)\n"
-    "  -o FILE.png         output image (default zscan.png)\n";
+    "  -o FILE.png         output image (default zscan.png; - for standard output)\n";
 static const char usage_tail[] =
     "  --algo zbuffer|scanline|depthsort   hidden-surface mode (default zbuffer)\n"
     "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
@@ -144,6 +145,12 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
     return zs_error_set(err, ZS_ERR_ARG, "--cull needs --algo zbuffer and --style solid");
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
+  /* standard output carries one stream */
+  int to_stdout = zs_out_is_stdout(o->out_png) + (o->out_pfm && zs_out_is_stdout(o->out_pfm));
+  if (to_stdout > 1 || (to_stdout && o->stats))
+    return zs_error_set(err, ZS_ERR_ARG,
+                        "standard output (-) takes one stream: only one of -o -, --depth - "
+                        "and --stats");
   return ZS_OK;
 }
 
@@ -286,8 +293,14 @@ static zs_status run(const render_opts *o, zs_error *err) {
   }
   double median = zs_median(times, o->repeat);
 
-  if ((st = zs_png_write(o->out_png, &im, err))) goto done;
-  if (depth && (st = zs_pfm_write(o->out_pfm, o->view.width, o->view.height, depth, err))) goto done;
+  if ((st = zs_png_write(o->out_png, &im, err))) {
+    zs_out_error_option(err, "-o");
+    goto done;
+  }
+  if (depth && (st = zs_pfm_write(o->out_pfm, o->view.width, o->view.height, depth, err))) {
+    zs_out_error_option(err, "--depth");
+    goto done;
+  }
   int64_t diff_pixels = -1;
   if (o->stats && o->algo == ZS_ALGO_DEPTHSORT) {
     /* the painter's error: pixels whose face differs from the z-buffer's */

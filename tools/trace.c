@@ -23,6 +23,7 @@
 #include "tools/frame.h"
 #include "tools/image.h"
 #include "tools/input.h"
+#include "tools/outfile.h"
 #include "tools/viewopts.h"
 
 static const char usage[] =
@@ -378,6 +379,7 @@ static void write_picture(tracer *t, int y) {
   char path[4200];
   snprintf(path, sizeof path, "%s/scanline-%04d.png", t->o->png_dir, y);
   if (zs_png_write(path, &im, &err)) {
+    zs_out_error_option(&err, "--png-dir");
     t->failed = 1;
     t->err = err;
   }
@@ -441,9 +443,7 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
   }
   if (!o->input) return zs_error_set(err, ZS_ERR_ARG, "missing INPUT (see zscan trace --help)");
   if (o->png_dir) {
-    struct stat st;
-    if (stat(o->png_dir, &st) != 0 || !S_ISDIR(st.st_mode))
-      return zs_error_set(err, ZS_ERR_IO, "--png-dir %s: not a directory", o->png_dir);
+    if (zs_out_dir("--png-dir", o->png_dir, err)) return err->code;
     if ((int64_t)o->view.width * o->view.height * o->scale * o->scale > (int64_t)1 << 26)
       return zs_error_set(err, ZS_ERR_LIMIT,
                           "--png-dir: %dx%d at scale %d makes pictures too large; lower --scale",

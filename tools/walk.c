@@ -65,6 +65,7 @@ static const char usage[] =
 
 typedef struct walk_opts {
   const char *scene, *csv, *plot, *frames_dir, *tradeoff, *md;
+  FILE *report; /* the summary's stream: stdout, or stderr when an output is "-" */
   zs_algo algos[2];
   int nalgos;
   int methods[ZS_CULL_METHODS], nmethods;
@@ -152,10 +153,7 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       if (zs_cli_output_value(argc, argv, &i, &o->plot, err)) return err->code;
     } else if (strcmp(a, "--frames-dir") == 0) {
       VALUE();
-      o->frames_dir = v;
-      char probe[4200];
-      snprintf(probe, sizeof probe, "%s/x", v);
-      if (zs_cli_output_path(a, probe, err)) return err->code;
+      o->frames_dir = v; /* created (with its parents) when the walk starts */
     } else if (strcmp(a, "--clock") == 0) {
       VALUE();
       if (zs_clockfile_load(v, &o->clock, err)) return err->code;
@@ -189,7 +187,11 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   }
   if (!o->scene) return zs_error_set(err, ZS_ERR_ARG, "missing SCENE (see zscan walk --help)");
   if (!have_cull) return zs_error_set(err, ZS_ERR_ARG, "missing --cull (see zscan walk --help)");
-  return ZS_OK;
+  if (o->frames_dir && zs_out_dir("--frames-dir", o->frames_dir, err)) return err->code;
+  /* Standard output carries one stream: the summary, or the one output
+   * named "-" (the summary then goes to standard error). */
+  const char *streams[] = {o->csv, o->md, o->plot, o->tradeoff};
+  return zs_out_report(streams, 4, "--csv, --md, --plot and --tradeoff", &o->report, err);
 }
 
 /* The camera of frame f: the scene's path, or its camera when it has none. */
@@ -227,7 +229,7 @@ static zs_status write_frame(const walk_opts *o, const method_run *r, int f, zs_
   snprintf(path, sizeof path, "%s/%s-%05d.png", o->frames_dir, zs_cull_method_name(r->m), f);
   zs_status st = zs_png_write(path, &im, err);
   zs_image_free(&im);
-  return st;
+  return st ? zs_out_error_option(err, "--frames-dir") : ZS_OK;
 }
 
 /* The GPU's split of the device's frame, in ms: draw, query, switch, idle
@@ -368,8 +370,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   memset(&tree, 0, sizeof tree);
   method_run runs[ZS_CULL_METHODS];
   memset(runs, 0, sizeof runs);
-  FILE *csv = NULL;
-  char *csv_tmp = NULL;
+  FILE *csv = NULL; /* csv_out.fp while the CSV is open */
+  zs_out csv_out;
   uint32_t *ref_ids = NULL, *algo_ids = NULL;
   double *frame_ms = NULL; /* per frame and method, for the plot */
   double *frame_wall = NULL; /* per row (methods, then modes) and frame: the medians */
@@ -410,7 +412,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     clock.query_latency_ns = o->latency_frames * (double)zs_device_frame_ps(runs[0].dev) * 1e-3;
     for (int k = 0; k < o->nmethods; k++)
       if ((st = zs_device_set_clock(runs[k].dev, &clock, err))) goto done;
-    printf("query latency: %.3f ms (%.2f frames of none)\n", clock.query_latency_ns * 1e-6,
+    fprintf(o->report, "query latency: %.3f ms (%.2f frames of none)\n", clock.query_latency_ns * 1e-6,
            o->latency_frames);
   }
   for (int k = 0; k < o->nalgos; k++) {
@@ -428,10 +430,11 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     goto done;
   }
   if (o->csv) {
-    if (!(csv = zs_out_open(o->csv, &csv_tmp, err))) {
-      st = err->code;
+    if ((st = zs_out_open(&csv_out, o->csv, err))) {
+      zs_out_error_option(err, "--csv");
       goto done;
     }
+    csv = csv_out.fp;
     fprintf(csv, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
                  "faces_drawn,objects_drawn,nodes_visited,diff_pixels,"
                  "gpu_draw_ms,gpu_query_ms,gpu_switch_ms,gpu_idle_ms\n");
@@ -522,9 +525,11 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   }
   if (st) goto done;
   if (csv) {
-    FILE *done_csv = csv;
     csv = NULL; /* committed or removed, either way */
-    if ((st = zs_out_commit(done_csv, csv_tmp, o->csv, err))) goto done;
+    if ((st = zs_out_commit(&csv_out, err))) {
+      zs_out_error_option(err, "--csv");
+      goto done;
+    }
   }
 
   /* The paper's Table 2, per frame on average. */
@@ -544,16 +549,16 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   double ideal_ms = 0.0; /* the ideal's modelled ms a frame, when it ran */
   for (int k = 0; k < o->nmethods; k++)
     if (runs[k].m == ZS_CULL_IDEAL) ideal_ms = runs[k].modelled_ms / frames;
-  printf("%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
+  fprintf(o->report, "%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
          (unsigned long long)zs_scene_faces(&s));
-  write_summary(stdout, 0, rows, nrows, ideal_ms);
+  write_summary(o->report, 0, rows, nrows, ideal_ms);
   /* Where each method's modelled frame goes on the GPU: a method that
    * draws less but leaves the GPU idle, or pays in queries and switches,
    * shows it here. */
-  printf("\nthe GPU's share of the modelled frame, ms a frame\n%-13s %9s %9s %9s %9s\n", "method",
+  fprintf(o->report, "\nthe GPU's share of the modelled frame, ms a frame\n%-13s %9s %9s %9s %9s\n", "method",
          "draw", "query", "switch", "idle");
   for (int k = 0; k < o->nmethods; k++)
-    printf("%-13s %9.3f %9.3f %9.3f %9.3f\n", zs_cull_method_name(runs[k].m),
+    fprintf(o->report, "%-13s %9.3f %9.3f %9.3f %9.3f\n", zs_cull_method_name(runs[k].m),
            runs[k].gpu_ms[0] / frames, runs[k].gpu_ms[1] / frames, runs[k].gpu_ms[2] / frames,
            runs[k].gpu_ms[3] / frames);
   for (int k = 0; k < o->nmethods && frames > 1; k++) {
@@ -562,7 +567,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     /* What carrying visibility over from the last frame must cost at the
      * least a method that finds each change with a query (cull/churn.h) */
     const double n = frames - 1;
-    printf("\nideal-box's set against the frame before, objects a frame (frames 2 to %d)\n"
+    fprintf(o->report, "\nideal-box's set against the frame before, objects a frame (frames 2 to %d)\n"
            "  in the set %.1f; entered %.1f (%.1f from outside the frustum); "
            "left %.1f (%.1f to outside the frustum)\n"
            "the least a method that learns from the last frame pays for it over ideal-box, "
@@ -573,14 +578,15 @@ static zs_status run(const walk_opts *o, zs_error *err) {
            r->left_outside / n, r->known_ms / n, r->ranked_ms / n);
   }
   if (o->md) {
-    char *md_tmp;
-    FILE *md = zs_out_open(o->md, &md_tmp, err);
-    if (!md) {
-      st = err->code;
+    zs_out md;
+    if (!(st = zs_out_open(&md, o->md, err))) {
+      write_summary(md.fp, 1, rows, nrows, ideal_ms);
+      st = zs_out_commit(&md, err);
+    }
+    if (st) {
+      zs_out_error_option(err, "--md");
       goto done;
     }
-    write_summary(md, 1, rows, nrows, ideal_ms);
-    if ((st = zs_out_commit(md, md_tmp, o->md, err))) goto done;
   }
   if (o->tradeoff) {
     const char *names[ZS_CULL_METHODS + 2];
@@ -592,20 +598,23 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       model[k] = (alg ? algos[k - o->nmethods].modelled_ms : runs[k].modelled_ms) / frames;
       wrong[k] = (double)(alg ? algos[k - o->nmethods].diff_pixels : runs[k].diff_pixels) / frames;
     }
-    if ((st = write_tradeoff(o->tradeoff, o->scene, names, wall, model, wrong, nrows, err)))
+    if ((st = write_tradeoff(o->tradeoff, o->scene, names, wall, model, wrong, nrows, err))) {
+      zs_out_error_option(err, "--tradeoff");
       goto done;
+    }
   }
   if (o->plot) {
     const char *names[ZS_CULL_METHODS];
     for (int k = 0; k < o->nmethods; k++) names[k] = zs_cull_method_name(runs[k].m);
     char title[512];
     snprintf(title, sizeof title, "%s: modelled frame time (log scale)", o->scene);
-    st = zs_plot_series(o->plot, title, "frame of the path", "modelled ms", frame_ms, frames,
-                        o->nmethods, names, 0, o->step, 1, err);
+    if ((st = zs_plot_series(o->plot, title, "frame of the path", "modelled ms", frame_ms,
+                             frames, o->nmethods, names, 0, o->step, 1, err)))
+      zs_out_error_option(err, "--plot");
   }
 
 done:
-  if (csv) zs_out_discard(csv, csv_tmp);
+  if (csv) zs_out_discard(&csv_out);
   free(ref_ids);
   free(algo_ids);
   free(frame_ms);
