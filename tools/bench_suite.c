@@ -60,7 +60,7 @@ static const char usage[] =
     "              (zscan bench suite --docs docs refreshes docs/RESULTS.md)\n";
 
 /* Every culling method, and the few whose lines a plot can tell apart
- * (hsw, at ten to twenty times the others, would flatten them). */
+ * (hsw, which waits for every answer, would flatten them). */
 static const char all_methods[] =
     "vfc,vfc-box,hsw,chc,chc-prob,chcpp,chcpp-nobatch,chcpp-nodefer,chcpp-nomulti,chcpp-prob,"
     "nohc,ideal-box,ideal,auto";
@@ -692,8 +692,8 @@ static zs_status write_page(const suite *s, const char *path, int docs, zs_error
     }
   }
   if (!st) {
-    fprintf(f, "\nModelled frame time along the two walks, a few methods (hsw, ten to\n"
-               "twenty times the others, left out):\n");
+    fprintf(f, "\nModelled frame time along the two walks, a few methods (hsw, which\n"
+               "waits for every answer, left out: it would flatten the others):\n");
     image(f, s, 2, "the teapots walk, every frame", docs);
     image(f, s, 1, "the plant walk, every frame", docs);
   }
