@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/exactmath.h"
 #include "raster/grow.h"
 #include "raster/raster.h"
 
@@ -65,7 +66,7 @@ double zs_coverage_covered(const zs_coverage *c, const double r[4]) {
   double p = 1.0;
   FOR_EACH_CELL(c, r, cell, overlap, {
     (void)overlap;
-    p *= 1.0 - exp(-*cell);
+    p *= 1.0 - zs_exp(-*cell);
     if (p < 1e-9) return 0.0;
   })
   return p;

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cull/internal.h"
+#include "raster/exactmath.h"
 #include "raster/grow.h"
 
 /* ---- elements ---- */
@@ -358,7 +359,7 @@ int cull_push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem 
 }
 
 /* The chance that an element hidden i frames in a row stays hidden. */
-double cull_keep_hidden(uint32_t i) { return 0.99 - 0.7 * exp(-(double)i); }
+double cull_keep_hidden(uint32_t i) { return 0.99 - 0.7 * zs_exp(-(double)i); }
 
 /* One query over the boxes of members gm[first .. first + n - 1]. */
 static void issue_multiquery(frame_ctx *f, int32_t first, int32_t n) {

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "raster/exactmath.h"
 #include "raster/internal.h"
 
 const char *zs_motion_class_name(zs_motion_class m) {
@@ -171,7 +172,9 @@ static zs_motion_class classify(const double prev[16], const double view[16], do
   }
   /* a rotation about the view axis leaves every z: R's third row is (0,0,1) */
   if (fabs(R[6]) < 1e-9 && fabs(R[7]) < 1e-9) return ZS_MOTION_ROLL;
-  return cosang > cos(2.0 * ZS_PI / 180.0) ? ZS_MOTION_SLOW_ROTATE : ZS_MOTION_FAST;
+  double s2, c2; /* of 2 degrees */
+  zs_sincos_deg(2.0, &s2, &c2);
+  return cosang > c2 ? ZS_MOTION_SLOW_ROTATE : ZS_MOTION_FAST;
 }
 
 static int reserve_ids(zs_depthsort *ds, uint32_t max_id) {

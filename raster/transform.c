@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
+#include "raster/exactmath.h"
 
 void zs_mat_identity(double m[16]) {
   memset(m, 0, 16 * sizeof m[0]);
@@ -43,20 +44,10 @@ void zs_mat_rotate(double m[16], double deg, double x, double y, double z) {
   x /= len;
   y /= len;
   z /= len;
-  /* Exact quarter turns keep exact zeros and ones, so a cube rotated by 90
+  /* Exact at quarter turns: exact zeros and ones, so a cube rotated by 90
    * degrees lands on the same grid points as before. */
   double c, s;
-  double q = fmod(deg, 360.0);
-  if (q < 0) q += 360.0;
-  if (q == 0.0) { c = 1; s = 0; }
-  else if (q == 90.0) { c = 0; s = 1; }
-  else if (q == 180.0) { c = -1; s = 0; }
-  else if (q == 270.0) { c = 0; s = -1; }
-  else {
-    double r = deg * (ZS_PI / 180.0);
-    c = cos(r);
-    s = sin(r);
-  }
+  zs_sincos_deg(deg, &s, &c);
   double t = 1.0 - c;
   m[0] = t * x * x + c;     m[1] = t * x * y - s * z; m[2] = t * x * z + s * y;
   m[4] = t * x * y + s * z; m[5] = t * y * y + c;     m[6] = t * y * z - s * x;
@@ -93,7 +84,9 @@ int zs_mat_look_at(double m[16], const double eye[3], const double target[3],
 
 void zs_mat_perspective(double m[16], double fovy_deg, double aspect,
                         double znear, double zfar) {
-  double f = 1.0 / tan(fovy_deg * (ZS_PI / 360.0));
+  double s, c; /* f = cot(fovy / 2) */
+  zs_sincos_deg(0.5 * fovy_deg, &s, &c);
+  double f = c / s;
   memset(m, 0, 16 * sizeof m[0]);
   m[0] = f / aspect;
   m[5] = f;

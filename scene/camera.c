@@ -2,6 +2,7 @@
 
 #include <math.h>
 
+#include "raster/exactmath.h"
 #include "raster/raster.h"
 
 void zs_camera_default(zs_camera *c) {
@@ -26,10 +27,10 @@ void zs_camera_complete(zs_camera *c, const double lo[3], const double hi[3],
   if (!c->has_eye) {
     const double dir[3] = ZS_CAMERA_DEFAULT_DIR;
     double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    double half_v = c->fovy * (ZS_PI / 360.0);
-    double half_h = atan(tan(half_v) * aspect);
-    double half = half_v < half_h ? half_v : half_h;
-    double dist = 1.05 * radius / sin(half);
+    /* The narrower half angle, by its tangent (tan is monotonic), and
+     * its sine from the tangent: sin = t / sqrt(1 + t^2). */
+    double t = zs_tan_deg(0.5 * c->fovy) * (aspect < 1.0 ? aspect : 1.0);
+    double dist = 1.05 * radius * sqrt(1.0 + t * t) / t;
     for (int i = 0; i < 3; i++) c->eye[i] = c->target[i] + dir[i] / len * dist;
     c->has_eye = 1;
   }

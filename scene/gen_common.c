@@ -6,66 +6,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/exactmath.h"
 #include "raster/raster.h"
 #include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
-/* ---- trigonometry ------------------------------------------------------ */
-
-/* Taylor series of sin and cos on |x| <= pi/4, where the first omitted
- * terms (x^19/19!, x^18/18!) are below 2^-60.  Horner's rule, so only
- * + and *: the same bits under every compiler and C library. */
-static double sin_poly(double x) {
-  double x2 = x * x;
-  double t = 1.0 / 355687428096000.0;                  /* 1/17! */
-  t = 1.0 / 1307674368000.0 - x2 * t;                  /* 1/15! */
-  t = 1.0 / 6227020800.0 - x2 * t;                     /* 1/13! */
-  t = 1.0 / 39916800.0 - x2 * t;                       /* 1/11! */
-  t = 1.0 / 362880.0 - x2 * t;                         /* 1/9!  */
-  t = 1.0 / 5040.0 - x2 * t;                           /* 1/7!  */
-  t = 1.0 / 120.0 - x2 * t;                            /* 1/5!  */
-  t = 1.0 / 6.0 - x2 * t;                              /* 1/3!  */
-  return x - x * x2 * t;
-}
-
-static double cos_poly(double x) {
-  double x2 = x * x;
-  double t = 1.0 / 6402373705728000.0;                 /* 1/18! */
-  t = 1.0 / 20922789888000.0 - x2 * t;                 /* 1/16! */
-  t = 1.0 / 87178291200.0 - x2 * t;                    /* 1/14! */
-  t = 1.0 / 479001600.0 - x2 * t;                      /* 1/12! */
-  t = 1.0 / 3628800.0 - x2 * t;                        /* 1/10! */
-  t = 1.0 / 40320.0 - x2 * t;                          /* 1/8!  */
-  t = 1.0 / 720.0 - x2 * t;                            /* 1/6!  */
-  t = 1.0 / 24.0 - x2 * t;                             /* 1/4!  */
-  t = 0.5 - x2 * t;                                    /* 1/2!  */
-  return 1.0 - x2 * t;
-}
-
-void zs_gen_sincos(double turns, double *s, double *c) {
-  /* Reduce to the nearest quarter turn q and a remainder r in
-   * [-1/8, 1/8] turn; then sin(q/4 + r) by the quadrant's symmetry. */
-  double t = turns - floor(turns);       /* [0, 1) */
-  double q = floor(4.0 * t + 0.5);       /* 0 .. 4 */
-  double r = (t - 0.25 * q) * (2.0 * ZS_PI);
-  double sr = sin_poly(r), cr = cos_poly(r);
-  switch ((int)q & 3) {
-    case 0: *s = sr;  *c = cr;  break;
-    case 1: *s = cr;  *c = -sr; break;
-    case 2: *s = -sr; *c = -cr; break;
-    default: *s = -cr; *c = sr; break;
-  }
-  /* -0.0 would make the bytes of a matrix depend on the path taken. */
-  if (*s == 0.0) *s = 0.0;
-  if (*c == 0.0) *c = 0.0;
-}
-
 /* ---- matrices ---------------------------------------------------------- */
 
 void zs_gen_rotate(double m[16], double turns, double x, double y, double z) {
   double s, c;
-  zs_gen_sincos(turns, &s, &c);
+  zs_sincos_turns(turns, &s, &c);
   double k = 1.0 - c;
   zs_mat_identity(m);
   m[0] = x * x * k + c;     m[1] = x * y * k - z * s; m[2] = x * z * k + y * s;
@@ -79,8 +30,8 @@ void zs_gen_random_rotation(zs_rng *rng, double m[16]) {
   double u3 = zs_rng_uniform(rng);
   double a = sqrt(1.0 - u1), b = sqrt(u1);
   double s2, c2, s3, c3;
-  zs_gen_sincos(u2, &s2, &c2);
-  zs_gen_sincos(u3, &s3, &c3);
+  zs_sincos_turns(u2, &s2, &c2);
+  zs_sincos_turns(u3, &s3, &c3);
   double x = a * s2, y = a * c2, z = b * s3, w = b * c3;
   zs_mat_identity(m);
   m[0] = 1.0 - 2.0 * (y * y + z * z);

@@ -62,7 +62,7 @@ extern const zs_gen_def zs_gen_teapots_def, zs_gen_spheres_def,
 extern const zs_gen_def zs_gen_mesh_defs[];
 extern const int zs_gen_mesh_ndefs;
 
-/* ---- matrices (raster.h conventions; angles through zs_gen_sincos) ----- */
+/* ---- matrices (raster.h conventions; angles through zs_sincos_turns) ----- */
 
 /* Rotation by turns about the unit axis (x, y, z), right-handed (the
  * matrix of glRotate). */

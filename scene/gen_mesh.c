@@ -13,6 +13,7 @@
 #include <string.h>
 #include <stdlib.h>
 
+#include "raster/exactmath.h"
 #include "raster/raster.h"
 #include "scene/builtin.h"
 #include "scene/gen_internal.h"
@@ -117,7 +118,7 @@ zs_status zs_gen_lathe(zs_model *m, const double *profile, int n, int segments,
     free(cs);
     return ZS_ERR_NOMEM;
   }
-  for (int j = 0; j < segments; j++) zs_gen_sincos((double)j / segments, &cs[2 * j], &cs[2 * j + 1]);
+  for (int j = 0; j < segments; j++) zs_sincos_turns((double)j / segments, &cs[2 * j], &cs[2 * j + 1]);
 
   zs_status st = ZS_OK;
   for (int i = 0; i < rings && st == ZS_OK; i++) {
@@ -159,7 +160,7 @@ zs_status zs_gen_sphere(zs_model *m, int slices, int stacks, const double xform[
   /* From the south pole up: angle i / stacks half turns from -y. */
   for (int i = 0; i <= stacks; i++) {
     double s, c;
-    zs_gen_sincos(0.5 * i / stacks, &s, &c);
+    zs_sincos_turns(0.5 * i / stacks, &s, &c);
     profile[2 * i] = s;
     profile[2 * i + 1] = -c;
   }
@@ -187,12 +188,12 @@ zs_status zs_gen_torus(zs_model *m, double major, double minor, double sweep,
   int32_t first = m->mesh.nverts;
   for (int k = 0; k < rings; k++) {
     double sp, cp;
-    zs_gen_sincos(sweep * k / segments, &sp, &cp);
+    zs_sincos_turns(sweep * k / segments, &sp, &cp);
     /* Centre line c = (R - R cos p, R sin p, 0); n1 = (-cos p, sin p, 0)
      * points away from the arc's centre, n2 = +z; n1 x n2 is the tangent. */
     for (int j = 0; j < sides; j++) {
       double sa, ca;
-      zs_gen_sincos((double)j / sides, &sa, &ca);
+      zs_sincos_turns((double)j / sides, &sa, &ca);
       double x = major - major * cp - minor * ca * cp;
       double y = major * sp + minor * ca * sp;
       double z = minor * sa;
@@ -210,7 +211,7 @@ zs_status zs_gen_torus(zs_model *m, double major, double minor, double sweep,
     int32_t *ring;
     if (ring_indices(first + k * sides, sides, &ring)) return ZS_ERR_NOMEM;
     double sp, cp;
-    zs_gen_sincos(sweep * k / segments, &sp, &cp);
+    zs_sincos_turns(sweep * k / segments, &sp, &cp);
     double c[3] = {major - major * cp, major * sp, 0.0};
     zs_status st = cap(m, ring, sides, end, xform, c, rgb, obj);
     free(ring);

@@ -44,6 +44,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/exactmath.h"
 #include "raster/raster.h"
 #include "scene/gen_internal.h"
 
@@ -271,7 +272,7 @@ static int line_to(profile *pr, double r, double y, int steps) {
 static int upper_head(profile *pr, int head, double y) {
   for (int i = 1; i <= head; i++) {
     double s, c;
-    zs_gen_sincos(0.25 * (1.0 - (double)i / head), &s, &c);
+    zs_sincos_turns(0.25 * (1.0 - (double)i / head), &s, &c);
     if (!pt(pr, i == head ? 0.0 : s, y + 0.5 * c)) return 0;
   }
   return 1;
@@ -319,12 +320,12 @@ static zs_status ring_y(zs_model *m, double major, double minor, double y, int a
 static zs_status mesh_boiler(const plant *p, zs_model *m) {
   int around = seg(p, 384, 12), head = seg(p, 48, 3), shell = seg(p, 160, 2);
   double s0, c0;
-  zs_gen_sincos(0.15, &s0, &c0);
+  zs_sincos_turns(0.15, &s0, &c0);
   profile pr = {0};
   int ok = pt(&pr, 0.0, 0.0) && pt(&pr, s0, 0.0);
   for (int i = 0; i <= head && ok; i++) {
     double s, c;
-    zs_gen_sincos(0.15 + 0.1 * i / head, &s, &c);
+    zs_sincos_turns(0.15 + 0.1 * i / head, &s, &c);
     ok = pt(&pr, s, 1.0 - 0.5 * c);
   }
   ok = ok && line_to(&pr, 1.0, 5.5, shell);
@@ -339,7 +340,7 @@ static zs_status mesh_boiler(const plant *p, zs_model *m) {
   /* Manways: short nozzles out of the shell at two heights, four sides. */
   for (int k = 0; k < 8; k++) {
     double sa, ca;
-    zs_gen_sincos(0.125 * k + (k >= 4 ? 0.0625 : 0.0), &sa, &ca);
+    zs_sincos_turns(0.125 * k + (k >= 4 ? 0.0625 : 0.0), &sa, &ca);
     double y = k < 4 ? 1.6 : 4.4;
     const double a[3] = {0.95 * ca, y, -0.95 * sa}, b[3] = {1.2 * ca, y, -1.2 * sa};
     TRY(rod(m, a, b, 0.12, seg(p, 48, 6), BOILER_RGB));
@@ -461,7 +462,7 @@ static zs_status mesh_hx(const plant *p, zs_model *m) {
   int ok = pt(&pr, 0.0, 0.0);
   for (int i = 1; i <= head && ok; i++) {
     double s, c;
-    zs_gen_sincos(0.25 * i / head, &s, &c);
+    zs_sincos_turns(0.25 * i / head, &s, &c);
     ok = pt(&pr, s, 0.5 - 0.5 * c);
   }
   ok = ok && line_to(&pr, 1.0, 0.9, 1) && pt(&pr, 1.12, 0.9) && pt(&pr, 1.12, 1.05) &&
@@ -533,7 +534,7 @@ static zs_status mesh_flange(const plant *p, zs_model *m) {
   TRY(lathe(m, &pr, seg(p, 48, 8), 0, NULL, 0x808080u));
   for (int k = 0; k < 8; k++) {
     double s, c;
-    zs_gen_sincos((k + 0.5) / 8.0, &s, &c);
+    zs_sincos_turns((k + 0.5) / 8.0, &s, &c);
     double x = 1.5 * c, z = -1.5 * s;
     const double a[3] = {x, -0.5, z}, b[3] = {x, 0.5, z};
     TRY(rod(m, a, b, 0.09, 6, BOLT_RGB));
@@ -660,8 +661,8 @@ static zs_status mesh_tower(const plant *p, zs_model *m) {
   TRY(lathe(m, &pr, around, 0, NULL, TOWER_RGB));
   for (int k = 0; k < 72; k++) {
     double s0, c0, s1, c1;
-    zs_gen_sincos(k / 72.0, &s0, &c0);
-    zs_gen_sincos((k + (k % 2 ? -1.0 : 1.0)) / 72.0, &s1, &c1);
+    zs_sincos_turns(k / 72.0, &s0, &c0);
+    zs_sincos_turns((k + (k % 2 ? -1.0 : 1.0)) / 72.0, &s1, &c1);
     const double foot[3] = {40.0 * c0, 0.0, -40.0 * s0}, top[3] = {39.7 * c1, 10.0, -39.7 * s1};
     TRY(rod(m, foot, top, 0.35, seg(p, 12, 4), TOWER_RGB));
   }

@@ -15,11 +15,9 @@
  * DETERMINISM
  *   Every random choice draws from one zs_rng (raster/rng.h) seeded with
  *   the spec's seed (default ZS_GEN_DEFAULT_SEED), and every angle goes
- *   through zs_gen_sincos, which uses only + - * / and floor: the same spec
- *   gives the same bytes (vertices, matrices, colours, path keys) on every
- *   run, compiler, optimisation level and C library.  (The one exception is
- *   "default", which keeps the builtin's matrices, made with the C
- *   library's sin and cos: the same on every run and build of one machine.)
+ *   through zs_sincos_turns (raster/exactmath.h), from + - * / only: the
+ *   same spec gives the same bytes (vertices, matrices, colours, path keys)
+ *   on every run, compiler, optimisation level and C library.
  *   Two draws never share one expression: C leaves the order in which a
  *   call's arguments are evaluated open, and gcc and clang differ.
  *
@@ -157,12 +155,6 @@ typedef struct zs_gen_counts {
 } zs_gen_counts;
 
 void zs_gen_count(const zs_scene *s, zs_gen_counts *out);
-
-/* sin and cos of an angle given in turns (1 turn = 360 degrees), from
- * + - * / and floor only, so the bytes never depend on the C library or
- * on constant folding.  Exact at multiples of a quarter turn; within 2 ulp
- * elsewhere. */
-void zs_gen_sincos(double turns, double *s, double *c);
 
 /* ---- primitives (scene/gen_mesh.c) -------------------------------------
  * Each appends to m, colour rgb, object obj (-1: none), every vertex

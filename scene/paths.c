@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/exactmath.h"
 #include "raster/raster.h"
 
 const char zs_path_names[] = "static, translate, roll, yaw, fast";
@@ -72,14 +73,14 @@ static void make_key(path_kind kind, const zs_camera *base, const view_frame *v,
     s = ZS_PATH_FAST_STEP * zigzag(f) * v->dist;
     break;
   case PATH_ROLL: {
-    double a = ZS_PATH_ROLL_DEG * f * (ZS_PI / 180.0);
-    double ca = cos(a), sa = sin(a);
+    double ca, sa;
+    zs_sincos_deg(ZS_PATH_ROLL_DEG * f, &sa, &ca);
     for (int i = 0; i < 3; i++) k->up[i] = ca * v->up[i] + sa * v->right[i];
     return;
   }
   case PATH_YAW: {
-    double b = ZS_PATH_YAW_DEG * f * (ZS_PI / 180.0);
-    double cb = cos(b), sb = sin(b);
+    double cb, sb;
+    zs_sincos_deg(ZS_PATH_YAW_DEG * f, &sb, &cb);
     for (int i = 0; i < 3; i++)
       k->target[i] = base->eye[i] + v->dist * (cb * v->fwd[i] - sb * v->right[i]);
     return;

@@ -36,8 +36,8 @@
  *                1, 2, 1, 0, -1, -2, -1 repeating (period 8), up_f = u.
  *                Most of the picture changes every frame (paper: 11.91 %
  *                old).
- * Angles are computed as sin/cos of (k degrees * pi / 180) from the C
- * library; the same build gives the same bytes on every run.
+ * Angles go through zs_sincos_deg (raster/exactmath.h): the same bytes
+ * with every compiler and C library.
  */
 #ifndef ZS_SCENE_PATHS_H
 #define ZS_SCENE_PATHS_H

@@ -18,6 +18,7 @@
 
 #include "cull/cull.h"
 #include "cull/octree.h"
+#include "raster/exactmath.h"
 #include "raster/raster.h"
 #include "scene/scene.h"
 #include "tools/cli.h"
@@ -276,10 +277,10 @@ static void add_labels(char *script, size_t cap, size_t *len, const char *const 
       order[j] = order[j - 1];
       order[j - 1] = t;
     }
-  const double gap = 0.05 * (log10(yhi) - log10(ylo));
+  const double gap = 0.05 * (zs_log10(yhi) - zs_log10(ylo));
   for (int a = 0; a < n; a++) {
     int i = order[a];
-    double l = log10(v[i] > 0 ? v[i] : ylo);
+    double l = zs_log10(v[i] > 0 ? v[i] : ylo);
     for (int b = 0; b < a; b++) {
       int j = order[b];
       if (fabs(x[j] - x[i]) < 0.15 * xspan && l < lab[j] + gap) l = lab[j] + gap;
@@ -289,7 +290,7 @@ static void add_labels(char *script, size_t cap, size_t *len, const char *const 
   for (int i = 0; i < n; i++)
     *len += (size_t)snprintf(script + *len, *len < cap ? cap - *len : 0,
                              "set label %d \"%s  %.3g\" at %.6g,%.6g offset 1.2,0 left font ',9'\n",
-                             i + 1, names[i], v[i], x[i], pow(10.0, lab[i]));
+                             i + 1, names[i], v[i], x[i], zs_exp10(lab[i]));
 }
 
 static zs_status write_tradeoff(const char *path, const char *scene, const char *const *names,

@@ -1,0 +1,43 @@
+/* zscan — the one trigonometry, exponential and logarithm of the code base.
+ *
+ * glibc, musl and macOS round sin, cos, tan, exp and log differently, so a
+ * camera or a cost that used them could change its bytes with the C
+ * library.  These are built from + - * / and floor, frexp and ldexp only
+ * (all exact in IEEE arithmetic, and compiled with -ffp-contract=off), so
+ * every value that reaches an output is the same on every machine.  They
+ * are accurate to a few ulp; what they promise is sameness, not the last
+ * bit of the true value. */
+#ifndef ZS_EXACTMATH_H
+#define ZS_EXACTMATH_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* sin and cos of an angle in turns (1 turn = 360 degrees).  Exact at
+ * multiples of a quarter turn (no -0.0); within 2 ulp elsewhere. */
+void zs_sincos_turns(double turns, double *s, double *c);
+
+/* The same for an angle in degrees. */
+void zs_sincos_deg(double deg, double *s, double *c);
+
+/* tan of an angle in degrees (an odd multiple of 90 gives +-inf). */
+double zs_tan_deg(double deg);
+
+/* e^x: +0 below about -745, +inf above about 709.8, NaN for NaN.
+ * Within 2 ulp. */
+double zs_exp(double x);
+
+/* The natural logarithm: -inf at 0, NaN below 0, +inf at +inf.  Within
+ * 2 ulp. */
+double zs_log(double x);
+
+/* log10 and 10^x, from zs_log and zs_exp. */
+double zs_log10(double x);
+double zs_exp10(double x);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

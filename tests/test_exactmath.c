@@ -1,0 +1,122 @@
+/* The one trigonometry, e^x and log x (raster/exactmath.h): close to the C
+ * library's, and the same bits everywhere, pinned for the matrices that
+ * reach an image (perspective, rotation, the automatic camera, the walks'
+ * paths).  The C library here is only the yardstick. */
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "raster/exactmath.h"
+#include "raster/raster.h"
+#include "raster/rng.h"
+#include "scene/camera.h"
+#include "scene/paths.h"
+#include "tests/testutil.h"
+
+/* Distance in units in the last place between two finite doubles of one
+ * sign. */
+static double ulps(double a, double b) {
+  if (a == b) return 0;
+  return fabs(a - b) / (nextafter(fabs(b), INFINITY) - fabs(b));
+}
+
+START_TEST(close_to_the_c_library) {
+  zs_rng rng;
+  zs_rng_seed(&rng, 7);
+  double worst_sin = 0, worst_exp = 0, worst_log = 0;
+  for (int i = 0; i < 200000; i++) {
+    double u = (double)zs_rng_below(&rng, 1u << 30) / (1u << 30); /* [0, 1) */
+    double turns = 8.0 * u - 4.0, s, c;
+    zs_sincos_turns(turns, &s, &c);
+    double r = turns * 2.0 * ZS_PI;
+    /* absolute error: the C library sees the angle rounded in radians,
+     * which alone moves sin by up to |r| 2^-53 */
+    worst_sin = fmax(worst_sin, fmax(fabs(s - sin(r)), fabs(c - cos(r))));
+    double x = 1400.0 * u - 700.0;
+    worst_exp = fmax(worst_exp, ulps(zs_exp(x), exp(x)));
+    double y = ldexp(0.5 + u, (int)zs_rng_below(&rng, 2000) - 1000);
+    worst_log = fmax(worst_log, ulps(zs_log(y), log(y)));
+  }
+  ck_assert_msg(worst_sin < 8 * ZS_PI * 0x1p-52, "sin/cos: off by %g", worst_sin);
+  ck_assert_msg(worst_exp < 4, "exp: %g ulp", worst_exp);
+  ck_assert_msg(worst_log < 4, "log: %g ulp", worst_log);
+}
+END_TEST
+
+START_TEST(exact_where_it_must_be) {
+  double s, c;
+  for (int q = -8; q <= 8; q++) {
+    zs_sincos_deg(90.0 * q, &s, &c);
+    const double want_s[4] = {0, 1, 0, -1}, want_c[4] = {1, 0, -1, 0};
+    int k = ((q % 4) + 4) % 4;
+    ck_assert(s == want_s[k] && c == want_c[k]);
+    ck_assert(!signbit(s) || s != 0.0); /* no -0.0 */
+    ck_assert(!signbit(c) || c != 0.0);
+  }
+  ck_assert(zs_exp(0.0) == 1.0);
+  ck_assert(zs_log(1.0) == 0.0);
+  ck_assert(zs_exp(-1000.0) == 0.0);
+  ck_assert(isinf(zs_exp(1000.0)));
+  ck_assert(isinf(zs_log(0.0)) && zs_log(0.0) < 0);
+  ck_assert(isnan(zs_log(-1.0)));
+  ck_assert(isinf(zs_tan_deg(90.0)));
+  ck_assert(zs_log10(1000.0) > 2.999999999999 && zs_log10(1000.0) < 3.000000000001);
+}
+END_TEST
+
+static uint64_t hash_doubles(const double *v, int n) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (int i = 0; i < n; i++) {
+    uint64_t u;
+    memcpy(&u, &v[i], sizeof u);
+    for (int k = 0; k < 8; k++) {
+      h ^= (u >> (8 * k)) & 0xff;
+      h *= 0x100000001b3ull;
+    }
+  }
+  return h;
+}
+
+/* The bits of the matrices an image is made from: these hashes hold with
+ * gcc and clang, -O0 to -O3, on glibc as on any other C library. */
+START_TEST(matrices_pinned) {
+  double m[16];
+  zs_mat_perspective(m, 45, 4.0 / 3, 0.5, 100);
+  ck_assert_uint_eq(hash_doubles(m, 16), 0xee2a61c4ccfe7744ull);
+  zs_mat_rotate(m, 30, 0, 1, 0);
+  ck_assert_uint_eq(hash_doubles(m, 16), 0x1ddfce0a791522adull);
+  zs_mat_rotate(m, 123.25, 1, 2, 3);
+  ck_assert_uint_eq(hash_doubles(m, 16), 0xbac9100ab15ea539ull);
+
+  zs_camera c;
+  zs_camera_default(&c);
+  const double lo[3] = {-1, -2, -3}, hi[3] = {4, 5, 6};
+  zs_camera_complete(&c, lo, hi, 4.0 / 3);
+  double both[32];
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_camera_matrices(&c, 4.0 / 3, both, both + 16, &err), ZS_OK);
+  ck_assert_uint_eq(hash_doubles(both, 32), 0x518b2591194a142cull);
+
+  static const struct {
+    const char *name;
+    uint64_t hash;
+  } paths[] = {{"roll", 0xd1e163e81f954081ull}, {"yaw", 0xb5c3b4042b684af1ull}};
+  for (int i = 0; i < 2; i++) {
+    zs_path p;
+    ck_assert_int_eq(zs_path_named(paths[i].name, &c, 30, &p, &err), ZS_OK);
+    ck_assert_uint_eq(hash_doubles(p.keys[29].eye, 9), paths[i].hash); /* eye, target, up */
+    zs_path_free(&p);
+  }
+}
+END_TEST
+
+int main(void) {
+  Suite *s = suite_create("exactmath");
+  TCase *tc = tcase_create("exactmath");
+  tcase_add_test(tc, close_to_the_c_library);
+  tcase_add_test(tc, exact_where_it_must_be);
+  tcase_add_test(tc, matrices_pinned);
+  suite_add_tcase(s, tc);
+  return zs_test_run(s);
+}
