@@ -334,18 +334,26 @@ static zs_status add_mesh(loader *L, const struct aiNode *nd, unsigned j, const 
   for (unsigned f = 0; f < mesh->mNumFaces; f++) {
     const struct aiFace *face = &mesh->mFaces[f];
     if (face->mNumIndices < 3) continue; /* a point or a line */
-    if (face->mNumIndices > ZS_MAX_POLY_VERTS)
-      return set_error(L->err, ZS_ERR_LIMIT, "%s: mesh %u face %u: more than %d vertices", L->path,
-                       mi, f, ZS_MAX_POLY_VERTS);
-    int32_t idx[ZS_MAX_POLY_VERTS];
-    for (unsigned k = 0; k < face->mNumIndices; k++) {
+    if (face->mNumIndices > INT32_MAX / sizeof(int32_t))
+      return set_error(L->err, ZS_ERR_LIMIT, "%s: mesh %u face %u: %u vertices", L->path, mi, f,
+                       face->mNumIndices);
+    /* a face may have any number of corners: the model splits it */
+    int32_t small[ZS_MAX_POLY_VERTS];
+    int32_t *idx = face->mNumIndices <= ZS_MAX_POLY_VERTS
+                       ? small
+                       : malloc(face->mNumIndices * sizeof *idx);
+    if (!idx) return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+    zs_status st = ZS_OK;
+    for (unsigned k = 0; k < face->mNumIndices && st == ZS_OK; k++) {
       if (face->mIndices[k] >= mesh->mNumVertices)
-        return set_error(L->err, ZS_ERR_PARSE, "%s: mesh %u face %u: vertex index %u out of range",
-                         L->path, mi, f, face->mIndices[k]);
+        st = set_error(L->err, ZS_ERR_PARSE, "%s: mesh %u face %u: vertex index %u out of range",
+                       L->path, mi, f, face->mIndices[k]);
       idx[k] = base + (int32_t)face->mIndices[k];
     }
-    if (zs_model_add_polygon(L->m, idx, (int)face->mNumIndices, rgb, obj) != ZS_OK)
-      return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+    if (st == ZS_OK && zs_model_add_polygon(L->m, idx, (int)face->mNumIndices, rgb, obj) != ZS_OK)
+      st = set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+    if (idx != small) free(idx);
+    if (st != ZS_OK) return st;
     L->faces++;
   }
   return ZS_OK;

@@ -247,8 +247,7 @@ static int sign_changes(const double *d, int n) {
  * edge doubling back, and a boundary that turns around only once.  Left
  * turns alone would accept a pentagram; turning once means the edge
  * directions change sign at most twice in x and twice in y. */
-static int is_convex(vec2 *q, int n) {
-  double dx[ZS_MAX_POLY_VERTS], dy[ZS_MAX_POLY_VERTS];
+static int is_convex(vec2 *q, int n, double *dx, double *dy) {
   for (int i = 0; i < n; i++) {
     const double *a = q[i], *b = q[(i + 1) % n], *c = q[(i + 2) % n];
     double t = turn(a, b, c);
@@ -285,9 +284,8 @@ static void add_fan(zs_model *m, const int32_t *v, int n, uint32_t rgb,
  * A polygon that intersects itself may have no ear left: then the first
  * vertex that turns left (or, failing that, any vertex) is cut anyway, so
  * the loop always ends with n - 2 triangles. */
-static void add_ear_clipped(zs_model *m, const int32_t *v, vec2 *q,
+static void add_ear_clipped(zs_model *m, const int32_t *v, vec2 *q, int *prev, int *next,
                             int n, uint32_t rgb, int32_t id, int32_t obj) {
-  int prev[ZS_MAX_POLY_VERTS], next[ZS_MAX_POLY_VERTS];
   for (int i = 0; i < n; i++) {
     prev[i] = (i + n - 1) % n;
     next[i] = (i + 1) % n;
@@ -327,13 +325,70 @@ static void add_ear_clipped(zs_model *m, const int32_t *v, vec2 *q,
   append_face(m, tri, 3, rgb, id, obj);
 }
 
+/* A convex planar polygon of any size, as faces of at most
+ * ZS_MAX_POLY_VERTS corners: a fan of convex pieces around v[0], each
+ * sharing an edge with the next.  The pieces' edges are the same snapped
+ * points, so with the fill rule they cover exactly the polygon's pixels. */
+static void add_convex(zs_model *m, const int32_t *v, int n, uint32_t rgb, int32_t id,
+                       int32_t obj) {
+  if (n <= ZS_MAX_POLY_VERTS) {
+    append_face(m, v, n, rgb, id, obj);
+    return;
+  }
+  int32_t piece[ZS_MAX_POLY_VERTS];
+  piece[0] = v[0];
+  for (int first = 1; first + 1 < n; first += ZS_MAX_POLY_VERTS - 2) {
+    int k = n - first < ZS_MAX_POLY_VERTS - 1 ? n - first : ZS_MAX_POLY_VERTS - 1;
+    memcpy(piece + 1, v + first, (size_t)k * sizeof *piece);
+    append_face(m, piece, k + 1, rgb, id, obj);
+  }
+}
+
+/* Room for splitting one polygon of n corners: on the stack up to
+ * ZS_MAX_POLY_VERTS, on the heap beyond. */
+typedef struct split_scratch {
+  int32_t *v;
+  vec3 *p;
+  vec2 *q;
+  double *dx, *dy;
+  int *prev, *next;
+  void *heap;
+} split_scratch;
+
+enum {
+  SCRATCH_BYTES_PER_CORNER = sizeof(int32_t) + sizeof(vec3) + sizeof(vec2) +
+                             2 * sizeof(double) + 2 * sizeof(int)
+};
+
+static int scratch_take(split_scratch *s, void *stack, int n) {
+  /* the largest element types first, so every array stays aligned */
+  char *b = n <= ZS_MAX_POLY_VERTS ? stack : malloc((size_t)n * SCRATCH_BYTES_PER_CORNER);
+  s->heap = b == stack ? NULL : b;
+  if (!b) return 0;
+  s->p = (vec3 *)b;
+  b += (size_t)n * sizeof(vec3);
+  s->q = (vec2 *)b;
+  b += (size_t)n * sizeof(vec2);
+  s->dx = (double *)b;
+  b += (size_t)n * sizeof(double);
+  s->dy = (double *)b;
+  b += (size_t)n * sizeof(double);
+  s->v = (int32_t *)b;
+  b += (size_t)n * sizeof(int32_t);
+  s->prev = (int *)b;
+  b += (size_t)n * sizeof(int);
+  s->next = (int *)b;
+  return 1;
+}
+
 /* Stores the polygon v (n >= 3, no repeated consecutive index) whole when
- * it is planar and convex, else as triangles. */
-static void add_split(zs_model *m, const int32_t *v, int n, uint32_t rgb,
+ * it is planar and convex (in pieces when it has more corners than a face
+ * may), else as triangles. */
+static void add_split(zs_model *m, const int32_t *v, int n, split_scratch *sc, uint32_t rgb,
                       int32_t id, int32_t obj) {
   /* Positions relative to the centroid keep the sums below well
    * conditioned for a polygon far from the origin. */
-  vec3 p[ZS_MAX_POLY_VERTS];
+  vec3 *p = sc->p;
   vec3 centre = {0.0, 0.0, 0.0};
   for (int i = 0; i < n; i++)
     for (int k = 0; k < 3; k++) centre[k] += m->mesh.pos[3 * (size_t)v[i] + k];
@@ -350,43 +405,47 @@ static void add_split(zs_model *m, const int32_t *v, int n, uint32_t rgb,
     add_fan(m, v, n, rgb, id, obj);
     return;
   }
-  vec2 q[ZS_MAX_POLY_VERTS];
+  vec2 *q = sc->q;
   project(p, n, nrm, q);
-  int convex = is_convex(q, n);
+  int convex = is_convex(q, n, sc->dx, sc->dy);
   if (convex && is_planar(p, n, nrm))
-    append_face(m, v, n, rgb, id, obj);
+    add_convex(m, v, n, rgb, id, obj);
   else if (convex)
     add_fan(m, v, n, rgb, id, obj);
   else
-    add_ear_clipped(m, v, q, n, rgb, id, obj);
+    add_ear_clipped(m, v, q, sc->prev, sc->next, n, rgb, id, obj);
 }
 
 zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
                                uint32_t rgb, int32_t obj) {
-  if (!idx || n < 3 || n > ZS_MAX_POLY_VERTS) return ZS_ERR_ARG;
+  if (!idx || n < 3) return ZS_ERR_ARG;
   if (obj < -1 || obj >= m->nobjects) return ZS_ERR_ARG;
   for (int i = 0; i < n; i++)
     if (idx[i] < 0 || idx[i] >= m->mesh.nverts) return ZS_ERR_ARG;
   /* Face ids are int32_t: one more face cannot be numbered. */
   if (m->nsource_faces == INT32_MAX) return ZS_ERR_NOMEM;
 
+  /* The worst case is n - 2 triangles (3n - 6 >= n indices). */
+  if (!reserve_faces(m, (int64_t)m->mesh.nfaces + (n - 2),
+                     (int64_t)face_vert_count(m) + 3 * (int64_t)(n - 2)))
+    return ZS_ERR_NOMEM;
+  _Alignas(double) char stack[ZS_MAX_POLY_VERTS * SCRATCH_BYTES_PER_CORNER];
+  split_scratch sc;
+  if (!scratch_take(&sc, stack, n)) return ZS_ERR_NOMEM;
+
   /* Drop repeated consecutive vertices, the last against the first too. */
-  int32_t v[ZS_MAX_POLY_VERTS];
+  int32_t *v = sc.v;
   int k = 0;
   for (int i = 0; i < n; i++)
     if (k == 0 || idx[i] != v[k - 1]) v[k++] = idx[i];
   while (k > 1 && v[k - 1] == v[0]) k--;
 
-  /* The worst case is n - 2 triangles (3n - 6 >= n indices). */
-  if (!reserve_faces(m, (int64_t)m->mesh.nfaces + (n - 2),
-                     (int64_t)face_vert_count(m) + 3 * (n - 2)))
-    return ZS_ERR_NOMEM;
-
   int32_t id = m->nsource_faces;
-  if (k < 3)
-    append_face(m, idx, n, rgb, id, obj); /* zero area: kept for numbering */
+  if (k < 3) /* zero area: kept for numbering, as one small face */
+    append_face(m, idx, n < ZS_MAX_POLY_VERTS ? n : ZS_MAX_POLY_VERTS, rgb, id, obj);
   else
-    add_split(m, v, k, rgb, id, obj);
+    add_split(m, v, k, &sc, rgb, id, obj);
+  free(sc.heap);
   m->nsource_faces++;
   return ZS_OK;
 }

@@ -40,12 +40,14 @@ int32_t zs_model_object(zs_model *m, const char *name);
 
 /* Adds source face number m->nsource_faces (then increments it): the
  * polygon of n >= 3 vertex indices, colour rgb, in object obj (-1: none).
- * A convex planar polygon is stored whole; a concave or non-planar one is
- * split into triangles that all carry the same face id.  Repeated
+ * A convex planar polygon is stored whole (as a fan of convex pieces of
+ * at most ZS_MAX_POLY_VERTS corners when it has more); a concave or
+ * non-planar one is split into triangles.  Every piece carries the face's
+ * id.  n may be any count.  Repeated
  * consecutive vertices are dropped; a polygon left with fewer than 3
  * distinct vertices is kept as a zero-area face (it draws nothing but keeps
  * the numbering).  Returns ZS_OK, ZS_ERR_ARG for an index out of range or
- * n > ZS_MAX_POLY_VERTS, ZS_ERR_NOMEM. */
+ * n < 3, ZS_ERR_NOMEM. */
 zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
                                uint32_t rgb, int32_t obj);
 

@@ -37,6 +37,7 @@ typedef struct line_reader {
   long line;        /* 1-based number of the line in buf */
   char *buf;        /* ZS_OBJ_LINE_MAX + 1 bytes: the line, NUL-terminated */
   char *cur;        /* where the next word starts */
+  int control;      /* the line holds a control byte other than white space */
   zs_error *err;
 } line_reader;
 
@@ -81,6 +82,11 @@ static zs_status next_line(line_reader *r, int *have) {
     return line_error(r, ZS_ERR_LIMIT, "line longer than %d bytes",
                       ZS_OBJ_LINE_MAX);
   if (memchr(s, '\0', n)) return line_error(r, ZS_ERR_PARSE, "NUL byte");
+  r->control = 0;
+  for (size_t i = 0; i < n; i++) {
+    unsigned char c = (unsigned char)s[i];
+    r->control |= (c < 0x20 && !is_space((char)c)) || c == 0x7f;
+  }
   memcpy(r->buf, s, n);
   r->buf[n] = '\0';
   /* A '#' that starts a word starts a comment. */
@@ -312,12 +318,17 @@ static read_result read_file(const char *path, char **data, size_t *len,
 
 typedef struct obj_parser {
   line_reader r;
+  long statements;  /* lines that are OBJ statements */
+  long strangers;   /* lines that are not: the file may not be an OBJ */
+  long first_stranger; /* the line of the first, for the message */
   zs_model *m;
   const char *dir; /* for mtllib; NULL: libraries are skipped */
   int32_t obj;     /* the object of the following faces, -1: none */
   uint32_t slot;   /* usemtl of the following faces: 0 none, else used[slot-1] */
   name_list mtl;   /* materials defined by the libraries */
   name_list used;  /* material names given to usemtl */
+  int32_t *idx;    /* the corners of the face being read */
+  int cap_idx;
 } obj_parser;
 
 static zs_status out_of_memory(obj_parser *p) {
@@ -386,15 +397,19 @@ static zs_status parse_face_vertex(obj_parser *p, const char *w,
 }
 
 static zs_status parse_face(obj_parser *p) {
-  int32_t idx[ZS_MAX_POLY_VERTS];
   int n = 0;
   for (char *w; (w = next_word(&p->r)) != NULL; n++) {
-    if (n == ZS_MAX_POLY_VERTS)
-      return line_error(&p->r, ZS_ERR_LIMIT, "face with more than %d vertices",
-                        ZS_MAX_POLY_VERTS);
-    zs_status st = parse_face_vertex(p, w, &idx[n]);
+    if (n == p->cap_idx) { /* a face may have any number of corners */
+      int cap = p->cap_idx ? 2 * p->cap_idx : 64;
+      int32_t *bigger = realloc(p->idx, (size_t)cap * sizeof *bigger);
+      if (!bigger) return out_of_memory(p);
+      p->idx = bigger;
+      p->cap_idx = cap;
+    }
+    zs_status st = parse_face_vertex(p, w, &p->idx[n]);
     if (st != ZS_OK) return st;
   }
+  int32_t *idx = p->idx;
   if (n < 3)
     return line_error(&p->r, ZS_ERR_PARSE,
                       "face with %d vertices (at least 3 needed)", n);
@@ -453,9 +468,43 @@ static zs_status load_mtl(obj_parser *p, const char *file) {
   return st;
 }
 
+/* Every keyword of the OBJ format (Wavefront's Appendix B1): a line that
+ * starts with one is a statement, whether zscan draws it or not. */
+static int is_obj_keyword(const char *kw) {
+  static const char *const keywords[] = {
+      "v",     "vt",     "vn",      "vp",       "f",        "l",      "p",     "o",
+      "g",     "s",      "mg",      "usemtl",   "mtllib",   "cstype", "deg",   "bmat",
+      "step",  "curv",   "curv2",   "surf",     "parm",     "trim",   "hole",  "scrv",
+      "sp",    "end",    "con",     "lod",      "maplib",   "usemap", "shadow_obj",
+      "trace_obj", "ctech", "stech", "bevel",   "c_interp", "d_interp", "call", "csh",
+      "res"};
+  for (size_t i = 0; i < sizeof keywords / sizeof keywords[0]; i++)
+    if (strcmp(kw, keywords[i]) == 0) return 1;
+  return 0;
+}
+
+/* A word that could be some program's own statement: letters, digits and
+ * '_' only, starting with a letter. */
+static int is_statement_like(const char *kw) {
+  if (!((*kw >= 'a' && *kw <= 'z') || (*kw >= 'A' && *kw <= 'Z'))) return 0;
+  for (; *kw; kw++)
+    if (!((*kw >= 'a' && *kw <= 'z') || (*kw >= 'A' && *kw <= 'Z') || is_digit(*kw) ||
+          *kw == '_'))
+      return 0;
+  return 1;
+}
+
 static zs_status parse_line(obj_parser *p) {
+  if (p->r.control) return line_error(&p->r, ZS_ERR_PARSE, "not an OBJ statement");
   char *kw = next_word(&p->r);
   if (!kw) return ZS_OK;
+  if (is_obj_keyword(kw)) {
+    p->statements++;
+  } else {
+    if (!is_statement_like(kw)) return line_error(&p->r, ZS_ERR_PARSE, "not an OBJ statement");
+    if (p->strangers++ == 0) p->first_stranger = p->r.line;
+    return ZS_OK; /* another program's extension, perhaps: nothing to draw */
+  }
   if (strcmp(kw, "v") == 0) return parse_vertex(p);
   if (strcmp(kw, "f") == 0) return parse_face(p);
   if (strcmp(kw, "o") == 0) return set_object(p, rest_of_line(&p->r));
@@ -479,7 +528,7 @@ static zs_status parse_line(obj_parser *p) {
     }
     return ZS_OK;
   }
-  /* vt, vn, s, l, p, curves, surfaces and unknown keywords: nothing to draw */
+  /* vt, vn, s, l, p, curves and surfaces: nothing to draw */
   return ZS_OK;
 }
 
@@ -512,8 +561,12 @@ zs_status zs_obj_parse(const char *text, size_t len, const char *name,
   int have;
   while (st == ZS_OK && (st = next_line(&p.r, &have)) == ZS_OK && have)
     st = parse_line(&p);
+  /* Mostly lines of unknown words: some other text, not an OBJ. */
+  if (st == ZS_OK && p.strangers > p.statements)
+    st = zs_error_set(err, ZS_ERR_PARSE, "%s:%ld: not an OBJ statement", name, p.first_stranger);
   if (st == ZS_OK) st = resolve_colours(&p);
   free(p.r.buf);
+  free(p.idx);
   names_free(&p.mtl);
   names_free(&p.used);
   if (st != ZS_OK) zs_model_free(out);

@@ -3,7 +3,7 @@
  * What is read:
  *   v x y z [w]     a vertex (divided by w when w != 1); the common
  *                   extension `v x y z r g b` is accepted, colours ignored
- *   f a b c ...     a polygon of 3 .. ZS_MAX_POLY_VERTS vertices, each
+ *   f a b c ...     a polygon of 3 or more vertices (any number), each
  *                   written v, v/vt, v//vn or v/vt/vn; a negative v counts
  *                   back from the last vertex defined so far (-1 is the
  *                   last); only vertices defined earlier may be used
@@ -17,8 +17,12 @@
  *                   a name no library defines, or a material without Kd,
  *                   gives ZS_GREY.  Materials are looked up once the whole
  *                   file is read, so an mtllib may come after its usemtl.
- * Everything else (vt, vn, s, l, p, curves, comments from a '#' starting a
- * word, unknown keywords) is ignored.  In .mtl files only newmtl and
+ * The other statements of the format (vt, vn, vp, s, l, p, curves and
+ * surfaces), comments from a '#' starting a word, and unknown words made of
+ * letters, digits and '_' (another program's extension) are ignored.  But
+ * a file that is mostly lines of unknown words, or any line that holds a
+ * control byte other than white space or starts with something that is no
+ * word, is not an OBJ: "FILE:LINE: not an OBJ statement".  In .mtl files only newmtl and
  * Kd r [g b] are read (Kd spectral / Kd xyz are ignored).
  *
  * Faces are numbered from 0 in file order (the model's nsource_faces); a

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "tests/testutil.h"
+#include "tools/image.h"
 
 static char out[1 << 16], err[1 << 16];
 
@@ -573,6 +574,62 @@ START_TEST(huge_obj_refused_before_reading) {
 }
 END_TEST
 
+/* Inputs with nothing to draw are refused, each with its file named;
+ * --allow-empty renders the background alone. */
+START_TEST(empty_inputs_refused_unless_allowed) {
+  static const struct {
+    const char *name, *text, *why;
+  } cases[] = {
+      {"cli-empty.obj", "", "no faces"},
+      {"cli-vertices.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no faces"},
+      {"cli-points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n", "no faces"},
+      {"cli-cloud.ply", /* a point cloud, through assimp */
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+       "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n",
+       "no faces"},
+      {"cli-junk.obj", "\x7f" "ELF\x02\x01\x01\n\x03\x3e\x00\x01", ":1: not an OBJ statement"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char path[4096], png[4096];
+    snprintf(path, sizeof path, "%s/%s", ZS_BINARY_DIR, cases[i].name);
+    snprintf(png, sizeof png, "%s/cli-empty.png", ZS_BINARY_DIR);
+    unlink(png);
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    fwrite(cases[i].text, 1, strlen(cases[i].text) + (strstr(cases[i].name, "junk") ? 4 : 0), f);
+    ck_assert_int_eq(fclose(f), 0);
+#ifndef ZS_HAVE_ASSIMP
+    if (strstr(cases[i].name, ".ply")) continue; /* no reader for it */
+#endif
+    const char *args[] = {"render", path, "--size", "32x24", "-o", png, NULL};
+    int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+    char want[8300];
+    snprintf(want, sizeof want, "zscan render: %s%s%s\n", path,
+             cases[i].why[0] == ':' ? "" : ": ", cases[i].why);
+    ck_assert_int_eq(rc, 1);
+    if (strstr(cases[i].name, ".ply")) /* assimp's own words: "Mesh contains no faces" */
+      ck_assert_msg(strncmp(err, want, strlen(want) - strlen("no faces\n")) == 0 &&
+                        strstr(err, "no faces\n"), "%s", err);
+    else
+      ck_assert_str_eq(err, want);
+    ck_assert(!zs_test_exists(png));
+    if (strstr(cases[i].name, "junk")) continue; /* junk stays junk */
+    if (strstr(cases[i].name, ".ply")) continue; /* assimp will not load it */
+    const char *allowed[] = {"render", path, "--size", "32x24", "-o", png, "--allow-empty", NULL};
+    rc = zs_test_run_zscan(allowed, out, sizeof out, err, sizeof err);
+    ck_assert_msg(rc == 0, "%s: %s", cases[i].name, err);
+    zs_image im;
+    zs_error e;
+    zs_error_clear(&e);
+    ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+    ck_assert_int_eq(im.width, 32);
+    for (int k = 0; k < im.width * im.height; k++) ck_assert_uint_eq(im.rgb[k], im.rgb[0]);
+    zs_image_free(&im);
+    unlink(path);
+  }
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -698,6 +755,7 @@ int main(void) {
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);
+  tcase_add_test(tc, empty_inputs_refused_unless_allowed);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_suite_writes_every_file);

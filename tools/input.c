@@ -19,6 +19,10 @@ static int has_suffix(const char *s, const char *suffix) {
 }
 
 zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err) {
+  return zs_input_load(spec, 0, out, err);
+}
+
+zs_status zs_input_load(const char *spec, int allow_empty, zs_scene *out, zs_error *err) {
   zs_scene_init(out);
   zs_status st;
   if (!spec) return zs_gen_scene("default", out, err);
@@ -28,6 +32,11 @@ zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err) {
   if (has_suffix(spec, ".obj")) st = zs_obj_load(spec, &m, err);
   else st = zs_assimp_load(spec, &m, err);
   if (st != ZS_OK) return st;
+  if (m.nsource_faces == 0 && !allow_empty) {
+    /* an empty file, vertices or points only: nothing would be drawn */
+    zs_model_free(&m);
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: no faces", spec);
+  }
   if ((st = zs_scene_from_model(out, &m, err)) == ZS_OK) st = zs_scene_finish(out, err);
   if (st != ZS_OK) zs_scene_free(out);
   return st;

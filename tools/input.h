@@ -12,7 +12,13 @@
  *   FILE.obj               one instance per object (o/g) of the file
  *   FILE.ply, .stl, ...    through assimp, likewise
  *   builtin:NAME[?k=v&..]  a generated scene (scene/generate.h): default,
- *                          teapots, spheres, city, plant, cubes */
+ *                          teapots, spheres, city, plant, cubes
+ * A model file without a face (empty, vertices or points only) is refused
+ * with "FILE: no faces". */
 zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err);
+
+/* The same; allow_empty: a model without faces loads too (its frame is the
+ * background alone). */
+zs_status zs_input_load(const char *spec, int allow_empty, zs_scene *out, zs_error *err);
 
 #endif

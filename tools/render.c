@@ -34,6 +34,8 @@ static const char usage_tail[] =
     "  --threads N         render threads, 1 to 64 (zbuffer mode; default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
     "  --stats             print the frame's counters as one JSON line\n"
+    "  --allow-empty       render a model without faces (the background alone)\n"
+    "                      instead of refusing it\n"
     "  --cull METHOD       draw through a culling method (vfc, hsw, chc, chc-prob, ...)\n"
     "  --bounds parts|box  with --cull: queries ask about an object's parts'\n"
     "                      boxes (default) or its box\n"
@@ -50,7 +52,7 @@ typedef struct render_opts {
   zs_view_opts view;
   zs_algo algo;
   zs_shade shade;
-  int threads, repeat, stats, hidden_line, cull, overlay;
+  int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
   zs_query_bounds bounds;
   zs_clock_params clock;
   zs_cost_params cost;
@@ -119,6 +121,8 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
       if (zs_cli_int(a, v, 1, 100000, &o->repeat, err)) return err->code;
     } else if (strcmp(a, "--stats") == 0) {
       o->stats = 1;
+    } else if (strcmp(a, "--allow-empty") == 0) {
+      o->allow_empty = 1;
     } else if (strcmp(a, "--clock") == 0) {
       VALUE();
       if (zs_clockfile_load(v, &o->clock, err)) return err->code;
@@ -237,7 +241,7 @@ static zs_status draw_overlay(zs_device *dev, const zs_culler *c, const zs_octre
 static zs_status run(const render_opts *o, zs_error *err) {
   zs_scene model;
   double t0 = zs_wall_ms();
-  if (zs_input_load_scene(o->input, &model, err)) return err->code;
+  if (zs_input_load(o->input, o->allow_empty, &model, err)) return err->code;
   double load_ms = zs_wall_ms() - t0;
   /* the scene's own camera and size, where the options say nothing */
   render_opts eff = *o;
