@@ -63,6 +63,13 @@ void zs_image_free(zs_image *im) {
 
 uint64_t zs_image_hash(const zs_image *im) {
   uint64_t h = 0xcbf29ce484222325ull; /* FNV-1a 64 offset basis */
+  /* the size first, as two 32-bit little-endian numbers: a 64x48 and a
+   * 48x64 frame of one colour must not share a hash */
+  const uint32_t size[2] = {(uint32_t)im->width, (uint32_t)im->height};
+  for (int k = 0; k < 8; k++) {
+    h ^= (unsigned char)(size[k / 4] >> (8 * (k % 4)));
+    h *= 0x100000001b3ull; /* FNV-1a 64 prime */
+  }
   size_t n = (size_t)im->width * (size_t)im->height;
   for (size_t i = 0; i < n; i++) {
     uint32_t p = im->rgb[i];
@@ -70,7 +77,7 @@ uint64_t zs_image_hash(const zs_image *im) {
                               (unsigned char)p};
     for (int k = 0; k < 3; k++) {
       h ^= bytes[k];
-      h *= 0x100000001b3ull; /* FNV-1a 64 prime */
+      h *= 0x100000001b3ull;
     }
   }
   return h;

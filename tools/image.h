@@ -43,11 +43,13 @@ zs_status zs_image_alloc(zs_image *im, int width, int height, zs_error *err);
 /* Frees the pixels and empties *im (im may be NULL). */
 void zs_image_free(zs_image *im);
 
-/* 64-bit FNV-1a (offset basis 0xcbf29ce484222325, prime 0x100000001b3)
- * over the pixels as bytes R, G, B, pixel after pixel, row 0 first.  The
- * size of the image is not part of the hash.  This is the hash golden tests
- * and `--stats` print; a 2x1 image 0x666F6F, 0x626172 hashes like the
- * string "foobar", 0x85944171f73967e8. */
+/* The image hash that golden tests and `--stats` print (image_hash):
+ * 64-bit FNV-1a (offset basis 0xcbf29ce484222325, prime 0x100000001b3)
+ * over the bytes
+ *   width, height     each as a 32-bit little-endian number (8 bytes),
+ *   R, G, B           of every pixel, row 0 first, left to right.
+ * So a 2x1 image 0x666F6F, 0x626172 hashes the 14 bytes
+ * 02 00 00 00 01 00 00 00 'f' 'o' 'o' 'b' 'a' 'r': 0xb950327571a622ff. */
 uint64_t zs_image_hash(const zs_image *im);
 
 /* Writes im as an 8-bit RGB PNG (through a zs_png_stream). */
