@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "tests/testutil.h"
+#include "tools/clockfile.h"
 #include "tools/image.h"
 
 static char out[1 << 16], err[1 << 16];
@@ -630,6 +631,44 @@ START_TEST(empty_inputs_refused_unless_allowed) {
 }
 END_TEST
 
+/* calibrate measures what this device shows and keeps the modelled
+ * values of what it cannot (latency, switch, CPU side), saying which; the
+ * file it writes reads back with its latency. */
+START_TEST(calibrate_keeps_the_modelled_latency) {
+  char clock[4096];
+  snprintf(clock, sizeof clock, "%s/cli-clock.json", ZS_BINARY_DIR);
+  unlink(clock);
+  const char *args[] = {"calibrate", "-o", clock, "--repeat", "1", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "%s", err);
+  ck_assert_ptr_nonnull(strstr(out, "per_pixel_ns"));
+  const char *lat = strstr(out, "query_latency_ns");
+  ck_assert_ptr_nonnull(lat);
+  const char *eol = strchr(lat, '\n');
+  ck_assert_msg(eol && strstr(lat, "200000.0000 ns  default") != NULL &&
+                    strstr(lat, "200000.0000 ns  default") < eol,
+                "%s", lat);
+  FILE *f = fopen(clock, "r");
+  ck_assert_ptr_nonnull(f);
+  char text[4096];
+  size_t n = fread(text, 1, sizeof text - 1, f);
+  text[n] = '\0';
+  fclose(f);
+  ck_assert_ptr_nonnull(strstr(text, "\"query_latency_ns\":200000,"));
+  ck_assert_ptr_nonnull(strstr(text, "\"switch_ns\":1000,"));
+  ck_assert_ptr_nonnull(strstr(text, "\"per_pixel_ns\":\"measured\""));
+  ck_assert_ptr_nonnull(strstr(text, "\"query_latency_ns\":\"default\""));
+  zs_clock_params p;
+  zs_clock_params_default(&p);
+  p.query_latency_ns = 0;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_msg(zs_clockfile_load(clock, &p, &e) == ZS_OK, "%s", e.msg);
+  ck_assert(p.query_latency_ns == 200000.0);
+  unlink(clock);
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -756,6 +795,7 @@ int main(void) {
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);
+  tcase_add_test(tc, calibrate_keeps_the_modelled_latency);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_suite_writes_every_file);

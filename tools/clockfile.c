@@ -46,6 +46,24 @@ zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err
   return set_value("--clock-set ", name, v, p, err);
 }
 
+/* "source": {"KEY": "measured" | "default", ...}: where each constant came
+ * from, as zscan calibrate says; read only to check it. */
+static zs_status check_source(const char *path, const cJSON *src, zs_error *err) {
+  if (!cJSON_IsObject(src))
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: source: expected an object", path);
+  for (const cJSON *it = src->child; it; it = it->next) {
+    zs_clock_params scratch;
+    if (!field(&scratch, it->string))
+      return zs_error_set(err, ZS_ERR_PARSE, "%s: source.%s: unknown clock parameter", path,
+                          it->string);
+    if (!cJSON_IsString(it) ||
+        (strcmp(it->valuestring, "measured") != 0 && strcmp(it->valuestring, "default") != 0))
+      return zs_error_set(err, ZS_ERR_PARSE, "%s: source.%s: expected \"measured\" or \"default\"",
+                          path, it->string);
+  }
+  return ZS_OK;
+}
+
 zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err) {
   FILE *f = fopen(path, "rb");
   if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
@@ -64,6 +82,10 @@ zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err)
   snprintf(where, sizeof where, "%s: ", path);
   zs_status st = ZS_OK;
   for (cJSON *it = root->child; it && st == ZS_OK; it = it->next) {
+    if (strcmp(it->string, "source") == 0) {
+      st = check_source(path, it, err);
+      continue;
+    }
     if (!cJSON_IsNumber(it))
       st = zs_error_set(err, ZS_ERR_PARSE, "%s: %s: expected a number", path, it->string);
     else
@@ -73,18 +95,25 @@ zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err)
   return st;
 }
 
-void zs_clock_print(FILE *f, const zs_clock_params *p) {
+void zs_clock_print(FILE *f, const zs_clock_params *p, const unsigned char *measured) {
   fputs("{", f);
   for (int i = 0; i < zs_clock_nfields; i++)
     fprintf(f, "%s\"%s\":%.6g", i ? "," : "", zs_clock_fields[i].name,
             *(const double *)((const char *)p + zs_clock_fields[i].offset));
+  if (measured) {
+    fputs(",\"source\":{", f);
+    for (int i = 0; i < zs_clock_nfields; i++)
+      fprintf(f, "%s\"%s\":\"%s\"", i ? "," : "", zs_clock_fields[i].name,
+              measured[i] ? "measured" : "default");
+    fputs("}", f);
+  }
   fputs("}\n", f);
 }
 
-zs_status zs_clockfile_write(const char *path, const zs_clock_params *p, zs_error *err) {
+zs_status zs_clockfile_write(const char *path, const zs_clock_params *p,
+                             const unsigned char *measured, zs_error *err) {
   zs_out out;
   if (zs_out_open(&out, path, err)) return err->code;
-  FILE *f = out.fp;
-  zs_clock_print(f, p);
+  zs_clock_print(out.fp, p, measured);
   return zs_out_commit(&out, err);
 }

@@ -6,7 +6,8 @@
  *   {"per_call_ns": 2000, "per_polygon_ns": 20, ..., "query_latency_ns": 200000}
  * Keys left out keep their defaults; an unknown key, a value that is not a
  * number, or a negative one is an error naming the key.  `zscan calibrate`
- * writes such a file.  On the command line:
+ * writes such a file, with one more key saying where each value came from:
+ *   "source": {"per_call_ns": "measured", ..., "query_latency_ns": "default"}  On the command line:
  *   --clock FILE.json        read a clock file
  *   --clock-set KEY=VALUE    set one parameter (after any --clock)
  */
@@ -28,9 +29,11 @@ extern const int zs_clock_nfields;
 zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err);
 /* KEY=VALUE */
 zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err);
-/* Writes p as a clock file (temporary name, then rename). */
-zs_status zs_clockfile_write(const char *path, const zs_clock_params *p, zs_error *err);
+/* Writes p as a clock file (through tools/outfile.h); measured: NULL, or
+ * one flag per field of zs_clock_fields, written as the "source" key. */
+zs_status zs_clockfile_write(const char *path, const zs_clock_params *p,
+                             const unsigned char *measured, zs_error *err);
 /* The same JSON to a stream (one object, keys in struct order). */
-void zs_clock_print(FILE *f, const zs_clock_params *p);
+void zs_clock_print(FILE *f, const zs_clock_params *p, const unsigned char *measured);
 
 #endif
