@@ -1,14 +1,52 @@
-/* docs/ALGORITHMS.md, followed as a newcomer would: every "$ build/zscan"
- * line of its text blocks is run from the source tree, must succeed, and
- * must print exactly the lines shown under it (when any are shown). */
+/* The documentation, followed as a newcomer would.
+ *
+ * README.md: every line of its ```sh blocks is run as shown (build/zscan
+ * is the command this build made) and must exit 0, except the set-up
+ * commands it shows for a fresh machine (the quick-start scripts, apt-get
+ * and cmake), which are named here one by one; any other command fails
+ * the test, so a new one cannot slip in unrun.  The README has at most
+ * 300 lines.
+ * The pages of docs/: every "$ build/zscan" line of their text blocks is run, must
+ * exit 0, and must print exactly the lines shown under it, when any are
+ * shown (docs/CLI.md: every command's --help).
+ * Every page: each relative link names a file that exists, and no page
+ * talks of sessions or issue numbers.
+ *
+ * The commands run in a scratch directory of the build tree that reaches
+ * the source's scene/, tests/ and docs/ through symbolic links, so that
+ * their inputs are found as the pages name them and their outputs land
+ * outside the source tree. */
+#include <ctype.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "tests/testutil.h"
 
 static char out[1 << 20], err[1 << 16];
+
+/* The pages besides the README, and what each must hold at the least:
+ * commands run, outputs compared. */
+typedef struct page {
+  const char *path;
+  int min_commands, min_compared;
+} page;
+
+static const page pages[] = {
+    {"docs/ALGORITHMS.md", 7, 2}, {"docs/SCENES.md", 10, 0}, {"docs/CULLING.md", 5, 0},
+    {"docs/GOLDEN.md", 7, 2},     {"docs/CLI.md", 13, 13},   {"docs/ARCHITECTURE.md", 0, 0},
+    {"docs/RESULTS.md", 0, 0},    {"docs/REFERENCES.md", 0, 0},
+};
+enum { NPAGES = sizeof pages / sizeof pages[0] };
+
+/* What the README may show without the test running it: the set-up of a
+ * fresh machine (it installs packages, builds, or runs this very suite). */
+static const char *const setup_commands[] = {"tools/render-demo.sh", "tools/run-tests.sh",
+                                             "apt-get ", "sudo apt-get ", "cmake "};
 
 /* Splits a command line at spaces; double quotes group (and are dropped). */
 static int split(char *line, const char **argv, int max) {
@@ -31,16 +69,51 @@ static int split(char *line, const char **argv, int max) {
   return n;
 }
 
-START_TEST(every_command_of_the_page) {
+/* The whole file at rel (below the source tree), NUL-terminated, in a
+ * buffer the caller frees. */
+static char *slurp(const char *rel) {
   char path[4096];
-  snprintf(path, sizeof path, "%s", zs_test_src("docs/ALGORITHMS.md"));
-  FILE *f = fopen(path, "r");
-  ck_assert_ptr_nonnull(f);
-  ck_assert_int_eq(chdir(ZS_SOURCE_DIR), 0);
-  static char doc[1 << 20];
-  size_t n = fread(doc, 1, sizeof doc - 1, f);
-  doc[n] = '\0';
+  snprintf(path, sizeof path, "%s", zs_test_src(rel));
+  FILE *f = fopen(path, "rb");
+  ck_assert_msg(f != NULL, "%s: cannot open", path);
+  char *text = malloc(1 << 20);
+  ck_assert_ptr_nonnull(text);
+  size_t n = fread(text, 1, (1 << 20) - 1, f);
+  text[n] = '\0';
   fclose(f);
+  return text;
+}
+
+/* Into the scratch directory, where scene/, tests/ and docs/ lead to the
+ * source tree's. */
+static void enter_scratch(void) {
+  char dir[4096], link[4200];
+  snprintf(dir, sizeof dir, "%s/docs-run", ZS_BINARY_DIR);
+  ck_assert_msg(mkdir(dir, 0777) == 0 || errno == EEXIST, "%s: %s", dir, strerror(errno));
+  static const char *const shared[] = {"scene", "tests", "docs"};
+  for (int i = 0; i < 3; i++) {
+    snprintf(link, sizeof link, "%s/%s", dir, shared[i]);
+    unlink(link);
+    ck_assert_msg(symlink(zs_test_src(shared[i]), link) == 0, "%s: %s", link, strerror(errno));
+  }
+  ck_assert_int_eq(chdir(dir), 0);
+}
+
+/* Runs "build/zscan ARGS" (line without the "build/zscan "); 0 on exit 0. */
+static void run_zscan(const char *where, const char *line, const char *args) {
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd, "%s", args);
+  const char *argv[64];
+  split(cmd, argv, 64);
+  int rc = zs_test_run_zscan(argv, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "%s: '%s' exited %d: %s", where, line, rc, err);
+}
+
+/* Every "$ build/zscan" line of the page's text blocks: run it, and
+ * compare what it prints with the lines under it up to the next command
+ * or the end of the block. */
+static void run_page(const page *pg) {
+  char *doc = slurp(pg->path);
   int commands = 0, compared = 0, in_block = 0;
   char *line = doc;
   while (line && *line) {
@@ -50,10 +123,9 @@ START_TEST(every_command_of_the_page) {
     if (strncmp(line, "```", 3) == 0) {
       in_block = !in_block;
     } else if (in_block && strncmp(line, "$ build/zscan ", 14) == 0) {
-      /* the expected output: the lines up to the next command or the end
-       * of the block */
-      char expect[1 << 16] = "";
+      static char expect[1 << 16];
       size_t len = 0;
+      expect[0] = '\0';
       char *l = next;
       while (l && strncmp(l, "```", 3) != 0 && strncmp(l, "$ ", 2) != 0) {
         char *e = strchr(l, '\n');
@@ -66,15 +138,10 @@ START_TEST(every_command_of_the_page) {
         }
         l = e ? e + 1 : NULL;
       }
-      char cmd[4096];
-      snprintf(cmd, sizeof cmd, "%s", line + 14);
-      const char *argv[64];
-      split(cmd, argv, 64);
-      int rc = zs_test_run_zscan(argv, out, sizeof out, err, sizeof err);
-      ck_assert_msg(rc == 0, "'%s' exited %d: %s", line, rc, err);
+      run_zscan(pg->path, line, line + 14);
       if (len) {
-        ck_assert_msg(strcmp(out, expect) == 0, "'%s' printed\n%s\nthe page shows\n%s", line, out,
-                      expect);
+        ck_assert_msg(strcmp(out, expect) == 0, "%s: '%s' printed\n%s\nthe page shows\n%s",
+                      pg->path, line, out, expect);
         compared++;
       }
       commands++;
@@ -82,16 +149,99 @@ START_TEST(every_command_of_the_page) {
     }
     line = next;
   }
-  ck_assert_int_ge(commands, 7);
-  ck_assert_int_ge(compared, 2);
+  free(doc);
+  ck_assert_msg(commands >= pg->min_commands, "%s: %d commands, expected %d or more", pg->path,
+                commands, pg->min_commands);
+  ck_assert_msg(compared >= pg->min_compared, "%s: %d outputs compared, expected %d or more",
+                pg->path, compared, pg->min_compared);
+}
+
+START_TEST(every_command_of_every_page) {
+  enter_scratch();
+  run_page(&pages[_i]);
+}
+END_TEST
+
+START_TEST(every_command_of_the_readme) {
+  char *doc = slurp("README.md");
+  int lines = 0;
+  for (const char *p = doc; *p; p++) lines += *p == '\n';
+  ck_assert_msg(lines <= 300, "README.md has %d lines; at most 300", lines);
+  enter_scratch();
+  int run = 0, setup = 0, in_sh = 0, in_block = 0;
+  char *line = doc;
+  while (line && *line) {
+    char *nl = strchr(line, '\n');
+    if (nl) *nl = '\0';
+    char *next = nl ? nl + 1 : NULL;
+    if (strncmp(line, "```", 3) == 0) {
+      in_sh = !in_block && strcmp(line, "```sh") == 0;
+      in_block = !in_block;
+    } else if (in_sh && line[0] && line[0] != '#') {
+      int known = 0;
+      for (size_t k = 0; k < sizeof setup_commands / sizeof setup_commands[0]; k++)
+        known |= strncmp(line, setup_commands[k], strlen(setup_commands[k])) == 0;
+      if (known) {
+        setup++;
+      } else {
+        ck_assert_msg(strncmp(line, "build/zscan ", 12) == 0,
+                      "README.md shows '%s', which this test does not know how to run", line);
+        run_zscan("README.md", line, line + 12);
+        run++;
+      }
+    }
+    line = next;
+  }
+  free(doc);
+  /* the four "if you want to" sections' commands; the quick start, apt-get, cmake */
+  ck_assert_msg(run >= 8, "README.md: %d commands run, expected 8 or more", run);
+  ck_assert_msg(setup == 4, "README.md: %d set-up commands, expected 4", setup);
+}
+END_TEST
+
+/* The relative links of a page ("](path)" and "](path#anchor)") name
+ * files that exist; and the page holds no "session" and no "issue N". */
+static void check_page_text(const char *rel) {
+  char *doc = slurp(rel);
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%s", rel);
+  char *slash = strrchr(dir, '/');
+  if (slash) slash[1] = '\0';
+  else dir[0] = '\0';
+  for (char *p = strstr(doc, "]("); p; p = strstr(p + 2, "](")) {
+    char target[1024];
+    size_t k = strcspn(p + 2, ")#\n");
+    if (k == 0 || k >= sizeof target) continue; /* "](#anchor)" */
+    memcpy(target, p + 2, k);
+    target[k] = '\0';
+    if (strstr(target, "://")) continue;
+    char rel_target[2048];
+    snprintf(rel_target, sizeof rel_target, "%s%s", dir, target);
+    ck_assert_msg(zs_test_exists(zs_test_src(rel_target)), "%s: the link to '%s' leads nowhere",
+                  rel, target);
+  }
+  for (char *p = doc; *p; p++) {
+    if (strncasecmp(p, "session", 7) == 0 && (p == doc || !isalpha((unsigned char)p[-1])))
+      ck_abort_msg("%s: talks of a session: '%.60s'", rel, p);
+    if (strncasecmp(p, "issue ", 6) == 0 && isdigit((unsigned char)p[6]))
+      ck_abort_msg("%s: talks of an issue number: '%.60s'", rel, p);
+  }
+  free(doc);
+}
+
+START_TEST(links_lead_somewhere) {
+  check_page_text("README.md");
+  for (int i = 0; i < NPAGES; i++) check_page_text(pages[i].path);
 }
 END_TEST
 
 int main(void) {
   Suite *s = suite_create("docs");
-  TCase *tc = tcase_create("algorithms");
+  TCase *tc = tcase_create("docs");
   tcase_set_timeout(tc, 600);
-  tcase_add_test(tc, every_command_of_the_page);
+  tcase_add_test(tc, every_command_of_the_readme);
+  tcase_add_loop_test(tc, every_command_of_every_page, 0, NPAGES);
+  tcase_add_test(tc, links_lead_somewhere);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }
