@@ -35,7 +35,7 @@
  *
  * The counters and the clock lag the queue until the flush, so deferral is
  * for callers that read them after zs_device_finish (a whole scene drawn,
- * tools/frame.c), not for culling, which reads the pixels of each draw.
+ * lib/frame.c), not for culling, which reads the pixels of each draw.
  * A query, hidden-line edges, a draw of ZS_DEFER_MAX_FACES faces or more
  * (set up in parallel on its own) and finish flush first; clear drops the
  * queue (those draws would be cleared away with the frame).  An error in

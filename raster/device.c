@@ -33,9 +33,16 @@ int zs_algo_parse(const char *name) {
 
 static uint32_t *alloc_u32(size_t n) { return malloc(n * sizeof(uint32_t)); }
 
-zs_status zs_device_create(const zs_device_config *cfg, zs_device **out,
+zs_status zs_device_create(const zs_device_config *given, zs_device **out,
                            zs_error *err) {
   *out = NULL;
+  /* 0 means the default for every field (zscan/zscan.h) */
+  static const zs_device_config none;
+  zs_device_config filled = given ? *given : none;
+  if (filled.width == 0) filled.width = ZS_DEVICE_DEFAULT_WIDTH;
+  if (filled.height == 0) filled.height = ZS_DEVICE_DEFAULT_HEIGHT;
+  if (filled.threads == 0) filled.threads = 1;
+  const zs_device_config *cfg = &filled;
   if (cfg->width < 1 || cfg->height < 1 || cfg->width > ZS_MAX_IMAGE_SIDE ||
       cfg->height > ZS_MAX_IMAGE_SIDE)
     return zs_error_set(err, ZS_ERR_LIMIT,

@@ -9,7 +9,7 @@
 
 #include "tests/testutil.h"
 #include "tools/clockfile.h"
-#include "tools/image.h"
+#include "lib/image.h"
 
 static char out[1 << 16], err[1 << 16];
 

@@ -17,9 +17,9 @@
 #include "scene/camera.h"
 #include "scene/model.h"
 #include "tests/testutil.h"
-#include "tools/frame.h"
-#include "tools/image.h"
-#include "tools/input.h"
+#include "lib/frame.h"
+#include "lib/image.h"
+#include "lib/input.h"
 
 typedef struct golden_case {
   const char *name;

@@ -1,4 +1,4 @@
-/* Tests of tools/image.c (PNG and PFM files, the image hash),
+/* Tests of lib/image.c (PNG and PFM files, the image hash),
  * tools/diff.c (zs_image_diff and `zscan diff`) and tools/crosscheck.c
  * (face ids against another renderer's).  Every file is written
  * below the build directory, in test_image_out/. */
@@ -18,9 +18,9 @@
 #include "raster/rng.h"
 #include "tools/crosscheck.h"
 #include "tools/diff.h"
-#include "tools/frame.h"
-#include "tools/image.h"
-#include "tools/input.h"
+#include "lib/frame.h"
+#include "lib/image.h"
+#include "lib/input.h"
 
 /* ---- Helpers ---- */
 

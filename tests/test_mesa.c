@@ -27,9 +27,9 @@
 
 #include "scene/scene.h"
 #include "tests/testutil.h"
-#include "tools/frame.h"
+#include "lib/frame.h"
 #include "tools/crosscheck.h"
-#include "tools/input.h"
+#include "lib/input.h"
 #include "tools/mesa.h"
 
 enum { W = 512, H = 384 };

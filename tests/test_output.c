@@ -1,5 +1,5 @@
 #define _XOPEN_SOURCE 700 /* mknod */
-/* Outputs never clobber: every writer goes through tools/outfile.c, and
+/* Outputs never clobber: every writer goes through lib/outfile.c, and
  * what happens at the path depends on what is there (a file, a link, a
  * device, a FIFO, a socket, "-", a directory, nothing). */
 #include <dirent.h>
@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 #include "testutil.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 #include "tools/spawn.h"
 
 static char dir[4096];

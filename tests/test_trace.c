@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "tests/testutil.h"
-#include "tools/image.h"
+#include "lib/image.h"
 
 static char out[1 << 20], err[1 << 16];
 

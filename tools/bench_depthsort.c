@@ -19,9 +19,9 @@
 #include "scene/paths.h"
 #include "scene/scene.h"
 #include "tools/cli.h"
-#include "tools/frame.h"
-#include "tools/input.h"
-#include "tools/outfile.h"
+#include "lib/frame.h"
+#include "lib/input.h"
+#include "lib/outfile.h"
 
 static const char usage[] =
     "usage: zscan bench depthsort [SCENE] [--frames N] [--size WxH] [--far F] [--csv FILE]\n"

@@ -30,7 +30,7 @@
 #include "cull/octree.h"
 #include "scene/generate.h"
 #include "tools/cli.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 
 
 enum { STEPS = 10 };

@@ -27,10 +27,10 @@
 #include "tools/callgrind.h"
 #include "tools/cli.h"
 #include "tools/crosscheck.h"
-#include "tools/frame.h"
-#include "tools/input.h"
+#include "lib/frame.h"
+#include "lib/input.h"
 #include "tools/mesa.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 #include "tools/plot.h"
 
 static const char usage[] =

@@ -45,7 +45,7 @@
 #include "tools/callgrind.h"
 #include "tools/cli.h"
 #include "tools/mesa.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 #include "tools/plot.h"
 #include "tools/spawn.h"
 

@@ -16,7 +16,7 @@
 
 #include "raster/raster.h"
 #include "tools/cli.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 #include "tools/walk.h"
 
 static const char usage[] =

@@ -34,9 +34,9 @@
 #include "scene/generate.h"
 #include "scene/camera.h"
 #include "tools/clockfile.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 #include "tools/cli.h"
-#include "tools/frame.h"
+#include "lib/frame.h"
 
 enum { NTERMS = 7, SIDE = 512 };
 static const char *term_names[NTERMS] = {"per_call_ns",  "per_vertex_ns", "per_polygon_ns",

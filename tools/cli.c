@@ -1,6 +1,6 @@
 #include "tools/cli.h"
 
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 
 #include "scene/text.h"
 

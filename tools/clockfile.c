@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "tools/cli.h"
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 
 #define FIELD(name) {#name, offsetof(zs_clock_params, name)}
 const zs_clock_field zs_clock_fields[] = {

@@ -29,7 +29,7 @@ extern const int zs_clock_nfields;
 zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err);
 /* KEY=VALUE */
 zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err);
-/* Writes p as a clock file (through tools/outfile.h); measured: NULL, or
+/* Writes p as a clock file (through lib/outfile.h); measured: NULL, or
  * one flag per field of zs_clock_fields, written as the "source" key. */
 zs_status zs_clockfile_write(const char *path, const zs_clock_params *p,
                              const unsigned char *measured, zs_error *err);

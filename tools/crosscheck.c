@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
-#include "tools/frame.h"
+#include "lib/frame.h"
 
 /* A differing pixel where both sides show a face: which face the other
  * renderer shows, and what zscan makes of that face there. */

@@ -1,4 +1,4 @@
-/* zscan tools — comparing two images; see tools/diff.h. */
+/* zscan tools — `zscan diff`, comparing two images; see tools/diff.h. */
 #include "tools/diff.h"
 
 #include <errno.h>
@@ -7,10 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 
 #define RGB_MASK 0xFFFFFFu
-#define DIFF_RED 0xFF0000u
 
 enum {
   EXIT_SAME = 0,
@@ -19,58 +18,6 @@ enum {
   MAX_IDS_LISTED = 20,
   ID_VALUES = 1 << 24 /* every 24-bit pixel value */
 };
-
-/* The largest difference between corresponding channels of p and q. */
-static int channel_diff(uint32_t p, uint32_t q) {
-  int max = 0;
-  for (int shift = 0; shift <= 16; shift += 8) {
-    int d = abs((int)((p >> shift) & 0xFF) - (int)((q >> shift) & 0xFF));
-    if (d > max) max = d;
-  }
-  return max;
-}
-
-/* The grey of p darkened to a quarter: R = G = B = luma / 4. */
-static uint32_t dark_grey(uint32_t p) {
-  uint32_t r = (p >> 16) & 0xFF, g = (p >> 8) & 0xFF, b = p & 0xFF;
-  uint32_t luma = (77 * r + 150 * g + 29 * b + 128) >> 8; /* 0 .. 255 */
-  uint32_t v = luma / 4;
-  return v << 16 | v << 8 | v;
-}
-
-zs_status zs_image_diff(const zs_image *a, const zs_image *b,
-                        zs_image *diff_out, zs_diff_result *res,
-                        zs_error *err) {
-  res->differing = 0;
-  res->total = 0;
-  res->max_channel_diff = 0;
-  if (diff_out) {
-    diff_out->width = 0;
-    diff_out->height = 0;
-    diff_out->rgb = NULL;
-  }
-  if (a->width != b->width || a->height != b->height)
-    return zs_error_set(err, ZS_ERR_ARG, "images differ in size: %dx%d and %dx%d",
-                        a->width, a->height, b->width, b->height);
-  if (diff_out) {
-    zs_status st = zs_image_alloc(diff_out, a->width, a->height, err);
-    if (st != ZS_OK) return st;
-  }
-  size_t n = (size_t)a->width * (size_t)a->height;
-  for (size_t i = 0; i < n; i++) {
-    uint32_t pa = a->rgb[i] & RGB_MASK, pb = b->rgb[i] & RGB_MASK;
-    if (pa == pb) {
-      if (diff_out) diff_out->rgb[i] = dark_grey(pa);
-      continue;
-    }
-    res->differing++;
-    int d = channel_diff(pa, pb);
-    if (d > res->max_channel_diff) res->max_channel_diff = d;
-    if (diff_out) diff_out->rgb[i] = DIFF_RED;
-  }
-  res->total = n;
-  return ZS_OK;
-}
 
 /* ---- The command ---- */
 

@@ -29,22 +29,7 @@
 #include <stdint.h>
 
 #include "raster/error.h"
-#include "tools/image.h"
-
-typedef struct zs_diff_result {
-  uint64_t differing; /* pixels whose 0xRRGGBB differ */
-  uint64_t total;     /* width * height */
-  int max_channel_diff;
-} zs_diff_result;
-
-/* Compares a and b, which must have the same size (else ZS_ERR_ARG).  When
- * diff_out is not NULL it receives a new image (free it with zs_image_free)
- * of the same size: a pixel equal in a and b is the grey of a darkened to a
- * quarter, i.e. R = G = B = luma / 4 with luma = (77 R + 150 G + 29 B + 128)
- * / 256 (Rec. 601 weights, 0 .. 255); a differing pixel is red, 0xFF0000. */
-zs_status zs_image_diff(const zs_image *a, const zs_image *b,
-                        zs_image *diff_out, zs_diff_result *res,
-                        zs_error *err);
+#include "lib/image.h"
 
 /* The `zscan diff` command: argv[0] is "diff".  Returns the exit status
  * (0 identical, 1 different, 2 error). */

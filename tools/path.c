@@ -11,7 +11,7 @@
 #include "scene/paths.h"
 #include "scene/scene.h"
 #include "tools/cli.h"
-#include "tools/input.h"
+#include "lib/input.h"
 
 static const char usage[] =
     "usage: zscan path SCENE [--frames N] [--named static|translate|roll|yaw|fast] [--size WxH]\n";

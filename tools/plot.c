@@ -1,6 +1,6 @@
 #include "tools/plot.h"
 
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 #include "tools/spawn.h"
 
 #include <errno.h>

@@ -1,7 +1,7 @@
 /* zscan tools — plots through gnuplot (Debian's gnuplot-nox).
  *
  * gnuplot draws into a private scratch folder; the PNG reaches its path
- * through the output primitive (tools/outfile.h) only when gnuplot
+ * through the output primitive (lib/outfile.h) only when gnuplot
  * succeeded: no half-written plot is ever left. */
 #ifndef ZS_TOOLS_PLOT_H
 #define ZS_TOOLS_PLOT_H

@@ -19,8 +19,8 @@
 #include "raster/raster.h"
 #include "scene/scene.h"
 #include "tools/cli.h"
-#include "tools/frame.h"
-#include "tools/input.h"
+#include "lib/frame.h"
+#include "lib/input.h"
 #include "tools/viewopts.h"
 
 static const char usage[] = "usage: zscan query INPUT [options]\n";

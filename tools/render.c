@@ -14,10 +14,10 @@
 #include "tools/cli.h"
 #include "tools/clockfile.h"
 #include "tools/costset.h"
-#include "tools/frame.h"
-#include "tools/image.h"
-#include "tools/input.h"
-#include "tools/outfile.h"
+#include "lib/frame.h"
+#include "lib/image.h"
+#include "lib/input.h"
+#include "lib/outfile.h"
 #include "tools/viewopts.h"
 
 static const char usage_head[] =

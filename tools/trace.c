@@ -20,10 +20,10 @@
 
 #include "raster/raster.h"
 #include "tools/cli.h"
-#include "tools/frame.h"
-#include "tools/image.h"
-#include "tools/input.h"
-#include "tools/outfile.h"
+#include "lib/frame.h"
+#include "lib/image.h"
+#include "lib/input.h"
+#include "lib/outfile.h"
 #include "tools/viewopts.h"
 
 static const char usage[] =

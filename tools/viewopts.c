@@ -1,5 +1,7 @@
 #include "tools/viewopts.h"
 
+#include "lib/frame.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -87,24 +89,7 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
 
 void zs_view_opts_for_scene(const zs_view_opts *o, const zs_scene *s, zs_camera *cam, int *width,
                             int *height) {
-  const zs_camera *u = &o->cam;
-  *cam = s->camera;
-  if (u->has_eye) memcpy(cam->eye, u->eye, sizeof cam->eye), cam->has_eye = 1;
-  if (u->has_target) memcpy(cam->target, u->target, sizeof cam->target), cam->has_target = 1;
-  if (u->has_up) memcpy(cam->up, u->up, sizeof cam->up), cam->has_up = 1;
-  if (u->has_near) cam->znear = u->znear, cam->has_near = 1;
-  if (u->has_far) cam->zfar = u->zfar, cam->has_far = 1;
-  if (o->fovy_given) cam->fovy = u->fovy;
-  if (u->ortho) {
-    cam->ortho = 1;
-    memcpy(cam->extent, u->extent, sizeof cam->extent);
-  }
-  /* an eye of the user's own with the scene's target would look somewhere
-   * the user did not ask: the target then comes from the bounds */
-  if (u->has_eye && !u->has_target) cam->has_target = 0;
-  /* and the scene's near and far planes belong to the scene's eye */
-  if (u->has_eye && !u->has_near) cam->has_near = 0;
-  if (u->has_eye && !u->has_far) cam->has_far = 0;
+  zs_frame_view(s, &o->cam, o->fovy_given, cam);
   *width = o->size_given || !s->width ? o->width : s->width;
   *height = o->size_given || !s->height ? o->height : s->height;
 }

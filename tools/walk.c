@@ -24,10 +24,10 @@
 #include "tools/cli.h"
 #include "tools/clockfile.h"
 #include "tools/costset.h"
-#include "tools/frame.h"
-#include "tools/image.h"
-#include "tools/input.h"
-#include "tools/outfile.h"
+#include "lib/frame.h"
+#include "lib/image.h"
+#include "lib/input.h"
+#include "lib/outfile.h"
 #include "tools/plot.h"
 
 static const char usage[] =

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "tests/fuzz/fuzz_obj_scene.h"
-#include "tools/frame.h"
+#include "lib/frame.h"
 
 static uint64_t render(const zs_scene *s, zs_algo algo) {
   zs_camera cam;

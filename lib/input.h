@@ -1,6 +1,6 @@
-/* zscan tools — what INPUT names on the command line. */
-#ifndef ZS_TOOLS_INPUT_H
-#define ZS_TOOLS_INPUT_H
+/* zscan lib — what INPUT names on the command line. */
+#ifndef ZS_LIB_INPUT_H
+#define ZS_LIB_INPUT_H
 
 #include "raster/error.h"
 #include "scene/model.h"

@@ -1,12 +1,12 @@
-/* zscan tools — one frame of a scene, into an image: the path shared by
+/* zscan lib — one frame of a scene, into an image: the path shared by
  * `zscan render`, the golden tests and the benchmarks. */
-#ifndef ZS_TOOLS_FRAME_H
-#define ZS_TOOLS_FRAME_H
+#ifndef ZS_LIB_FRAME_H
+#define ZS_LIB_FRAME_H
 
 #include "raster/raster.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
-#include "tools/image.h"
+#include "lib/image.h"
 
 #define ZS_BACKGROUND_RGB 0x1E2228u /* flat shading's background */
 
@@ -46,5 +46,11 @@ zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *e
  * the scene's bounds, then checked. */
 zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
                           int height, double view[16], double proj[16], zs_error *err);
+
+/* The camera a frame of scene s uses: the scene's own, with what the user
+ * gave (u: its has_ flags; fovy when fovy_given) put over it.  An eye of
+ * the user's own drops the scene's target, near and far (they belong to
+ * the scene's eye); the rest is completed from the bounds later. */
+void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_camera *cam);
 
 #endif

@@ -1,4 +1,4 @@
-#include "tools/frame.h"
+#include "lib/frame.h"
 
 #include <string.h>
 
@@ -81,4 +81,24 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (st != ZS_OK) zs_image_free(out);
   zs_device_destroy(dev);
   return st;
+}
+
+void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_camera *cam) {
+  *cam = s->camera;
+  if (u->has_eye) memcpy(cam->eye, u->eye, sizeof cam->eye), cam->has_eye = 1;
+  if (u->has_target) memcpy(cam->target, u->target, sizeof cam->target), cam->has_target = 1;
+  if (u->has_up) memcpy(cam->up, u->up, sizeof cam->up), cam->has_up = 1;
+  if (u->has_near) cam->znear = u->znear, cam->has_near = 1;
+  if (u->has_far) cam->zfar = u->zfar, cam->has_far = 1;
+  if (fovy_given) cam->fovy = u->fovy;
+  if (u->ortho) {
+    cam->ortho = 1;
+    memcpy(cam->extent, u->extent, sizeof cam->extent);
+  }
+  /* an eye of the user's own with the scene's target would look somewhere
+   * the user did not ask: the target then comes from the bounds */
+  if (u->has_eye && !u->has_target) cam->has_target = 0;
+  /* and the scene's near and far planes belong to the scene's eye */
+  if (u->has_eye && !u->has_near) cam->has_near = 0;
+  if (u->has_eye && !u->has_far) cam->has_far = 0;
 }

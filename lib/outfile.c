@@ -1,5 +1,5 @@
 /* The one output primitive (outfile.h). */
-#include "tools/outfile.h"
+#include "lib/outfile.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -1,4 +1,4 @@
-#include "tools/input.h"
+#include "lib/input.h"
 
 #include <string.h>
 

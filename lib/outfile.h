@@ -1,4 +1,4 @@
-/* zscan tools — the one way every output is written.
+/* zscan lib — the one way every output is written.
  *
  * What happens at PATH depends on what is there:
  *   - nothing, or a regular file: the bytes go to PATH.tmp.XXXXXX beside it,
@@ -21,8 +21,8 @@
  *
  * Errors read "PATH: reason"; a command prefixes the option that named the
  * path with zs_out_error_option, so the user reads "-o out/x.png: ...". */
-#ifndef ZS_TOOLS_OUTFILE_H
-#define ZS_TOOLS_OUTFILE_H
+#ifndef ZS_LIB_OUTFILE_H
+#define ZS_LIB_OUTFILE_H
 
 #include <stdio.h>
 

@@ -1,0 +1,357 @@
+/* zscan — a software scanline z-buffer renderer with exact occlusion
+ * queries: the same bytes on every machine.
+ *
+ * One object (zs_device: an emulated GPU), a few calls, and above it what
+ * most programs want: load a model or scene, render it into an image in
+ * memory, write or read PNG, hash and compare images.
+ *
+ *   #include <zscan/zscan.h>
+ *   #include <stdio.h>
+ *
+ *   int main(int argc, char **argv) {
+ *     zs_error err = {0};
+ *     zs_scene *scene;
+ *     zs_image im = {0};
+ *     zs_render_opts opts = {0};          // 1024x768, zbuffer, flat, auto camera
+ *     if (argc < 2 || zs_scene_load(argv[1], NULL, &scene, &err) ||
+ *         zs_render(scene, &opts, &im, NULL, NULL, &err) ||
+ *         zs_png_write("out.png", &im, &err))
+ *       return fprintf(stderr, "%s\n", err.msg), 1;
+ *     printf("%016llx\n", (unsigned long long)zs_image_hash(&im));
+ *     zs_image_free(&im);
+ *     zs_scene_destroy(scene);
+ *   }
+ *
+ * Build: cc prog.c $(pkg-config --cflags --libs zscan), or in CMake
+ * find_package(zscan) and target_link_libraries(prog zscan::zscan).
+ *
+ * KNOBS, every one with its default; in every options struct 0 (or NULL)
+ * means the default, so a zero-initialised struct is always valid:
+ *   zs_device_config.width, .height   0: 1024 x 768; else 1 .. 16384
+ *   zs_device_config.algo             0: ZS_ALGO_ZBUFFER
+ *   zs_device_config.shade            0: ZS_SHADE_FLAT
+ *   zs_device_config.cull_back        0: back faces drawn
+ *   zs_device_config.threads          0: 1; else 1 .. 64 (zbuffer mode)
+ *   zs_device_config.background       0: black (0xRRGGBB)
+ *   zs_render_opts.width, .height     0: the scene's own size, else 1024 x 768
+ *   zs_render_opts.algo, .shade, .cull_back, .threads   as the device's
+ *   zs_render_opts.hidden_line        0: faces; 1: the visible edges
+ *   zs_render_opts.has_eye/.eye ...   0: the scene's camera, completed
+ *                                     from its bounds (the automatic camera)
+ *   zs_render_opts.fovy               0: the scene's, else 45 degrees
+ *   zs_load_opts.allow_empty          0: a model without faces is an error
+ *   the device clock (zscan/clock.h)  zs_clock_params_default
+ *
+ * STABILITY: before 1.0 the names and structs here may still change
+ * between minor versions (0.x); the ABI is tied to the major version
+ * (SONAME libzscan.so.0).  Images and hashes change only with a reason in
+ * the release notes.  The extras (zscan/clock.h, zscan/trace.h,
+ * zscan/depthsort.h) may change more often.
+ *
+ * CONVENTIONS
+ *   Matrices are double[16], row-major, acting on column vectors:
+ *   p' = M p, element (row r, column c) at m[4*r + c].  The camera follows
+ *   gluLookAt / gluPerspective: the eye looks down -z, clip space is
+ *   OpenGL's (-w <= x,y,z <= w).  Window coordinates follow glViewport with
+ *   pixel centres at (x + 0.5, y + 0.5).  Images have row 0 at the top.
+ *   Vertices are snapped to 1/256 pixel.  A pixel belongs to a polygon
+ *   when its centre lies inside; a centre exactly on an edge belongs to the
+ *   polygon for which that edge is a left or a bottom edge in the written
+ *   image (OpenGL's top-left rule, as Mesa's llvmpipe applies it), so a
+ *   centre on an edge shared by two faces goes to exactly one of them.
+ *   Depth is window z in [0,1] as a 32-bit integer (0xFFFFFFFF farthest);
+ *   a fragment (z, id) replaces the pixel's (zb, idb) when z < zb, or
+ *   z == zb and id < idb: the image never depends on the order of draws.
+ *   Faces are convex (loaders split concave ones), counter-clockwise in
+ *   front.  docs/ALGORITHMS.md explains the scanline walk behind it.
+ */
+#ifndef ZSCAN_H
+#define ZSCAN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "zscan/error.h"
+
+#define ZSCAN_VERSION_MAJOR 0
+#define ZSCAN_VERSION_MINOR 9
+#define ZSCAN_VERSION_PATCH 0
+#define ZSCAN_VERSION_STRING "0.9.0"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The library's version, "MAJOR.MINOR.PATCH": compare it with
+ * ZSCAN_VERSION_STRING to tell the library from the header. */
+const char *zs_version(void);
+
+enum {
+  ZS_MAX_IMAGE_SIDE = 16384, /* width and height, each */
+  ZS_MAX_POLY_VERTS = 64,    /* per face of a zs_mesh (loaders split more) */
+  ZS_DEVICE_DEFAULT_WIDTH = 1024,
+  ZS_DEVICE_DEFAULT_HEIGHT = 768
+};
+
+#define ZS_DEPTH_FAR 0xFFFFFFFFu
+#define ZS_ID_NONE 0xFFFFFFFFu
+#define ZS_RGB_MESH 0xFF000000u /* draw with the mesh's own colours */
+
+/* ==== The device ==== */
+
+/* Geometry the device draws: owned by the caller, read only.
+ * Faces are index lists into pos: face f uses face_vert[face_start[f] ..
+ * face_start[f+1]-1], 3 .. ZS_MAX_POLY_VERTS of them.  face_id gives each
+ * face the id used for the depth tie-break and ZS_SHADE_ID (NULL: the face
+ * index); several mesh faces may share an id when a loader split one face.
+ * face_rgb is 0xRRGGBB per face (NULL: grey). */
+typedef struct zs_mesh {
+  double *pos;          /* x, y, z per vertex */
+  int32_t nverts;
+  int32_t *face_start;  /* nfaces + 1 entries */
+  int32_t *face_vert;
+  int32_t nfaces;
+  uint32_t *face_rgb;
+  int32_t *face_id;
+} zs_mesh;
+
+typedef enum zs_algo {
+  ZS_ALGO_ZBUFFER,  /* immediate mode: each draw into full-frame buffers */
+  ZS_ALGO_SCANLINE, /* the whole frame at once, one row of buffers */
+  ZS_ALGO_DEPTHSORT /* painter's algorithm with frame coherence */
+} zs_algo;
+
+/* "zbuffer", "scanline", "depthsort"; and back (-1 for another name). */
+const char *zs_algo_name(zs_algo a);
+int zs_algo_parse(const char *name);
+
+typedef enum zs_shade {
+  ZS_SHADE_FLAT,     /* material colour times a Lambert term */
+  ZS_SHADE_ID,       /* RGB = id + 1 as 24 bits, background 0 */
+  ZS_SHADE_DEPTH,    /* grey from the linear eye distance, near white */
+  ZS_SHADE_OVERDRAW  /* fragments per pixel as a heat map, no depth test */
+} zs_shade;
+
+typedef struct zs_device_config {
+  int width, height;       /* 0: 1024 x 768 */
+  zs_algo algo;            /* 0: zbuffer */
+  zs_shade shade;          /* 0: flat */
+  int cull_back;           /* drop faces clockwise in window coordinates */
+  int threads;             /* 0: 1; up to 64, zbuffer mode */
+  uint32_t background;     /* 0xRRGGBB for flat shading; 0: black */
+} zs_device_config;
+
+/* Counters of one frame (since the last zs_device_clear). */
+typedef struct zs_raster_stats {
+  uint64_t draws;
+  uint64_t vertices;             /* vertices transformed */
+  uint64_t polygons_in;          /* faces submitted */
+  uint64_t polygons_outside;     /* dropped whole: outside a clip plane */
+  uint64_t polygons_clipped;     /* crossed near, far or the guard band */
+  uint64_t polygons_culled_back; /* back faces, when culling is on */
+  uint64_t polygons_degenerate;  /* zero area after snapping */
+  uint64_t polygons_offscreen;   /* in the guard band, but their window box holds
+                                  * no pixel centre: dropped by set-up */
+  uint64_t polygons_rasterized;  /* set up and walked by the scanline code */
+  uint64_t spans;                /* non-empty spans filled */
+  uint64_t pixels_tested;        /* fragments depth-tested */
+  uint64_t pixels_written;       /* fragments that passed and were written */
+} zs_raster_stats;
+
+/* One finished row of the image, handed to a zs_row_sink in order y = 0,
+ * 1, ..., height-1.  rgb is 0xRRGGBB per pixel as shaded; depth and id are
+ * the raw buffers (id ZS_ID_NONE for background); count is the fragment
+ * count per pixel in ZS_SHADE_OVERDRAW, else NULL.  The pointers are valid
+ * only during the call. */
+typedef struct zs_row {
+  int y, width;
+  const uint32_t *rgb;
+  const uint32_t *depth;
+  const uint32_t *id;
+  const uint32_t *count;
+} zs_row;
+
+typedef void (*zs_row_sink)(void *user, const zs_row *row);
+
+typedef struct zs_device zs_device;
+
+/* cfg may be NULL (every default). */
+zs_status zs_device_create(const zs_device_config *cfg, zs_device **out, zs_error *err);
+void zs_device_destroy(zs_device *dev);
+/* The configuration in force, defaults filled in. */
+const zs_device_config *zs_device_config_of(const zs_device *dev);
+
+/* The camera for the following draws: view (world to eye) and projection
+ * (eye to clip), e.g. from zs_mat_look_at and zs_mat_perspective. */
+void zs_device_set_camera(zs_device *dev, const double view[16], const double proj[16]);
+
+/* Starts a frame: clears colour, depth and id, and the counters. */
+void zs_device_clear(zs_device *dev);
+
+/* Draws every face of mesh, placed by model (NULL: identity); face f gets
+ * id id_base + face_id[f] and the colour rgb, or its mesh colour when rgb
+ * is ZS_RGB_MESH.  In zbuffer mode the faces are rasterized now; in scanline
+ * mode they are set up and kept for zs_device_finish. */
+zs_status zs_device_draw(zs_device *dev, const zs_mesh *mesh, const double model[16],
+                         uint32_t id_base, uint32_t rgb, zs_error *err);
+
+/* Ends the frame (scanline mode rasterizes it now) and hands every row to
+ * sink, top to bottom.  sink may be NULL. */
+zs_status zs_device_finish(zs_device *dev, zs_row_sink sink, void *user, zs_error *err);
+
+const zs_raster_stats *zs_device_stats(const zs_device *dev);
+
+/* The full-frame buffers of zbuffer mode (NULL in scanline mode), row 0 at
+ * the top, width * height entries. */
+const uint32_t *zs_device_depth_buffer(const zs_device *dev);
+const uint32_t *zs_device_id_buffer(const zs_device *dev);
+
+/* ---- Occlusion queries (zbuffer mode) ----
+ * Between zs_device_query_begin and zs_device_query_end, every pixel that
+ * passes the depth test adds one sample to the query: pixels written by
+ * draws, and pixels of query boxes.  A query box draws the faces of an
+ * axis-aligned world box that face the eye (all six when the eye is
+ * inside) with the test "less or equal" and no writes, brought towards the
+ * eye by a small bias and grown by zs_device_query_margin, so that it is
+ * never hidden when what lies in it is visible.  A box cut by the near
+ * plane counts only what lies beyond it: treat such boxes as visible.
+ * Results arrive after the modelled latency (zscan/clock.h); asking early
+ * stalls the modelled CPU.  Several queries may be in flight. */
+typedef uint32_t zs_query;
+
+zs_status zs_device_query_begin(zs_device *dev, zs_query *q, zs_error *err);
+zs_status zs_device_query_end(zs_device *dev, zs_error *err);
+zs_status zs_device_query_box(zs_device *dev, const double lo[3], const double hi[3],
+                              zs_error *err);
+/* n boxes (lo[i], hi[i]) as one draw call, as a multiquery draws them. */
+zs_status zs_device_query_boxes(zs_device *dev, const double (*lo)[3], const double (*hi)[3],
+                                int n, zs_error *err);
+/* How far a query box lo..hi grows on every side, in world units. */
+double zs_device_query_margin(const zs_device *dev, const double lo[3], const double hi[3]);
+/* Whether the result of q is available at the modelled CPU time now. */
+int zs_device_query_ready(const zs_device *dev, zs_query q);
+/* The samples of q (waiting for it, in modelled time, when not ready). */
+uint64_t zs_device_query_result(zs_device *dev, zs_query q);
+
+/* ---- Hidden lines (zbuffer mode) ----
+ * After the faces are drawn, zs_device_fill_color paints the colour buffer
+ * one colour (keeping depth and ids), and zs_device_draw_edges draws the
+ * edges of the front faces wherever they are not behind the depth buffer. */
+zs_status zs_device_fill_color(zs_device *dev, uint32_t rgb, zs_error *err);
+zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh, const double model[16],
+                               uint32_t rgb, zs_error *err);
+/* The twelve edges of the world box lo..hi, over everything. */
+zs_status zs_device_draw_box_lines(zs_device *dev, const double lo[3], const double hi[3],
+                                   uint32_t rgb, zs_error *err);
+
+/* ---- Matrices (OpenGL conventions, exact trigonometry) ---- */
+void zs_mat_identity(double m[16]);
+void zs_mat_mul(double out[16], const double a[16], const double b[16]);
+void zs_mat_translate(double m[16], double x, double y, double z);
+void zs_mat_scale(double m[16], double x, double y, double z);
+/* Rotation by deg degrees about the axis (x,y,z), right-handed. */
+void zs_mat_rotate(double m[16], double deg, double x, double y, double z);
+/* gluLookAt; returns 0 when eye == target or up is parallel to the view. */
+int zs_mat_look_at(double m[16], const double eye[3], const double target[3],
+                   const double up[3]);
+/* gluPerspective: fovy in degrees, aspect = width / height. */
+void zs_mat_perspective(double m[16], double fovy_deg, double aspect, double znear,
+                        double zfar);
+/* glOrtho. */
+void zs_mat_ortho(double m[16], double left, double right, double bottom, double top,
+                  double znear, double zfar);
+
+/* ==== Images ==== */
+
+/* width * height pixels 0xRRGGBB, row 0 at the top (the top byte is
+ * ignored when writing and zero when reading). */
+typedef struct zs_image {
+  int width, height;
+  uint32_t *rgb;
+} zs_image;
+
+/* A width x height image, all black.  On failure *im is left empty. */
+zs_status zs_image_alloc(zs_image *im, int width, int height, zs_error *err);
+/* Frees the pixels and empties *im (im may be NULL). */
+void zs_image_free(zs_image *im);
+
+/* The image hash that golden tests and `zscan render --stats` print:
+ * 64-bit FNV-1a (offset basis 0xcbf29ce484222325, prime 0x100000001b3)
+ * over width and height, each as a 32-bit little-endian number, then R,
+ * G, B of every pixel, row 0 first, left to right. */
+uint64_t zs_image_hash(const zs_image *im);
+
+typedef struct zs_diff_result {
+  uint64_t differing; /* pixels whose 0xRRGGBB differ */
+  uint64_t total;     /* width * height */
+  int max_channel_diff; /* the largest |a - b| over R, G and B */
+} zs_diff_result;
+
+/* Compares a and b, which must have the same size (else ZS_ERR_ARG).  When
+ * diff_out is not NULL it receives a new image of the same size: a pixel
+ * equal in a and b is the grey of a darkened to a quarter (luma / 4, Rec.
+ * 601 weights), a differing pixel red, 0xFF0000. */
+zs_status zs_image_diff(const zs_image *a, const zs_image *b, zs_image *diff_out,
+                        zs_diff_result *res, zs_error *err);
+
+/* Writes im as an 8-bit RGB PNG, the same bytes for the same pixels (with
+ * one zlib).  path "-" is standard output; a regular file is replaced
+ * whole or not at all, a symbolic link is followed, a device or FIFO is
+ * written directly. */
+zs_status zs_png_write(const char *path, const zs_image *im, zs_error *err);
+/* Reads a PNG of any colour type and bit depth into *out (allocated here;
+ * free it with zs_image_free); alpha is dropped, no gamma applied. */
+zs_status zs_png_read(const char *path, zs_image *out, zs_error *err);
+/* A single-channel PFM of width * height floats, row 0 at the top (written
+ * bottom row first, as the format wants). */
+zs_status zs_pfm_write(const char *path, int width, int height, const float *values,
+                       zs_error *err);
+
+/* ==== Scenes: load, render ==== */
+
+typedef struct zs_scene zs_scene;
+
+typedef struct zs_load_opts {
+  int allow_empty; /* 0: a model without faces is refused ("FILE: no faces") */
+} zs_load_opts;
+
+/* Loads input (opts may be NULL):
+ *   FILE.obj                 Wavefront OBJ, one object per o/g
+ *   FILE.json                a zscan scene file (docs/SCENES.md)
+ *   FILE.ply, .stl, .gltf .. through assimp, when built with it
+ *   builtin:NAME[?k=v&..]    a generated scene: default, teapots, spheres,
+ *                            city, plant, cubes
+ *   NULL                     builtin:default
+ * Errors name the file and line (or the JSON path). */
+zs_status zs_scene_load(const char *input, const zs_load_opts *opts, zs_scene **out,
+                        zs_error *err);
+void zs_scene_destroy(zs_scene *scene);
+/* Instances (objects) and source faces, over the instances. */
+int32_t zs_scene_objects(const zs_scene *scene);
+uint64_t zs_scene_faces(const zs_scene *scene);
+
+typedef struct zs_render_opts {
+  int width, height;       /* 0: the scene's size, else 1024 x 768 */
+  zs_algo algo;
+  zs_shade shade;
+  int cull_back;
+  int threads;             /* 0: 1 */
+  int hidden_line;         /* the visible edges of front faces, on white */
+  int has_eye, has_target, has_up;  /* 0: the scene's camera, completed */
+  double eye[3], target[3], up[3];
+  double fovy;             /* degrees; 0: the scene's (45 unless it says) */
+} zs_render_opts;
+
+/* Renders scene into out (allocated here; free it with zs_image_free):
+ * the image `zscan render` makes with the same options, byte for byte.
+ * opts may be NULL.  depth, when not NULL, receives a malloc'd array of
+ * width * height window depths, row 0 at the top (1 = far; free() it);
+ * stats, when not NULL, the frame's counters. */
+zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image *out,
+                    float **depth, zs_raster_stats *stats, zs_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,69 @@
+/* The public API's own functions (zscan/zscan.h): the version, scenes
+ * behind an opaque handle, and one call that renders as `zscan render`
+ * does.  Everything else public is the device's and the images'. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "lib/frame.h"
+#include "lib/input.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "zscan/zscan.h"
+
+const char *zs_version(void) { return ZSCAN_VERSION_STRING; }
+
+zs_status zs_scene_load(const char *input, const zs_load_opts *opts, zs_scene **out,
+                        zs_error *err) {
+  *out = NULL;
+  zs_scene *s = malloc(sizeof *s);
+  if (!s) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  zs_status st = zs_input_load(input, opts ? opts->allow_empty : 0, s, err);
+  if (st != ZS_OK) {
+    free(s);
+    return st;
+  }
+  *out = s;
+  return ZS_OK;
+}
+
+void zs_scene_destroy(zs_scene *scene) {
+  if (!scene) return;
+  zs_scene_free(scene);
+  free(scene);
+}
+
+int32_t zs_scene_objects(const zs_scene *scene) { return scene->ninst; }
+
+zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image *out,
+                    float **depth, zs_raster_stats *stats, zs_error *err) {
+  static const zs_render_opts none;
+  const zs_render_opts *o = opts ? opts : &none;
+  out->width = out->height = 0;
+  out->rgb = NULL;
+  if (depth) *depth = NULL;
+  if (o->width < 0 || o->height < 0 || o->threads < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render: negative size or thread count");
+  /* the user's camera over the scene's, as the command's options are */
+  zs_camera user;
+  zs_camera_default(&user);
+  memcpy(user.eye, o->eye, sizeof user.eye);
+  memcpy(user.target, o->target, sizeof user.target);
+  memcpy(user.up, o->up, sizeof user.up);
+  user.has_eye = o->has_eye;
+  user.has_target = o->has_target;
+  user.has_up = o->has_up;
+  user.fovy = o->fovy;
+  zs_camera cam;
+  zs_frame_view(scene, &user, o->fovy != 0.0, &cam);
+  zs_frame_opts fo = {
+      o->width ? o->width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH,
+      o->height ? o->height : scene->height ? scene->height : ZS_DEVICE_DEFAULT_HEIGHT,
+      o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1, o->hidden_line};
+  float *d = NULL;
+  if (depth && !(d = malloc((size_t)fo.width * (size_t)fo.height * sizeof *d)))
+    return zs_error_set(err, ZS_ERR_NOMEM, "zs_render: out of memory");
+  zs_status st = zs_frame_render(scene, &cam, &fo, out, d, stats, err);
+  if (st != ZS_OK || !depth) free(d);
+  else *depth = d;
+  return st;
+}
