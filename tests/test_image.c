@@ -17,7 +17,7 @@
 
 #include "raster/rng.h"
 #include "tools/crosscheck.h"
-#include "tools/diff.h"
+#include "tools/commands.h"
 #include "lib/frame.h"
 #include "lib/image.h"
 #include "lib/input.h"

@@ -17,7 +17,7 @@
 #include "raster/raster.h"
 #include "tools/cli.h"
 #include "lib/outfile.h"
-#include "tools/walk.h"
+#include "tools/commands.h"
 
 static const char usage[] =
     "usage: zscan bench tradeoff [--out DIR] [--quick] [--size WxH]\n"

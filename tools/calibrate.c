@@ -22,7 +22,7 @@
  * CPU-side constants (node visits, frustum tests) keep their defaults
  * too.  The output and the file say which constant is which ("source").
  */
-#include "tools/calibrate.h"
+#include "tools/commands.h"
 
 #include <math.h>
 #include <stdio.h>

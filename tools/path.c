@@ -3,7 +3,7 @@
  * a walk of SCENE uses (its path, completed from its bounds as every
  * command completes it), or those of a named path (static, translate,
  * roll, yaw, fast) from the scene's camera. */
-#include "tools/path.h"
+#include "tools/commands.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -10,7 +10,7 @@
  * instances: an OBJ file's o/g groups (groups of one name are one object,
  * groups without faces none), or a scene file's instances.  A last line
  * gives the totals. */
-#include "tools/query.h"
+#include "tools/commands.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* `zscan render [INPUT] [options]`: one frame of INPUT to a PNG, with its
  * counters.  See `zscan render --help` (usage below) for the options. */
-#include "tools/render.h"
+#include "tools/commands.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -8,7 +8,7 @@
  * pixel-centre units (column c has its centre at x = c), shown exactly as
  * fractions where the DDA holds them exactly; depth as window depth in
  * [0, 1], 0 at the near plane, beside the fixed-point integers. */
-#include "tools/trace.h"
+#include "tools/commands.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>

@@ -8,7 +8,7 @@
  * frame: diff_pixels.  The modelled times come from the device clock and
  * are the same on every run; wall times are measured and are not.
  */
-#include "tools/walk.h"
+#include "tools/commands.h"
 
 #include <math.h>
 #include <stdio.h>
