@@ -15,6 +15,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 # What each package is for:
 #   cmake gcc make pkg-config   the build
+#   g++                         the C++ example and the test that the headers compile as C++
 #   libpng-dev                  PNG output (tools/image.c)
 #   check                       the unit-test framework (tests/)
 #   clang                       the second compiler CI builds and sanitizes with
@@ -24,7 +25,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   gnuplot-nox                 the benchmark plots
 #   libosmesa6-dev              Mesa's llvmpipe, for the cross-check test
 #   valgrind                    instruction counts: zscan bench raster --callgrind and its test
-zs_packages=(cmake gcc make pkg-config libpng-dev check clang libcjson-dev
+zs_packages=(cmake gcc g++ make pkg-config libpng-dev check clang libcjson-dev
              libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind)
 
 zs_missing=()

@@ -1,0 +1,320 @@
+/* zscan as a library: the public headers compile alone as C11 and C++17
+ * and include nothing private; libzscan.so exports the public functions
+ * and nothing else; a zero-initialised config renders; and the example
+ * render_hash, built against the shared library, prints the image_hash of
+ * `zscan render` for every model of tests/data and of assimp's test
+ * models. */
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "tests/testutil.h"
+#include "zscan/clock.h"
+#include "zscan/zscan.h"
+
+enum { BIG = 1 << 16 };
+
+/* The compilers a consumer is built with: the build's own C compiler, and
+ * its C++ sibling, with the build's sanitizers when it has them (the
+ * sanitizer runtime must be the same as the library's). */
+static const char *cc(void) { return ZS_C_COMPILER; }
+static const char *cxx_compiler(void) { return strstr(ZS_C_COMPILER, "clang") ? "clang++" : "g++"; }
+#ifdef ZS_SANITIZED
+#define CONSUMER_FLAGS "-fsanitize=address,undefined"
+#else
+#define CONSUMER_FLAGS ""
+#endif
+
+/* Runs a shell command; its output (both streams) into out. */
+static int shell(const char *cmd, char *out, size_t cap) {
+  FILE *p = popen(cmd, "r");
+  ck_assert_ptr_nonnull(p);
+  size_t n = 0, got;
+  while (n + 1 < cap && (got = fread(out + n, 1, cap - 1 - n, p)) > 0) n += got;
+  out[n] = '\0';
+  int rc = pclose(p);
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+static char *slurp_text(const char *path) {
+  FILE *f = fopen(path, "r");
+  ck_assert_msg(f != NULL, "%s", path);
+  char *b = malloc(BIG);
+  size_t n = fread(b, 1, BIG - 1, f);
+  b[n] = '\0';
+  fclose(f);
+  return b;
+}
+
+static const char *const headers[] = {"zscan.h", "error.h", "clock.h", "depthsort.h", "trace.h"};
+enum { NHEADERS = sizeof headers / sizeof headers[0] };
+
+/* Each header alone, as the first include of a C11 and of a C++17 file,
+ * with every warning an error. */
+START_TEST(headers_compile_alone_as_c_and_cxx) {
+  static char out[BIG];
+  for (int h = 0; h < NHEADERS; h++) {
+    for (int cxx = 0; cxx < 2; cxx++) {
+      char src[4200], cmd[9000];
+      snprintf(src, sizeof src, "%s/header-%d.%s", ZS_BINARY_DIR, h, cxx ? "cpp" : "c");
+      FILE *f = fopen(src, "w");
+      fprintf(f, "#include <zscan/%s>\nint zs_check_%d;\n", headers[h], h);
+      fclose(f);
+      snprintf(cmd, sizeof cmd,
+               "%s %s -Wall -Wextra -Werror -pedantic -I%s/include -c %s -o %s.o 2>&1",
+               cxx ? cxx_compiler() : cc(), cxx ? "-std=c++17" : "-std=c11", ZS_SOURCE_DIR, src, src);
+      ck_assert_msg(shell(cmd, out, sizeof out) == 0, "%s: %s", cmd, out);
+    }
+  }
+}
+END_TEST
+
+/* A public header includes the standard library and other public headers
+ * only. */
+START_TEST(headers_include_nothing_private) {
+  for (int h = 0; h < NHEADERS; h++) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/include/zscan/%s", ZS_SOURCE_DIR, headers[h]);
+    char *text = slurp_text(path);
+    for (char *l = strstr(text, "#include"); l; l = strstr(l + 1, "#include")) {
+      char *q = l + strlen("#include");
+      while (*q == ' ') q++;
+      ck_assert_msg(*q == '<' || strncmp(q, "\"zscan/", 7) == 0, "%s: %.40s", headers[h], l);
+    }
+    free(text);
+  }
+}
+END_TEST
+
+/* Every symbol libzscan.so defines is declared in a public header, and
+ * every function the headers declare is there. */
+START_TEST(shared_library_exports_the_api_only) {
+  static char out[BIG];
+  char cmd[4400];
+  snprintf(cmd, sizeof cmd, "nm -D --defined-only %s/libzscan.so | awk '{print $3}'",
+           ZS_BINARY_DIR);
+  ck_assert_int_eq(shell(cmd, out, sizeof out), 0);
+  char *all = calloc(1, (size_t)NHEADERS * BIG);
+  for (int h = 0; h < NHEADERS; h++) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/include/zscan/%s", ZS_SOURCE_DIR, headers[h]);
+    char *text = slurp_text(path);
+    strcat(all, text);
+    free(text);
+  }
+  int exported = 0;
+  for (char *sym = strtok(out, "\n"); sym; sym = strtok(NULL, "\n")) {
+    char *at = strchr(sym, '@');
+    if (at) *at = '\0';
+    if (strncmp(sym, "ZSCAN_", 6) == 0) continue; /* the version node */
+    char decl[256];
+    snprintf(decl, sizeof decl, "%s(", sym);
+    ck_assert_msg(strstr(all, decl) != NULL, "exported but not public: %s", sym);
+    exported++;
+  }
+  /* the other way: as many functions as the headers declare, one per
+   * line that starts a declaration */
+  ck_assert_int_ge(exported, 50);
+  snprintf(cmd, sizeof cmd,
+           "grep -ho '^[a-z][a-zA-Z0-9_ ]*[ *]zs_[a-z0-9_]*(' %s/include/zscan/*.h | "
+           "grep -v '^typedef\\|^static' | grep -o 'zs_[a-z0-9_]*($' | sort -u | wc -l",
+           ZS_SOURCE_DIR);
+  ck_assert_int_eq(shell(cmd, out, sizeof out), 0);
+  ck_assert_int_eq(atoi(out), exported);
+  free(all);
+}
+END_TEST
+
+/* 0 means the default everywhere: a zeroed config is a 1024x768 zbuffer
+ * device on one thread, and a zeroed zs_render_opts renders. */
+START_TEST(zero_config_renders) {
+  zs_error err = {0};
+  zs_device_config cfg = {0};
+  zs_device *dev = NULL;
+  ck_assert_msg(zs_device_create(&cfg, &dev, &err) == ZS_OK, "%s", err.msg);
+  const zs_device_config *got = zs_device_config_of(dev);
+  ck_assert_int_eq(got->width, 1024);
+  ck_assert_int_eq(got->height, 768);
+  ck_assert_int_eq(got->threads, 1);
+  double pos[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  int32_t start[] = {0, 4}, verts[] = {0, 1, 2, 3};
+  zs_mesh quad = {pos, 4, start, verts, 1, NULL, NULL};
+  double view[16], proj[16];
+  const double eye[3] = {0, 0, 4}, target[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+  ck_assert(zs_mat_look_at(view, eye, target, up));
+  zs_mat_perspective(proj, 45, 4.0 / 3.0, 1, 10);
+  zs_device_set_camera(dev, view, proj);
+  zs_device_clear(dev);
+  ck_assert_int_eq(zs_device_draw(dev, &quad, NULL, 0, 0xFFFFFF, &err), ZS_OK);
+  ck_assert_int_eq(zs_device_finish(dev, NULL, NULL, &err), ZS_OK);
+  ck_assert_uint_gt(zs_device_stats(dev)->pixels_written, 100000);
+  zs_device_destroy(dev);
+
+  zs_scene *scene = NULL;
+  ck_assert_int_eq(zs_scene_load("builtin:cubes?n=2", NULL, &scene, &err), ZS_OK);
+  zs_image im = {0};
+  float *depth = NULL;
+  zs_raster_stats stats;
+  ck_assert_msg(zs_render(scene, NULL, &im, &depth, &stats, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_int_eq(im.width, 1024);
+  ck_assert_int_eq(im.height, 768);
+  ck_assert_ptr_nonnull(depth);
+  ck_assert_uint_gt(stats.pixels_written, 0);
+  free(depth);
+  zs_image_free(&im);
+  zs_scene_destroy(scene);
+  ck_assert_str_eq(zs_version(), ZSCAN_VERSION_STRING);
+}
+END_TEST
+
+/* The last line of text, into line. */
+static void last_line(const char *text, char *line, size_t cap) {
+  const char *end = text + strlen(text);
+  while (end > text && end[-1] == '\n') end--;
+  const char *start = end;
+  while (start > text && start[-1] != '\n') start--;
+  snprintf(line, cap, "%.*s", (int)(end - start), start);
+}
+
+static int compare_one(const char *exe, const char *input, int *rendered) {
+  static char out[BIG], cli[BIG], err[BIG];
+  char cmd[9000];
+  snprintf(cmd, sizeof cmd, "LD_LIBRARY_PATH=%s %s '%s' 96 72 2>/dev/null", ZS_BINARY_DIR, exe,
+           input);
+  int rc = shell(cmd, out, sizeof out);
+  char png[4200];
+  snprintf(png, sizeof png, "%s/library-cli.png", ZS_BINARY_DIR);
+  const char *args[] = {"render", input, "--size", "96x72", "--stats", "-o", png, NULL};
+  int cli_rc = zs_test_run_zscan(args, cli, sizeof cli, err, sizeof err);
+  ck_assert_msg((rc == 0) == (cli_rc == 0), "%s: render_hash exit %d, zscan render exit %d (%s)",
+                input, rc, cli_rc, err);
+  if (rc != 0) return 0;
+  char hash[64];
+  last_line(out, hash, sizeof hash);
+  const char *h = strstr(cli, "\"image_hash\":\"");
+  ck_assert_ptr_nonnull(h);
+  ck_assert_msg(strncmp(h + 14, hash, 16) == 0 && strlen(hash) == 16,
+                "%s: render_hash %s, zscan render %.16s", input, hash, h + 14);
+  (*rendered)++;
+  return 1;
+}
+
+/* Every model file below dir (recursively) with one of the suffixes. */
+static void compare_tree(const char *exe, const char *dir, int *rendered, int *seen) {
+  DIR *d = opendir(dir);
+  if (!d) return;
+  struct dirent *e;
+  static const char *const suffixes[] = {".obj", ".ply", ".stl", ".off", ".gltf", ".glb"};
+  while ((e = readdir(d))) {
+    if (e->d_name[0] == '.') continue;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+    struct stat st;
+    if (stat(path, &st) != 0) continue;
+    if (S_ISDIR(st.st_mode)) {
+      compare_tree(exe, path, rendered, seen);
+      continue;
+    }
+    size_t n = strlen(e->d_name);
+    for (size_t k = 0; k < sizeof suffixes / sizeof suffixes[0]; k++) {
+      size_t m = strlen(suffixes[k]);
+      if (n > m && strcasecmp(e->d_name + n - m, suffixes[k]) == 0) {
+        (*seen)++;
+        compare_one(exe, path, rendered);
+      }
+    }
+  }
+  closedir(d);
+}
+
+/* Builds examples/NAME.EXT with the compiler (and standard) given, against
+ * the source tree's public headers and the shared library, as a user
+ * would; returns the program's path in exe. */
+static void build_example(const char *compiler, const char *std, const char *file, char *exe,
+                          size_t cap) {
+  static char out[BIG];
+  char cmd[9000];
+  snprintf(exe, cap, "%s/%.*s", ZS_BINARY_DIR, (int)strcspn(file, "."), file);
+  snprintf(cmd, sizeof cmd,
+           "%s -std=%s -Wall -Wextra -Werror %s -I%s/include %s/examples/%s -L%s -lzscan -o %s 2>&1",
+           compiler, std, CONSUMER_FLAGS, ZS_SOURCE_DIR, ZS_SOURCE_DIR, file, ZS_BINARY_DIR, exe);
+  ck_assert_msg(shell(cmd, out, sizeof out) == 0, "%s: %s", cmd, out);
+}
+
+/* examples/render_hash.c built with cc against the public header and the
+ * shared library, as a user would, gives the command's image_hash. */
+START_TEST(render_hash_equals_the_command) {
+  char exe[4200];
+  build_example(cc(), "c11", "render_hash.c", exe, sizeof exe);
+  int rendered = 0, seen = 0;
+  compare_tree(exe, zs_test_src("tests/data"), &rendered, &seen);
+  /* tests/data holds the bad files too: both refuse those */
+  ck_assert_int_ge(seen, 40);
+  ck_assert_int_ge(rendered, 12);
+  int ours = rendered;
+  static const char *const assimp_dirs[] = {"OBJ", "PLY", "STL", "OFF", "glTF2"};
+  for (size_t k = 0; k < sizeof assimp_dirs / sizeof assimp_dirs[0]; k++) {
+    char dir[256];
+    snprintf(dir, sizeof dir, "/usr/share/assimp/models/%s", assimp_dirs[k]);
+    compare_tree(exe, dir, &rendered, &seen);
+  }
+#ifdef ZS_HAVE_ASSIMP
+  ck_assert_int_ge(rendered - ours, 30); /* assimp-testmodels is installed by setup.sh */
+#endif
+  printf("render_hash: %d of %d model files rendered, each with the command's hash\n", rendered,
+         seen);
+}
+END_TEST
+
+/* The C++ example builds against the headers and runs: a box behind a
+ * wall gets no sample, one beside it does. */
+START_TEST(cxx_example_queries) {
+  static char out[BIG];
+  char exe[4200], cmd[9000];
+  build_example(cxx_compiler(), "c++17", "query_mesh.cpp", exe, sizeof exe);
+  snprintf(cmd, sizeof cmd, "LD_LIBRARY_PATH=%s %s", ZS_BINARY_DIR, exe);
+  ck_assert_msg(shell(cmd, out, sizeof out) == 0, "%s: %s", cmd, out);
+  ck_assert_msg(strstr(out, "box behind the wall: 0 samples\n") != NULL, "%s", out);
+  const char *beside = strstr(out, "box beside the wall: ");
+  ck_assert_ptr_nonnull(beside);
+  ck_assert_int_gt(atoi(beside + strlen("box beside the wall: ")), 100);
+}
+END_TEST
+
+/* The version three ways: the header, the library, the command; and the
+ * pkg-config file made beside the library. */
+START_TEST(one_version_everywhere) {
+  static char out[BIG];
+  const char *args[] = {"--version", NULL};
+  char err[256];
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  char want[128];
+  snprintf(want, sizeof want, "zscan %s (library %s)\n", ZSCAN_VERSION_STRING, zs_version());
+  ck_assert_msg(strncmp(out, want, strlen(want)) == 0, "%s", out);
+  ck_assert_ptr_nonnull(strstr(out, "span fill: "));
+  char cmd[4400];
+  snprintf(cmd, sizeof cmd, "pkg-config --modversion %s/zscan.pc", ZS_BINARY_DIR);
+  ck_assert_int_eq(shell(cmd, out, sizeof out), 0);
+  snprintf(want, sizeof want, "%s\n", ZSCAN_VERSION_STRING);
+  ck_assert_str_eq(out, want);
+}
+END_TEST
+
+int main(void) {
+  Suite *s = suite_create("library");
+  TCase *tc = tcase_create("library");
+  tcase_set_timeout(tc, 600);
+  tcase_add_test(tc, headers_compile_alone_as_c_and_cxx);
+  tcase_add_test(tc, headers_include_nothing_private);
+  tcase_add_test(tc, shared_library_exports_the_api_only);
+  tcase_add_test(tc, zero_config_renders);
+  tcase_add_test(tc, render_hash_equals_the_command);
+  tcase_add_test(tc, cxx_example_queries);
+  tcase_add_test(tc, one_version_everywhere);
+  suite_add_tcase(s, tc);
+  return zs_test_run(s);
+}
