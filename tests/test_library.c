@@ -285,6 +285,74 @@ START_TEST(cxx_example_queries) {
 }
 END_TEST
 
+/* The example at the top of zscan.h: its text with the comment's " * "
+ * taken off, into buf. */
+static void header_example(char *buf, size_t cap) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/include/zscan/zscan.h", ZS_SOURCE_DIR);
+  char *text = slurp_text(path);
+  const char *start = strstr(text, " *   #include <zscan/zscan.h>");
+  ck_assert_ptr_nonnull(start);
+  const char *end = strstr(start, "\n *   }\n");
+  ck_assert_ptr_nonnull(end);
+  end += strlen("\n *   }\n");
+  size_t n = 0;
+  for (const char *l = start; l < end; l = strchr(l, '\n') + 1) {
+    const char *body = strncmp(l, " *   ", 5) == 0 ? l + 5 : l + 2; /* " *\n": a blank line */
+    size_t len = (size_t)(strchr(l, '\n') - body);
+    ck_assert_uint_lt(n + len + 2, cap);
+    memcpy(buf + n, body, len);
+    buf[n + len] = '\n';
+    n += len + 1;
+  }
+  buf[n] = '\0';
+  free(text);
+}
+
+/* The fifteen lines of zscan.h are the README's and docs/API.md's, word
+ * for word, and they build and run: out.png, and the command's hash. */
+START_TEST(the_example_everywhere_builds_and_runs) {
+  static char example[8192], out[BIG];
+  header_example(example, sizeof example);
+  static const char *const pages[] = {"README.md", "docs/API.md"};
+  for (int i = 0; i < 2; i++) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", ZS_SOURCE_DIR, pages[i]);
+    char *text = slurp_text(path);
+    ck_assert_msg(strstr(text, example) != NULL, "%s lacks the example of zscan.h:\n%s", pages[i],
+                  example);
+    free(text);
+  }
+  char dir[4200], src[4400], cmd[9000];
+  snprintf(dir, sizeof dir, "%s/library-example", ZS_BINARY_DIR);
+  mkdir(dir, 0777);
+  snprintf(src, sizeof src, "%s/example.c", dir);
+  FILE *f = fopen(src, "w");
+  fputs(example, f);
+  fclose(f);
+  snprintf(cmd, sizeof cmd,
+           "cd %s && rm -f out.png && %s -std=c11 -Wall -Wextra -Werror %s -I%s/include example.c "
+           "-L%s -lzscan -o example 2>&1 && LD_LIBRARY_PATH=%s ./example builtin:cubes?n=3",
+           dir, cc(), CONSUMER_FLAGS, ZS_SOURCE_DIR, ZS_BINARY_DIR, ZS_BINARY_DIR);
+  ck_assert_msg(shell(cmd, out, sizeof out) == 0, "%s: %s", cmd, out);
+  char png[4400];
+  snprintf(png, sizeof png, "%s/out.png", dir);
+  zs_image im = {0};
+  zs_error err = {0};
+  ck_assert_msg(zs_png_read(png, &im, &err) == ZS_OK, "%s", err.msg);
+  char want[32];
+  snprintf(want, sizeof want, "%016llx\n", (unsigned long long)zs_image_hash(&im));
+  ck_assert_str_eq(out, want);
+  zs_image_free(&im);
+  static char cli[BIG], cerr[1024];
+  const char *args[] = {"render", "builtin:cubes?n=3", "--stats", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, cli, sizeof cli, cerr, sizeof cerr), 0);
+  ck_assert_msg(strstr(cli, want) == NULL, "image_hash is printed without a newline");
+  want[16] = '\0';
+  ck_assert_ptr_nonnull(strstr(cli, want));
+}
+END_TEST
+
 /* The version three ways: the header, the library, the command; and the
  * pkg-config file made beside the library. */
 START_TEST(one_version_everywhere) {
@@ -314,6 +382,7 @@ int main(void) {
   tcase_add_test(tc, zero_config_renders);
   tcase_add_test(tc, render_hash_equals_the_command);
   tcase_add_test(tc, cxx_example_queries);
+  tcase_add_test(tc, the_example_everywhere_builds_and_runs);
   tcase_add_test(tc, one_version_everywhere);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
