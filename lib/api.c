@@ -6,6 +6,7 @@
 
 #include "lib/frame.h"
 #include "lib/input.h"
+#include "lib/query.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "zscan/zscan.h"
@@ -34,16 +35,14 @@ void zs_scene_destroy(zs_scene *scene) {
 
 int32_t zs_scene_objects(const zs_scene *scene) { return scene->ninst; }
 
-zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image *out,
-                    float **depth, zs_raster_stats *stats, zs_error *err) {
+/* The camera and the frame's options that opts ask for, on scene: the
+ * user's camera over the scene's, as the command's options are. */
+static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_camera *cam,
+                        zs_frame_opts *fo, zs_error *err) {
   static const zs_render_opts none;
   const zs_render_opts *o = opts ? opts : &none;
-  out->width = out->height = 0;
-  out->rgb = NULL;
-  if (depth) *depth = NULL;
   if (o->width < 0 || o->height < 0 || o->threads < 0)
-    return zs_error_set(err, ZS_ERR_ARG, "zs_render: negative size or thread count");
-  /* the user's camera over the scene's, as the command's options are */
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts: negative size or thread count");
   zs_camera user;
   zs_camera_default(&user);
   memcpy(user.eye, o->eye, sizeof user.eye);
@@ -53,17 +52,39 @@ zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image 
   user.has_target = o->has_target;
   user.has_up = o->has_up;
   user.fovy = o->fovy;
-  zs_camera cam;
-  zs_frame_view(scene, &user, o->fovy != 0.0, &cam);
-  zs_frame_opts fo = {
+  zs_frame_view(scene, &user, o->fovy != 0.0, cam);
+  *fo = (zs_frame_opts){
       o->width ? o->width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH,
       o->height ? o->height : scene->height ? scene->height : ZS_DEVICE_DEFAULT_HEIGHT,
       o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1, o->hidden_line};
+  return ZS_OK;
+}
+
+zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image *out,
+                    float **depth, zs_raster_stats *stats, zs_error *err) {
+  out->width = out->height = 0;
+  out->rgb = NULL;
+  if (depth) *depth = NULL;
+  zs_camera cam;
+  zs_frame_opts fo = {0};
+  zs_status st = settle(scene, opts, &cam, &fo, err);
+  if (st != ZS_OK) return st;
   float *d = NULL;
   if (depth && !(d = malloc((size_t)fo.width * (size_t)fo.height * sizeof *d)))
     return zs_error_set(err, ZS_ERR_NOMEM, "zs_render: out of memory");
-  zs_status st = zs_frame_render(scene, &cam, &fo, out, d, stats, err);
+  st = zs_frame_render(scene, &cam, &fo, out, d, stats, err);
   if (st != ZS_OK || !depth) free(d);
   else *depth = d;
   return st;
+}
+
+zs_status zs_query_objects(const zs_scene *scene, const zs_render_opts *opts,
+                           zs_object_visibility **out, int32_t *n, zs_error *err) {
+  *out = NULL;
+  *n = 0;
+  zs_camera cam;
+  zs_frame_opts fo = {0};
+  zs_status st = settle(scene, opts, &cam, &fo, err);
+  if (st != ZS_OK) return st;
+  return zs_query_objects_at(scene, &cam, fo.width, fo.height, fo.cull_back, out, n, err);
 }

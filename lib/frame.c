@@ -102,3 +102,17 @@ void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_cam
   if (u->has_eye && !u->has_near) cam->has_near = 0;
   if (u->has_eye && !u->has_far) cam->has_far = 0;
 }
+
+zs_status zs_frame_path_camera(const zs_scene *s, int32_t f, int w, int h, double view[16],
+                               double proj[16], zs_error *err) {
+  zs_camera cam = s->camera;
+  if (s->path.nkeys > 0) zs_path_camera(s, f % (s->path.frames > 0 ? s->path.frames : 1), &cam);
+  double aspect = (double)w / h;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++) {
+    lo[k] = s->lo[k];
+    hi[k] = s->hi[k];
+  }
+  zs_camera_complete(&cam, lo, hi, aspect);
+  return zs_camera_matrices(&cam, aspect, view, proj, err);
+}

@@ -53,4 +53,10 @@ zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width
  * the scene's eye); the rest is completed from the bounds later. */
 void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_camera *cam);
 
+/* The camera of frame f of the scene's walk: the path's (frame f modulo
+ * the path's length) or, without a path, the scene's camera; completed
+ * from the scene's bounds at aspect w/h. */
+zs_status zs_frame_path_camera(const zs_scene *s, int32_t f, int w, int h, double view[16],
+                               double proj[16], zs_error *err);
+
 #endif

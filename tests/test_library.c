@@ -14,6 +14,7 @@
 
 #include "tests/testutil.h"
 #include "zscan/clock.h"
+#include "zscan/walk.h"
 #include "zscan/zscan.h"
 
 enum { BIG = 1 << 16 };
@@ -50,13 +51,27 @@ static char *slurp_text(const char *path) {
   return b;
 }
 
-static const char *const headers[] = {"zscan.h", "error.h", "clock.h", "depthsort.h", "trace.h"};
-enum { NHEADERS = sizeof headers / sizeof headers[0] };
+/* The public headers: every file of include/zscan. */
+static const char *headers[16];
+static int NHEADERS;
+
+static void list_headers(void) {
+  if (NHEADERS) return;
+  char dir[4200];
+  snprintf(dir, sizeof dir, "%s/include/zscan", ZS_SOURCE_DIR);
+  DIR *d = opendir(dir);
+  ck_assert_ptr_nonnull(d);
+  for (struct dirent *e; (e = readdir(d)) && NHEADERS < 16;)
+    if (strstr(e->d_name, ".h")) headers[NHEADERS++] = strdup(e->d_name);
+  closedir(d);
+  ck_assert_int_ge(NHEADERS, 6);
+}
 
 /* Each header alone, as the first include of a C11 and of a C++17 file,
  * with every warning an error. */
 START_TEST(headers_compile_alone_as_c_and_cxx) {
   static char out[BIG];
+  list_headers();
   for (int h = 0; h < NHEADERS; h++) {
     for (int cxx = 0; cxx < 2; cxx++) {
       char src[4200], cmd[9000];
@@ -76,6 +91,7 @@ END_TEST
 /* A public header includes the standard library and other public headers
  * only. */
 START_TEST(headers_include_nothing_private) {
+  list_headers();
   for (int h = 0; h < NHEADERS; h++) {
     char path[4200];
     snprintf(path, sizeof path, "%s/include/zscan/%s", ZS_SOURCE_DIR, headers[h]);
@@ -94,6 +110,7 @@ END_TEST
  * every function the headers declare is there. */
 START_TEST(shared_library_exports_the_api_only) {
   static char out[BIG];
+  list_headers();
   char cmd[4400];
   snprintf(cmd, sizeof cmd, "nm -D --defined-only %s/libzscan.so | awk '{print $3}'",
            ZS_BINARY_DIR);
@@ -353,6 +370,86 @@ START_TEST(the_example_everywhere_builds_and_runs) {
 }
 END_TEST
 
+/* zs_query_objects gives the lines of `zscan query`. */
+START_TEST(query_objects_equal_the_command) {
+  static char cli[BIG], cerr[1024], mine[BIG];
+  const char *input = "builtin:cubes?n=3";
+  const char *args[] = {"query", input, "--size", "160x120", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, cli, sizeof cli, cerr, sizeof cerr), 0);
+  zs_error err = {0};
+  zs_scene *scene;
+  ck_assert_int_eq(zs_scene_load(input, NULL, &scene, &err), ZS_OK);
+  zs_render_opts o = {0};
+  o.width = 160;
+  o.height = 120;
+  zs_object_visibility *v;
+  int32_t n;
+  ck_assert_msg(zs_query_objects(scene, &o, &v, &n, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_int_eq(n, 27);
+  size_t len = 0;
+  uint64_t seen = 0;
+  for (int32_t k = 0; k < n; k++) {
+    len += (size_t)snprintf(mine + len, sizeof mine - len, "object %s visible=%llu bbox=%llu\n",
+                            v[k].name, (unsigned long long)v[k].visible,
+                            (unsigned long long)v[k].box_samples);
+    seen += v[k].visible;
+  }
+  ck_assert_uint_gt(seen, 0);
+  ck_assert_msg(strncmp(cli, mine, len) == 0, "zscan query:\n%s\nzs_query_objects:\n%s", cli, mine);
+  free(v);
+  zs_scene_destroy(scene);
+}
+END_TEST
+
+/* zs_walk's frames are the rows of `zscan walk --csv` for the same
+ * method (wall time aside), moving objects and all. */
+START_TEST(walk_frames_equal_the_command) {
+  static char cli[BIG], cerr[4096];
+  const char *input = "builtin:teapots?count=40&level=3&moving=8&frames=16";
+  const char *args[] = {"walk", input, "--cull", "chc", "--size", "160x120", "--csv", "-",
+                        "--quiet", NULL};
+  ck_assert_msg(zs_test_run_zscan(args, cli, sizeof cli, cerr, sizeof cerr) == 0, "%s", cerr);
+  zs_error err = {0};
+  zs_scene *scene;
+  ck_assert_int_eq(zs_scene_load(input, NULL, &scene, &err), ZS_OK);
+  zs_walk_opts o = {0};
+  o.method = "chc";
+  o.width = 160;
+  o.height = 120;
+  zs_walk *w;
+  ck_assert_msg(zs_walk_create(scene, &o, &w, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_int_eq(zs_walk_frames(w), 16);
+  uint64_t queries = 0;
+  for (int32_t f = 0; f < zs_walk_frames(w); f++) {
+    zs_walk_frame fr;
+    ck_assert_msg(zs_walk_next(w, &fr, &err) == ZS_OK, "%s", err.msg);
+    char want[512], key[64];
+    snprintf(key, sizeof key, "\n%d,chc,", fr.frame); /* the CLI's rows: none first, then chc */
+    const char *row = strstr(cli, key);
+    ck_assert_msg(row != NULL, "no row for frame %d", fr.frame);
+    row++;
+    /* frame,method,chosen,modelled_ms,stall_ms,(wall_ms),queries,queries_hidden,faces_drawn,
+     * objects_drawn,nodes_visited */
+    snprintf(want, sizeof want, "%d,chc,chc,%.6f,%.6f,", fr.frame, fr.modelled_ms, fr.stall_ms);
+    ck_assert_msg(strncmp(row, want, strlen(want)) == 0, "frame %d: '%.80s', want '%s'", f, row,
+                  want);
+    const char *after_wall = strchr(row + strlen(want), ',') + 1;
+    snprintf(want, sizeof want, "%llu,%llu,%llu,%llu,%llu,", (unsigned long long)fr.queries,
+             (unsigned long long)fr.queries_hidden, (unsigned long long)fr.faces_drawn,
+             (unsigned long long)fr.objects_drawn, (unsigned long long)fr.nodes_visited);
+    ck_assert_msg(strncmp(after_wall, want, strlen(want)) == 0, "frame %d: '%.80s', want '%s'", f,
+                  after_wall, want);
+    queries += fr.queries;
+  }
+  ck_assert_uint_gt(queries, 0);
+  zs_walk_destroy(w);
+  zs_scene_destroy(scene);
+  ck_assert_int_eq(zs_walk_create(NULL, &(zs_walk_opts){"magic", 0, 0, 0}, &w, &err),
+                   ZS_ERR_ARG);
+  ck_assert_ptr_nonnull(strstr(err.msg, "culling method 'magic'"));
+}
+END_TEST
+
 /* The version three ways: the header, the library, the command; and the
  * pkg-config file made beside the library. */
 START_TEST(one_version_everywhere) {
@@ -382,6 +479,8 @@ int main(void) {
   tcase_add_test(tc, zero_config_renders);
   tcase_add_test(tc, render_hash_equals_the_command);
   tcase_add_test(tc, cxx_example_queries);
+  tcase_add_test(tc, query_objects_equal_the_command);
+  tcase_add_test(tc, walk_frames_equal_the_command);
   tcase_add_test(tc, the_example_everywhere_builds_and_runs);
   tcase_add_test(tc, one_version_everywhere);
   suite_add_tcase(s, tc);

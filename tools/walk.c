@@ -196,20 +196,6 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
 }
 
 /* The camera of frame f: the scene's path, or its camera when it has none. */
-static zs_status frame_camera(const zs_scene *s, int32_t f, int w, int h, double view[16],
-                              double proj[16], zs_error *err) {
-  zs_camera cam = s->camera;
-  if (s->path.nkeys > 0) zs_path_camera(s, f % (s->path.frames > 0 ? s->path.frames : 1), &cam);
-  double aspect = (double)w / h;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; k++) {
-    lo[k] = s->lo[k];
-    hi[k] = s->hi[k];
-  }
-  zs_camera_complete(&cam, lo, hi, aspect);
-  return zs_camera_matrices(&cam, aspect, view, proj, err);
-}
-
 static void progress(const walk_opts *o, int f, int frames) {
   if (o->quiet || !isatty(2)) return;
   int width = 40, done = (int)((int64_t)(f + 1) * width / frames);
@@ -406,7 +392,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     /* latency in frames: of none's modelled time of the first frame */
     double view[16], proj[16];
     zs_cull_stats cs;
-    if ((st = frame_camera(&s, 0, w, h, view, proj, err)) ||
+    if ((st = zs_frame_path_camera(&s, 0, w, h, view, proj, err)) ||
         (st = zs_culler_frame(runs[0].culler, runs[0].dev, &s, &tree, view, proj, &cs, err)) ||
         (st = zs_device_finish(runs[0].dev, NULL, NULL, err)))
       goto done;
@@ -447,7 +433,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       if ((st = zs_octree_update(&tree, &s, NULL, err))) break;
     }
     double view[16], proj[16];
-    if ((st = frame_camera(&s, f * o->step, w, h, view, proj, err))) break;
+    if ((st = zs_frame_path_camera(&s, f * o->step, w, h, view, proj, err))) break;
     for (int k = 0; k < o->nmethods && st == ZS_OK; k++) {
       method_run *r = &runs[k];
       zs_cull_stats cs;

@@ -45,8 +45,8 @@
  * STABILITY: before 1.0 the names and structs here may still change
  * between minor versions (0.x); the ABI is tied to the major version
  * (SONAME libzscan.so.0).  Images and hashes change only with a reason in
- * the release notes.  The extras (zscan/clock.h, zscan/trace.h,
- * zscan/depthsort.h) may change more often.
+ * the release notes.  The extras (zscan/walk.h, zscan/clock.h,
+ * zscan/trace.h, zscan/depthsort.h) may change more often.
  *
  * CONVENTIONS
  *   Matrices are double[16], row-major, acting on column vectors:
@@ -349,6 +349,23 @@ typedef struct zs_render_opts {
  * stats, when not NULL, the frame's counters. */
 zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image *out,
                     float **depth, zs_raster_stats *stats, zs_error *err);
+
+/* Per object (instance) of the scene, as `zscan query` prints it: the
+ * pixels of the rendered frame (zbuffer mode, opts as for zs_render) that
+ * show one of its faces, and the samples of an occlusion query on its
+ * axis-aligned world box against the finished depth buffer. */
+typedef struct zs_object_visibility {
+  const char *name;        /* the object's name; valid while the scene is */
+  int32_t object;          /* its number in the scene, from 0 */
+  uint32_t first_face;     /* its lowest face id: the order of the list */
+  uint64_t visible;        /* pixels it owns */
+  uint64_t box_samples;    /* samples of its box's query */
+} zs_object_visibility;
+
+/* *out receives a malloc'd array of *n entries, in order of first face,
+ * then of number (free() it). */
+zs_status zs_query_objects(const zs_scene *scene, const zs_render_opts *opts,
+                           zs_object_visibility **out, int32_t *n, zs_error *err);
 
 #ifdef __cplusplus
 }

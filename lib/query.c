@@ -1,0 +1,77 @@
+/* Per-object visibility, as `zscan query` prints it (zscan/zscan.h,
+ * zs_query_objects; lib/query.h). */
+#include "lib/query.h"
+
+#include <stdlib.h>
+
+#include "lib/frame.h"
+
+static int by_first_face(const void *a, const void *b) {
+  const zs_object_visibility *x = a, *y = b;
+  if (x->first_face != y->first_face) return x->first_face < y->first_face ? -1 : 1;
+  return (x->object > y->object) - (x->object < y->object);
+}
+
+zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width, int height,
+                              int cull_back, zs_object_visibility **out, int32_t *n,
+                              zs_error *err) {
+  *out = NULL;
+  *n = 0;
+  zs_status st = ZS_OK;
+  zs_device *dev = NULL;
+  zs_object_visibility *lines = calloc((size_t)(s->ninst ? s->ninst : 1), sizeof *lines);
+  int32_t *owner = NULL;
+  double view[16], proj[16];
+  if (!lines) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  if (st == ZS_OK) st = zs_frame_camera(s, cam, width, height, view, proj, err);
+  zs_device_config cfg = {width, height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, cull_back, 1, 0};
+  if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);
+  if (st == ZS_OK) {
+    zs_device_clear(dev);
+    zs_device_set_camera(dev, view, proj);
+    st = zs_frame_draw_scene(dev, s, err);
+  }
+  if (st == ZS_OK) st = zs_device_finish(dev, NULL, NULL, err);
+  /* the instance of every face id, and each instance's first face */
+  uint32_t nids = 0;
+  for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
+    const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
+    lines[i].name = s->inst[i].name;
+    lines[i].object = i;
+    lines[i].first_face = UINT32_MAX;
+    for (int32_t f = 0; f < m->nfaces; f++) {
+      uint32_t id = s->inst[i].id_base + (uint32_t)m->face_id[f];
+      if (id + 1 > nids) nids = id + 1;
+      if (id < lines[i].first_face) lines[i].first_face = id;
+    }
+  }
+  if (st == ZS_OK && !(owner = malloc((size_t)(nids ? nids : 1) * sizeof *owner)))
+    st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
+    const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
+    for (int32_t f = 0; f < m->nfaces; f++) owner[s->inst[i].id_base + (uint32_t)m->face_id[f]] = i;
+  }
+  if (st == ZS_OK) {
+    const uint32_t *ids = zs_device_id_buffer(dev);
+    for (size_t p = 0; p < (size_t)width * (size_t)height; p++)
+      if (ids[p] < nids) lines[owner[ids[p]]].visible++;
+  }
+  for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
+    zs_query q;
+    if ((st = zs_device_query_begin(dev, &q, err)) ||
+        (st = zs_device_query_box(dev, s->inst[i].lo, s->inst[i].hi, err)) ||
+        (st = zs_device_query_end(dev, err)))
+      break;
+    lines[i].box_samples = zs_device_query_result(dev, q);
+  }
+  free(owner);
+  zs_device_destroy(dev);
+  if (st != ZS_OK) {
+    free(lines);
+    return st;
+  }
+  qsort(lines, (size_t)s->ninst, sizeof *lines, by_first_face);
+  *out = lines;
+  *n = s->ninst;
+  return ZS_OK;
+}

@@ -1,0 +1,17 @@
+/* zscan lib — per-object visibility (zs_query_objects of zscan/zscan.h)
+ * with a camera and size already chosen, for zscan query's options. */
+#ifndef ZS_LIB_QUERY_H
+#define ZS_LIB_QUERY_H
+
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "zscan/zscan.h"
+
+/* The frame of s seen by cam (completed from the bounds) at width x
+ * height, drawn in zbuffer mode with id shading; then per instance the
+ * pixels it owns and its box's query samples, sorted by first face. */
+zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width, int height,
+                              int cull_back, zs_object_visibility **out, int32_t *n,
+                              zs_error *err);
+
+#endif
