@@ -72,7 +72,7 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
-                          o->cull_back, o->threads, ZS_BACKGROUND_RGB};
+                          o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0};
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;
   zs_status st = zs_image_alloc(out, o->width, o->height, err);

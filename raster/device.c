@@ -53,6 +53,10 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
   zs_device *d = calloc(1, sizeof *d);
   if (!d) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   d->cfg = *cfg;
+  /* the span fill, chosen once: BEST and AVX2 take what the CPU has */
+  d->simd = zs_span_simd_level(cfg->spans == ZS_SPANS_SCALAR ? ZS_SIMD_SCALAR
+                               : cfg->spans == ZS_SPANS_SSE2 ? ZS_SIMD_SSE2
+                                                             : ZS_SIMD_AVX2);
   size_t w = (size_t)cfg->width, px = w * (size_t)cfg->height;
   int ok = 1;
   if (cfg->algo == ZS_ALGO_ZBUFFER) { /* else scanline or depthsort: one row */
@@ -240,7 +244,7 @@ size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
 }
 
 zs_target zs_device_frame_target(zs_device *d) {
-  zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width};
+  zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width, d->simd};
   return t;
 }
 
@@ -713,7 +717,7 @@ zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user,
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
     row_emit e = {d, sink, user};
     zs_row_hooks hooks = {scanline_begin_row, scanline_end_row, &e};
-    zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w};
+    zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, w, d->simd};
     zs_walk_counts c = {0, 0, 0};
     if (!zs_scan_batch(&d->batch, zs_draw_kernel(d), &t, 0, h, &hooks, d->trace, &d->scratch, &c))
       return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
@@ -750,3 +754,5 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
   m.vertices = zs_vert_scratch_bytes(&d->verts);
   return m;
 }
+
+zs_simd zs_device_simd(const zs_device *dev) { return dev->simd; }

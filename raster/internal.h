@@ -171,9 +171,7 @@ void zs_batch_free(zs_batch *b);
  * inside the depth range: the scalar loop's test and writes, eight (AVX2)
  * or four (SSE2) pixels at a time, as far as whole steps go; adds the
  * pixels written to *written and returns the column where the scalar loop
- * takes over (x0 at ZS_SIMD_SCALAR).  zs_span_simd_level: the level the
- * CPU has, capped by zs_raster_set_simd. */
-zs_simd zs_span_simd_level(void);
+ * takes over (x0 at ZS_SIMD_SCALAR). */
 int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1,
                       int64_t z, int64_t dz, int shift, uint32_t id, uint32_t rgb,
                       uint64_t *written);
@@ -192,6 +190,7 @@ typedef struct zs_target {
   uint32_t *depth, *id, *rgb, *count;
   int64_t row_stride;
   int width;
+  zs_simd simd;  /* the device's span fill */
 } zs_target;
 
 typedef struct zs_walk_counts {
@@ -371,6 +370,7 @@ typedef struct zs_clock_costs {
 
 struct zs_device {
   zs_device_config cfg;
+  zs_simd simd;                   /* the span fill, from cfg.spans and the CPU */
   double view[16], proj[16];
   double eye[3];                  /* world position of the eye */
   double znear, zfar;

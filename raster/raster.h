@@ -136,12 +136,14 @@ zs_device_memory zs_device_memory_of(const zs_device *dev);
 
 /* The draw kernel's span fill (span_simd.c): long spans eight pixels at
  * a time with AVX2 where the CPU has it, else four at a time with SSE2
- * (every x86-64 CPU), else the scalar loop.  zs_raster_set_simd caps the
- * level for the whole program (default ZS_SIMD_AVX2: the best there is)
- * and returns the level now in use.  The images and counters are the same
- * at every level. */
+ * (every x86-64 CPU), else the scalar loop.  zs_span_simd_level gives the
+ * widest level the CPU has up to most; a device takes its level once,
+ * from its config's spans.  The images and counters are the same at
+ * every level. */
 typedef enum zs_simd { ZS_SIMD_SCALAR = 0, ZS_SIMD_SSE2 = 1, ZS_SIMD_AVX2 = 2 } zs_simd;
-zs_simd zs_raster_set_simd(zs_simd most);
+zs_simd zs_span_simd_level(zs_simd most);
+/* The level a device fills its spans with (fixed at its creation). */
+zs_simd zs_device_simd(const zs_device *dev);
 /* "scalar", "sse2" or "avx2". */
 const char *zs_simd_name(zs_simd level);
 

@@ -293,7 +293,7 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
   const zs_edge *edges = b->edges;
   const int32_t *head = s->bucket_head, *next = s->next;
   zs_active *act = s->active;
-  const zs_simd simd = k == ZS_KERNEL_DRAW ? zs_span_simd_level() : ZS_SIMD_SCALAR;
+  const zs_simd simd = k == ZS_KERNEL_DRAW ? t->simd : ZS_SIMD_SCALAR;
   /* the shortest span the vector fill takes (one compare a span) */
   const int vector_from = simd != ZS_SIMD_SCALAR ? ZS_SIMD_MIN_SPAN : INT_MAX;
   const int32_t nrows = row_end - row_begin;

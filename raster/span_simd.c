@@ -11,14 +11,14 @@
  * SSE2 and AVX2 compare signed 32-bit lanes, so both sides are offset by
  * 2^31.
  *
- * Chosen at run time: AVX2 when the CPU has it (cpuid), else SSE2, which
- * every x86-64 CPU has; zs_raster_set_simd caps the level for everyone
- * (tests, benchmarks).  Elsewhere the scalar loop fills every span. */
+ * Chosen once per device, when it is created: AVX2 when the CPU has it
+ * (cpuid), else SSE2, which every x86-64 CPU has, capped by the device's
+ * config (tests, benchmarks).  Elsewhere the scalar loop fills every
+ * span. */
 #include <stdint.h>
 
 #include "raster/internal.h"
 
-static zs_simd simd_most = ZS_SIMD_AVX2; /* the highest level allowed */
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #include <immintrin.h>
@@ -120,16 +120,12 @@ __attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir,
 static int cpu_has_avx2(void) { return __builtin_cpu_supports("avx2") != 0; }
 #endif
 
-zs_simd zs_raster_set_simd(zs_simd most) {
-  simd_most = most < ZS_SIMD_SCALAR ? ZS_SIMD_SCALAR : most > ZS_SIMD_AVX2 ? ZS_SIMD_AVX2 : most;
-  return zs_span_simd_level();
-}
-
-zs_simd zs_span_simd_level(void) {
+zs_simd zs_span_simd_level(zs_simd most) {
 #ifdef ZS_HAVE_X86_PATHS
-  if (simd_most >= ZS_SIMD_AVX2 && cpu_has_avx2()) return ZS_SIMD_AVX2;
-  if (simd_most >= ZS_SIMD_SSE2) return ZS_SIMD_SSE2;
+  if (most >= ZS_SIMD_AVX2 && cpu_has_avx2()) return ZS_SIMD_AVX2;
+  if (most >= ZS_SIMD_SSE2) return ZS_SIMD_SSE2;
 #endif
+  (void)most;
   return ZS_SIMD_SCALAR;
 }
 

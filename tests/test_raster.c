@@ -55,12 +55,18 @@ static void ortho_camera(zs_device *d, int w, int h, double znear, double zfar) 
   zs_device_set_camera(d, view, proj);
 }
 
+/* The span fill of the devices made here (simd_spans_equal_scalar sets it). */
+static zs_span_fill spans_for_devices = ZS_SPANS_BEST;
+
 static zs_device *device(int w, int h, zs_algo algo, zs_shade shade, int cull) {
-  zs_device_config cfg = {w, h, algo, shade, cull, 1, 0};
+  zs_device_config cfg = {w, h, algo, shade, cull, 1, 0, spans_for_devices};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+  ck_assert_int_eq(zs_device_simd(d), zs_span_simd_level(spans_for_devices == ZS_SPANS_BEST
+                                                             ? ZS_SIMD_AVX2
+                                                             : (zs_simd)(spans_for_devices - 1)));
   return d;
 }
 
@@ -367,18 +373,19 @@ START_TEST(simd_spans_equal_scalar) {
   mb_sphere(&b, W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
 #if defined(__x86_64__)
   /* every x86-64 CPU has SSE2 */
-  ck_assert_int_eq(zs_raster_set_simd(ZS_SIMD_SSE2), ZS_SIMD_SSE2);
+  ck_assert_int_eq(zs_span_simd_level(ZS_SIMD_SSE2), ZS_SIMD_SSE2);
 #endif
-  ck_assert_int_eq(zs_raster_set_simd(ZS_SIMD_SCALAR), ZS_SIMD_SCALAR);
+  ck_assert_int_eq(zs_span_simd_level(ZS_SIMD_SCALAR), ZS_SIMD_SCALAR);
   for (int algo = 0; algo < 2; algo++) {
     frame f[3];
     zs_raster_stats st[3];
     for (int level = ZS_SIMD_SCALAR; level <= ZS_SIMD_AVX2; level++) {
-      zs_raster_set_simd((zs_simd)level);
+      /* the device's own level: ZS_SPANS_SCALAR .. ZS_SPANS_AVX2 */
+      spans_for_devices = (zs_span_fill)(ZS_SPANS_SCALAR + level);
       f[level] = frame_new(W, H);
       st[level] = render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &f[level]);
     }
-    zs_raster_set_simd(ZS_SIMD_AVX2);
+    spans_for_devices = ZS_SPANS_BEST;
     size_t n = (size_t)W * H * 4;
     for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX2; level++) {
       ck_assert_msg(memcmp(f[0].rgb, f[level].rgb, n) == 0, "%s: colours", zs_simd_name(level));
@@ -482,7 +489,7 @@ END_TEST
  * a perspective camera at eye looking at the origin. */
 static zs_device *perspective_device(const frame *f, int threads, double ex, double ey,
                                      double ez) {
-  zs_device_config cfg = {f->w, f->h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, threads, 0};
+  zs_device_config cfg = {f->w, f->h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, threads, 0, 0};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);
@@ -647,7 +654,7 @@ START_TEST(deferred_small_draws_land_as_drawn_at_once) {
   }
 
   /* the queue is real: before the flush nothing is written or counted */
-  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 2, 0};
+  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 2, 0, 0};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);

@@ -82,6 +82,9 @@ static double mtri(const bench_row *r) { return r->triangles / r->ms * 1e-3; }
 static double mpix(const bench_row *r) { return r->pixels / r->ms * 1e-3; }
 static double per(double a, double b) { return b > 0 ? a / b : 0.0; }
 
+/* The devices' span fill: the level in use, as a config asks for it. */
+static zs_span_fill spans_of(const bench_opts *o) { return (zs_span_fill)(ZS_SPANS_SCALAR + o->simd); }
+
 static const char *simd_label(zs_simd level) {
   return level == ZS_SIMD_AVX2 ? "AVX2" : level == ZS_SIMD_SSE2 ? "SSE2" : "scalar";
 }
@@ -176,7 +179,7 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
   uint32_t *ids = malloc((size_t)w * h * sizeof *ids);
   zs_mesa *mesa = NULL;
   zs_device *dev = NULL;
-  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0, spans_of(o)};
   zs_status st = !mms || !ids ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
   if (!st && !(st = zs_mesa_create(w, h, &mesa, err))) st = zs_device_create(&cfg, &dev, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
@@ -342,11 +345,11 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
                      ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory")
                      : ZS_OK;
   for (int d = 0; d < 2 && !st; d++) {
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? n : 1, 0};
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? n : 1, 0, spans_of(o)};
     st = zs_device_create(&cfg, &dev[d], err);
   }
   for (int i = 0; i < n && pinned && !st; i++) {
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0};
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0, spans_of(o)};
     st = zs_device_create(&cfg, &pf[i].dev, err);
     pf[i] = (pinned_frame){pf[i].dev, s, view, proj, cpus[i], 0, 0.0, ZS_OK, {0}};
   }
@@ -464,7 +467,7 @@ static zs_status run_case(const bench_opts *o, int a, const char *name, const zs
                           const double view[16], const double proj[16], double *ms, bench_row *r,
                           zs_error *err) {
   zs_device_config cfg = {o->width, o->height, algos[a], ZS_SHADE_FLAT, 0,
-                          algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0};
+                          algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0, spans_of(o)};
   zs_device *dev;
   zs_status st = zs_device_create(&cfg, &dev, err);
   if (st) return st;
@@ -641,7 +644,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   int n = 0, nm = 0, ns = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
-  o.simd = zs_raster_set_simd(st ? ZS_SIMD_SCALAR : o.simd); /* what is in use */
+  o.simd = zs_span_simd_level(st ? ZS_SIMD_SCALAR : o.simd); /* what is in use */
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
   for (int i = 0; i < NSIDES && !st; i++) {

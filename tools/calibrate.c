@@ -168,7 +168,7 @@ static zs_status scene_fn(zs_device *d, void *ctx, zs_error *err) {
 }
 
 static zs_status measure_synthetic(synthetic kind, int repeat, workload *w, zs_error *err) {
-  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
   double view[16], proj[16];
@@ -233,7 +233,7 @@ static zs_status measure_synthetic(synthetic kind, int repeat, workload *w, zs_e
 }
 
 static zs_status measure_scene(const zs_scene *m, int repeat, workload *w, zs_error *err) {
-  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
   zs_camera cam;

@@ -133,7 +133,7 @@ zs_status zs_crosscheck_faces(const zs_scene *s, const double view[16], const do
                               int w, int h, const uint32_t *other, FILE *list,
                               zs_crosscheck *out, zs_error *err) {
   *out = (zs_crosscheck){(uint64_t)w * (uint64_t)h, 0, 0, 0};
-  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
   zs_device *dev = NULL, *alone = NULL;
   candidate *cand = NULL;
   zs_status st = zs_device_create(&cfg, &dev, err);

@@ -261,7 +261,7 @@ static zs_status run(const render_opts *o, zs_error *err) {
   double view[16], proj[16];
   if ((st = zs_frame_camera(&model, &o->view.cam, o->view.width, o->view.height, view, proj, err))) goto done;
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
-                          o->view.cull_back, o->threads, ZS_BACKGROUND_RGB};
+                          o->view.cull_back, o->threads, ZS_BACKGROUND_RGB, 0};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;

@@ -475,7 +475,7 @@ int zs_cmd_trace(int argc, char **argv) {
   if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
     goto fail;
   zs_device_config cfg = {o.view.width, o.view.height, ZS_ALGO_SCANLINE, ZS_SHADE_ID,
-                          o.view.cull_back, 1, ZS_BACKGROUND_RGB};
+                          o.view.cull_back, 1, ZS_BACKGROUND_RGB, 0};
   if (zs_device_create(&cfg, &dev, &err)) goto fail;
   t.o = &o;
   t.out = stdout;

@@ -381,7 +381,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   for (int k = 0; k < o->nmethods; k++) {
     method_run *r = &runs[k];
     r->m = (zs_cull_method)o->methods[k];
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0};
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
     if ((st = zs_device_create(&cfg, &r->dev, err))) goto done;
     if ((st = zs_culler_create(r->m, &o->cost, &r->culler, err)) ||
         (st = zs_culler_set_bounds(r->culler, o->bounds, err)))
@@ -403,7 +403,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
            o->latency_frames);
   }
   for (int k = 0; k < o->nalgos; k++) {
-    zs_device_config cfg = {w, h, o->algos[k], ZS_SHADE_ID, 0, 1, 0};
+    zs_device_config cfg = {w, h, o->algos[k], ZS_SHADE_ID, 0, 1, 0, 0};
     algos[k].a = o->algos[k];
     if ((st = zs_device_create(&cfg, &algos[k].dev, err)) ||
         (st = zs_device_set_clock(algos[k].dev, &clock, err)))

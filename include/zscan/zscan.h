@@ -33,6 +33,7 @@
  *   zs_device_config.cull_back        0: back faces drawn
  *   zs_device_config.threads          0: 1; else 1 .. 64 (zbuffer mode)
  *   zs_device_config.background       0: black (0xRRGGBB)
+ *   zs_device_config.spans            0: the widest span fill the CPU has
  *   zs_render_opts.width, .height     0: the scene's own size, else 1024 x 768
  *   zs_render_opts.algo, .shade, .cull_back, .threads   as the device's
  *   zs_render_opts.hidden_line        0: faces; 1: the visible edges
@@ -132,6 +133,16 @@ typedef enum zs_shade {
   ZS_SHADE_OVERDRAW  /* fragments per pixel as a heat map, no depth test */
 } zs_shade;
 
+/* How wide the span fill goes: long spans eight pixels at a time with
+ * AVX2, four with SSE2, or one.  Every level gives the same bytes; the
+ * choice is made once, when the device is created. */
+typedef enum zs_span_fill {
+  ZS_SPANS_BEST = 0,  /* the widest this CPU has */
+  ZS_SPANS_SCALAR,
+  ZS_SPANS_SSE2,      /* at most SSE2 */
+  ZS_SPANS_AVX2       /* at most AVX2 (the same as best on x86-64) */
+} zs_span_fill;
+
 typedef struct zs_device_config {
   int width, height;       /* 0: 1024 x 768 */
   zs_algo algo;            /* 0: zbuffer */
@@ -139,6 +150,7 @@ typedef struct zs_device_config {
   int cull_back;           /* drop faces clockwise in window coordinates */
   int threads;             /* 0: 1; up to 64, zbuffer mode */
   uint32_t background;     /* 0xRRGGBB for flat shading; 0: black */
+  zs_span_fill spans;      /* 0: the widest the CPU has */
 } zs_device_config;
 
 /* Counters of one frame (since the last zs_device_clear). */
