@@ -52,6 +52,10 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
   user.has_target = o->has_target;
   user.has_up = o->has_up;
   user.fovy = o->fovy;
+  user.znear = o->znear;
+  user.has_near = o->znear != 0.0;
+  user.zfar = o->zfar;
+  user.has_far = o->zfar != 0.0;
   zs_frame_view(scene, &user, o->fovy != 0.0, cam);
   *fo = (zs_frame_opts){
       o->width ? o->width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH,

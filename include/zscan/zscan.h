@@ -40,6 +40,7 @@
  *   zs_render_opts.has_eye/.eye ...   0: the scene's camera, completed
  *                                     from its bounds (the automatic camera)
  *   zs_render_opts.fovy               0: the scene's, else 45 degrees
+ *   zs_render_opts.znear, .zfar       0: from the scene's bounds
  *   zs_load_opts.allow_empty          0: a model without faces is an error
  *   the device clock (zscan/clock.h)  zs_clock_params_default
  *
@@ -352,6 +353,7 @@ typedef struct zs_render_opts {
   int has_eye, has_target, has_up;  /* 0: the scene's camera, completed */
   double eye[3], target[3], up[3];
   double fovy;             /* degrees; 0: the scene's (45 unless it says) */
+  double znear, zfar;      /* the clip planes' distances; 0: from the bounds */
 } zs_render_opts;
 
 /* Renders scene into out (allocated here; free it with zs_image_free):
