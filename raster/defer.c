@@ -27,11 +27,10 @@
  * still in the caches.  The chunks share DEFER_SLOTS_PER_THREAD batches a
  * thread in turn: a chunk is set up only when every band is through the
  * chunk that last used its batch, so the same few megabytes are written
- * over and over instead of the whole frame's polygons (24.5 against 13.3
- * MB of tables on the plant at 2 threads, in the same time).  Setting up
- * the whole queue first and walking it after, as before, left the walk
- * reading every polygon back from memory: on the plant at 2 threads the
- * flush took 12.9 ms a frame, against 11.9 now (medians of six runs).
+ * over and over instead of the whole frame's polygons.  Setting up the
+ * whole queue first and walking it after would leave the walk reading
+ * every polygon back from memory, a slower flush (zscan bench raster
+ * --case builtin:plant --threads 2 measures it).
  *
  * The counters and the clock lag the queue until the flush, so deferral is
  * for callers that read them after zs_device_finish (a whole scene drawn,
@@ -51,14 +50,16 @@
 #include "raster/internal.h"
 #include "raster/pool.h"
 
-/* Batches a thread for the chunks in flight: at 1 a thread the set-ups
- * waited on the slowest band (14.4 against 12.2 ms a plant frame at 2
- * threads, medians of six runs); 2, 4 and 16 measured alike. */
+/* Batches a thread for the chunks in flight: with one, a thread could not
+ * set up its next chunk until the slowest band was through the last one;
+ * with two it can, and more gain nothing (zscan bench raster --case
+ * builtin:plant --threads 2 measures it). */
 enum { MAX_CHUNKS = 64, MAX_BANDS = 64, DEFER_SLOTS_PER_THREAD = 2 };
 
-/* Polls before a task with nothing to take sleeps: 0.30 to 0.36 ms of
- * PAUSE on this VM's CPU, longer than most waits of the flush (0.1 to 1
- * ms).  A task that sleeps costs the one that wakes it a futex call. */
+/* Polls before a task with nothing to take sleeps: enough to outlast most
+ * waits of the flush for a set-up or a band, as a task that sleeps costs
+ * the one that wakes it a system call (zscan bench raster --case
+ * builtin:plant --threads 2 measures it). */
 enum { FLUSH_SPINS = 1 << 14 };
 
 typedef struct queued_draw {
@@ -149,11 +150,10 @@ zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16
  * walk of a band it owns (the chunk's polygons are still in the caches),
  * a set-up, a ready walk of another task's band; it waits (polling, then
  * asleep: FLUSH_SPINS) only while every task it could take waits on one
- * running.  When any task took any ready band, a band's rows went back
- * and forth between the cores: on the plant at 2 threads the load of the
- * old depth in the span fill held 15 % of the walk's samples (perf,
- * cpu-clock), against 11 % at 1 thread and 10 % with owners (README: the
- * speed-up, before and after). */
+ * running.  Were any task to take any ready band, a band's rows would go
+ * back and forth between the cores, and the span fill would wait on the
+ * old depth it loads from the other core's cache (zscan bench raster
+ * --case builtin:plant --threads 2 --speedup measures it). */
 
 typedef struct flush_job {
   zs_device *d;
@@ -214,9 +214,9 @@ static void setup_chunk(flush_job *j, int c) {
 /* Cuts the queue into nfull runs of about equal weight (faces, plus one
  * per draw for its fixed work) followed by nsmall runs of a quarter of
  * that.  Small chunks last, so that the thread that runs out of work
- * first waits on a short walk or set-up: with equal chunks the plant's
- * frame at 2 threads left one thread idle 0.29 to 0.37 ms a frame at the
- * end of the flush, with the last 8 in quarters 0.12 to 0.13. */
+ * first waits on a short walk or set-up, not on a whole chunk's, at the
+ * end of the flush (zscan bench raster --case builtin:plant --threads 2
+ * --speedup measures it). */
 static void cut_chunks(zs_deferred *q, int nfull, int nsmall) {
   const int nchunks = nfull + nsmall;
   const uint64_t quarters = 4 * (uint64_t)nfull + (uint64_t)nsmall;
@@ -357,8 +357,9 @@ static void flush_worker(void *ctx, int task) {
 static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   zs_deferred *q = j->q;
   /* sixteen chunks' weight a thread, so that the last one to finish does
-   * not keep the others waiting long (four left 2 of 15 ms idle on the
-   * plant), the last of them in quarters */
+   * not keep the others waiting long (with a few large chunks a thread,
+   * the others sit idle through the last one), the last of them in
+   * quarters */
   int nsmall = 4 * d->cfg.threads, nfull = 15 * d->cfg.threads;
   if (nfull + nsmall > MAX_CHUNKS) {
     nsmall = MAX_CHUNKS / 4;
