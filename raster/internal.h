@@ -74,8 +74,9 @@ enum {
   ZS_CLIP_LEFT = 4, ZS_CLIP_RIGHT = 8, ZS_CLIP_BOTTOM = 16, ZS_CLIP_TOP = 32
 };
 /* The signed distance of v from a plane, inside when >= 0.  Inline, with
- * the outcode and zs_snap_vertex below: a draw calls them once per vertex
- * (a call each measured 13 % of the teapots' frame for zs_mat_apply). */
+ * the outcode and zs_snap_vertex below: a draw calls them once per vertex,
+ * where a call costs more than the work it does (zscan bench raster --case
+ * builtin:teapots --callgrind measures it). */
 static inline double zs_clip_plane_dist(const zs_clip_vert *v, int plane, double gx, double gy) {
   switch (plane) {
     case ZS_CLIP_NEAR: return v->z + v->w;
@@ -429,11 +430,11 @@ void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c);
  * work over costs more than it saves.  Deferred, draws below
  * ZS_DEFER_MAX_FACES are queued (the queue is shared out by faces, so a
  * draw of a few thousand faces balances with the rest).  A queued draw is
- * set up whole by one thread, so a larger one is drawn at once in parts;
- * the nine teapots of 69,868 faces of `builtin:default?level=42` ran faster
- * queued than drawn at once in parts (medians of twelve runs in turn at
- * 2 threads: 31.6 against 36.0 ms), whose parts are copied into one batch
- * before the walk and read back from memory by it. */
+ * set up whole by one thread, so a larger one is drawn at once in parts.
+ * Below the limit a draw is better queued than drawn at once in parts,
+ * whose parts are copied into one batch before the walk and read back
+ * from memory by it (zscan bench raster --case 'builtin:default?level=42'
+ * --threads 2 measures it on nine teapots of 69,868 faces). */
 enum { ZS_PARALLEL_SETUP_FACES = 4096, ZS_DEFER_MAX_FACES = 262144 };
 /* The bands a walk of `rows` rows takes on `threads` threads: four a
  * thread, taken in turn (the rows of a picture do not hold equal work: the

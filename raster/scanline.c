@@ -72,9 +72,11 @@ static inline uint32_t depth_of(int64_t z, int shift, int64_t zfar) {
 }
 
 /* Spans shorter than this stay with the scalar loop (raster.h, the span
- * fill): AVX2 measured slower below 16 pixels (README, raster), and SSE2
- * from 8 took more instructions than from 16 (25x25 triangles: 8,471
- * against 8,041 a triangle). */
+ * fill): below 16 pixels AVX2 needs masked stores for the last pixels,
+ * slow on AMD CPUs, or full-width stores that write back what lies past
+ * the span, no faster than the loop; and SSE2 from 8 costs more
+ * instructions a triangle than from 16 (zscan bench raster --case
+ * "triangles 25x25" --callgrind measures both). */
 enum { ZS_SIMD_MIN_SPAN = 16 };
 
 /* One row of the target: where a row's spans land. */
@@ -283,8 +285,9 @@ static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
 /* The scanline z-buffer of the lecture: row by row, with the active
  * polygon and edge lists.  A full-frame target (zbuffer mode) could take a
  * polygon at a time in the same order and get the same counters, but that
- * measured slower (25x25 triangles: 125 against 72 ms): rows in order
- * stream through the buffers, a polygon's rows stride across pages. */
+ * is slower: rows in order stream through the buffers, a polygon's rows
+ * stride across pages (zscan bench raster --case "triangles 25x25"
+ * measures it). */
 __attribute__((always_inline)) static inline void walk(const zs_batch *b, const zs_kernel k,
                         const zs_target *t, int row_begin, int row_end,
                         const zs_row_hooks *hooks, const zs_trace_observer *obs,

@@ -77,7 +77,8 @@ int zs_batch_append(zs_batch *dst, const zs_batch *src) {
  * threads or more a batch's lines were last read by the other cores, which
  * walked the chunk set up in it before; a store to such a line waits for
  * them to give it up, and set-up, which writes a polygon and its edges a
- * face, stalled on it (README, "Two threads on the plant"). */
+ * face, would stall on it (zscan bench raster --case builtin:plant
+ * --threads 2 --speedup measures it). */
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 int zs_cpu_has_prefetchw(void) {
   unsigned a, b, c, d;
@@ -113,9 +114,10 @@ static int binary_exponent(double v) {
 
 /* The fixed-point plane through vertices a, b, c (indices into X, Y, Z),
  * whose doubled area det must be non-zero; box is the polygon's extent in
- * pixels.  Inlined: called, it returned the plane through memory, two
- * 8-byte stores read back by one 16-byte load that must wait for the
- * store queue to drain (README, "Two threads on the plant"). */
+ * pixels.  Inlined: called, it would return the plane through memory,
+ * two 8-byte stores read back by one 16-byte load that must wait for the
+ * store queue to drain (zscan bench raster --case builtin:plant measures
+ * it). */
 __attribute__((always_inline)) static inline plane
 make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, int c,
            double box_w, double box_h) {
@@ -239,8 +241,9 @@ static int64_t cross3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
  * left and one right chain, one span per row.  Local turns alone would let
  * a star that winds twice through; monotony catches it. */
 static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t area2) {
-  /* (neighbours by comparison, not %: a division per vertex showed in the
-   * profile of the teapots, whose quads all come here) */
+  /* (neighbours by comparison, not %: a division per vertex costs more
+   * than the test on the teapots, whose quads all come here; zscan bench
+   * raster --case builtin:teapots --callgrind measures it) */
   for (int i = 0, prev = n - 1; i < n; prev = i++) {
     int next = i + 1 < n ? i + 1 : 0;
     int64_t t = cross3(X, Y, prev, i, next);
@@ -276,10 +279,10 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
 /* The face (X, Y, Z)[0..m-1] set up: no corner on its predecessor, but
  * for a triangle, whose two corners on one point leave it no area (the
  * area test returns it degenerate).  Inlined three times, so that for a
- * triangle and a quad, m a constant, the loops over the corners unroll.
- * With Newell's normal inlined the same way (device.c): 10x10 triangles
- * 2,782 to 2,608 instructions a triangle, the teapots 1,456 to 1,267 a
- * face, the plant 1,476 to 1,334 (README, raster). */
+ * triangle and a quad, m a constant, the loops over the corners unroll;
+ * Newell's normal is inlined the same way (device.c).  Both save
+ * instructions a face (zscan bench raster --case "triangles 10x10"
+ * --callgrind measures it). */
 __attribute__((always_inline)) static inline zs_setup_result
 setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32_t *Y,
            const double *Z, const int m) {
