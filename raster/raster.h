@@ -110,9 +110,7 @@ zs_status zs_device_flush(zs_device *dev, zs_error *err);
  * box's world corners); the slope covers snapping, which moves each corner
  * of both planes by up to 1/256 pixel and so each plane's depth by up to
  * a few hundredths of a pixel's depth change (more than the constant where
- * a face is seen edge-on or through a wide lens: fuzz_cull found three
- * objects sharing one quad, seen through a 152-degree lens, where 16 units
- * alone let hsw cull the copy with the lowest id).  And the box is grown
+ * a face is seen edge-on or through a wide lens).  And the box is grown
  * by zs_device_query_margin on every side, so that its picture holds the
  * snapped picture of whatever lies in it (snapping may move a face's
  * corner on the box's side out past the box's own snapped outline).  A
