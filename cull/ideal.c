@@ -110,6 +110,7 @@ void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16]
   /* front to back, as every method that traverses draws: drawn in the
    * scene's order, nearer objects would come after farther ones and write
    * over them, and the floor would cost more than vfc where few objects
-   * hide (the cubes' walk: 0.598 ms a frame against vfc's 0.552) */
+   * hide (tests/test_cull.c checks it on the cubes' walk, which zscan walk
+   * builtin:cubes --cull vfc,ideal measures) */
   cull_draw_front_to_back(f, c->owns_pixel);
 }

@@ -522,7 +522,7 @@ static void strip_wall_column(char *line) {
 }
 
 START_TEST(walk_csv_same_bytes_every_run_but_wall_time) {
-  /* issue 6: the walk's CSV is byte-identical from run to run apart from
+  /* the walk's CSV is byte-identical from run to run apart from
    * its wall-time column, moving objects and every method that asks
    * included */
   char csv[2][4096];

@@ -133,12 +133,12 @@ START_TEST(exact_methods_match_none_on_every_walk) {
 }
 END_TEST
 
-/* Issue 6 asks it of every frame: each scene's whole path, frame by
- * frame, its objects moving; the test above takes every 9th frame of the
- * first 108, where each frame's objects have moved further.  Unoptimised
- * under the sanitizers a frame costs about fourteen times as much, so
- * there it takes every 8th frame of the whole path (the sanitizers look
- * for memory errors, which the same code meets in either). */
+/* The same on every frame: each scene's whole path, frame by frame, its
+ * objects moving; the test above takes every 9th frame of the first 108,
+ * where each frame's objects have moved further.  Unoptimised under the
+ * sanitizers a frame costs many times as much, so there it takes every
+ * 8th frame of the whole path (the sanitizers look for memory errors,
+ * which the same code meets in either). */
 #ifdef ZS_SANITIZED
 enum { EVERY_FRAME_STEP = 8 };
 #else
@@ -164,8 +164,8 @@ END_TEST
 
 /* The oracle is the floor of time as well as of objects: it draws only
  * what owns a pixel, front to back as the traversals do.  Drawn in the
- * scene's order it wrote nearer cubes over farther ones and cost more than
- * vfc on the cubes' walk at full size (0.598 against 0.552 ms a frame). */
+ * scene's order it would write nearer cubes over farther ones and cost
+ * more than vfc in modelled time on the cubes' walk at full size. */
 START_TEST(ideal_is_the_floor_of_time_on_the_cubes) {
   const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_VFC, ZS_CULL_IDEAL, ZS_CULL_IDEAL_BOX};
   walk_result r;
