@@ -243,10 +243,10 @@ static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_o
  *
  * The CPUs of a virtual machine need not be equal: one may share its core
  * with another guest's busy thread and run this frame far slower than the
- * other (on this VM, at times, 41 against 28 ms a frame of 10x10
- * triangles).  N threads then cannot reach N times one thread.  So each
- * round also renders the frame on N one-thread devices at once, each
- * pinned to one of the first N CPUs the process may use: with t_i the
+ * other (--speedup reports the fastest and the slowest CPU's frame).  N
+ * threads then cannot reach N times one thread.  So each round also
+ * renders the frame on N one-thread devices at once, each pinned to one
+ * of the first N CPUs the process may use: with t_i the
  * time on CPU i, the CPUs together do 1 / t_i frames a ms each, and a
  * speed-up of
  *   ceiling = t_one * sum_i 1 / t_i

@@ -7,7 +7,7 @@
  * method), its table in Markdown and its plot of time against pixels wrong
  * (one point per method and mode); DIR/tradeoff.md gathers the tables with
  * the command of each.  --quick takes smaller scenes and every 60th to 80th
- * frame: a look in seconds, not the figures of the README. */
+ * frame: a look in seconds, not the figures of docs/RESULTS.md. */
 #include "tools/bench_tradeoff.h"
 
 #include <stdio.h>

@@ -1,7 +1,8 @@
 /* zscan tools — instruction counts under valgrind's callgrind.
  *
- * Wall time on a shared machine moves by 10 to 20 % between runs; the
- * instructions a run executes do not.  zs_callgrind_count runs this very
+ * Wall time on a shared machine moves between runs by more than many a
+ * change gains; the instructions a run executes do not (docs/RESULTS.md
+ * tells how far each repeats).  zs_callgrind_count runs this very
  * zscan with the given arguments under `valgrind --tool=callgrind` and
  * returns the instructions it executed (callgrind's "Collected", Ir). */
 #ifndef ZS_TOOLS_CALLGRIND_H

@@ -35,12 +35,13 @@ zs_status zs_mesa_create(int w, int h, zs_mesa **out, zs_error *err) {
 #ifdef __GLIBC__
   /* llvmpipe allocates its bins and frees them every frame, and glibc
    * gives the freed top of the heap back to the kernel (it trims), so the
-   * same pages were faulted in again every frame, the kernel's page faults
-   * first in the profile: the teapots took 141 to 218 ms a frame, against
-   * 70 to 77 with this threshold.  (glibc's thresholds adapt once a large
-   * block has been freed, so a second context was often, not always,
-   * faster.)  zscan allocates nothing per frame, and its times did not
-   * move (README, "Against Mesa's llvmpipe"). */
+   * same pages would be faulted in again every frame and llvmpipe's times
+   * would measure the kernel's page faults more than its rendering.
+   * (glibc's thresholds adapt once a large block has been freed, so
+   * without this a second context would often, not always, be faster than
+   * the first.)  zscan allocates nothing per frame, so its times do not
+   * depend on it (zscan bench raster --mesa --case builtin:teapots
+   * measures both). */
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
 #endif
   zs_mesa *m = calloc(1, sizeof *m);
