@@ -54,9 +54,9 @@
  *   below are objects / faces (source faces, the ids) / triangles (a face
  *   of n corners counts n - 2), exact at the default seed; the tests
  *   (tests/test_generate.c) check them and a hash of every byte.
- *   Generation times: a few hundredths of a second for the largest (see
- *   README).  Each generator's file tells its layout and the order of its
- *   random draws.
+ *   Generation is quick next to rendering (`zscan render builtin:NAME
+ *   --stats` reports it as ms_load).  Each generator's file tells its
+ *   layout and the order of its random draws.
  *
  *   teapots?count=600&level=4&moving=0&seed=1&frames=300   (scene/gen_teapots.c)
  *     The CHC paper's Teapot scene: ONE teapot mesh (32 level^2 faces;

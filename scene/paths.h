@@ -29,13 +29,13 @@
  *                up_f = u.  Depths change a little per frame (paper:
  *                81.83 % old).
  *   "fast"       fast horizontal translation: eye and target move together
- *                along right by the viewing distance every frame (about
- *                the width of the view at the target: a 45-degree lens at
- *                4:3 sees 1.1 dist across), in a zigzag that keeps the eye
- *                within 2 dist of its start: s_f = dist w(f) with w = 0,
- *                1, 2, 1, 0, -1, -2, -1 repeating (period 8), up_f = u.
- *                Most of the picture changes every frame (paper: 11.91 %
- *                old).
+ *                along right by 2.5 viewing distances every frame
+ *                (ZS_PATH_FAST_STEP; over twice the width of the view at
+ *                the target: a 45-degree lens at 4:3 sees 1.1 dist
+ *                across), in a zigzag that keeps the eye within 5 dist of
+ *                its start: s_f = 2.5 dist w(f) with w = 0, 1, 2, 1, 0,
+ *                -1, -2, -1 repeating (period 8), up_f = u.  Most of the
+ *                picture changes every frame (paper: 11.91 % old).
  * Angles go through zs_sincos_deg (raster/exactmath.h): the same bytes
  * with every compiler and C library.
  */
