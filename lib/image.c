@@ -448,17 +448,32 @@ static int channel_diff(uint32_t p, uint32_t q) {
   return max;
 }
 
-/* The grey of p darkened to a quarter: R = G = B = luma / 4. */
-static uint32_t dark_grey(uint32_t p) {
+/* Rec. 601 luma of 0xRRGGBB, 0 .. 255. */
+static uint32_t luma(uint32_t p) {
   uint32_t r = (p >> 16) & 0xFF, g = (p >> 8) & 0xFF, b = p & 0xFF;
-  uint32_t luma = (77 * r + 150 * g + 29 * b + 128) >> 8; /* 0 .. 255 */
-  uint32_t v = luma / 4;
-  return v << 16 | v << 8 | v;
+  return (77 * r + 150 * g + 29 * b + 128) >> 8;
 }
 
-zs_status zs_image_diff(const zs_image *a, const zs_image *b,
-                        zs_image *diff_out, zs_diff_result *res,
-                        zs_error *err) {
+static uint32_t grey(uint32_t v) { return v << 16 | v << 8 | v; }
+
+/* The grey of p darkened to a quarter: R = G = B = luma / 4. */
+static uint32_t dark_grey(uint32_t p) { return grey(luma(p) / 4); }
+
+/* The heat map's colour of a pixel that changed by d (1 .. 255) in its
+ * largest channel: from yellow (a step of rounding) to red (everything). */
+static uint32_t heat(int d) {
+  uint32_t g = (uint32_t)(224 - (224 * (d - 1)) / 254); /* 224 .. 0 */
+  return 0xFF0000u | g << 8;
+}
+
+/* The grey of p faded towards white (160 .. 255): the picture under the
+ * heat map, so that any colour of the map stands out. */
+static uint32_t faded_grey(uint32_t p) { return grey(160 + luma(p) * 95 / 255); }
+
+/* One comparison for both pictures: tolerance, the channel difference a
+ * pixel may have and still count as equal; heat chooses the picture. */
+static zs_status compare(const zs_image *a, const zs_image *b, int tolerance, int use_heat,
+                         zs_image *diff_out, zs_diff_result *res, zs_error *err) {
   res->differing = 0;
   res->total = 0;
   res->max_channel_diff = 0;
@@ -477,15 +492,26 @@ zs_status zs_image_diff(const zs_image *a, const zs_image *b,
   size_t n = (size_t)a->width * (size_t)a->height;
   for (size_t i = 0; i < n; i++) {
     uint32_t pa = a->rgb[i] & RGB_MASK, pb = b->rgb[i] & RGB_MASK;
-    if (pa == pb) {
-      if (diff_out) diff_out->rgb[i] = dark_grey(pa);
-      continue;
-    }
-    res->differing++;
-    int d = channel_diff(pa, pb);
+    int d = pa == pb ? 0 : channel_diff(pa, pb);
     if (d > res->max_channel_diff) res->max_channel_diff = d;
-    if (diff_out) diff_out->rgb[i] = DIFF_RED;
+    if (d > tolerance) res->differing++;
+    if (diff_out)
+      diff_out->rgb[i] = use_heat ? (d > tolerance ? heat(d) : faded_grey(pa))
+                                  : (d > 0 ? DIFF_RED : dark_grey(pa));
   }
   res->total = n;
   return ZS_OK;
+}
+
+zs_status zs_image_diff(const zs_image *a, const zs_image *b, zs_image *diff_out,
+                        zs_diff_result *res, zs_error *err) {
+  return compare(a, b, 0, 0, diff_out, res, err);
+}
+
+zs_status zs_image_compare(const zs_image *a, const zs_image *b, int max_channel_diff,
+                           zs_image *heat_out, zs_diff_result *res, zs_error *err) {
+  if (max_channel_diff < 0 || max_channel_diff > 255)
+    return zs_error_set(err, ZS_ERR_ARG, "max_channel_diff %d: expected 0 to 255",
+                        max_channel_diff);
+  return compare(a, b, max_channel_diff, 1, heat_out, res, err);
 }

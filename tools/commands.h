@@ -15,6 +15,7 @@ typedef struct zs_command {
 
 int zs_cmd_render(int argc, char **argv);
 int zs_cmd_diff(int argc, char **argv);
+int zs_cmd_golden(int argc, char **argv);
 int zs_cmd_trace(int argc, char **argv);
 int zs_cmd_walk(int argc, char **argv);
 int zs_cmd_path(int argc, char **argv);

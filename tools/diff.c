@@ -1,6 +1,7 @@
 /* zscan tools — `zscan diff`: comparing two images.
  *
- *   zscan diff A.png B.png [-o diff.png] [--ids]
+ *   zscan diff A.png B.png [-o diff.png] [--side-by-side all.png] [--ids]
+ *              [--max-channel-diff N] [--max-diff-pixels N]
  *
  * prints to standard output
  *
@@ -8,9 +9,11 @@
  *   max_channel_diff M
  *   faces_involved K: ID ID ...        (with --ids only)
  *
- * and exits 0 when the images are identical, 1 when they differ, 2 on an
+ * and exits 0 when the images are the same, 1 when they differ, 2 on an
  * error (one line "zscan diff: reason" on standard error).  Images of
- * different sizes are an error.
+ * different sizes are an error.  The same means: no pixel whose largest
+ * channel difference exceeds --max-channel-diff (default 0), or no more
+ * such pixels than --max-diff-pixels (default 0); N counts those pixels.
  *
  * M is the largest |a - b| over the R, G and B channels of all pixels.
  *
@@ -21,7 +24,9 @@
  * (value 0) first, at most 20 of them followed by "..." when there are
  * more.  With no differing pixel the line is "faces_involved 0:".
  *
- * -o writes a difference image (see zs_image_diff).
+ * -o writes a heat map (zs_image_compare): the pixels that do not differ a
+ * faded grey of A, those that do from yellow (1) to red (255);
+ * --side-by-side writes A, B and the heat map in one picture, side by side.
  */
 #include "tools/commands.h"
 
@@ -33,6 +38,7 @@
 
 #include "lib/image.h"
 #include "lib/outfile.h"
+#include "tools/cli.h"
 
 #define RGB_MASK 0xFFFFFFu
 
@@ -49,8 +55,25 @@ enum {
 typedef struct diff_args {
   const char *a, *b; /* the images */
   const char *out;   /* -o, or NULL */
+  const char *side;  /* --side-by-side, or NULL */
   int ids;           /* --ids */
+  int max_channel_diff;
+  long long max_diff_pixels;
 } diff_args;
+
+static const char usage[] =
+    "usage: zscan diff A.png B.png [options]\n"
+    "  prints pixels_differing N of TOTAL and max_channel_diff M; exits 0 when the\n"
+    "  images are the same (within the tolerances), 1 when they differ, 2 on an error\n"
+    "  -o DIFF.png              a heat map: pixels that do not differ faded grey, those\n"
+    "                           that do from yellow (a difference of 1) to red (255)\n"
+    "  --side-by-side OUT.png   A, B and the heat map in one picture\n"
+    "  --max-channel-diff N     a pixel differs only when a channel differs by more\n"
+    "                           than N (0 .. 255; default 0)\n"
+    "  --max-diff-pixels N      the images are the same with up to N such pixels\n"
+    "                           (default 0)\n"
+    "  --ids                    read both as --shade id renders: also list the faces\n"
+    "                           involved (faces_involved K: ID ...)\n";
 
 static int fail(const char *fmt, ...)
 #if defined(__GNUC__)
@@ -71,28 +94,53 @@ static int fail(const char *fmt, ...) {
 
 /* Returns 0, or EXIT_ERROR after printing why. */
 static int parse_args(int argc, char **argv, diff_args *args) {
-  static const char usage[] = "usage: zscan diff A.png B.png [-o diff.png] [--ids]";
-  args->a = args->b = args->out = NULL;
-  args->ids = 0;
+  *args = (diff_args){NULL, NULL, NULL, NULL, 0, 0, 0};
+  zs_error err;
+  zs_error_clear(&err);
   for (int i = 1; i < argc; i++) {
-    const char *arg = argv[i];
-    if (strcmp(arg, "-o") == 0) {
-      if (i + 1 >= argc) return fail("-o needs a file name; %s", usage);
-      args->out = argv[++i];
+    const char *arg = argv[i], *v = NULL;
+    if (strcmp(arg, "-o") == 0 || strcmp(arg, "--side-by-side") == 0) {
+      if (zs_cli_output_value(argc, argv, &i, &v, &err)) return fail("%s", err.msg);
+      *(arg[1] == 'o' ? &args->out : &args->side) = v;
+    } else if (strcmp(arg, "--max-channel-diff") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, &err) ||
+          zs_cli_int(arg, v, 0, 255, &args->max_channel_diff, &err))
+        return fail("%s", err.msg);
+    } else if (strcmp(arg, "--max-diff-pixels") == 0) {
+      double n;
+      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_double(arg, v, &n, &err))
+        return fail("%s", err.msg);
+      if (!(n >= 0 && n <= 1e15 && n == (double)(long long)n))
+        return fail("%s: expected a whole number of pixels, got '%s'", arg, v);
+      args->max_diff_pixels = (long long)n;
     } else if (strcmp(arg, "--ids") == 0) {
       args->ids = 1;
     } else if (arg[0] == '-' && arg[1] != '\0') {
-      return fail("unknown option '%s'; %s", arg, usage);
+      return fail("unknown option '%s' (see zscan diff --help)", arg);
     } else if (!args->a) {
       args->a = arg;
     } else if (!args->b) {
       args->b = arg;
     } else {
-      return fail("too many files ('%s'); %s", arg, usage);
+      return fail("too many files ('%s') (see zscan diff --help)", arg);
     }
   }
-  if (!args->b) return fail("two images needed; %s", usage);
+  if (!args->b) return fail("two images needed (see zscan diff --help)");
   return 0;
+}
+
+/* A, B and the heat map side by side, 8 pixels of white between them. */
+static zs_status side_by_side(const zs_image *a, const zs_image *b, const zs_image *heat,
+                              zs_image *out, zs_error *err) {
+  enum { GAP = 8 };
+  const zs_image *parts[3] = {a, b, heat};
+  if (zs_image_alloc(out, 3 * a->width + 2 * GAP, a->height, err)) return err->code;
+  for (size_t i = 0; i < (size_t)out->width * (size_t)out->height; i++) out->rgb[i] = 0xFFFFFF;
+  for (int k = 0; k < 3; k++)
+    for (int y = 0; y < a->height; y++)
+      memcpy(out->rgb + (size_t)y * (size_t)out->width + (size_t)k * (size_t)(a->width + GAP),
+             parts[k]->rgb + (size_t)y * (size_t)a->width, (size_t)a->width * sizeof *out->rgb);
+  return ZS_OK;
 }
 
 static void mark(uint64_t *seen, uint32_t value) {
@@ -143,18 +191,23 @@ static int print_ids(const zs_image *a, const zs_image *b) {
 }
 
 int zs_cmd_diff(int argc, char **argv) {
+  if (zs_cli_help_asked(argc, argv)) {
+    fputs(usage, stdout);
+    return EXIT_SAME;
+  }
   diff_args args;
   if (parse_args(argc, argv, &args) != 0) return EXIT_ERROR;
 
   zs_error err;
   zs_error_clear(&err);
-  zs_image a = {0, 0, NULL}, b = {0, 0, NULL}, diff = {0, 0, NULL};
+  zs_image a = {0, 0, NULL}, b = {0, 0, NULL}, diff = {0, 0, NULL}, all = {0, 0, NULL};
   zs_diff_result res;
   int status = EXIT_ERROR;
   if (zs_png_read(args.a, &a, &err) != ZS_OK ||
       zs_png_read(args.b, &b, &err) != ZS_OK)
     goto done;
-  if (zs_image_diff(&a, &b, args.out ? &diff : NULL, &res, &err) != ZS_OK) {
+  if (zs_image_compare(&a, &b, args.max_channel_diff, args.out || args.side ? &diff : NULL, &res,
+                       &err) != ZS_OK) {
     /* the sizes: say which files */
     fail("%s and %s: %s", args.a, args.b, err.msg);
     zs_error_clear(&err);
@@ -162,6 +215,11 @@ int zs_cmd_diff(int argc, char **argv) {
   }
   if (args.out && zs_png_write(args.out, &diff, &err) != ZS_OK) {
     zs_out_error_option(&err, "-o");
+    goto done;
+  }
+  if (args.side && (side_by_side(&a, &b, &diff, &all, &err) ||
+                    zs_png_write(args.side, &all, &err))) {
+    zs_out_error_option(&err, "--side-by-side");
     goto done;
   }
 
@@ -177,12 +235,13 @@ int zs_cmd_diff(int argc, char **argv) {
                  strerror(errno));
     goto done;
   }
-  status = res.differing > 0 ? EXIT_DIFFERENT : EXIT_SAME;
+  status = (long long)res.differing > args.max_diff_pixels ? EXIT_DIFFERENT : EXIT_SAME;
 
 done:
   if (err.code != ZS_OK) fail("%s", err.msg);
   zs_image_free(&a);
   zs_image_free(&b);
   zs_image_free(&diff);
+  zs_image_free(&all);
   return status;
 }

@@ -8,6 +8,8 @@
 static const zs_command commands[] = {
     {"render", "[INPUT]", "render one frame to a PNG, with its counters", zs_cmd_render},
     {"diff", "A.png B.png", "compare two images: pixels differing, faces involved", zs_cmd_diff},
+    {"golden", "update|check M", "golden-image tests over a manifest, with reports",
+     zs_cmd_golden},
     {"trace", "INPUT", "the scanline z-buffer's tables, scanline by scanline", zs_cmd_trace},
     {"walk", "SCENE", "culling methods over the scene's camera path", zs_cmd_walk},
     {"path", "SCENE", "the cameras of the scene's walk, one line per frame", zs_cmd_path},

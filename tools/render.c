@@ -1,6 +1,7 @@
 /* `zscan render [INPUT] [options]`: one frame of INPUT to a PNG, with its
  * counters.  See `zscan render --help` (usage below) for the options. */
 #include "tools/commands.h"
+#include "tools/render.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -47,18 +48,9 @@ static const char usage_tail[] =
     "  --cost-set K=V      with --cull: set one parameter of the cost model (w1, w2,\n"
     "                      ttri_ns, tcall_ns, t_ns, tq_ns, rho, learn, measure)\n";
 
-typedef struct render_opts {
-  const char *input, *out_png, *out_pfm;
-  zs_view_opts view;
-  zs_algo algo;
-  zs_shade shade;
-  int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
-  zs_query_bounds bounds;
-  zs_clock_params clock;
-  zs_cost_params cost;
-} render_opts;
 
-static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
+
+zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, zs_error *err) {
   memset(o, 0, sizeof *o);
   o->out_png = "zscan.png";
   zs_view_opts_default(&o->view, 1024, 768);
@@ -77,6 +69,7 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
     if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
       VALUE();
       o->out_png = v;
+      o->out_given = 1;
     } else if (strcmp(a, "--algo") == 0) {
       VALUE();
       int al = zs_algo_parse(v);
@@ -147,6 +140,11 @@ static zs_status parse(int argc, char **argv, render_opts *o, zs_error *err) {
     return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
   if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))
     return zs_error_set(err, ZS_ERR_ARG, "--cull needs --algo zbuffer and --style solid");
+  if (in_memory) { /* the image stays in memory: no file, no counters printed */
+    const char *extra = o->out_pfm ? "--depth" : o->stats ? "--stats" : o->out_given ? "-o" : NULL;
+    if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
+    return ZS_OK;
+  }
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
   /* standard output carries one stream */
@@ -238,7 +236,9 @@ static zs_status draw_overlay(zs_device *dev, const zs_culler *c, const zs_octre
   return ZS_OK;
 }
 
-static zs_status run(const render_opts *o, zs_error *err) {
+/* Renders the frame o asks for; keep == NULL: as the command does (the
+ * PNG, the depth map, the counters); else the image goes into *keep. */
+static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
   zs_scene model;
   double t0 = zs_wall_ms();
   if (zs_input_load(o->input, o->allow_empty, &model, err)) return err->code;
@@ -296,6 +296,11 @@ static zs_status run(const render_opts *o, zs_error *err) {
     times[k] = zs_wall_ms() - start;
   }
   double median = zs_median(times, o->repeat);
+  if (keep) {
+    *keep = im;
+    im = (zs_image){0, 0, NULL};
+    goto done;
+  }
 
   if ((st = zs_png_write(o->out_png, &im, err))) {
     zs_out_error_option(err, "-o");
@@ -349,9 +354,13 @@ int zs_cmd_render(int argc, char **argv) {
   render_opts o;
   zs_error err;
   zs_error_clear(&err);
-  if (parse(argc, argv, &o, &err) || run(&o, &err)) {
+  if (zs_render_parse(argc, argv, 0, &o, &err) || run(&o, NULL, &err)) {
     fprintf(stderr, "zscan render: %s\n", err.msg);
     return 1;
   }
   return 0;
+}
+
+zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err) {
+  return run(o, out, err);
 }

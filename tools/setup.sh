@@ -25,8 +25,9 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   gnuplot-nox                 the benchmark plots
 #   libosmesa6-dev              Mesa's llvmpipe, for the cross-check test
 #   valgrind                    instruction counts: zscan bench raster --callgrind and its test
+#   chromium                    headless, reads the pages zscan writes (the golden report) in tests
 zs_packages=(cmake gcc g++ make pkg-config libpng-dev check clang libcjson-dev
-             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind)
+             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind chromium)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do

@@ -307,6 +307,14 @@ typedef struct zs_diff_result {
 zs_status zs_image_diff(const zs_image *a, const zs_image *b, zs_image *diff_out,
                         zs_diff_result *res, zs_error *err);
 
+/* The comparison of a golden test: a pixel differs when its largest
+ * channel difference exceeds max_channel_diff (0 .. 255); res counts
+ * those.  heat_out, when not NULL, receives a heat map: the pixels that
+ * do not differ a faded grey of a, those that do coloured by how much,
+ * from yellow (a difference of 1) to red (255). */
+zs_status zs_image_compare(const zs_image *a, const zs_image *b, int max_channel_diff,
+                           zs_image *heat_out, zs_diff_result *res, zs_error *err);
+
 /* Writes im as an 8-bit RGB PNG, the same bytes for the same pixels (with
  * one zlib).  path "-" is standard output; a regular file is replaced
  * whole or not at all, a symbolic link is followed, a device or FIFO is

@@ -1,0 +1,31 @@
+/* zscan tools — `zscan render`'s options and frame, for the command and
+ * for the golden runner, which renders its cases as render would. */
+#ifndef ZS_TOOLS_RENDER_H
+#define ZS_TOOLS_RENDER_H
+
+#include "cull/cull.h"
+#include "raster/raster.h"
+#include "tools/viewopts.h"
+#include "zscan/zscan.h"
+
+typedef struct render_opts {
+  const char *input, *out_png, *out_pfm;
+  int out_given; /* -o was given */
+  zs_view_opts view;
+  zs_algo algo;
+  zs_shade shade;
+  int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
+  zs_query_bounds bounds;
+  zs_clock_params clock;
+  zs_cost_params cost;
+} render_opts;
+
+/* Parses render's argv (argv[0] "render"); in_memory: for an image kept in
+ * memory, so -o, --depth and --stats are refused and no path is checked. */
+zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, zs_error *err);
+
+/* The frame o asks for, exactly as `zscan render` draws it, into *out
+ * (allocated here). */
+zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err);
+
+#endif
