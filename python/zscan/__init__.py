@@ -1,0 +1,451 @@
+"""zscan: render models and scenes with libzscan, the software scanline
+z-buffer renderer, from Python (ctypes; no compiler needed).
+
+    import zscan
+    im = zscan.render("model.obj", size=(320, 240), eye=(9, 7, 14))
+    im.hash          # 16 hex digits: the image_hash `zscan render --stats` prints
+    im.array         # numpy uint8 array, shape (240, 320, 3)
+    im.save("out.png")
+
+The library is found from $ZSCAN_LIBRARY, else beside this package, else
+the checkout's build/ directory (see README.md).  It is loaded on first use:
+importing zscan never fails for want of it.  zscan.__version__ is the
+library's own version (zs_version()).
+"""
+
+import ctypes
+import math
+import numbers
+import os
+import sys
+
+from . import _lib
+from ._lib import LibraryError
+
+__all__ = [
+    "DiffResult",
+    "Error",
+    "Image",
+    "LibraryError",
+    "Scene",
+    "diff",
+    "library_path",
+    "load",
+    "read_png",
+    "render",
+]
+
+ALGOS = _lib.ALGOS
+SHADES = _lib.SHADES
+STYLES = _lib.STYLES
+
+
+def __getattr__(name):
+    # zscan.__version__ asks the library (PEP 562: loaded on first use)
+    if name == "__version__":
+        return _lib.load().zs_version().decode("ascii")
+    raise AttributeError("module 'zscan' has no attribute %r" % name)
+
+
+def library_path():
+    """The path of the libzscan that this process loaded (loading it)."""
+    return _lib.load().zscan_path
+
+
+class Error(Exception):
+    """An error reported by libzscan: str(e) is the library's one-line
+    message; e.code is the zs_status number, e.status its name."""
+
+    def __init__(self, message, code=1):
+        super().__init__(message)
+        self.message = message
+        self.code = code
+        self.status = (
+            _lib.STATUS_NAMES[code] if 0 <= code < len(_lib.STATUS_NAMES) else str(code)
+        )
+
+
+def _raise(err):
+    raise Error(err.msg.decode("utf-8", "replace"), err.code)
+
+
+def _path_arg(path):
+    return os.fsencode(path)
+
+
+# ---- pixels: 0xRRGGBB words <-> R,G,B bytes ----
+
+def _words_to_rgb(raw, npix):
+    """raw: 4 * npix bytes, one native-endian uint32 0xRRGGBB per pixel."""
+    out = bytearray(3 * npix)
+    if sys.byteorder == "little":
+        r, g, b = 2, 1, 0
+    else:
+        r, g, b = 1, 2, 3
+    out[0::3] = raw[r::4]
+    out[1::3] = raw[g::4]
+    out[2::3] = raw[b::4]
+    return bytes(out)
+
+
+def _rgb_to_words(rgb, npix):
+    raw = bytearray(4 * npix)
+    if sys.byteorder == "little":
+        r, g, b = 2, 1, 0
+    else:
+        r, g, b = 1, 2, 3
+    raw[r::4] = rgb[0::3]
+    raw[g::4] = rgb[1::3]
+    raw[b::4] = rgb[2::3]
+    return raw
+
+
+def _take(im):
+    """Copies a zs_image the library allocated into an Image and frees it."""
+    try:
+        w, h = im.width, im.height
+        npix = w * h
+        raw = ctypes.string_at(im.rgb, 4 * npix) if npix else b""
+        hash_ = _lib.load().zs_image_hash(ctypes.byref(im))
+        return Image(w, h, _words_to_rgb(raw, npix), _hash=hash_)
+    finally:
+        _lib.load().zs_image_free(ctypes.byref(im))
+
+
+class Image:
+    """An RGB image: width, height and rgb (bytes, R, G, B per pixel, row 0
+    at the top).  Images come from render() and read_png(), or from
+    Image(width, height, rgb)."""
+
+    __slots__ = ("width", "height", "rgb", "stats", "_hash")
+
+    def __init__(self, width, height, rgb, _hash=None):
+        width, height = int(width), int(height)
+        if width < 0 or height < 0:
+            raise ValueError("Image: negative size %dx%d" % (width, height))
+        rgb = bytes(rgb)
+        if len(rgb) != 3 * width * height:
+            raise ValueError(
+                "Image: %dx%d needs %d bytes of R, G, B, got %d"
+                % (width, height, 3 * width * height, len(rgb))
+            )
+        self.width = width
+        self.height = height
+        self.rgb = rgb
+        self.stats = None
+        self._hash = _hash
+
+    def _as_zs_image(self):
+        """A zs_image over a copy of the pixels that Python owns (keep the
+        returned buffer alive while the struct is used; never zs_image_free
+        it)."""
+        npix = self.width * self.height
+        buf = (ctypes.c_uint32 * max(npix, 1)).from_buffer(
+            _rgb_to_words(self.rgb, npix) if npix else bytearray(4)
+        )
+        im = _lib.zs_image(self.width, self.height, ctypes.cast(buf, ctypes.POINTER(ctypes.c_uint32)))
+        return im, buf
+
+    @property
+    def hash_int(self):
+        """zs_image_hash of the image as a number."""
+        if self._hash is None:
+            im, buf = self._as_zs_image()
+            self._hash = _lib.load().zs_image_hash(ctypes.byref(im))
+            del buf
+        return self._hash
+
+    @property
+    def hash(self):
+        """zs_image_hash as 16 hex digits: the image_hash that
+        `zscan render --stats` prints for the same image."""
+        return "%016x" % self.hash_int
+
+    @property
+    def array(self):
+        """A new numpy uint8 array of shape (height, width, 3)."""
+        try:
+            import numpy
+        except ImportError as e:
+            raise ImportError(
+                "zscan.Image.array needs numpy, which is not installed "
+                "(pip install numpy, or Debian's python3-numpy); Image.rgb has "
+                "the same pixels as bytes"
+            ) from e
+        return numpy.frombuffer(self.rgb, dtype=numpy.uint8).reshape(
+            self.height, self.width, 3
+        ).copy()
+
+    def pixel(self, x, y):
+        """(R, G, B) of the pixel in column x, row y (row 0 at the top)."""
+        if not (0 <= x < self.width and 0 <= y < self.height):
+            raise IndexError("pixel (%d, %d) outside %dx%d" % (x, y, self.width, self.height))
+        i = 3 * (y * self.width + x)
+        return tuple(self.rgb[i : i + 3])
+
+    def save(self, path):
+        """Writes the image as an 8-bit RGB PNG (zs_png_write: the same bytes
+        as `zscan render -o` for the same pixels)."""
+        lib = _lib.load()
+        im, buf = self._as_zs_image()
+        err = _lib.zs_error()
+        if lib.zs_png_write(_path_arg(path), ctypes.byref(im), ctypes.byref(err)):
+            _raise(err)
+        del buf
+
+    def __eq__(self, other):
+        if not isinstance(other, Image):
+            return NotImplemented
+        return (self.width, self.height, self.rgb) == (other.width, other.height, other.rgb)
+
+    __hash__ = None  # mutable-looking value type; use .hash for the image hash
+
+    def __repr__(self):
+        return "<zscan.Image %dx%d %s>" % (self.width, self.height, self.hash)
+
+
+def read_png(path):
+    """Reads a PNG of any colour type and depth (zs_png_read; alpha is
+    dropped, no gamma applied)."""
+    lib = _lib.load()
+    im = _lib.zs_image()
+    err = _lib.zs_error()
+    if lib.zs_png_read(_path_arg(path), ctypes.byref(im), ctypes.byref(err)):
+        _raise(err)
+    return _take(im)
+
+
+class DiffResult:
+    """What diff() found: differing (pixels whose RGB differ), total
+    (width * height), max_channel_diff (the largest |a - b| over R, G, B),
+    and image: zs_image_diff's picture (equal pixels a darkened grey of a,
+    differing ones red)."""
+
+    __slots__ = ("differing", "total", "max_channel_diff", "image")
+
+    def __init__(self, differing, total, max_channel_diff, image):
+        self.differing = differing
+        self.total = total
+        self.max_channel_diff = max_channel_diff
+        self.image = image
+
+    def __bool__(self):
+        # true when the images differ
+        return self.differing != 0
+
+    def __repr__(self):
+        return "<zscan.DiffResult %d of %d pixels differ, max channel difference %d>" % (
+            self.differing,
+            self.total,
+            self.max_channel_diff,
+        )
+
+
+def diff(a, b):
+    """Compares two images of the same size (zs_image_diff)."""
+    lib = _lib.load()
+    ia, ba = a._as_zs_image()
+    ib, bb = b._as_zs_image()
+    out = _lib.zs_image()
+    res = _lib.zs_diff_result()
+    err = _lib.zs_error()
+    if lib.zs_image_diff(
+        ctypes.byref(ia), ctypes.byref(ib), ctypes.byref(out), ctypes.byref(res), ctypes.byref(err)
+    ):
+        _raise(err)
+    del ba, bb
+    return DiffResult(res.differing, res.total, res.max_channel_diff, _take(out))
+
+
+# ---- scenes and rendering ----
+
+def _number(name, v):
+    if isinstance(v, bool):
+        raise TypeError("%s: expected a number, got %r" % (name, v))
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        raise TypeError("%s: expected a number, got %r" % (name, v)) from None
+    if not math.isfinite(f):
+        raise ValueError("%s: expected a finite number, got %r" % (name, v))
+    return f
+
+
+def _vec3(name, v):
+    try:
+        t = tuple(v)
+    except TypeError:
+        raise TypeError("%s: expected three numbers x, y, z, got %r" % (name, v)) from None
+    if len(t) != 3:
+        raise ValueError("%s: expected three numbers x, y, z, got %r" % (name, v))
+    return tuple(_number(name, c) for c in t)
+
+
+def _int(name, v):
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+        raise TypeError("%s: expected an integer, got %r" % (name, v))
+    return int(v)
+
+
+def _choice(name, value, choices):
+    if value not in choices:
+        raise ValueError(
+            "%s: expected %s, got %r" % (name, ", ".join(repr(c) for c in choices), value)
+        )
+    return choices.index(value)
+
+
+_ARG = 1  # ZS_ERR_ARG
+
+
+def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back):
+    """The zs_render_opts for render()'s arguments.  Types and names are
+    checked here (TypeError, ValueError); values are the library's to judge
+    (zscan.Error), except those that zs_render_opts cannot carry: 0 there
+    means "the default", which None means here, so a 0 given is refused
+    here with the library's words."""
+    o = _lib.zs_render_opts()
+    if size is not None:
+        try:
+            w, h = size
+        except (TypeError, ValueError):
+            raise TypeError("size: expected (width, height), got %r" % (size,)) from None
+        w, h = _int("size", w), _int("size", h)
+        if w < 1 or h < 1:
+            raise Error("image size %dx%d: each side must be 1 to %d"
+                        % (w, h, _lib.ZS_MAX_IMAGE_SIDE), _ARG)
+        o.width, o.height = w, h
+    o.algo = _choice("algo", algo, _lib.ALGOS)
+    o.shade = _choice("shade", shade, _lib.SHADES)
+    o.hidden_line = _choice("style", style, _lib.STYLES)
+    threads = _int("threads", threads)
+    if threads < 1:
+        raise Error("threads must be 1 to 64", _ARG)
+    o.threads = threads
+    o.cull_back = 1 if cull_back else 0
+    if eye is not None:
+        o.eye[:] = _vec3("eye", eye)
+        o.has_eye = 1
+    if target is not None:
+        o.target[:] = _vec3("target", target)
+        o.has_target = 1
+    if up is not None:
+        o.up[:] = _vec3("up", up)
+        o.has_up = 1
+    if fovy is not None:
+        o.fovy = _number("fovy", fovy)
+        if o.fovy == 0:
+            raise Error("fovy 0: must be between 0 and 180 degrees", _ARG)
+    if near is not None:
+        o.znear = _number("near", near)
+        if o.znear == 0:
+            raise Error("near 0: must be greater than 0", _ARG)
+    if far is not None:
+        o.zfar = _number("far", far)
+        if o.zfar == 0:
+            raise Error("far 0: must be greater than 0", _ARG)
+    return o
+
+
+class Scene:
+    """A loaded model or scene (zs_scene_load), to render several times.
+    Close it (or use it in a with block) to free it at once; otherwise it is
+    freed when collected."""
+
+    def __init__(self, input=None, allow_empty=False):
+        lib = _lib.load()
+        self._lib = lib
+        self._ptr = None
+        self.input = input
+        handle = ctypes.c_void_p()
+        opts = _lib.zs_load_opts(1 if allow_empty else 0)
+        err = _lib.zs_error()
+        arg = None if input is None else _path_arg(input)
+        if lib.zs_scene_load(arg, ctypes.byref(opts), ctypes.byref(handle), ctypes.byref(err)):
+            _raise(err)
+        self._ptr = handle
+
+    def _handle(self):
+        if self._ptr is None:
+            raise ValueError("zscan.Scene: used after close()")
+        return self._ptr
+
+    @property
+    def objects(self):
+        """Instances (objects) in the scene."""
+        return self._lib.zs_scene_objects(self._handle())
+
+    @property
+    def faces(self):
+        """Source faces over the instances."""
+        return self._lib.zs_scene_faces(self._handle())
+
+    def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
+               far=None, algo="zbuffer", shade="flat", style="solid", threads=1,
+               cull_back=False):
+        """Renders the scene as zscan.render() does."""
+        opts = _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style,
+                            threads, cull_back)
+        im = _lib.zs_image()
+        stats = _lib.zs_raster_stats()
+        err = _lib.zs_error()
+        if self._lib.zs_render(self._handle(), ctypes.byref(opts), ctypes.byref(im), None,
+                               ctypes.byref(stats), ctypes.byref(err)):
+            _raise(err)
+        image = _take(im)
+        image.stats = {name: getattr(stats, name) for name, _ in _lib.zs_raster_stats._fields_}
+        return image
+
+    def close(self):
+        if self._ptr is not None:
+            self._lib.zs_scene_destroy(self._ptr)
+            self._ptr = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        if getattr(self, "_ptr", None) is not None:
+            self.close()
+
+
+def load(input=None, allow_empty=False):
+    """Loads a model (FILE.obj, .ply, .stl, .off, .gltf, ... through assimp
+    when the library has it), a scene file (FILE.json) or builtin:NAME[?k=v];
+    None is builtin:default.  Raises zscan.Error with the library's message."""
+    return Scene(input, allow_empty=allow_empty)
+
+
+def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
+           far=None, algo="zbuffer", shade="flat", style="solid", threads=1,
+           cull_back=False, allow_empty=False):
+    """Loads input and renders one frame: the image `zscan render INPUT` makes
+    with the same options, byte for byte (its .hash is the CLI's image_hash).
+
+    size       (width, height); None: the scene's own, else 1024 x 768
+    eye, target, up   3-sequences; None: the scene's camera, completed from
+               its bounds (the automatic camera)
+    fovy       degrees; None: the scene's (45 unless it says)
+    near, far  the clip planes' distances; None: from the bounds
+    algo       'zbuffer', 'scanline' or 'depthsort'
+    shade      'flat', 'id', 'depth' or 'overdraw'
+    style      'solid' or 'hidden-line' (zbuffer and flat only)
+    threads    1 .. 64 (zbuffer mode)
+    cull_back  drop faces turned away from the camera (--cull-back)
+    allow_empty   render a model without faces (--allow-empty)
+
+    An argument of the wrong type, an unknown name or a number that is not
+    finite raises TypeError or ValueError; whatever the library refuses (a
+    file it cannot read, a size or camera out of range) raises zscan.Error
+    with the library's one-line message, as `zscan render` prints it.  The returned Image also has
+    .stats, the frame's counters (zs_raster_stats) as a dict.
+    """
+    # check the options before the (possibly slow) load
+    _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back)
+    with Scene(input, allow_empty=allow_empty) as scene:
+        return scene.render(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
+                            far=far, algo=algo, shade=shade, style=style, threads=threads,
+                            cull_back=cull_back)

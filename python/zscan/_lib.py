@@ -1,0 +1,258 @@
+"""ctypes declarations of libzscan's public API (include/zscan/zscan.h and
+include/zscan/error.h) and the search for the shared library.
+
+The structures mirror the header field by field; their sizes and offsets
+are checked against the C compiler's in the tests.  The library is loaded
+on first use, not on import, so that the pytest plugin can be registered in
+an environment without the library and fail only where it is used.
+"""
+
+import ctypes
+import ctypes.util
+import os
+import threading
+
+# The header this binding mirrors (ZSCAN_VERSION_STRING).  Before 1.0 the
+# structs may change between minor versions, so the library's MAJOR.MINOR
+# must be this one's.
+BINDING_VERSION = "0.9.0"
+
+ZS_ERROR_MSG_MAX = 512
+ZS_MAX_IMAGE_SIDE = 16384
+
+# zs_status
+STATUS_NAMES = (
+    "ZS_OK",
+    "ZS_ERR_ARG",
+    "ZS_ERR_IO",
+    "ZS_ERR_PARSE",
+    "ZS_ERR_LIMIT",
+    "ZS_ERR_NOMEM",
+    "ZS_ERR_UNSUPPORTED",
+)
+
+# zs_algo and zs_shade, in the header's enum order
+ALGOS = ("zbuffer", "scanline", "depthsort")
+SHADES = ("flat", "id", "depth", "overdraw")
+STYLES = ("solid", "hidden-line")
+
+
+class zs_error(ctypes.Structure):
+    _fields_ = [
+        ("code", ctypes.c_int),  # zs_status
+        ("msg", ctypes.c_char * ZS_ERROR_MSG_MAX),
+    ]
+
+
+class zs_image(ctypes.Structure):
+    _fields_ = [
+        ("width", ctypes.c_int),
+        ("height", ctypes.c_int),
+        ("rgb", ctypes.POINTER(ctypes.c_uint32)),
+    ]
+
+
+class zs_diff_result(ctypes.Structure):
+    _fields_ = [
+        ("differing", ctypes.c_uint64),
+        ("total", ctypes.c_uint64),
+        ("max_channel_diff", ctypes.c_int),
+    ]
+
+
+class zs_load_opts(ctypes.Structure):
+    _fields_ = [("allow_empty", ctypes.c_int)]
+
+
+class zs_render_opts(ctypes.Structure):
+    _fields_ = [
+        ("width", ctypes.c_int),
+        ("height", ctypes.c_int),
+        ("algo", ctypes.c_int),  # zs_algo
+        ("shade", ctypes.c_int),  # zs_shade
+        ("cull_back", ctypes.c_int),
+        ("threads", ctypes.c_int),
+        ("hidden_line", ctypes.c_int),
+        ("has_eye", ctypes.c_int),
+        ("has_target", ctypes.c_int),
+        ("has_up", ctypes.c_int),
+        ("eye", ctypes.c_double * 3),
+        ("target", ctypes.c_double * 3),
+        ("up", ctypes.c_double * 3),
+        ("fovy", ctypes.c_double),
+        ("znear", ctypes.c_double),
+        ("zfar", ctypes.c_double),
+    ]
+
+
+class zs_raster_stats(ctypes.Structure):
+    _fields_ = [
+        (name, ctypes.c_uint64)
+        for name in (
+            "draws",
+            "vertices",
+            "polygons_in",
+            "polygons_outside",
+            "polygons_clipped",
+            "polygons_culled_back",
+            "polygons_degenerate",
+            "polygons_offscreen",
+            "polygons_rasterized",
+            "spans",
+            "pixels_tested",
+            "pixels_written",
+        )
+    ]
+
+
+_c_status = ctypes.c_int
+_p_error = ctypes.POINTER(zs_error)
+_p_image = ctypes.POINTER(zs_image)
+
+# name: (restype, argtypes)
+_SIGNATURES = {
+    "zs_version": (ctypes.c_char_p, []),
+    "zs_algo_parse": (ctypes.c_int, [ctypes.c_char_p]),
+    "zs_scene_load": (
+        _c_status,
+        [ctypes.c_char_p, ctypes.POINTER(zs_load_opts), ctypes.POINTER(ctypes.c_void_p), _p_error],
+    ),
+    "zs_scene_destroy": (None, [ctypes.c_void_p]),
+    "zs_scene_objects": (ctypes.c_int32, [ctypes.c_void_p]),
+    "zs_scene_faces": (ctypes.c_uint64, [ctypes.c_void_p]),
+    "zs_render": (
+        _c_status,
+        [
+            ctypes.c_void_p,
+            ctypes.POINTER(zs_render_opts),
+            _p_image,
+            ctypes.POINTER(ctypes.POINTER(ctypes.c_float)),
+            ctypes.POINTER(zs_raster_stats),
+            _p_error,
+        ],
+    ),
+    "zs_image_alloc": (_c_status, [_p_image, ctypes.c_int, ctypes.c_int, _p_error]),
+    "zs_image_free": (None, [_p_image]),
+    "zs_image_hash": (ctypes.c_uint64, [_p_image]),
+    "zs_image_diff": (
+        _c_status,
+        [_p_image, _p_image, _p_image, ctypes.POINTER(zs_diff_result), _p_error],
+    ),
+    "zs_png_write": (_c_status, [ctypes.c_char_p, _p_image, _p_error]),
+    "zs_png_read": (_c_status, [ctypes.c_char_p, _p_image, _p_error]),
+}
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+# The names the library may have beside the package, when installed there.
+_PACKAGE_NAMES = ("libzscan.so", "libzscan.so.0", "libzscan.so." + BINDING_VERSION)
+# The checkout's build directory, when the package is used from python/.
+_CHECKOUT_BUILD = os.path.normpath(os.path.join(_PACKAGE_DIR, "..", "..", "build"))
+
+_lock = threading.Lock()
+_lib = None
+
+
+class LibraryError(ImportError):
+    """libzscan could not be found or loaded, or is not the version this binding
+    mirrors (a subclass of ImportError)."""
+
+
+LibraryError.__module__ = "zscan"
+
+
+def _not_found(tried):
+    env_set = "env" in tried
+    skipped = "not tried, since ZSCAN_LIBRARY is set"
+    beside = os.path.join(_PACKAGE_DIR, "libzscan.so{,.0,.%s}" % BINDING_VERSION)
+    build = os.path.join(_CHECKOUT_BUILD, "libzscan.so")
+    lines = [
+        "cannot load libzscan, the zscan shared library. Looked in:",
+        "  1. the environment variable ZSCAN_LIBRARY: " + tried.get("env", "not set"),
+        "  2. beside the package, %s: %s"
+        % (beside, skipped if env_set else tried.get("beside", "not there")),
+        "  3. the checkout's build directory, %s: %s"
+        % (build, skipped if env_set else tried.get("build", "not there")),
+        "  4. the system's library path (libzscan.so.0, as `cmake --install` puts it): "
+        + (skipped if env_set else tried.get("system", "not found")),
+        "Build the library (cmake -S . -B build && cmake --build build) or set "
+        "ZSCAN_LIBRARY to the path of libzscan.so.",
+    ]
+    return LibraryError("\n".join(lines))
+
+
+def _open(path):
+    return ctypes.CDLL(path)
+
+
+def _find_and_open():
+    tried = {}
+    env = os.environ.get("ZSCAN_LIBRARY")
+    if env:
+        # An explicit choice is the only one tried: a wrong path is an error,
+        # not a reason to load some other library silently.
+        try:
+            return _open(env), env
+        except OSError as e:
+            tried["env"] = str(e)
+            raise _not_found(tried) from None
+    for name in _PACKAGE_NAMES:
+        p = os.path.join(_PACKAGE_DIR, name)
+        if os.path.exists(p):
+            try:
+                return _open(p), p
+            except OSError as e:
+                tried["beside"] = str(e)
+            break
+    build = os.path.join(_CHECKOUT_BUILD, "libzscan.so")
+    if os.path.exists(build):
+        try:
+            return _open(build), build
+        except OSError as e:
+            tried["build"] = str(e)
+    name = ctypes.util.find_library("zscan") or "libzscan.so.0"
+    try:
+        return _open(name), name
+    except OSError as e:
+        tried["system"] = str(e)
+    raise _not_found(tried)
+
+
+def _declare(lib):
+    for name, (restype, argtypes) in _SIGNATURES.items():
+        try:
+            fn = getattr(lib, name)
+        except AttributeError:
+            raise LibraryError(
+                "%s does not export %s: it is not the libzscan this binding (%s) was written for"
+                % (lib._name, name, BINDING_VERSION)
+            ) from None
+        fn.restype = restype
+        fn.argtypes = argtypes
+
+
+def load():
+    """The loaded library (found and checked once, on first use)."""
+    global _lib
+    if _lib is not None:
+        return _lib
+    with _lock:
+        if _lib is None:
+            lib, path = _find_and_open()
+            _declare(lib)
+            version = lib.zs_version().decode("ascii", "replace")
+            if version.split(".")[:2] != BINDING_VERSION.split(".")[:2]:
+                raise LibraryError(
+                    "%s is libzscan %s, but this binding mirrors the structs of %s "
+                    "(before 1.0 they may change between minor versions)"
+                    % (path, version, BINDING_VERSION)
+                )
+            for i, algo in enumerate(ALGOS):
+                if lib.zs_algo_parse(algo.encode()) != i:
+                    raise LibraryError(
+                        "%s numbers the algorithm %r %d, this binding %d: it is not the "
+                        "libzscan this binding (%s) mirrors"
+                        % (path, algo, lib.zs_algo_parse(algo.encode()), i, BINDING_VERSION)
+                    )
+            lib.zscan_path = path
+            _lib = lib
+    return _lib
