@@ -100,60 +100,61 @@ END_TEST
 typedef struct bad_option {
   const char *args[12];
   const char *message; /* a part of the one-line message */
+  int status;          /* the exit status: 2 for a usage error, 1 for the rest */
 } bad_option;
 
 static const bad_option bad_options[] = {
-    {{"render", "--size", "0x0", NULL}, "--size: 0x0: each side must be 1 to 16384"},
-    {{"render", "--size", "100000x100000", NULL}, "each side must be 1 to 16384"},
-    {{"render", "--size", "12", NULL}, "--size: expected WxH, got '12'"},
-    {{"render", "--eye", "1,nan,2", NULL}, "--eye: expected x,y,z"},
-    {{"render", "--eye", "-1,-2", NULL}, "--eye: expected x,y,z"},
-    {{"render", "--fovy", "0", NULL}, "fovy 0: must be between 0 and 180 degrees"},
-    {{"render", "--fovy", "180", NULL}, "fovy 180: must be between 0 and 180 degrees"},
-    {{"render", "--fovy", "inf", NULL}, "--fovy: expected a finite number"},
-    {{"render", "--near", "0", NULL}, "near 0: must be greater than 0"},
-    {{"render", "--near", "-1", NULL}, "near -1: must be greater than 0"},
-    {{"render", "--near", "5", "--far", "5", NULL}, "near must be less than far"},
-    {{"render", "--near", "5", "--far", "1", NULL}, "near must be less than far"},
-    {{"render", "--up", "0,0,0", NULL}, "up 0,0,0: zero or parallel to the view direction"},
+    {{"render", "--size", "0x0", NULL}, "--size: 0x0: each side must be 1 to 16384", 2},
+    {{"render", "--size", "100000x100000", NULL}, "each side must be 1 to 16384", 2},
+    {{"render", "--size", "12", NULL}, "--size: expected WxH, got '12'", 2},
+    {{"render", "--eye", "1,nan,2", NULL}, "--eye: expected x,y,z", 2},
+    {{"render", "--eye", "-1,-2", NULL}, "--eye: expected x,y,z", 2},
+    {{"render", "--fovy", "0", NULL}, "fovy 0: must be between 0 and 180 degrees", 1},
+    {{"render", "--fovy", "180", NULL}, "fovy 180: must be between 0 and 180 degrees", 1},
+    {{"render", "--fovy", "inf", NULL}, "--fovy: expected a finite number", 2},
+    {{"render", "--near", "0", NULL}, "near 0: must be greater than 0", 1},
+    {{"render", "--near", "-1", NULL}, "near -1: must be greater than 0", 1},
+    {{"render", "--near", "5", "--far", "5", NULL}, "near must be less than far", 1},
+    {{"render", "--near", "5", "--far", "1", NULL}, "near must be less than far", 1},
+    {{"render", "--up", "0,0,0", NULL}, "up 0,0,0: zero or parallel to the view direction", 1},
     {{"render", "--eye", "0,10,0", "--target", "0,0,0", "--up", "0,1,0", NULL},
-     "up 0,1,0: zero or parallel to the view direction"},
-    {{"render", "--eye", "1,1,1", "--target", "1,1,1", NULL}, "eye and target are the same point"},
+     "up 0,1,0: zero or parallel to the view direction", 1},
+    {{"render", "--eye", "1,1,1", "--target", "1,1,1", NULL}, "eye and target are the same point", 1},
     {{"render", "-o", "/nonexistent-dir/x.png", NULL},
-     "-o /nonexistent-dir/x.png: no such directory: /nonexistent-dir"},
+     "-o /nonexistent-dir/x.png: no such directory: /nonexistent-dir", 1},
     {{"render", "--depth", "/nonexistent-dir/x.pfm", NULL},
-     "--depth /nonexistent-dir/x.pfm: no such directory: /nonexistent-dir"},
-    {{"render", "-o", "/", NULL}, "-o /: is a directory"},
-    {{"render", "--frobnicate", NULL}, "unknown option '--frobnicate'"},
-    {{"render", "--algo", "painter", NULL}, "--algo: expected zbuffer, scanline or depthsort"},
-    {{"render", "--style", "sketch", NULL}, "--style: expected solid or hidden-line"},
-    {{"render", "--overlay", "culling", NULL}, "--overlay culling needs --cull METHOD"},
-    {{"render", "--cull", "magic", NULL}, "--cull: unknown method 'magic'"},
-    {{"render", "--cull", "chc", "--algo", "scanline", NULL}, "--cull needs --algo zbuffer"},
+     "--depth /nonexistent-dir/x.pfm: no such directory: /nonexistent-dir", 1},
+    {{"render", "-o", "/", NULL}, "-o /: is a directory", 1},
+    {{"render", "--frobnicate", NULL}, "unknown option '--frobnicate'", 2},
+    {{"render", "--algo", "painter", NULL}, "--algo: expected zbuffer, scanline or depthsort", 2},
+    {{"render", "--style", "sketch", NULL}, "--style: expected solid or hidden-line", 2},
+    {{"render", "--overlay", "culling", NULL}, "--overlay culling needs --cull METHOD", 2},
+    {{"render", "--cull", "magic", NULL}, "--cull: unknown method 'magic'", 2},
+    {{"render", "--cull", "chc", "--algo", "scanline", NULL}, "--cull needs --algo zbuffer", 2},
     {{"render", "--style", "hidden-line", "--algo", "scanline", NULL},
-     "--style hidden-line needs --algo zbuffer and --shade flat"},
-    {{"render", "--shade", "pink", NULL}, "--shade: expected flat, id, depth or overdraw"},
-    {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 64"},
-    {{"render", "--repeat", NULL}, "--repeat: missing value"},
-    {{"render", "a.obj", "b.obj", NULL}, "more than one INPUT"},
-    {{"render", "/nonexistent-dir/model.stl", NULL}, "/nonexistent-dir/model.stl: "},
-    {{"render", "builtin:nothing", NULL}, "unknown generated scene 'nothing'"},
-    {{"render", "builtin:cubes?n=0", NULL}, "0 is outside 1 .. 64"},
-    {{"render", "/nonexistent-dir/m.obj", NULL}, "/nonexistent-dir/m.obj: cannot open"},
+     "--style hidden-line needs --algo zbuffer and --shade flat", 2},
+    {{"render", "--shade", "pink", NULL}, "--shade: expected flat, id, depth or overdraw", 2},
+    {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 64", 2},
+    {{"render", "--repeat", NULL}, "--repeat: missing value", 2},
+    {{"render", "a.obj", "b.obj", NULL}, "more than one INPUT", 2},
+    {{"render", "/nonexistent-dir/model.stl", NULL}, "/nonexistent-dir/model.stl: ", 1},
+    {{"render", "builtin:nothing", NULL}, "unknown generated scene 'nothing'", 1},
+    {{"render", "builtin:cubes?n=0", NULL}, "0 is outside 1 .. 64", 1},
+    {{"render", "/nonexistent-dir/m.obj", NULL}, "/nonexistent-dir/m.obj: cannot open", 1},
     {{"render", "--clock-set", "per_pixel_ns=-3", NULL},
-     "--clock-set per_pixel_ns: expected nanoseconds from 0 to 1e12, got -3"},
-    {{"render", "--clock-set", "bogus_ns=3", NULL}, "--clock-set bogus_ns: unknown clock parameter"},
-    {{"render", "--clock-set", "per_pixel_ns", NULL}, "--clock-set: expected KEY=VALUE"},
-    {{"render", "--cost-set", "w1", NULL}, "--cost-set: expected KEY=VALUE, got 'w1'"},
+     "--clock-set per_pixel_ns: expected nanoseconds from 0 to 1e12, got -3", 2},
+    {{"render", "--clock-set", "bogus_ns=3", NULL}, "--clock-set bogus_ns: unknown clock parameter", 2},
+    {{"render", "--clock-set", "per_pixel_ns", NULL}, "--clock-set: expected KEY=VALUE", 2},
+    {{"render", "--cost-set", "w1", NULL}, "--cost-set: expected KEY=VALUE, got 'w1'", 2},
     {{"render", "--cost-set", "w1=1.5", NULL},
-     "--cost-set w1: expected a probability from 0 to 1, got 1.5"},
-    {{"render", "--cost-set", "tq_ns=x", NULL}, "--cost-set tq_ns: expected a finite number"},
-    {{"render", "--cost-set", "beta=1", NULL}, "--cost-set beta: unknown cost-model parameter"},
+     "--cost-set w1: expected a probability from 0 to 1, got 1.5", 2},
+    {{"render", "--cost-set", "tq_ns=x", NULL}, "--cost-set tq_ns: expected a finite number", 2},
+    {{"render", "--cost-set", "beta=1", NULL}, "--cost-set beta: unknown cost-model parameter", 2},
     {{"render", "--cost-set", "learn=-1", NULL},
-     "--cost-set learn: expected a number of outcomes from 0 to 1e6, got -1"},
+     "--cost-set learn: expected a number of outcomes from 0 to 1e6, got -1", 2},
     {{"render", "--cost-set", "measure=0.5", NULL},
-     "--cost-set measure: expected 0 (off) or 1 (on), got 0.5"},
-    {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open"},
+     "--cost-set measure: expected 0 (off) or 1 (on), got 0.5", 2},
+    {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open", 1},
 };
 
 /* Help comes first, even beside an option the command does not know. */
@@ -197,7 +198,7 @@ START_TEST(bad_option_refused) {
   for (int i = 1; b->args[i]; i++) args[n++] = b->args[i];
   args[n] = NULL;
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
-  ck_assert_msg(rc == 1, "case %d: exit %d, stderr '%s'", _i, rc, err);
+  ck_assert_msg(rc == b->status, "case %d: exit %d (not %d), stderr '%s'", _i, rc, b->status, err);
   ck_assert_msg(strncmp(err, "zscan render: ", 14) == 0, "case %d: '%s'", _i, err);
   ck_assert_msg(strstr(err, b->message) != NULL, "case %d: '%s' lacks '%s'", _i, err, b->message);
   ck_assert_msg(one_line(err), "case %d: not one line: '%s'", _i, err);
@@ -404,7 +405,7 @@ START_TEST(bench_raster_writes_csv_and_table) {
   /* too small for the largest triangles: refused, nothing written */
   unlink(csv);
   const char *small[] = {"bench", "raster", "--size", "100x100", "--csv", csv, NULL};
-  ck_assert_int_eq(zs_test_run_zscan(small, out, sizeof out, err, sizeof err), 1);
+  ck_assert_int_eq(zs_test_run_zscan(small, out, sizeof out, err, sizeof err), 2);
   ck_assert_str_eq(err, "zscan bench raster: --size: at least 500x500 (the largest triangles)\n");
   ck_assert(!zs_test_exists(csv));
 #if defined(__x86_64__)
@@ -421,7 +422,7 @@ START_TEST(bench_raster_writes_csv_and_table) {
   ck_assert_ptr_nonnull(strstr(out, "SSE2 spans"));
 #endif
   const char *bad[] = {"bench", "raster", "--simd", "neon", NULL};
-  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 2);
   ck_assert_str_eq(err, "zscan bench raster: --simd: scalar, sse2 or avx2, not 'neon'\n");
   /* --speedup: a scene on one thread and on two, frames in turn; the
    * images are the same (the times are not asserted) */
@@ -452,7 +453,7 @@ START_TEST(bench_raster_writes_csv_and_table) {
     ck_assert_str_eq(fast, "-");
   }
   const char *alone[] = {"bench", "raster", "--speedup", NULL};
-  ck_assert_int_eq(zs_test_run_zscan(alone, out, sizeof out, err, sizeof err), 1);
+  ck_assert_int_eq(zs_test_run_zscan(alone, out, sizeof out, err, sizeof err), 2);
   ck_assert_str_eq(err, "zscan bench raster: --speedup: against --threads N, N of 2 or more\n");
 }
 END_TEST
@@ -503,7 +504,7 @@ START_TEST(walk_compares_hidden_surface_modes) {
   ck_assert(zs_test_exists(png));
   const char *bad[] = {"walk", "builtin:city", "--cull", "vfc", "--algos", "raytrace", NULL};
   rc = zs_test_run_zscan(bad, out, sizeof out, err, sizeof err);
-  ck_assert_int_eq(rc, 1);
+  ck_assert_int_eq(rc, 2); /* a usage error */
   ck_assert_str_eq(err, "zscan walk: --algos: expected scanline or depthsort, got 'raytrace'\n");
 }
 END_TEST

@@ -128,7 +128,7 @@ START_TEST(stdout_equals_file_byte_for_byte) {
   /* standard output takes one stream: the image, or the stats */
   const char *args[] = {"render", "builtin:default", "--size", "64x48", "-o", "-", "--stats", NULL};
   char out[256], msg[1024];
-  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, msg, sizeof msg), 1);
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, msg, sizeof msg), 2);
   ck_assert_ptr_nonnull(strstr(msg, "standard output (-) takes one stream"));
   remove_dir();
 }
@@ -342,7 +342,7 @@ START_TEST(walk_csv_to_stdout) {
   ck_assert_ptr_nonnull(strstr(err, "frames at 64x48"));
   const char *two[] = {"walk", "builtin:cubes?n=3", "--cull", "vfc", "--csv", "-", "--md", "-",
                        NULL};
-  ck_assert_int_eq(zs_test_run_zscan(two, out, sizeof out, err, sizeof err), 1);
+  ck_assert_int_eq(zs_test_run_zscan(two, out, sizeof out, err, sizeof err), 2);
   ck_assert_ptr_nonnull(strstr(err, "only one of --csv, --md, --plot and --tradeoff can be -"));
 }
 END_TEST

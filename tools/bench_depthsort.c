@@ -145,6 +145,7 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   double far = 0;
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v;
     if (strcmp(a, "--frames") == 0) {
@@ -169,6 +170,7 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
       spec = a;
     }
   }
+  parsing = 0;
   zs_scene s;
   if (zs_input_load_scene(spec, &s, &err)) goto fail;
   motion_row rows[4];
@@ -205,5 +207,5 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   return 0;
 fail:
   fprintf(stderr, "zscan bench depthsort: %s\n", err.msg);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

@@ -213,6 +213,7 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   bench_row rows[STEPS];
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     const char *v;
     const char *a = argv[i];
@@ -251,6 +252,7 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   FILE *report;
   const char *outs[] = {o.csv, o.plot};
   if (zs_out_report(outs, 2, "--csv and --plot", &report, &err)) goto fail;
+  parsing = 0;
   if (o.plot && !zs_plot_available()) {
     zs_error_set(&err, ZS_ERR_UNSUPPORTED,
                  "--plot: gnuplot is not installed (apt-get install gnuplot-nox)");
@@ -286,5 +288,5 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   return 0;
 fail:
   fprintf(stderr, "zscan bench octree: %s\n", err.msg);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

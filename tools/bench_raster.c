@@ -644,6 +644,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   int n = 0, nm = 0, ns = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
+  const int usage_error = st != ZS_OK; /* exits 2 (tools/cli.h) */
   o.simd = zs_span_simd_level(st ? ZS_SIMD_SCALAR : o.simd); /* what is in use */
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
@@ -692,7 +693,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     if (outs[k] && !zs_out_is_stdout(outs[k])) fprintf(report, "wrote %s\n", outs[k]);
   if (st) {
     fprintf(stderr, "zscan bench raster: %s\n", err.msg);
-    return 1;
+    return zs_cli_exit_status(&err, usage_error);
   }
   return 0;
 }

@@ -53,6 +53,7 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
   int is_quick = 0, w, h;
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (strcmp(a, "--quick") == 0) {
@@ -68,6 +69,7 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
       goto fail;
     }
   }
+  parsing = 0;
   if (zs_out_dir("--out", dir, &err)) goto fail;
   const walk_case *walks = is_quick ? quick : full;
   char path[NWALKS][3][4200];
@@ -120,5 +122,5 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
   return 0;
 fail:
   fprintf(stderr, "zscan bench tradeoff: %s\n", err.msg);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

@@ -291,6 +291,7 @@ int zs_cmd_calibrate(int argc, char **argv) {
   int repeat = 9;
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     const char *v;
     if (strcmp(argv[i], "-o") == 0) {
@@ -306,6 +307,7 @@ int zs_cmd_calibrate(int argc, char **argv) {
   }
   if (zs_cli_output_path("-o", out, &err)) goto fail;
 
+  parsing = 0;
   workload w[NSYNTHETIC + 4] = {
       {"draw calls", {0}, 0},     {"vertices", {0}, 0},       {"set-up", {0}, 0},
       {"spans", {0}, 0},          {"pixels tested", {0}, 0},  {"pixels written", {0}, 0},
@@ -381,5 +383,5 @@ int zs_cmd_calibrate(int argc, char **argv) {
   return 0;
 fail:
   fprintf(stderr, "zscan calibrate: %s\n", err.msg);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

@@ -104,6 +104,10 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+int zs_cli_exit_status(const zs_error *err, int parsing) {
+  return parsing && (err->code == ZS_ERR_ARG || err->code == ZS_ERR_LIMIT) ? 2 : 1;
+}
+
 int zs_cli_help_asked(int argc, char **argv) {
   for (int i = 1; i < argc; i++)
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return 1;

@@ -31,6 +31,12 @@ zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
 /* zs_cli_value, then zs_cli_output_path on the value: an output file's option. */
 zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err);
 
+/* The exit status of a command that failed with err: 2 for a usage error
+ * (an unknown option or a bad value, ZS_ERR_ARG or ZS_ERR_LIMIT, found while parsing the
+ * command line), 1 for anything else (bad input, a failure while
+ * working). */
+int zs_cli_exit_status(const zs_error *err, int parsing);
+
 /* 1 when any argument after the command is --help or -h: help is given
  * before anything else is parsed, so it works beside a bad option too. */
 int zs_cli_help_asked(int argc, char **argv);

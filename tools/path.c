@@ -25,6 +25,7 @@ int zs_cmd_path(int argc, char **argv) {
   int frames = 0, w = 0, h = 0;
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   zs_scene s;
   int loaded = 0;
   for (int i = 1; i < argc; i++) {
@@ -50,6 +51,7 @@ int zs_cmd_path(int argc, char **argv) {
     zs_error_set(&err, ZS_ERR_ARG, "missing SCENE (see zscan path --help)");
     goto fail;
   }
+  parsing = 0;
   if (zs_input_load_scene(spec, &s, &err)) goto fail;
   loaded = 1;
   if (!w) {
@@ -79,5 +81,5 @@ int zs_cmd_path(int argc, char **argv) {
 fail:
   fprintf(stderr, "zscan path: %s\n", err.msg);
   if (loaded) zs_scene_free(&s);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

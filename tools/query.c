@@ -62,6 +62,7 @@ int zs_cmd_query(int argc, char **argv) {
   zs_view_opts_default(&v, 1024, 768);
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     int taken = zs_view_opts_parse(&v, argc, argv, &i, &err);
     if (taken < 0) goto fail;
@@ -80,9 +81,10 @@ int zs_cmd_query(int argc, char **argv) {
     zs_error_set(&err, ZS_ERR_ARG, "missing INPUT (see zscan query --help)");
     goto fail;
   }
+  parsing = 0;
   if (run(input, &v, &err)) goto fail;
   return 0;
 fail:
   fprintf(stderr, "zscan query: %s\n", err.msg);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

@@ -354,9 +354,10 @@ int zs_cmd_render(int argc, char **argv) {
   render_opts o;
   zs_error err;
   zs_error_clear(&err);
-  if (zs_render_parse(argc, argv, 0, &o, &err) || run(&o, NULL, &err)) {
+  int parsing = 1;
+  if (zs_render_parse(argc, argv, 0, &o, &err) || (parsing = 0) || run(&o, NULL, &err)) {
     fprintf(stderr, "zscan render: %s\n", err.msg);
-    return 1;
+    return zs_cli_exit_status(&err, parsing);
   }
   return 0;
 }

@@ -461,12 +461,14 @@ int zs_cmd_trace(int argc, char **argv) {
   trace_opts o;
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   zs_scene model;
   zs_device *dev = NULL;
   tracer t;
   memset(&t, 0, sizeof t);
   int have_model = 0;
   if (parse(argc, argv, &o, &err)) goto fail;
+  parsing = 0;
   if (zs_input_load_scene(o.input, &model, &err)) goto fail;
   have_model = 1;
   zs_view_opts asked = o.view; /* (the result must not alias what is read) */
@@ -517,5 +519,5 @@ fail:
   free(t.depth);
   zs_device_destroy(dev);
   if (have_model) zs_scene_free(&model);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

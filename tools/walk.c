@@ -624,9 +624,10 @@ int zs_cmd_walk(int argc, char **argv) {
   walk_opts o;
   zs_error err;
   zs_error_clear(&err);
-  if (parse(argc, argv, &o, &err) || run(&o, &err)) {
+  int parsing = 1;
+  if (parse(argc, argv, &o, &err) || (parsing = 0) || run(&o, &err)) {
     fprintf(stderr, "zscan walk: %s\n", err.msg);
-    return 1;
+    return zs_cli_exit_status(&err, parsing);
   }
   return 0;
 }
