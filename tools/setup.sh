@@ -26,8 +26,10 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   libosmesa6-dev              Mesa's llvmpipe, for the cross-check test
 #   valgrind                    instruction counts: zscan bench raster --callgrind and its test
 #   chromium                    headless, reads the pages zscan writes (the golden report) in tests
+#   python3-pytest python3-numpy   the Python binding's tests (python/)
 zs_packages=(cmake gcc g++ make pkg-config libpng-dev check clang libcjson-dev
-             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind chromium)
+             libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind chromium
+             python3-pytest python3-numpy)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do
