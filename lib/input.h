@@ -11,7 +11,7 @@
  *   FILE.json              a scene file (scene/scenefile.h)
  *   FILE.obj               one instance per object (o/g) of the file
  *   FILE.ply, .stl, ...    through assimp, likewise
- *   builtin:NAME[?k=v&..]  a generated scene (scene/generate.h): default,
+ *   builtin:NAME[,k=v,..]  a generated scene (scene/generate.h): default,
  *                          teapots, spheres, city, plant, cubes
  * A model file without a face (empty, vertices or points only) is refused
  * with "FILE: no faces". */

@@ -120,8 +120,10 @@ static zs_status parse_spec(const char *spec, const zs_gen_def *const *defs, int
                         (int)ZS_GEN_SPEC_MAX);
   const char *body = strncmp(spec, "builtin:", 8) == 0 ? spec + 8 : spec;
   strcpy(buf, body);
-  char *query = strchr(buf, '?');
-  if (query) *query++ = '\0';
+  /* NAME?k=v&k=v, or NAME,k=v,k=v: the same, with nothing the shell reads */
+  char *query = buf + strcspn(buf, "?,");
+  if (*query) *query++ = '\0';
+  else query = NULL;
 
   for (int i = 0; i < ndefs && !a->def; i++)
     if (strcmp(defs[i]->name, buf) == 0) a->def = defs[i];
@@ -134,10 +136,11 @@ static zs_status parse_spec(const char *spec, const zs_gen_def *const *defs, int
   const zs_gen_def *def = a->def;
   for (int i = 0; i < def->nparams; i++) a->value[i] = def->params[i].def;
 
-  /* key=value&key=value: each item split in place. */
+  /* key=value&key=value (or with commas): each item split in place. */
   for (char *item = query; item;) {
-    char *amp = strchr(item, '&');
-    if (amp) *amp = '\0';
+    char *amp = item + strcspn(item, "&,");
+    if (*amp) *amp = '\0';
+    else amp = NULL;
     char *eq = strchr(item, '=');
     if (!eq || eq == item)
       return zs_error_set(err, ZS_ERR_ARG, "%s: expected key=value, got '%s'", spec, item);

@@ -1,9 +1,11 @@
 /* zscan scene — generated meshes and generated scenes.
  *
  * SPECS
- *   A generated thing is named by a spec "NAME" or "NAME?key=value&key=value"
- *   (on the command line behind "builtin:", e.g. builtin:teapots?count=600;
- *   the prefix is accepted here too).  Values are strict: a whole number is
+ *   A generated thing is named by a spec "NAME" or "NAME,key=value,key=value"
+ *   (on the command line behind "builtin:", e.g. builtin:teapots,count=600;
+ *   the prefix is accepted here too).  "NAME?key=value&key=value" is the
+ *   same spec, in the form of a URL query; the commas need no quoting in a
+ *   shell.  Values are strict: a whole number is
  *   digits with an optional '-', a real is a plain decimal number (no hex,
  *   no inf or nan, no spaces), a key may be given once.  Errors name the
  *   spec and the key, e.g.

@@ -182,6 +182,35 @@ static const hash_case hashes[] = {
 };
 enum { NHASHES = sizeof hashes / sizeof hashes[0] };
 
+/* The shell-safe form NAME,k=v,k=v is the URL form NAME?k=v&k=v, byte for
+ * byte; the two may mix; a key given twice is an error either way. */
+START_TEST(comma_form_is_the_query_form) {
+  static const char *const pairs[][2] = {
+      {"teapots,count=200,level=3,moving=20,seed=7", "teapots?count=200&level=3&moving=20&seed=7"},
+      {"builtin:city,blocks=3,moving=5,seed=9", "city?blocks=3&moving=5&seed=9"},
+      {"plant,detail=0.1&seed=5", "plant?detail=0.1&seed=5"},
+  };
+  for (int i = 0; i < 3; i++) {
+    zs_scene a, b;
+    load(pairs[i][0], &a);
+    load(pairs[i][1], &b);
+    bytes ba = {0}, bb = {0};
+    scene_bytes(&a, &ba);
+    scene_bytes(&b, &bb);
+    ck_assert_msg(ba.n == bb.n && memcmp(ba.p, bb.p, ba.n) == 0, "%s", pairs[i][0]);
+    free(ba.p);
+    free(bb.p);
+    zs_scene_free(&a);
+    zs_scene_free(&b);
+  }
+  zs_scene s;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_gen_scene("cubes,n=2,n=3", &s, &err), ZS_ERR_ARG);
+  ck_assert_str_eq(err.msg, "cubes,n=2,n=3: n given twice");
+}
+END_TEST
+
 START_TEST(scene_same_bytes) {
   const hash_case *c = &hashes[_i];
   zs_scene a, b;
@@ -738,6 +767,7 @@ int main(void) {
   tc = tcase_create("determinism");
   tcase_set_timeout(tc, 600);
   tcase_add_loop_test(tc, scene_same_bytes, 0, NHASHES);
+  tcase_add_test(tc, comma_form_is_the_query_form);
   tcase_add_test(tc, seed_changes_the_scene);
   tcase_add_test(tc, sincos);
   suite_add_tcase(s, tc);

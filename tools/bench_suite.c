@@ -70,8 +70,8 @@ enum { NPLOTTED = sizeof plotted / sizeof plotted[0] };
 
 /* The two large walks at every frame: name, scene, quick scene. */
 static const char *const walks[2][3] = {
-    {"plant", "builtin:plant?detail=1", "builtin:plant?detail=0.05"},
-    {"teapots", "builtin:teapots?count=6000", "builtin:teapots?count=300"},
+    {"plant", "builtin:plant,detail=1", "builtin:plant,detail=0.05"},
+    {"teapots", "builtin:teapots,count=6000", "builtin:teapots,count=300"},
 };
 /* The walks of bench tradeoff, in its order, and their steps (full run). */
 static const char *const tradeoff_walks[3] = {"teapots", "city", "plant"};

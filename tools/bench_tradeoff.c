@@ -33,14 +33,14 @@ typedef struct walk_case {
 } walk_case;
 
 static const walk_case full[] = {
-    {"teapots", "builtin:teapots?count=6000", "10"},
+    {"teapots", "builtin:teapots,count=6000", "10"},
     {"city", "builtin:city", "8"},
-    {"plant", "builtin:plant?detail=1", "8"},
+    {"plant", "builtin:plant,detail=1", "8"},
 };
 static const walk_case quick[] = {
-    {"teapots", "builtin:teapots?count=500", "60"},
+    {"teapots", "builtin:teapots,count=500", "60"},
     {"city", "builtin:city", "80"},
-    {"plant", "builtin:plant?detail=0.25", "80"},
+    {"plant", "builtin:plant,detail=0.25", "80"},
 };
 enum { NWALKS = sizeof full / sizeof full[0] };
 

@@ -24,7 +24,7 @@
 static const char usage_head[] =
     "usage: zscan render [INPUT] [options]\n"
     "  INPUT               FILE.obj, FILE.json (a scene), another model format\n"
-    "                      (through assimp), or builtin:NAME[?k=v]: default, teapots,\n"
+    "                      (through assimp), or builtin:NAME[,k=v]: default, teapots,\n"
     "                      spheres, city, plant, cubes (default: the teapot field)\n"
     "  -o FILE.png         output image (default zscan.png; - for standard output)\n";
 static const char usage_tail[] =

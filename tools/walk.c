@@ -32,7 +32,7 @@
 
 static const char usage[] =
     "usage: zscan walk SCENE --cull M1,M2,... [options]\n"
-    "  SCENE               FILE.json, FILE.obj, or builtin:NAME[?k=v]\n"
+    "  SCENE               FILE.json, FILE.obj, or builtin:NAME[,k=v]\n"
     "  --cull LIST         methods, comma-separated; none is always run: it is\n"
     "                      the reference.  The methods:\n"
     "                      " ZS_CULL_METHOD_LIST "\n"

@@ -340,7 +340,7 @@ typedef struct zs_load_opts {
  *   FILE.obj                 Wavefront OBJ, one object per o/g
  *   FILE.json                a zscan scene file (docs/SCENES.md)
  *   FILE.ply, .stl, .gltf .. through assimp, when built with it
- *   builtin:NAME[?k=v&..]    a generated scene: default, teapots, spheres,
+ *   builtin:NAME[,k=v,..]    a generated scene: default, teapots, spheres,
  *                            city, plant, cubes
  *   NULL                     builtin:default
  * Errors name the file and line (or the JSON path). */
