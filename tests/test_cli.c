@@ -672,6 +672,24 @@ START_TEST(calibrate_keeps_the_modelled_latency) {
 }
 END_TEST
 
+/* A long command behind a pipe or in a log is never silent: plain
+ * progress lines on stderr (every ZSCAN_PROGRESS_MS, 5 s by default);
+ * --quiet leaves stderr empty. */
+START_TEST(progress_in_logs_unless_quiet) {
+  setenv("ZSCAN_PROGRESS_MS", "1", 1);
+  const char *args[] = {"walk", "builtin:cubes,n=3", "--cull", "vfc", "--frames", "20", "--size",
+                        "64x48", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  ck_assert_msg(strstr(err, "walk: frame ") && strstr(err, "/20 ("), "%s", err);
+  ck_assert_ptr_nonnull(strstr(err, "walk: frame 20/20 (100 %)"));
+  const char *quiet[] = {"walk", "builtin:cubes,n=3", "--cull", "vfc", "--frames", "20",
+                         "--size", "64x48", "--quiet", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(quiet, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(err, "");
+  unsetenv("ZSCAN_PROGRESS_MS");
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -799,6 +817,7 @@ int main(void) {
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);
   tcase_add_test(tc, calibrate_keeps_the_modelled_latency);
+  tcase_add_test(tc, progress_in_logs_unless_quiet);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_suite_writes_every_file);

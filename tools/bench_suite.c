@@ -31,6 +31,7 @@
  * the quick walks, fewer frames elsewhere: a check that it all runs. */
 #include "tools/bench_suite.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -199,8 +200,21 @@ static zs_status run_child(const suite *s, char **args, const char *txt, const c
   if (cmd) snprintf(cmd, CMD, "%s", line);
   printf("\n$ %s\n", line);
   fflush(stdout);
-  int rc = zs_spawn_wait(argv, txt, txt);
-  zs_status st = zs_append_file(stdout, txt, err); /* what it printed, here too */
+  /* the child writes into a scratch file, which then reaches txt through
+   * the output primitive like every other output */
+  const char *tmpdir = getenv("TMPDIR");
+  char scratch[PATH];
+  snprintf(scratch, sizeof scratch, "%s/zscan-suite-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
+  int fd = mkstemp(scratch);
+  if (fd < 0) return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", scratch, strerror(errno));
+  close(fd);
+  int rc = zs_spawn_wait(argv, scratch, scratch);
+  zs_out out;
+  zs_status st = zs_out_open(&out, txt, err);
+  if (!st && !(st = zs_append_file(out.fp, scratch, err))) st = zs_out_commit(&out, err);
+  else if (!st) zs_out_discard(&out);
+  if (!st) st = zs_append_file(stdout, scratch, err); /* what it printed, here too */
+  unlink(scratch);
   if (rc != 0)
     return zs_error_set(err, ZS_ERR_IO, "'%s' failed (exit %d; its output: %s)", line, rc, txt);
   return st;

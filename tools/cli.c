@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -112,6 +113,38 @@ int zs_cli_help_asked(int argc, char **argv) {
   for (int i = 1; i < argc; i++)
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return 1;
   return 0;
+}
+
+/* A line in a log every five seconds; ZSCAN_PROGRESS_MS sets another
+ * interval (the tests use a short one). */
+static double log_interval_ms(void) {
+  const char *e = getenv("ZSCAN_PROGRESS_MS");
+  double ms = e && *e ? atof(e) : 5000.0;
+  return ms >= 0 ? ms : 5000.0;
+}
+
+void zs_progress_start(zs_progress *p, const char *label, const char *unit, int total, int quiet) {
+  *p = (zs_progress){label, unit, total, quiet, isatty(2), zs_wall_ms(), 0.0, log_interval_ms()};
+  p->last_ms = p->start_ms;
+}
+
+void zs_progress_step(zs_progress *p, int done) {
+  if (p->quiet || p->total <= 0) return;
+  double now = zs_wall_ms(), spent = (now - p->start_ms) / 1000.0;
+  double left = done > 0 ? spent * (p->total - done) / done : 0.0;
+  if (p->tty) {
+    enum { WIDTH = 30 };
+    int bar = (int)((int64_t)done * WIDTH / p->total);
+    fprintf(stderr, "\r%s [%.*s%*s] %s %d/%d, %.0f s, about %.0f s left ", p->label, bar,
+            "##############################", WIDTH - bar, "", p->unit, done, p->total, spent,
+            left);
+    if (done == p->total) fputc('\n', stderr);
+  } else if (now - p->last_ms >= p->interval_ms ||
+             (done == p->total && now - p->start_ms >= p->interval_ms)) {
+    fprintf(stderr, "%s: %s %d/%d (%d %%), %.0f s, about %.0f s left\n", p->label, p->unit, done,
+            p->total, (int)((int64_t)done * 100 / p->total), spent, left);
+    p->last_ms = now;
+  }
 }
 
 double zs_median(double *v, int n) {

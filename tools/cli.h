@@ -41,6 +41,22 @@ int zs_cli_exit_status(const zs_error *err, int parsing);
  * before anything else is parsed, so it works beside a bad option too. */
 int zs_cli_help_asked(int argc, char **argv);
 
+/* Progress of a long command on stderr: on a terminal, a bar with the
+ * time so far and an estimate of the rest, redrawn in place; elsewhere (a
+ * log, a pipe) a plain line every few seconds, such as
+ *   walk: frame 120/400 (30 %), 14 s, about 33 s left
+ * so that a long run is never silent (the environment's ZSCAN_PROGRESS_MS
+ * sets the interval, in ms).  quiet: nothing at all. */
+typedef struct zs_progress {
+  const char *label, *unit; /* "walk", "frame" */
+  int total, quiet, tty;
+  double start_ms, last_ms, interval_ms;
+} zs_progress;
+
+void zs_progress_start(zs_progress *p, const char *label, const char *unit, int total, int quiet);
+/* done of total finished (1 .. total). */
+void zs_progress_step(zs_progress *p, int done);
+
 /* The median of v[0..n-1], n > 0 (sorts v). */
 double zs_median(double *v, int n);
 

@@ -44,7 +44,8 @@ static const char usage[] =
     "                      side by side), OUT/NAME.actual.png, OUT/NAME.diff.png and\n"
     "                      OUT/junit.xml for CI\n"
     "  --shard K/N         only the K-th of N disjoint parts of the cases\n"
-    "  --jobs J            render J cases at once (default 1)\n";
+    "  --jobs J            render J cases at once (default 1)\n"
+    "  --quiet             no progress on stderr\n";
 
 enum { MAX_ARGS = 128 };
 
@@ -66,10 +67,12 @@ typedef struct golden_case {
 
 typedef struct golden_run {
   const char *manifest, *dir, *report;
-  int update, shard_k, shard_n, jobs;
+  int update, shard_k, shard_n, jobs, quiet;
   golden_case *cases;
   int ncases;
   int next; /* the next case a worker takes, under lock */
+  int done; /* cases finished, under lock */
+  zs_progress progress;
   pthread_mutex_t lock;
 } golden_run;
 
@@ -287,7 +290,11 @@ static void *worker(void *arg) {
     int i = r->next++;
     pthread_mutex_unlock(&r->lock);
     if (i >= r->ncases) return NULL;
-    if (in_shard(r, i)) run_case(r, &r->cases[i]);
+    if (!in_shard(r, i)) continue;
+    run_case(r, &r->cases[i]);
+    pthread_mutex_lock(&r->lock);
+    zs_progress_step(&r->progress, ++r->done);
+    pthread_mutex_unlock(&r->lock);
   }
 }
 
@@ -487,6 +494,8 @@ int zs_cmd_golden(int argc, char **argv) {
             r.shard_k < 1 || r.shard_k > r.shard_n)
           return usage_error("--shard: expected K/N with 1 <= K <= N, got '%s'", v);
       }
+    } else if (strcmp(a, "--quiet") == 0) {
+      r.quiet = 1;
     } else if (a[0] == '-' && a[1]) {
       return usage_error("unknown option '%s'", a);
     } else if (!r.manifest) {
@@ -508,6 +517,9 @@ int zs_cmd_golden(int argc, char **argv) {
   if (load_manifest(&r, &err)) goto done;
   if (r.update && zs_out_dir("--dir", r.dir, &err)) goto done;
   double t0 = zs_wall_ms();
+  int in_this_shard = 0;
+  for (int i = 0; i < r.ncases; i++) in_this_shard += in_shard(&r, i);
+  zs_progress_start(&r.progress, "golden", "case", in_this_shard, r.quiet);
   pthread_t threads[64];
   int started = 0;
   for (int j = 1; j < r.jobs; j++)

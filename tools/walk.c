@@ -59,7 +59,8 @@ static const char usage[] =
     "                      scanline and/or depthsort, against none (zbuffer)\n"
     "  --tradeoff FILE.png time against pixels wrong, one point per method and mode\n"
     "  --md FILE           the table of means per frame in Markdown\n"
-    "  --quiet             no progress on stderr\n"
+    "  --quiet             no progress on stderr (else a bar on a terminal, a line\n"
+    "                      every 5 s in a log)\n"
     "With ideal: a column of each method's time over the ideal's.  With ideal-box:\n"
     "how its set changes from frame to frame, and the least that change costs a\n"
     "method that learns from the last frame (cull/churn.h).\n";
@@ -193,15 +194,6 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
    * named "-" (the summary then goes to standard error). */
   const char *streams[] = {o->csv, o->md, o->plot, o->tradeoff};
   return zs_out_report(streams, 4, "--csv, --md, --plot and --tradeoff", &o->report, err);
-}
-
-/* The camera of frame f: the scene's path, or its camera when it has none. */
-static void progress(const walk_opts *o, int f, int frames) {
-  if (o->quiet || !isatty(2)) return;
-  int width = 40, done = (int)((int64_t)(f + 1) * width / frames);
-  fprintf(stderr, "\r[%.*s%*s] frame %d/%d", done, "########################################",
-          width - done, "", f + 1, frames);
-  if (f + 1 == frames) fputc('\n', stderr);
 }
 
 static zs_status write_frame(const walk_opts *o, const method_run *r, int f, zs_error *err) {
@@ -427,6 +419,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
                  "gpu_draw_ms,gpu_query_ms,gpu_switch_ms,gpu_idle_ms\n");
   }
 
+  zs_progress progress;
+  zs_progress_start(&progress, "walk", "frame", frames, o->quiet);
   for (int f = 0; f < frames && st == ZS_OK; f++) {
     if (f > 0) {
       for (int k = 0; k < o->step; k++) zs_scene_advance(&s);
@@ -508,7 +502,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
                 (unsigned long long)diff, split[0], split[1], split[2], split[3]);
       }
     }
-    progress(o, f, frames);
+    zs_progress_step(&progress, f + 1);
   }
   if (st) goto done;
   if (csv) {
