@@ -155,6 +155,9 @@ static const bad_option bad_options[] = {
     {{"render", "--cost-set", "measure=0.5", NULL},
      "--cost-set measure: expected 0 (off) or 1 (on), got 0.5", 2},
     {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open", 1},
+    {{"render", "-o", "x.jpg", NULL}, "-o: x.jpg: zscan writes PNG (FILE.png)", 2},
+    {{"render", "--depth", "d.png", NULL}, "--depth: d.png: zscan writes PFM (FILE.pfm)", 2},
+    {{"render", "--background", "red", NULL}, "--background: expected RRGGBB (hex), got 'red'", 2},
 };
 
 /* Help comes first, even beside an option the command does not know. */
@@ -690,6 +693,25 @@ START_TEST(progress_in_logs_unless_quiet) {
 }
 END_TEST
 
+/* --background: flat shading's background, where no face is. */
+START_TEST(render_background) {
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-background.png", ZS_BINARY_DIR);
+  const char *args[] = {"render", "builtin:cubes,n=1", "--size", "64x48", "--background", "10a0Ff",
+                        "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  zs_image im;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+  ck_assert_uint_eq(im.rgb[0], 0x10A0FF); /* a corner: no cube there */
+  int other = 0;
+  for (int i = 0; i < im.width * im.height; i++) other += im.rgb[i] != 0x10A0FF;
+  ck_assert_int_gt(other, 100); /* and the cube */
+  zs_image_free(&im);
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -818,6 +840,7 @@ int main(void) {
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);
   tcase_add_test(tc, calibrate_keeps_the_modelled_latency);
   tcase_add_test(tc, progress_in_logs_unless_quiet);
+  tcase_add_test(tc, render_background);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_suite_writes_every_file);

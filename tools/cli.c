@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -92,6 +93,21 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err) {
   if (zs_out_check(path, err)) return zs_out_error_option(err, opt);
   return ZS_OK;
+}
+
+zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
+                               zs_error *err) {
+  const char *base = strrchr(path, '/');
+  base = base ? base + 1 : path;
+  const char *dot = strrchr(base, '.');
+  if (!dot || dot == base) return ZS_OK; /* no extension: a device, a pipe, a plain name */
+  if (strcasecmp(dot + 1, ext) == 0) return ZS_OK;
+  char upper[16];
+  size_t n = 0;
+  for (; ext[n] && n + 1 < sizeof upper; n++)
+    upper[n] = (char)(ext[n] >= 'a' && ext[n] <= 'z' ? ext[n] - 'a' + 'A' : ext[n]);
+  upper[n] = '\0';
+  return zs_error_set(err, ZS_ERR_ARG, "%s: %s: zscan writes %s (FILE.%s)", opt, path, upper, ext);
 }
 
 zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err) {

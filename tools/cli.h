@@ -28,6 +28,12 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
 /* Refuses an output path whose directory does not exist or cannot be
  * written, before any work is done. */
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
+/* An output whose name says another format than the one written (-o x.jpg
+ * for a PNG) is refused: "-o: x.jpg: zscan writes PNG".  ext is the
+ * format's extension ("png"), any case; a name without an extension, "-",
+ * or a device is taken as it is. */
+zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
+                               zs_error *err);
 /* zs_cli_value, then zs_cli_output_path on the value: an output file's option. */
 zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err);
 

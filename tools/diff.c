@@ -100,7 +100,9 @@ static int parse_args(int argc, char **argv, diff_args *args) {
   for (int i = 1; i < argc; i++) {
     const char *arg = argv[i], *v = NULL;
     if (strcmp(arg, "-o") == 0 || strcmp(arg, "--side-by-side") == 0) {
-      if (zs_cli_output_value(argc, argv, &i, &v, &err)) return fail("%s", err.msg);
+      if (zs_cli_output_value(argc, argv, &i, &v, &err) ||
+          zs_cli_output_format(arg, v, "png", &err))
+        return fail("%s", err.msg);
       *(arg[1] == 'o' ? &args->out : &args->side) = v;
     } else if (strcmp(arg, "--max-channel-diff") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) ||

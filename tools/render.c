@@ -35,6 +35,7 @@ static const char usage_tail[] =
     "  --threads N         render threads, 1 to 64 (zbuffer mode; default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
     "  --stats             print the frame's counters as one JSON line\n"
+    "  --background RRGGBB flat shading's background (default 1E2228)\n"
     "  --allow-empty       render a model without faces (the background alone)\n"
     "                      instead of refusing it\n"
     "  --cull METHOD       draw through a culling method (vfc, hsw, chc, chc-prob, ...)\n"
@@ -59,6 +60,7 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
   o->cull = -1;
   zs_clock_params_default(&o->clock);
   zs_cost_params_default(&o->cost);
+  o->background = ZS_BACKGROUND_RGB;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
 #define VALUE() \
@@ -116,6 +118,13 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       o->stats = 1;
     } else if (strcmp(a, "--allow-empty") == 0) {
       o->allow_empty = 1;
+    } else if (strcmp(a, "--background") == 0) {
+      VALUE();
+      char *end;
+      unsigned long rgb = strtoul(v, &end, 16);
+      if (strlen(v) != 6 || *end || v[0] == '-' || v[0] == '+')
+        return zs_error_set(err, ZS_ERR_ARG, "--background: expected RRGGBB (hex), got '%s'", v);
+      o->background = (uint32_t)rgb;
     } else if (strcmp(a, "--clock") == 0) {
       VALUE();
       if (zs_clockfile_load(v, &o->clock, err)) return err->code;
@@ -145,6 +154,8 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
     if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
     return ZS_OK;
   }
+  if (zs_cli_output_format("-o", o->out_png, "png", err)) return err->code;
+  if (o->out_pfm && zs_cli_output_format("--depth", o->out_pfm, "pfm", err)) return err->code;
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
   /* standard output carries one stream */
@@ -261,7 +272,7 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
   double view[16], proj[16];
   if ((st = zs_frame_camera(&model, &o->view.cam, o->view.width, o->view.height, view, proj, err))) goto done;
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
-                          o->view.cull_back, o->threads, ZS_BACKGROUND_RGB, 0};
+                          o->view.cull_back, o->threads, o->background, 0};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;
