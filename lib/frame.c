@@ -17,12 +17,17 @@ static void gather_row(void *user, const zs_row *row) {
           row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
 }
 
+void zs_frame_complete_camera(const zs_scene *scene, const zs_camera *cam, int width, int height,
+                              zs_camera *used) {
+  *used = *cam;
+  zs_camera_complete(used, scene->lo, scene->hi, (double)width / height);
+}
+
 zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
                           int height, double view[16], double proj[16], zs_error *err) {
-  zs_camera c = *cam;
-  double aspect = (double)width / height;
-  zs_camera_complete(&c, scene->lo, scene->hi, aspect);
-  return zs_camera_matrices(&c, aspect, view, proj, err);
+  zs_camera c;
+  zs_frame_complete_camera(scene, cam, width, height, &c);
+  return zs_camera_matrices(&c, (double)width / height, view, proj, err);
 }
 
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err) {

@@ -44,6 +44,11 @@ zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *e
 
 /* The camera's matrices for the scene at aspect w/h: cam completed from
  * the scene's bounds, then checked. */
+/* The camera a frame is drawn with: cam completed from the scene's bounds
+ * (eye, target, near and far where cam lacks them) at aspect w/h. */
+void zs_frame_complete_camera(const zs_scene *scene, const zs_camera *cam, int width, int height,
+                              zs_camera *used);
+
 zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
                           int height, double view[16], double proj[16], zs_error *err);
 

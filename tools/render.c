@@ -34,7 +34,11 @@ static const char usage_tail[] =
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --threads N         render threads, 1 to 64 (zbuffer mode; default 1)\n"
     "  --repeat K          render K times; ms_per_frame is the median\n"
-    "  --stats             print the frame's counters as one JSON line\n"
+    "  --stats             print the frame's counters as one JSON line, with the\n"
+    "                      camera used (\"camera\": eye, target, up, fovy or ortho,\n"
+    "                      near, far, the bounds framed), in full precision\n"
+    "  -v, --verbose       print the camera used as options that draw the same\n"
+    "                      frame again, byte for byte\n"
     "  --background RRGGBB flat shading's background (default 1E2228)\n"
     "  --allow-empty       render a model without faces (the background alone)\n"
     "                      instead of refusing it\n"
@@ -118,6 +122,8 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       o->stats = 1;
     } else if (strcmp(a, "--allow-empty") == 0) {
       o->allow_empty = 1;
+    } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
+      o->verbose = 1;
     } else if (strcmp(a, "--background") == 0) {
       VALUE();
       char *end;
@@ -178,12 +184,44 @@ typedef struct cull_report {
   int flat;                /* the octree is the root alone (a handful of objects) */
 } cull_report;
 
+/* The camera the frame was drawn with, as options that draw it again,
+ * byte for byte (%.17g: every double back as it was). */
+static void print_camera_options(FILE *f, const zs_camera *c) {
+  fprintf(f, "--eye %.17g,%.17g,%.17g --target %.17g,%.17g,%.17g --up %.17g,%.17g,%.17g ",
+          c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0],
+          c->up[1], c->up[2]);
+  if (c->ortho)
+    fprintf(f, "--ortho %.17g,%.17g,%.17g,%.17g ", c->extent[0], c->extent[1], c->extent[2],
+            c->extent[3]);
+  else
+    fprintf(f, "--fovy %.17g ", c->fovy);
+  fprintf(f, "--near %.17g --far %.17g", c->znear, c->zfar);
+}
+
+/* The same as a JSON object, with the scene's bounds the framing came from. */
+static void print_camera_json(const zs_camera *c, const zs_scene *sc) {
+  printf("\"camera\":{\"eye\":[%.17g,%.17g,%.17g],\"target\":[%.17g,%.17g,%.17g],"
+         "\"up\":[%.17g,%.17g,%.17g],",
+         c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0],
+         c->up[1], c->up[2]);
+  if (c->ortho)
+    printf("\"ortho\":[%.17g,%.17g,%.17g,%.17g],", c->extent[0], c->extent[1], c->extent[2],
+           c->extent[3]);
+  else
+    printf("\"fovy\":%.17g,", c->fovy);
+  printf("\"near\":%.17g,\"far\":%.17g,\"bounds\":{\"lo\":[%.17g,%.17g,%.17g],"
+         "\"hi\":[%.17g,%.17g,%.17g]}},",
+         c->znear, c->zfar, sc->lo[0], sc->lo[1], sc->lo[2], sc->hi[0], sc->hi[1], sc->hi[2]);
+}
+
 static void print_stats(const render_opts *o, const zs_scene *sc,
                         const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
-                        double ms, double load_ms, int64_t diff_pixels, const cull_report *cr) {
+                        double ms, double load_ms, int64_t diff_pixels, const cull_report *cr,
+                        const zs_camera *used) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
          zs_algo_name(o->algo));
+  print_camera_json(used, sc);
   long long vertices = 0;
   for (int32_t i = 0; i < sc->ninst; i++) vertices += sc->meshes[sc->inst[i].mesh].mesh.nverts;
   printf("\"objects\":%d,\"faces\":%llu,\"triangles\":%llu,\"vertices\":%lld,\"draws\":%llu,",
@@ -271,6 +309,13 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
   double *times = NULL;
   double view[16], proj[16];
   if ((st = zs_frame_camera(&model, &o->view.cam, o->view.width, o->view.height, view, proj, err))) goto done;
+  zs_camera used; /* as the frame is drawn: for --stats and -v */
+  zs_frame_complete_camera(&model, &o->view.cam, o->view.width, o->view.height, &used);
+  if (o->verbose && !keep) {
+    fputs("zscan render: camera: ", stderr);
+    print_camera_options(stderr, &used);
+    fputc('\n', stderr);
+  }
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
                           o->view.cull_back, o->threads, o->background, 0};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
@@ -342,7 +387,7 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
                     have_tree ? tree.nnodes : 0, have_tree && tree.flat};
   if (o->stats)
     print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
-                diff_pixels, o->cull >= 0 ? &cr : NULL);
+                diff_pixels, o->cull >= 0 ? &cr : NULL, &used);
 
 done:
   zs_culler_destroy(culler);

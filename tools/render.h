@@ -12,6 +12,7 @@ typedef struct render_opts {
   const char *input, *out_png, *out_pfm;
   int out_given; /* -o was given */
   uint32_t background; /* flat shading's background, 0xRRGGBB */
+  int verbose;         /* -v: the camera used, as options, on stderr */
   zs_view_opts view;
   zs_algo algo;
   zs_shade shade;
