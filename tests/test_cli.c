@@ -789,6 +789,44 @@ START_TEST(printed_camera_reproduces_the_image) {
 }
 END_TEST
 
+/* One convention for every command: an unknown option is a usage error
+ * (exit 2), an input file that is not there is bad input (exit 1). */
+START_TEST(every_command_exits_2_on_usage_and_1_on_a_missing_input) {
+  static const char *const unknown[][6] = {
+      {"render", NULL},          {"diff", "a.png", "b.png", NULL}, {"golden", "check", "m.json", NULL},
+      {"trace", "x.obj", NULL},  {"walk", "x.json", "--cull", "vfc", NULL},
+      {"path", "x.json", NULL},  {"query", "x.obj", NULL},       {"calibrate", NULL},
+      {"bench", "octree", NULL}, {"bench", "depthsort", NULL},    {"bench", "raster", NULL},
+      {"bench", "tradeoff", NULL}, {"bench", "suite", NULL}};
+  for (size_t i = 0; i < sizeof unknown / sizeof unknown[0]; i++) {
+    const char *args[8];
+    int n = 0;
+    for (; unknown[i][n]; n++) args[n] = unknown[i][n];
+    args[n++] = "--frobnicate";
+    args[n] = NULL;
+    int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+    ck_assert_msg(rc == 2, "%s %s --frobnicate: exit %d (%s)", args[0], args[1] ? args[1] : "",
+                  rc, err);
+    ck_assert_msg(strstr(err, "--frobnicate") != NULL, "%s: %s", args[0], err);
+  }
+  static const char *const missing[][6] = {
+      {"render", "/nonexistent/m.obj", NULL}, {"diff", "/nonexistent/a.png", "/nonexistent/b.png", NULL},
+      {"golden", "check", "/nonexistent/m.json", NULL}, {"trace", "/nonexistent/m.obj", NULL},
+      {"walk", "/nonexistent/s.json", "--cull", "vfc", NULL}, {"path", "/nonexistent/s.json", NULL},
+      {"query", "/nonexistent/m.obj", NULL}, {"bench", "depthsort", "/nonexistent/m.obj", NULL}};
+  for (size_t i = 0; i < sizeof missing / sizeof missing[0]; i++) {
+    int rc = zs_test_run_zscan(missing[i], out, sizeof out, err, sizeof err);
+    ck_assert_msg(rc == 1, "%s: exit %d (%s)", missing[i][0], rc, err);
+    ck_assert_msg(strstr(err, "/nonexistent/") != NULL, "%s: %s", missing[i][0], err);
+  }
+  /* zscan help COMMAND is the command's --help */
+  const char *help[] = {"help", "render", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(help, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "usage: zscan render [INPUT] [options]"));
+  ck_assert_ptr_nonnull(strstr(out, "--size WxH"));
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -919,6 +957,7 @@ int main(void) {
   tcase_add_test(tc, progress_in_logs_unless_quiet);
   tcase_add_test(tc, render_background);
   tcase_add_test(tc, printed_camera_reproduces_the_image);
+  tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
   tcase_add_test(tc, bench_suite_writes_every_file);

@@ -861,6 +861,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   int w, h;
   zs_error err;
   zs_error_clear(&err);
+  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--quick") == 0) {
       s.quick = 1;
@@ -877,6 +878,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
       goto fail;
     }
   }
+  parsing = 0;
   if (zs_out_dir("--out", s.dir, &err)) goto fail;
   if (docs && zs_out_dir("--docs", docs, &err)) goto fail;
   if (!zs_self_path(s.self, sizeof s.self)) {
@@ -983,5 +985,5 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   return 0;
 fail:
   fprintf(stderr, "zscan bench suite: %s\n", err.msg);
-  return 1;
+  return zs_cli_exit_status(&err, parsing);
 }

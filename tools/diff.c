@@ -9,8 +9,9 @@
  *   max_channel_diff M
  *   faces_involved K: ID ID ...        (with --ids only)
  *
- * and exits 0 when the images are the same, 1 when they differ, 2 on an
- * error (one line "zscan diff: reason" on standard error).  Images of
+ * and exits 0 when the images are the same, 1 when they differ or one
+ * cannot be read (one line "zscan diff: reason" on standard error), 2 on a
+ * usage error.  Images of
  * different sizes are an error.  The same means: no pixel whose largest
  * channel difference exceeds --max-channel-diff (default 0), or no more
  * such pixels than --max-diff-pixels (default 0); N counts those pixels.
@@ -45,7 +46,7 @@
 enum {
   EXIT_SAME = 0,
   EXIT_DIFFERENT = 1,
-  EXIT_ERROR = 2,
+  EXIT_USAGE = 2,
   MAX_IDS_LISTED = 20,
   ID_VALUES = 1 << 24 /* every 24-bit pixel value */
 };
@@ -64,7 +65,8 @@ typedef struct diff_args {
 static const char usage[] =
     "usage: zscan diff A.png B.png [options]\n"
     "  prints pixels_differing N of TOTAL and max_channel_diff M; exits 0 when the\n"
-    "  images are the same (within the tolerances), 1 when they differ, 2 on an error\n"
+    "  images are the same (within the tolerances), 1 when they differ or one cannot\n"
+    "  be read, 2 on a usage error\n"
     "  -o DIFF.png              a heat map: pixels that do not differ faded grey, those\n"
     "                           that do from yellow (a difference of 1) to red (255)\n"
     "  --side-by-side OUT.png   A, B and the heat map in one picture\n"
@@ -89,10 +91,10 @@ static int fail(const char *fmt, ...) {
   vfprintf(stderr, fmt, ap);
   fputc('\n', stderr);
   va_end(ap);
-  return EXIT_ERROR;
+  return EXIT_USAGE;
 }
 
-/* Returns 0, or EXIT_ERROR after printing why. */
+/* Returns 0, or EXIT_USAGE after printing why. */
 static int parse_args(int argc, char **argv, diff_args *args) {
   *args = (diff_args){NULL, NULL, NULL, NULL, 0, 0, 0};
   zs_error err;
@@ -198,13 +200,13 @@ int zs_cmd_diff(int argc, char **argv) {
     return EXIT_SAME;
   }
   diff_args args;
-  if (parse_args(argc, argv, &args) != 0) return EXIT_ERROR;
+  if (parse_args(argc, argv, &args) != 0) return EXIT_USAGE;
 
   zs_error err;
   zs_error_clear(&err);
   zs_image a = {0, 0, NULL}, b = {0, 0, NULL}, diff = {0, 0, NULL}, all = {0, 0, NULL};
   zs_diff_result res;
-  int status = EXIT_ERROR;
+  int status = EXIT_DIFFERENT; /* a file that cannot be read is bad input */
   if (zs_png_read(args.a, &a, &err) != ZS_OK ||
       zs_png_read(args.b, &b, &err) != ZS_OK)
     goto done;
