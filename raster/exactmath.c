@@ -69,6 +69,23 @@ double zs_tan_deg(double deg) {
   return c == 0.0 ? (s > 0 ? HUGE_VAL : -HUGE_VAL) : s / c;
 }
 
+double zs_atan_deg(double x) {
+  if (x != x) return x;
+  int neg = x < 0;
+  if (neg) x = -x;
+  int inverted = x > 1.0; /* atan x = pi/2 - atan(1/x) */
+  if (inverted) x = 1.0 / x;
+  /* twice atan x = 2 atan(x / (1 + sqrt(1 + x^2))): |x| <= tan(pi/16) < 0.2,
+   * where the series to x^23/23 leaves below 2^-60 */
+  for (int k = 0; k < 2; k++) x = x / (1.0 + sqrt(1.0 + x * x));
+  double x2 = x * x, t = 1.0 / 23.0;
+  for (int k = 21; k >= 1; k -= 2) t = 1.0 / k - x2 * t;
+  double a = 4.0 * x * t; /* radians */
+  if (inverted) a = 0.5 * PI - a;
+  a *= 180.0 / PI;
+  return neg ? -a : a;
+}
+
 double zs_exp(double x) {
   if (x != x) return x;
   if (x > 709.78) return HUGE_VAL;

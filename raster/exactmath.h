@@ -24,6 +24,9 @@ void zs_sincos_deg(double deg, double *s, double *c);
 /* tan of an angle in degrees (an odd multiple of 90 gives +-inf). */
 double zs_tan_deg(double deg);
 
+/* atan x in degrees (-90 .. 90).  Within a few ulp. */
+double zs_atan_deg(double x);
+
 /* e^x: +0 below about -745, +inf above about 709.8, NaN for NaN.
  * Within 2 ulp. */
 double zs_exp(double x);

@@ -37,6 +37,13 @@ int zs_assimp_available(void) {
 
 #ifndef ZS_HAVE_ASSIMP
 
+zs_status zs_assimp_cameras(const char *path, zs_file_camera **out, int *n, zs_error *err) {
+  *out = NULL;
+  *n = 0;
+  return zs_error_set(err, ZS_ERR_UNSUPPORTED,
+                      "%s: cameras are read through assimp (built without it)", path);
+}
+
 zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
   zs_model_init(out);
   return zs_error_set(err, ZS_ERR_UNSUPPORTED,
@@ -396,7 +403,13 @@ zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
                      why && *why ? why : "assimp could not read the file");
   }
   if ((sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || sc->mNumMeshes == 0 || !sc->mRootNode) {
+    unsigned cameras = sc->mNumCameras;
     aiReleaseImport(sc);
+    if (cameras)
+      return set_error(err, ZS_ERR_PARSE,
+                       "%s: no meshes (%u camera%s and nothing to draw; render --list-cameras "
+                       "lists them)",
+                       path, cameras, cameras == 1 ? "" : "s");
     return set_error(err, ZS_ERR_PARSE, "%s: no meshes", path);
   }
   loader L = {path, sc, out, 0, 0, err};
@@ -407,6 +420,97 @@ zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
   aiReleaseImport(sc);
   if (st != ZS_OK) zs_model_free(out);
   return st;
+}
+
+/* ---- cameras ---------------------------------------------------------- */
+
+/* The world transform of the node named name, into xf, and its own, into
+ * local; 0 when no node has that name. */
+static int find_node(const struct aiNode *nd, const char *name, const double parent[16],
+                     double xf[16], double local[16], int depth) {
+  if (!nd || depth > ZS_ASSIMP_MAX_DEPTH) return 0;
+  double own[16], here[16];
+  from_ai(&nd->mTransformation, own);
+  mat_mul(here, parent, own);
+  if (strcmp(nd->mName.data, name) == 0) {
+    memcpy(xf, here, sizeof here);
+    memcpy(local, own, sizeof own);
+    return 1;
+  }
+  for (unsigned c = 0; c < nd->mNumChildren; c++)
+    if (nd->mChildren && find_node(nd->mChildren[c], name, here, xf, local, depth + 1)) return 1;
+  return 0;
+}
+
+/* xf applied to (x, y, z, w): w = 1 a point, w = 0 a direction. */
+static void place(const double xf[16], const struct aiVector3D *v, double w, double out[3]) {
+  double p[3] = {v->x, v->y, v->z};
+  for (int r = 0; r < 3; r++)
+    out[r] = xf[4 * r] * p[0] + xf[4 * r + 1] * p[1] + xf[4 * r + 2] * p[2] + xf[4 * r + 3] * w;
+}
+
+zs_status zs_assimp_cameras(const char *path, zs_file_camera **out, int *n, zs_error *err) {
+  *out = NULL;
+  *n = 0;
+  file_head *h = malloc(sizeof *h);
+  if (!h) return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
+  zs_status st = read_head(path, h, err);
+  if (st == ZS_OK) st = check_header(path, h, err);
+  free(h);
+  if (st != ZS_OK) return st;
+  const struct aiScene *sc = aiImportFile(path, aiProcess_ValidateDataStructure);
+  if (!sc) {
+    const char *why = aiGetErrorString();
+    return set_error(err, ZS_ERR_PARSE, "%s: %s", path,
+                     why && *why ? why : "assimp could not read the file");
+  }
+  zs_file_camera *cams = sc->mNumCameras ? calloc(sc->mNumCameras, sizeof *cams) : NULL;
+  if (sc->mNumCameras && !cams) {
+    aiReleaseImport(sc);
+    return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
+  }
+  const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  for (unsigned i = 0; i < sc->mNumCameras && st == ZS_OK; i++) {
+    const struct aiCamera *c = sc->mCameras[i];
+    zs_file_camera *k = &cams[i];
+    snprintf(k->name, sizeof k->name, "%.*s", (int)sizeof k->name - 1, c->mName.data);
+    double xf[16], local[16];
+    if (!find_node(sc->mRootNode, c->mName.data, identity, xf, local, 0)) {
+      memcpy(xf, identity, sizeof xf);
+      memcpy(local, identity, sizeof local);
+    }
+    /* A camera's position is relative to its node; but assimp's glTF 2
+     * importer also copies the node's translation into it, which would
+     * count it twice: a position equal to the node's own translation is
+     * taken as that copy. */
+    struct aiVector3D pos = c->mPosition;
+    if ((pos.x != 0 || pos.y != 0 || pos.z != 0) && pos.x == local[3] && pos.y == local[7] &&
+        pos.z == local[11])
+      pos.x = pos.y = pos.z = 0;
+    double dir[3];
+    place(xf, &pos, 1.0, k->eye);
+    place(xf, &c->mLookAt, 0.0, dir);
+    place(xf, &c->mUp, 0.0, k->up);
+    for (int a = 0; a < 3; a++) k->target[a] = k->eye[a] + dir[a];
+    k->hfov_deg = c->mHorizontalFOV * (180.0 / 3.14159265358979323846);
+    k->ortho_half_width = c->mOrthographicWidth;
+    k->aspect = c->mAspect;
+    k->znear = c->mClipPlaneNear;
+    k->zfar = c->mClipPlaneFar;
+    for (int a = 0; a < 3 && st == ZS_OK; a++)
+      if (!isfinite(k->eye[a]) || !isfinite(k->target[a]) || !isfinite(k->up[a]))
+        st = set_error(err, ZS_ERR_PARSE, "%s: camera %u (%s): not a finite number", path, i,
+                       k->name);
+  }
+  int count = (int)sc->mNumCameras;
+  aiReleaseImport(sc);
+  if (st != ZS_OK) {
+    free(cams);
+    return st;
+  }
+  *out = cams;
+  *n = count;
+  return ZS_OK;
 }
 
 #endif

@@ -50,6 +50,23 @@ enum {
 /* Whether this build reads files through assimp. */
 int zs_assimp_available(void);
 
+/* A camera stored in a model file (glTF, Collada, FBX, 3DS, ...), placed
+ * in the world by its node.  The field of view is the file's horizontal
+ * angle (assimp's importers give the whole angle); an orthographic camera
+ * has ortho_half_width > 0 instead. */
+typedef struct zs_file_camera {
+  char name[96];
+  double eye[3], target[3], up[3];
+  double hfov_deg;          /* the whole horizontal angle, degrees */
+  double ortho_half_width;  /* > 0: orthographic, half the view's width */
+  double aspect;            /* width / height the file gives, 0 when none */
+  double znear, zfar;
+} zs_file_camera;
+
+/* The cameras of the model file at path, in the file's order: *out
+ * (malloc'd, free() it) and *n, which may be 0. */
+zs_status zs_assimp_cameras(const char *path, zs_file_camera **out, int *n, zs_error *err);
+
 /* Reads the model file at path into out, which is initialised here (any
  * previous content is not freed).  On failure out is left empty and err
  * says why. */

@@ -827,6 +827,52 @@ START_TEST(every_command_exits_2_on_usage_and_1_on_a_missing_input) {
 }
 END_TEST
 
+/* --camera: a camera stored in a model file draws what the same view
+ * given by options draws (the glTF camera: at 0.5,0.5,3 looking down -z,
+ * yfov 0.7 radians, aspect 1, planes 0.01 and 100). */
+START_TEST(camera_from_the_model_file) {
+#ifdef ZS_HAVE_ASSIMP
+  const char *gltf = "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf";
+  if (!zs_test_exists(gltf)) return; /* assimp-testmodels: tools/setup.sh installs it */
+  const char *list[] = {"render", gltf, "--list-cameras", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(list, out, sizeof out, err, sizeof err), 0);
+  ck_assert_msg(strncmp(out, "0 nodes[1]: eye 0.5,0.5,3 target 0.5,0.5,2 up 0,1,0 ", 52) == 0,
+                "%s", out);
+  ck_assert_ptr_nonnull(strstr(out, "\n1 nodes[2]: eye 0.5,0.5,3 target 0.5,0.5,2 up 0,1,0 ortho"));
+  char a[4096], b[4096], h1[17], h2[17];
+  snprintf(a, sizeof a, "%s/cli-cam-file.png", ZS_BINARY_DIR);
+  snprintf(b, sizeof b, "%s/cli-cam-opts.png", ZS_BINARY_DIR);
+  const char *file[] = {"render", gltf, "--camera", "0", "--size", "200x200", "--stats", "-o", a,
+                        NULL};
+  ck_assert_int_eq(zs_test_run_zscan(file, out, sizeof out, err, sizeof err), 0);
+  stats_hash(out, h1);
+  /* 0.7 radians is 40.107045659157625 degrees */
+  const char *opts[] = {"render", gltf, "--eye", "0.5,0.5,3", "--target", "0.5,0.5,2", "--up",
+                        "0,1,0", "--fovy", "40.107045659157625", "--near", "0.01", "--far",
+                        "100", "--size", "200x200", "--stats", "-o", b, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(opts, out, sizeof out, err, sizeof err), 0);
+  stats_hash(out, h2);
+  ck_assert_str_eq(h1, h2);
+  const char *name[] = {"render", gltf, "--camera", "nodes[1]", "--size", "200x200", "--stats",
+                        "-o", a, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(name, out, sizeof out, err, sizeof err), 0);
+  stats_hash(out, h2);
+  ck_assert_str_eq(h1, h2);
+  /* checked against the input, not the command line alone: exit 1 */
+  const char *missing[] = {"render", gltf, "--camera", "7", "-o", a, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(missing, out, sizeof out, err, sizeof err), 1);
+  ck_assert_ptr_nonnull(strstr(err, "--camera 7: "));
+  ck_assert_ptr_nonnull(strstr(err, "has 2 cameras (see --list-cameras)"));
+  const char *dae[] = {"render", "/usr/share/assimp/models/Collada/cameras.dae", "-o", a, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(dae, out, sizeof out, err, sizeof err), 1);
+  ck_assert_ptr_nonnull(strstr(err, "no meshes (3 cameras and nothing to draw"));
+#endif
+  const char *gen[] = {"render", "builtin:cubes", "--camera", "0", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(gen, out, sizeof out, err, sizeof err), 1);
+  ck_assert_ptr_nonnull(strstr(err, "--camera: a generated scene stores no cameras"));
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -957,6 +1003,7 @@ int main(void) {
   tcase_add_test(tc, progress_in_logs_unless_quiet);
   tcase_add_test(tc, render_background);
   tcase_add_test(tc, printed_camera_reproduces_the_image);
+  tcase_add_test(tc, camera_from_the_model_file);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

@@ -23,7 +23,7 @@ static double ulps(double a, double b) {
 START_TEST(close_to_the_c_library) {
   zs_rng rng;
   zs_rng_seed(&rng, 7);
-  double worst_sin = 0, worst_exp = 0, worst_log = 0;
+  double worst_sin = 0, worst_exp = 0, worst_log = 0, worst_atan = 0;
   for (int i = 0; i < 200000; i++) {
     double u = (double)zs_rng_below(&rng, 1u << 30) / (1u << 30); /* [0, 1) */
     double turns = 8.0 * u - 4.0, s, c;
@@ -36,10 +36,13 @@ START_TEST(close_to_the_c_library) {
     worst_exp = fmax(worst_exp, ulps(zs_exp(x), exp(x)));
     double y = ldexp(0.5 + u, (int)zs_rng_below(&rng, 2000) - 1000);
     worst_log = fmax(worst_log, ulps(zs_log(y), log(y)));
+    double t = ldexp(u - 0.5, (int)zs_rng_below(&rng, 40) - 20);
+    worst_atan = fmax(worst_atan, ulps(zs_atan_deg(t), atan(t) * (180.0 / ZS_PI)));
   }
   ck_assert_msg(worst_sin < 8 * ZS_PI * 0x1p-52, "sin/cos: off by %g", worst_sin);
   ck_assert_msg(worst_exp < 4, "exp: %g ulp", worst_exp);
   ck_assert_msg(worst_log < 4, "log: %g ulp", worst_log);
+  ck_assert_msg(worst_atan < 8, "atan: %g ulp", worst_atan);
 }
 END_TEST
 
@@ -60,6 +63,8 @@ START_TEST(exact_where_it_must_be) {
   ck_assert(isinf(zs_log(0.0)) && zs_log(0.0) < 0);
   ck_assert(isnan(zs_log(-1.0)));
   ck_assert(isinf(zs_tan_deg(90.0)));
+  ck_assert(zs_atan_deg(0.0) == 0.0);
+  ck_assert(fabs(zs_atan_deg(1.0) - 45.0) < 1e-13 && fabs(zs_atan_deg(-1e300) + 90.0) < 1e-13);
   ck_assert(zs_log10(1000.0) > 2.999999999999 && zs_log10(1000.0) < 3.000000000001);
 }
 END_TEST

@@ -10,6 +10,8 @@
 #include "cull/cull.h"
 #include "cull/octree.h"
 #include "raster/raster.h"
+#include "raster/exactmath.h"
+#include "scene/assimp_load.h"
 #include "scene/camera.h"
 #include "scene/model.h"
 #include "tools/cli.h"
@@ -39,6 +41,10 @@ static const char usage_tail[] =
     "                      near, far, the bounds framed), in full precision\n"
     "  -v, --verbose       print the camera used as options that draw the same\n"
     "                      frame again, byte for byte\n"
+    "  --camera NAME|N     a camera stored in the model file (glTF, Collada, FBX,\n"
+    "                      3DS, ...: its place, aim, lens and planes; its\n"
+    "                      horizontal angle spans the image's width)\n"
+    "  --list-cameras      list the model file's cameras, render nothing\n"
     "  --background RRGGBB flat shading's background (default 1E2228)\n"
     "  --allow-empty       render a model without faces (the background alone)\n"
     "                      instead of refusing it\n"
@@ -124,6 +130,11 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       o->allow_empty = 1;
     } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
       o->verbose = 1;
+    } else if (strcmp(a, "--camera") == 0) {
+      VALUE();
+      o->camera = v;
+    } else if (strcmp(a, "--list-cameras") == 0) {
+      o->list_cameras = 1;
     } else if (strcmp(a, "--background") == 0) {
       VALUE();
       char *end;
@@ -285,16 +296,88 @@ static zs_status draw_overlay(zs_device *dev, const zs_culler *c, const zs_octre
   return ZS_OK;
 }
 
+/* --camera and --list-cameras: the cameras stored in the model file.  The
+ * chosen one replaces the view's eye, target, up, lens and planes; its
+ * horizontal angle spans the image's width (aspect: width / height). */
+static zs_status file_camera(const render_opts *o, double aspect, zs_view_opts *v,
+                             zs_error *err) {
+  if (!o->input || strncmp(o->input, "builtin:", 8) == 0)
+    return zs_error_set(err, ZS_ERR_ARG, "--camera: a generated scene stores no cameras");
+  zs_file_camera *cams;
+  int n;
+  if (zs_assimp_cameras(o->input, &cams, &n, err)) return err->code;
+  if (o->list_cameras) {
+    for (int i = 0; i < n; i++) {
+      const zs_file_camera *c = &cams[i];
+      printf("%d %s: eye %.9g,%.9g,%.9g target %.9g,%.9g,%.9g up %.9g,%.9g,%.9g ", i, c->name,
+             c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0],
+             c->up[1], c->up[2]);
+      if (c->ortho_half_width > 0) printf("ortho half width %.9g", c->ortho_half_width);
+      else printf("horizontal angle %.9g degrees", c->hfov_deg);
+      printf(" near %.9g far %.9g aspect %.9g\n", c->znear, c->zfar, c->aspect);
+    }
+    if (n == 0) printf("%s: no cameras\n", o->input);
+    free(cams);
+    return ZS_OK;
+  }
+  int pick = -1;
+  for (int i = 0; i < n && pick < 0; i++)
+    if (strcmp(cams[i].name, o->camera) == 0) pick = i;
+  if (pick < 0) {
+    char *end;
+    long k = strtol(o->camera, &end, 10);
+    if (*o->camera && !*end && k >= 0 && k < n) pick = (int)k;
+  }
+  if (pick < 0) {
+    free(cams);
+    return zs_error_set(err, ZS_ERR_ARG, "--camera %s: %s has %d camera%s%s", o->camera, o->input,
+                        n, n == 1 ? "" : "s", n ? " (see --list-cameras)" : "");
+  }
+  const zs_file_camera *c = &cams[pick];
+  zs_camera *u = &v->cam;
+  memcpy(u->eye, c->eye, sizeof u->eye);
+  memcpy(u->target, c->target, sizeof u->target);
+  memcpy(u->up, c->up, sizeof u->up);
+  u->has_eye = u->has_target = u->has_up = 1;
+  if (c->ortho_half_width > 0) {
+    const double w = c->ortho_half_width, h = w / aspect;
+    const double extent[4] = {-w, w, -h, h};
+    memcpy(u->extent, extent, sizeof extent);
+    u->ortho = 1;
+  } else if (c->hfov_deg > 0 && c->hfov_deg < 180) {
+    /* the vertical angle that gives this horizontal one at this aspect */
+    u->fovy = 2.0 * zs_atan_deg(zs_tan_deg(0.5 * c->hfov_deg) / aspect);
+    v->fovy_given = 1;
+  }
+  if (c->znear > 0 && c->zfar > c->znear) {
+    u->znear = c->znear;
+    u->zfar = c->zfar;
+    u->has_near = u->has_far = 1;
+  }
+  free(cams);
+  return ZS_OK;
+}
+
 /* Renders the frame o asks for; keep == NULL: as the command does (the
  * PNG, the depth map, the counters); else the image goes into *keep. */
 static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
+  /* a file of cameras alone (no meshes) is listed too */
+  if (o->list_cameras) return file_camera(o, 1.0, NULL, err);
   zs_scene model;
   double t0 = zs_wall_ms();
   if (zs_input_load(o->input, o->allow_empty, &model, err)) return err->code;
   double load_ms = zs_wall_ms() - t0;
   /* the scene's own camera and size, where the options say nothing */
   render_opts eff = *o;
-  zs_view_opts_for_scene(&o->view, &model, &eff.view.cam, &eff.view.width, &eff.view.height);
+  zs_view_opts user = o->view;
+  zs_view_opts_for_scene(&user, &model, &eff.view.cam, &eff.view.width, &eff.view.height);
+  if (o->camera) { /* a camera of the file, for this size */
+    if (file_camera(o, (double)eff.view.width / eff.view.height, &user, err)) {
+      zs_scene_free(&model);
+      return err->code;
+    }
+    zs_view_opts_for_scene(&user, &model, &eff.view.cam, &eff.view.width, &eff.view.height);
+  }
   o = &eff;
 
   zs_status st = ZS_OK;
