@@ -385,23 +385,34 @@ static zs_status walk(loader *L, const struct aiNode *nd, const double parent[16
   return ZS_OK;
 }
 
-zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
-  zs_model_init(out);
+/* The file at path through assimp with flags, once its header passed the
+ * checks above; *sc is assimp's to release. */
+static zs_status import_checked(const char *path, unsigned flags, const struct aiScene **sc,
+                                zs_error *err) {
+  *sc = NULL;
   file_head *h = malloc(sizeof *h);
   if (!h) return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   zs_status st = read_head(path, h, err);
   if (st == ZS_OK) st = check_header(path, h, err);
   free(h);
   if (st != ZS_OK) return st;
-
-  const struct aiScene *sc =
-      aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                             aiProcess_ValidateDataStructure);
-  if (!sc) {
+  *sc = aiImportFile(path, flags);
+  if (!*sc) {
     const char *why = aiGetErrorString();
     return set_error(err, ZS_ERR_PARSE, "%s: %s", path,
                      why && *why ? why : "assimp could not read the file");
   }
+  return ZS_OK;
+}
+
+zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
+  zs_model_init(out);
+  const struct aiScene *sc;
+  zs_status st = import_checked(path,
+                                aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                    aiProcess_ValidateDataStructure,
+                                &sc, err);
+  if (st != ZS_OK) return st;
   if ((sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || sc->mNumMeshes == 0 || !sc->mRootNode) {
     unsigned cameras = sc->mNumCameras;
     aiReleaseImport(sc);
@@ -452,18 +463,9 @@ static void place(const double xf[16], const struct aiVector3D *v, double w, dou
 zs_status zs_assimp_cameras(const char *path, zs_file_camera **out, int *n, zs_error *err) {
   *out = NULL;
   *n = 0;
-  file_head *h = malloc(sizeof *h);
-  if (!h) return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  zs_status st = read_head(path, h, err);
-  if (st == ZS_OK) st = check_header(path, h, err);
-  free(h);
+  const struct aiScene *sc;
+  zs_status st = import_checked(path, aiProcess_ValidateDataStructure, &sc, err);
   if (st != ZS_OK) return st;
-  const struct aiScene *sc = aiImportFile(path, aiProcess_ValidateDataStructure);
-  if (!sc) {
-    const char *why = aiGetErrorString();
-    return set_error(err, ZS_ERR_PARSE, "%s: %s", path,
-                     why && *why ? why : "assimp could not read the file");
-  }
   zs_file_camera *cams = sc->mNumCameras ? calloc(sc->mNumCameras, sizeof *cams) : NULL;
   if (sc->mNumCameras && !cams) {
     aiReleaseImport(sc);
