@@ -93,6 +93,8 @@ void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_cam
   if (u->has_eye) memcpy(cam->eye, u->eye, sizeof cam->eye), cam->has_eye = 1;
   if (u->has_target) memcpy(cam->target, u->target, sizeof cam->target), cam->has_target = 1;
   if (u->has_up) memcpy(cam->up, u->up, sizeof cam->up), cam->has_up = 1;
+  if (u->has_dir) memcpy(cam->dir, u->dir, sizeof cam->dir), cam->has_dir = 1;
+  if (u->fit > 0) cam->fit = u->fit;
   if (u->has_near) cam->znear = u->znear, cam->has_near = 1;
   if (u->has_far) cam->zfar = u->zfar, cam->has_far = 1;
   if (fovy_given) cam->fovy = u->fovy;

@@ -6,8 +6,7 @@
 #include "raster/raster.h"
 
 void zs_camera_default(zs_camera *c) {
-  *c = (zs_camera){{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, ZS_CAMERA_DEFAULT_FOVY, 0, {0, 0, 0, 0},
-                   0, 0, 0, 0, 0, 0, 0};
+  *c = (zs_camera){.up = {0, 1, 0}, .fovy = ZS_CAMERA_DEFAULT_FOVY};
 }
 
 void zs_camera_complete(zs_camera *c, const double lo[3], const double hi[3],
@@ -25,12 +24,14 @@ void zs_camera_complete(zs_camera *c, const double lo[3], const double hi[3],
     c->has_target = 1;
   }
   if (!c->has_eye) {
-    const double dir[3] = ZS_CAMERA_DEFAULT_DIR;
+    const double fallback[3] = ZS_CAMERA_DEFAULT_DIR;
+    const double *dir = c->has_dir ? c->dir : fallback;
     double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
     /* The narrower half angle, by its tangent (tan is monotonic), and
      * its sine from the tangent: sin = t / sqrt(1 + t^2). */
     double t = zs_tan_deg(0.5 * c->fovy) * (aspect < 1.0 ? aspect : 1.0);
     double dist = 1.05 * radius * sqrt(1.0 + t * t) / t;
+    if (c->fit > 0) dist /= c->fit;
     for (int i = 0; i < 3; i++) c->eye[i] = c->target[i] + dir[i] / len * dist;
     c->has_eye = 1;
   }

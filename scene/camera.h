@@ -4,9 +4,11 @@
  * may be given in part; zs_camera_complete fills in what is missing from
  * the bounds of what is to be seen:
  *   - no eye: the default direction.  The eye looks at the centre of the
- *     bounds from the direction ZS_CAMERA_DEFAULT_DIR (front, right and
- *     above), far enough that the bounding sphere fits the narrower of the
- *     two fields of view with 5 % to spare;
+ *     bounds from the direction dir (when has_dir; else
+ *     ZS_CAMERA_DEFAULT_DIR: front, right and above), far enough that the
+ *     bounding sphere fits the narrower of the two fields of view with
+ *     5 % to spare, that distance divided by fit (when fit > 0: 2 comes
+ *     twice as close);
  *   - no target: the centre of the bounds;
  *   - no near / far: the bounding sphere seen from the eye, far = distance
  *     to its back + 1 %, near = distance to its front less 1 %, at least
@@ -27,6 +29,10 @@
 
 typedef struct zs_camera {
   double eye[3], target[3], up[3];
+  double dir[3];        /* the automatic eye's direction from the target, when
+                           has_dir (else ZS_CAMERA_DEFAULT_DIR) */
+  double fit;           /* the automatic eye's distance over the default; 0: 1 */
+  int has_dir;
   double fovy;          /* vertical field of view, degrees, in (0, 180) */
   int ortho;            /* orthographic (glOrtho) instead of perspective */
   double extent[4];     /* orthographic: left, right, bottom, top, in view units */

@@ -873,6 +873,47 @@ START_TEST(camera_from_the_model_file) {
 }
 END_TEST
 
+/* The camera -v prints for args (render INPUT ...): eye, target, up. */
+static void camera_of(const char *const *args, double eye[3], double target[3], double up[3]) {
+  ck_assert_msg(zs_test_run_zscan(args, out, sizeof out, err, sizeof err) == 0, "%s", err);
+  const char *c = strstr(err, "--eye ");
+  ck_assert_ptr_nonnull(c);
+  ck_assert_int_eq(sscanf(c, "--eye %lf,%lf,%lf --target %lf,%lf,%lf --up %lf,%lf,%lf", &eye[0],
+                          &eye[1], &eye[2], &target[0], &target[1], &target[2], &up[0], &up[1],
+                          &up[2]),
+                   9);
+}
+
+/* --up-axis, --view and --fit steer the automatic camera; --fovy with
+ * --ortho is refused. */
+START_TEST(automatic_camera_options) {
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-view.png", ZS_BINARY_DIR);
+  double e[3], t[3], u[3], e2[3], t2[3], u2[3];
+  const char *zup[] = {"render", "builtin:cubes,n=2", "--up-axis", "z", "-v", "-o", png, NULL};
+  camera_of(zup, e, t, u);
+  ck_assert(u[0] == 0 && u[1] == 0 && u[2] == 1);
+  ck_assert(e[2] > t[2] && e[1] < t[1]); /* above (+z) and in front (-y) */
+  const char *top[] = {"render", "builtin:cubes,n=2", "--view", "top", "-v", "-o", png, NULL};
+  camera_of(top, e, t, u);
+  ck_assert(e[0] == t[0] && e[2] == t[2] && e[1] > t[1]); /* straight above, y up */
+  ck_assert(u[0] == 0 && u[1] == 0 && u[2] == -1);
+  const char *near1[] = {"render", "builtin:cubes,n=2", "--view", "front", "-v", "-o", png, NULL};
+  const char *near2[] = {"render", "builtin:cubes,n=2", "--view", "front", "--fit", "2", "-v",
+                         "-o", png, NULL};
+  camera_of(near1, e, t, u);
+  camera_of(near2, e2, t2, u2);
+  ck_assert(e[0] == t[0] && e[1] == t[1] && e[2] > t[2]); /* front: along +z */
+  ck_assert_double_eq_tol(e2[2] - t2[2], 0.5 * (e[2] - t[2]), 1e-12);
+  const char *bad[] = {"render", "builtin:cubes", "--ortho", "-1,1,-1,1", "--fovy", "30", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 2);
+  ck_assert_ptr_nonnull(strstr(err, "--fovy and --ortho: an orthographic camera has no field"));
+  const char *view[] = {"render", "builtin:cubes", "--view", "sideways", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(view, out, sizeof out, err, sizeof err), 2);
+  ck_assert_ptr_nonnull(strstr(err, "--view: expected front, back, left, right, top, bottom or iso"));
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -1004,6 +1045,7 @@ int main(void) {
   tcase_add_test(tc, render_background);
   tcase_add_test(tc, printed_camera_reproduces_the_image);
   tcase_add_test(tc, camera_from_the_model_file);
+  tcase_add_test(tc, automatic_camera_options);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

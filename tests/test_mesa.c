@@ -60,7 +60,9 @@ START_TEST(faces_match_llvmpipe) {
   ck_assert_msg(zs_input_load_scene(path, &s, &err) == ZS_OK, "%s", err.msg);
   zs_camera cam = s.camera;
   if (c->pixel_camera) {
-    cam = (zs_camera){{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, 0, {0, 0, 0, 0}, 0.5, 10, 1, 1, 1, 1, 1};
+    cam = (zs_camera){.target = {0, 0, -1}, .up = {0, 1, 0}, .fovy = 90.0, .znear = 0.5,
+                      .zfar = 10, .has_eye = 1, .has_target = 1, .has_up = 1, .has_near = 1,
+                      .has_far = 1};
   }
   double view[16], proj[16];
   ck_assert_int_eq(zs_frame_camera(&s, &cam, W, H, view, proj, &err), ZS_OK);

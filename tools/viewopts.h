@@ -1,6 +1,6 @@
 /* zscan tools — the options that say what a frame sees, shared by every
  * command that renders: --size, --eye, --target, --up, --fovy, --ortho,
- * --near, --far, --cull-back. */
+ * --near, --far, --cull-back, --up-axis, --view, --fit. */
 #ifndef ZS_TOOLS_VIEWOPTS_H
 #define ZS_TOOLS_VIEWOPTS_H
 
@@ -14,6 +14,9 @@ typedef struct zs_view_opts {
   int cull_back;
   int size_given, fovy_given; /* what the user said; the rest may come
                                  from the scene */
+  int up_z;                   /* --up-axis z: the model's up is +z */
+  int view;                   /* --view: 0 none, else 1 + the index of the name */
+  double fit;                 /* --fit: 0 none */
 } zs_view_opts;
 
 /* width x height, a default camera (framed later from the input). */
@@ -28,6 +31,10 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
  * width and height must not point into *o. */
 void zs_view_opts_for_scene(const zs_view_opts *o, const zs_scene *s, zs_camera *cam, int *width,
                             int *height);
+
+enum { ZS_VIEWS = 7 };
+/* --view's names: front, back, left, right, top, bottom, iso. */
+extern const char *const zs_view_names[ZS_VIEWS];
 
 /* The usage lines of these options. */
 extern const char zs_view_opts_usage[];
