@@ -914,6 +914,31 @@ START_TEST(automatic_camera_options) {
 }
 END_TEST
 
+/* Without --stats, render says in one line on stderr what it wrote; -q
+ * silences it; --stats keeps wall-clock times in its last object. */
+START_TEST(render_tells_a_person_what_it_wrote) {
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-told.png", ZS_BINARY_DIR);
+  const char *args[] = {"render", "builtin:cubes,n=2", "--size", "64x48", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  char want[4300];
+  snprintf(want, sizeof want, "zscan render: wrote %s: 64x48, 48 faces, ", png);
+  ck_assert_msg(strncmp(err, want, strlen(want)) == 0 && strstr(err, " ms\n"), "%s", err);
+  ck_assert_str_eq(out, "");
+  const char *quiet[] = {"render", "builtin:cubes,n=2", "--size", "64x48", "-o", png, "-q", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(quiet, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(err, "");
+  const char *stats[] = {"render", "builtin:cubes,n=2", "--size", "64x48", "-o", png, "--stats",
+                         NULL};
+  ck_assert_int_eq(zs_test_run_zscan(stats, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(err, "");
+  const char *timing = strstr(out, ",\"timing\":{\"ms_per_frame\":");
+  ck_assert_ptr_nonnull(timing);
+  ck_assert_ptr_nonnull(strstr(timing, ",\"ms_load\":"));
+  ck_assert_ptr_null(strchr(strchr(timing, '}') + 1, ',')); /* nothing after it */
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -1046,6 +1071,7 @@ int main(void) {
   tcase_add_test(tc, printed_camera_reproduces_the_image);
   tcase_add_test(tc, camera_from_the_model_file);
   tcase_add_test(tc, automatic_camera_options);
+  tcase_add_test(tc, render_tells_a_person_what_it_wrote);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

@@ -39,6 +39,8 @@ static const char usage_tail[] =
     "  --stats             print the frame's counters as one JSON line, with the\n"
     "                      camera used (\"camera\": eye, target, up, fovy or ortho,\n"
     "                      near, far, the bounds framed), in full precision\n"
+    "  -q, --quiet         no line on stderr (else, without --stats, one: what was\n"
+    "                      written, the size, the faces, the time)\n"
     "  -v, --verbose       print the camera used as options that draw the same\n"
     "                      frame again, byte for byte\n"
     "  --camera NAME|N     a camera stored in the model file (glTF, Collada, FBX,\n"
@@ -130,6 +132,8 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       o->allow_empty = 1;
     } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
       o->verbose = 1;
+    } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
+      o->quiet = 1;
     } else if (strcmp(a, "--camera") == 0) {
       VALUE();
       o->camera = v;
@@ -253,11 +257,10 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
   if (o->algo == ZS_ALGO_DEPTHSORT) {
     const zs_depthsort_stats *ds = zs_device_depthsort_stats(dev);
     printf("\"depthsort_motion\":\"%s\",\"depthsort_faces\":%llu,\"depthsort_reused\":%llu,"
-           "\"depthsort_inserted\":%llu,\"depthsort_comparisons\":%llu,\"diff_pixels\":%lld,"
-           "\"sort_ms\":%.3f,",
+           "\"depthsort_inserted\":%llu,\"depthsort_comparisons\":%llu,\"diff_pixels\":%lld,",
            zs_motion_class_name(ds->motion), (unsigned long long)ds->faces,
            (unsigned long long)ds->reused, (unsigned long long)ds->inserted,
-           (unsigned long long)ds->comparisons, (long long)diff_pixels, zs_device_depthsort_ms(dev));
+           (unsigned long long)ds->comparisons, (long long)diff_pixels);
   }
   if (cr)
     printf("\"cull\":\"%s\",\"octree\":\"%s\",\"octree_nodes\":%d,\"nodes_visited\":%llu,\"frustum_tests\":%llu,"
@@ -279,8 +282,12 @@ static void print_stats(const render_opts *o, const zs_scene *sc,
   zs_device_memory mem = zs_device_memory_of(dev);
   printf("\"buffer_bytes\":%zu,\"table_bytes\":%zu,\"vertex_bytes\":%zu,", mem.pixel_buffers,
          mem.tables, mem.vertices);
-  printf("\"threads\":%d,\"repeat\":%d,\"ms_per_frame\":%.3f,\"ms_load\":%.3f}\n", o->threads,
-         o->repeat, ms, load_ms);
+  /* wall-clock times last, in one object: the rest of the line is the same
+   * on every run */
+  printf("\"threads\":%d,\"repeat\":%d,", o->threads, o->repeat);
+  printf("\"timing\":{\"ms_per_frame\":%.3f,\"ms_load\":%.3f", ms, load_ms);
+  if (o->algo == ZS_ALGO_DEPTHSORT) printf(",\"sort_ms\":%.3f", zs_device_depthsort_ms(dev));
+  printf("}}\n");
 }
 
 /* The octree's node boxes (tight), coloured by the culler's decision. */
@@ -471,6 +478,11 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
   if (o->stats)
     print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
                 diff_pixels, o->cull >= 0 ? &cr : NULL, &used);
+  else if (!o->quiet) /* one line for a person; --stats is the line for programs */
+    fprintf(stderr, "zscan render: wrote %s: %dx%d, %llu faces, %.1f ms%s%s\n",
+            zs_out_is_stdout(o->out_png) ? "standard output" : o->out_png, o->view.width,
+            o->view.height, (unsigned long long)zs_scene_faces(&model), median,
+            o->out_pfm ? ", depth to " : "", o->out_pfm ? o->out_pfm : "");
 
 done:
   zs_culler_destroy(culler);

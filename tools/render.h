@@ -13,6 +13,7 @@ typedef struct render_opts {
   int out_given; /* -o was given */
   uint32_t background; /* flat shading's background, 0xRRGGBB */
   int verbose;         /* -v: the camera used, as options, on stderr */
+  int quiet;           /* -q: no line on stderr */
   const char *camera;  /* --camera NAME|INDEX: a camera of the model file */
   int list_cameras;    /* --list-cameras */
   zs_view_opts view;
