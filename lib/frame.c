@@ -1,5 +1,7 @@
 #include "lib/frame.h"
 
+#include "scene/paths.h"
+
 #include <string.h>
 
 typedef struct gather {
@@ -122,4 +124,15 @@ zs_status zs_frame_path_camera(const zs_scene *s, int32_t f, int w, int h, doubl
   }
   zs_camera_complete(&cam, lo, hi, aspect);
   return zs_camera_matrices(&cam, aspect, view, proj, err);
+}
+
+zs_status zs_frame_named_path(zs_scene *s, const char *name, int32_t frames, int width, int height,
+                              zs_error *err) {
+  zs_camera base = s->camera;
+  zs_camera_complete(&base, s->lo, s->hi, (double)width / height);
+  zs_path p;
+  if (zs_path_named(name, &base, frames, &p, err)) return err->code;
+  zs_path_free(&s->path);
+  s->path = p;
+  return ZS_OK;
 }

@@ -64,4 +64,10 @@ void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_cam
 zs_status zs_frame_path_camera(const zs_scene *s, int32_t f, int w, int h, double view[16],
                                double proj[16], zs_error *err);
 
+/* Replaces s's camera path by the named one (zs_path_named: static,
+ * translate, roll, yaw, fast) of frames frames, from s's camera completed
+ * at aspect width/height. */
+zs_status zs_frame_named_path(zs_scene *s, const char *name, int32_t frames, int width, int height,
+                              zs_error *err);
+
 #endif

@@ -939,6 +939,23 @@ START_TEST(render_tells_a_person_what_it_wrote) {
 }
 END_TEST
 
+/* walk --named: any model walked along a camera path of zscan path's. */
+START_TEST(walk_a_model_along_a_named_path) {
+  const char *model = zs_test_src("tests/data/scenes/cyclic.obj");
+  const char *args[] = {"walk", model, "--cull", "vfc,chc", "--named", "roll", "--frames", "20",
+                        "--size", "160x120", "--csv", "-", "--quiet", NULL};
+  ck_assert_msg(zs_test_run_zscan(args, out, sizeof out, err, sizeof err) == 0, "%s", err);
+  int rows = 0;
+  for (const char *l = strchr(out, '\n'); l && l[1]; l = strchr(l + 1, '\n')) rows++;
+  ck_assert_int_eq(rows, 20 * 3); /* none, vfc, chc: every frame */
+  ck_assert_ptr_nonnull(strstr(out, "\n19,chc,"));
+  ck_assert_ptr_nonnull(strstr(err, "20 frames at 160x120, 3 objects"));
+  const char *bad[] = {"walk", model, "--cull", "vfc", "--named", "spin", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 2);
+  ck_assert_ptr_nonnull(strstr(err, "--named: expected static, translate, roll, yaw, fast, got 'spin'"));
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -1072,6 +1089,7 @@ int main(void) {
   tcase_add_test(tc, camera_from_the_model_file);
   tcase_add_test(tc, automatic_camera_options);
   tcase_add_test(tc, render_tells_a_person_what_it_wrote);
+  tcase_add_test(tc, walk_a_model_along_a_named_path);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

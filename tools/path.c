@@ -10,6 +10,7 @@
 
 #include "scene/paths.h"
 #include "scene/scene.h"
+#include "lib/frame.h"
 #include "tools/cli.h"
 #include "lib/input.h"
 
@@ -59,14 +60,7 @@ int zs_cmd_path(int argc, char **argv) {
     h = s.height ? s.height : 768;
   }
   double aspect = (double)w / h;
-  if (named) {
-    zs_camera base = s.camera;
-    zs_camera_complete(&base, s.lo, s.hi, aspect);
-    zs_path p;
-    if (zs_path_named(named, &base, frames ? frames : 100, &p, &err)) goto fail;
-    zs_path_free(&s.path);
-    s.path = p;
-  }
+  if (named && zs_frame_named_path(&s, named, frames ? frames : 100, w, h, &err)) goto fail;
   int n = frames ? frames : s.path.nkeys > 0 ? s.path.frames : 1;
   for (int f = 0; f < n; f++) {
     zs_camera cam = s.camera;

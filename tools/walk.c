@@ -20,6 +20,7 @@
 #include "cull/octree.h"
 #include "raster/exactmath.h"
 #include "raster/raster.h"
+#include "scene/paths.h"
 #include "scene/scene.h"
 #include "tools/cli.h"
 #include "tools/clockfile.h"
@@ -37,6 +38,9 @@ static const char usage[] =
     "                      the reference.  The methods:\n"
     "                      " ZS_CULL_METHOD_LIST "\n"
     "  --frames N          frames of the walk (default: the scene's path)\n"
+    "  --named PATH        walk a named camera path instead of the scene's: static,\n"
+    "                      translate, roll, yaw or fast (as zscan path); any model\n"
+    "                      file can be walked so (default: 100 frames)\n"
     "  --step K            every K-th frame of the path (objects move K steps)\n"
     "  --size WxH          image size (default: the scene's, else 1024x768)\n"
     "  --csv FILE          one row per frame and method\n"
@@ -67,6 +71,7 @@ static const char usage[] =
 
 typedef struct walk_opts {
   const char *scene, *csv, *plot, *frames_dir, *tradeoff, *md;
+  const char *named; /* --named: a camera path of zscan path's, not the scene's */
   FILE *report; /* the summary's stream: stdout, or stderr when an output is "-" */
   zs_algo algos[2];
   int nalgos;
@@ -178,6 +183,15 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       if (zs_cli_double(a, v, &o->looseness, err)) return err->code;
     } else if (strcmp(a, "--quiet") == 0) {
       o->quiet = 1;
+    } else if (strcmp(a, "--named") == 0) {
+      VALUE();
+      o->named = v;
+      char names[128]; /* zs_path_names: "static, translate, ..." */
+      snprintf(names, sizeof names, "%s", zs_path_names);
+      int known = 0;
+      for (char *t = strtok(names, ", "); t; t = strtok(NULL, ", ")) known |= strcmp(t, v) == 0;
+      if (!known)
+        return zs_error_set(err, ZS_ERR_ARG, "--named: expected %s, got '%s'", zs_path_names, v);
     } else if (a[0] == '-' && a[1]) {
       return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan walk --help)", a);
     } else if (!o->scene) {
@@ -360,6 +374,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
 
   int w = o->width ? o->width : s.width ? s.width : 1024;
   int h = o->height ? o->height : s.height ? s.height : 768;
+  if (o->named && (st = zs_frame_named_path(&s, o->named, o->frames ? o->frames : 100, w, h, err)))
+    goto done;
   int frames = o->frames ? o->frames
                : s.path.frames > 0 ? (s.path.frames + o->step - 1) / o->step : 1;
 
