@@ -1,5 +1,6 @@
 /* The zscan command as a user meets it: error messages and exit status on
  * bad files and bad options, and outputs that are never half written. */
+#include <cjson/cJSON.h>
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -956,6 +957,33 @@ START_TEST(walk_a_model_along_a_named_path) {
 }
 END_TEST
 
+/* query --format json: the same figures as the text, as one object. */
+START_TEST(query_as_json) {
+  static char text[1 << 16];
+  const char *t[] = {"query", "builtin:cubes,n=2", "--size", "64x48", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(t, text, sizeof text, err, sizeof err), 0);
+  const char *j[] = {"query", "builtin:cubes,n=2", "--size", "64x48", "--format", "json", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(j, out, sizeof out, err, sizeof err), 0);
+  cJSON *root = cJSON_Parse(out);
+  ck_assert_msg(root != NULL, "%s", out);
+  const cJSON *objects = cJSON_GetObjectItem(root, "objects");
+  ck_assert_int_eq(cJSON_GetArraySize(objects), 8);
+  for (const cJSON *o = objects->child; o; o = o->next) {
+    char line[256];
+    snprintf(line, sizeof line, "object %s visible=%.0f bbox=%.0f\n",
+             cJSON_GetObjectItem(o, "name")->valuestring,
+             cJSON_GetObjectItem(o, "visible")->valuedouble,
+             cJSON_GetObjectItem(o, "bbox")->valuedouble);
+    ck_assert_msg(strstr(text, line) != NULL, "%s not in %s", line, text);
+  }
+  ck_assert_int_eq(cJSON_GetObjectItem(cJSON_GetObjectItem(root, "total"), "pixels")->valueint,
+                   64 * 48);
+  cJSON_Delete(root);
+  const char *bad[] = {"query", "builtin:cubes", "--format", "xml", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 2);
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -1090,6 +1118,7 @@ int main(void) {
   tcase_add_test(tc, automatic_camera_options);
   tcase_add_test(tc, render_tells_a_person_what_it_wrote);
   tcase_add_test(tc, walk_a_model_along_a_named_path);
+  tcase_add_test(tc, query_as_json);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

@@ -12,6 +12,7 @@
  * gives the totals. */
 #include "tools/commands.h"
 
+#include <cjson/cJSON.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,9 +24,43 @@
 #include "lib/query.h"
 #include "tools/viewopts.h"
 
-static const char usage[] = "usage: zscan query INPUT [options]\n";
+static const char usage[] =
+    "usage: zscan query INPUT [options]\n"
+    "  --format text|json  one line per object and a total (default text), or one\n"
+    "                      JSON object: {\"objects\": [{\"name\", \"visible\",\n"
+    "                      \"bbox\"}, ...], \"total\": {...}}\n";
 
-static zs_status run(const char *input, const zs_view_opts *v, zs_error *err) {
+/* The objects as one JSON object (names escaped by cJSON). */
+static zs_status print_json(const char *input, const zs_object_visibility *lines, int32_t n,
+                            uint64_t tv, uint64_t tb, int w, int h, zs_error *err) {
+  cJSON *root = cJSON_CreateObject();
+  cJSON_AddStringToObject(root, "input", input);
+  cJSON_AddNumberToObject(root, "width", w);
+  cJSON_AddNumberToObject(root, "height", h);
+  cJSON *objects = cJSON_AddArrayToObject(root, "objects");
+  for (int32_t k = 0; k < n && objects; k++) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", lines[k].name);
+    cJSON_AddNumberToObject(o, "visible", (double)lines[k].visible);
+    cJSON_AddNumberToObject(o, "bbox", (double)lines[k].box_samples);
+    cJSON_AddItemToArray(objects, o);
+  }
+  cJSON *total = cJSON_AddObjectToObject(root, "total");
+  if (total) {
+    cJSON_AddNumberToObject(total, "objects", n);
+    cJSON_AddNumberToObject(total, "visible", (double)tv);
+    cJSON_AddNumberToObject(total, "bbox", (double)tb);
+    cJSON_AddNumberToObject(total, "pixels", (double)w * h);
+  }
+  char *text = cJSON_PrintUnformatted(root);
+  cJSON_Delete(root);
+  if (!text) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  puts(text);
+  cJSON_free(text);
+  return ZS_OK;
+}
+
+static zs_status run(const char *input, int json, const zs_view_opts *v, zs_error *err) {
   zs_scene s;
   if (zs_input_load_scene(input, &s, err)) return err->code;
   zs_view_opts eff = *v; /* the scene's camera and size where v says nothing */
@@ -37,14 +72,18 @@ static zs_status run(const char *input, const zs_view_opts *v, zs_error *err) {
   if (st == ZS_OK) {
     uint64_t tv = 0, tb = 0;
     for (int32_t k = 0; k < n; k++) {
-      printf("object %s visible=%llu bbox=%llu\n", lines[k].name,
-             (unsigned long long)lines[k].visible, (unsigned long long)lines[k].box_samples);
+      if (!json)
+        printf("object %s visible=%llu bbox=%llu\n", lines[k].name,
+               (unsigned long long)lines[k].visible, (unsigned long long)lines[k].box_samples);
       tv += lines[k].visible;
       tb += lines[k].box_samples;
     }
-    printf("total objects=%d visible=%llu bbox=%llu pixels=%llu\n", (int)n,
-           (unsigned long long)tv, (unsigned long long)tb,
-           (unsigned long long)((uint64_t)eff.width * (uint64_t)eff.height));
+    if (json)
+      st = print_json(input, lines, n, tv, tb, eff.width, eff.height, err);
+    else
+      printf("total objects=%d visible=%llu bbox=%llu pixels=%llu\n", (int)n,
+             (unsigned long long)tv, (unsigned long long)tb,
+             (unsigned long long)((uint64_t)eff.width * (uint64_t)eff.height));
     free(lines);
   }
   zs_scene_free(&s);
@@ -58,6 +97,7 @@ int zs_cmd_query(int argc, char **argv) {
     return 0;
   }
   const char *input = NULL;
+  int json = 0;
   zs_view_opts v;
   zs_view_opts_default(&v, 1024, 768);
   zs_error err;
@@ -67,6 +107,16 @@ int zs_cmd_query(int argc, char **argv) {
     int taken = zs_view_opts_parse(&v, argc, argv, &i, &err);
     if (taken < 0) goto fail;
     if (taken) continue;
+    if (strcmp(argv[i], "--format") == 0) {
+      const char *f;
+      if (zs_cli_value(argc, argv, &i, &f, &err)) goto fail;
+      if (strcmp(f, "text") != 0 && strcmp(f, "json") != 0) {
+        zs_error_set(&err, ZS_ERR_ARG, "--format: expected text or json, got '%s'", f);
+        goto fail;
+      }
+      json = f[0] == 'j';
+      continue;
+    }
     if (argv[i][0] == '-' && argv[i][1]) {
       zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan query --help)", argv[i]);
       goto fail;
@@ -82,7 +132,7 @@ int zs_cmd_query(int argc, char **argv) {
     goto fail;
   }
   parsing = 0;
-  if (run(input, &v, &err)) goto fail;
+  if (run(input, json, &v, &err)) goto fail;
   return 0;
 fail:
   fprintf(stderr, "zscan query: %s\n", err.msg);
