@@ -64,7 +64,14 @@ static const char usage[] =
     "  --tradeoff FILE.png time against pixels wrong, one point per method and mode\n"
     "  --md FILE           the table of means per frame in Markdown\n"
     "  --quiet             no progress on stderr (else a bar on a terminal, a line\n"
-    "                      every 5 s in a log)\n"
+    "                      every 5 s in a log)\n"    "columns (the table, --md and --csv alike; means a frame, diff_pixels over all):\n"
+    "  queries             occlusion queries issued (a multiquery counts once)\n"
+    "  faces_drawn         polygons the draws submitted; objects_drawn: objects\n"
+    "  modelled_ms         the frame on the device clock (the later of GPU and CPU);\n"
+    "                      x_ideal: over the ideal's; modelled_fps: 1000 / it\n"
+    "  stall_ms            the CPU waiting for query latency\n"
+    "  wall_ms             the machine's time for the method's frame\n"
+    "  diff_pixels         pixels whose visible face differs from none's\n"
     "With ideal: a column of each method's time over the ideal's.  With ideal-box:\n"
     "how its set changes from frame to frame, and the least that change costs a\n"
     "method that learns from the last frame (cull/churn.h).\n";
@@ -330,18 +337,20 @@ typedef struct summary_row {
 } summary_row;
 
 /* ideal_ms > 0: the ideal ran, and a column gives each row's modelled
- * time over the ideal's. */
+ * time over the ideal's.  The columns have the CSV's names in the table
+ * and in Markdown alike: means per frame, but diff_pixels over all
+ * frames. */
 static void write_summary(FILE *f, int md, const summary_row *rows, int n, double ideal_ms) {
   const int x = ideal_ms > 0;
   if (md)
-    fprintf(f, "| method or mode | queries | faces drawn | objects | modelled ms | %s"
-               "modelled fps | stall ms | wall ms (mean) | pixels wrong (all frames) |\n"
+    fprintf(f, "| method | queries | faces_drawn | objects_drawn | modelled_ms | %s"
+               "modelled_fps | stall_ms | wall_ms | diff_pixels |\n"
                "|---|---|---|---|---|%s---|---|---|---|\n",
-            x ? "x ideal | " : "", x ? "---|" : "");
+            x ? "x_ideal | " : "", x ? "---|" : "");
   else
-    fprintf(f, "%-9s %9s %12s %9s %10s %s%10s %9s %9s %11s\n", "method", "queries",
-            "faces_drawn", "objects", "model_ms", x ? "  x_ideal " : "", "model_fps", "stall_ms",
-            "wall_ms", "diff_pixels");
+    fprintf(f, "%-13s %9s %12s %13s %11s %s%12s %9s %9s %11s\n", "method", "queries",
+            "faces_drawn", "objects_drawn", "modelled_ms", x ? "  x_ideal " : "", "modelled_fps",
+            "stall_ms", "wall_ms", "diff_pixels");
   for (int k = 0; k < n; k++) {
     const summary_row *r = &rows[k];
     double fps = r->modelled_ms > 0 ? 1000.0 / r->modelled_ms : 0.0;
@@ -349,7 +358,7 @@ static void write_summary(FILE *f, int md, const summary_row *rows, int n, doubl
     if (x) snprintf(ratio, sizeof ratio, md ? "%.3f | " : "%9.3f ", r->modelled_ms / ideal_ms);
     fprintf(f,
             md ? "| %s | %.1f | %.0f | %.1f | %.3f | %s%.1f | %.3f | %.3f | %llu |\n"
-               : "%-9s %9.1f %12.0f %9.1f %10.3f %s%10.1f %9.3f %9.3f %11llu\n",
+               : "%-13s %9.1f %12.0f %13.1f %11.3f %s%12.1f %9.3f %9.3f %11llu\n",
             r->name, r->queries, r->faces, r->objects, r->modelled_ms, ratio, fps, r->stall_ms,
             r->wall_ms, (unsigned long long)r->diff_pixels);
   }
