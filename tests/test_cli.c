@@ -984,6 +984,38 @@ START_TEST(query_as_json) {
 }
 END_TEST
 
+/* walk --frames-dir: every method's frame shaded as render shades it, or
+ * with --shade id the face ids. */
+START_TEST(walk_frames_shaded_or_ids) {
+  char dir[4096], flat[4300], ids[4300], none[4300];
+  snprintf(dir, sizeof dir, "%s/cli-frames", ZS_BINARY_DIR);
+  const char *args[] = {"walk", "builtin:cubes,n=3", "--cull", "chc", "--frames", "2", "--size",
+                        "96x72", "--frames-dir", dir, "--quiet", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  snprintf(flat, sizeof flat, "%s/chc-00001.png", dir);
+  zs_image a, b;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(flat, &a, &e), ZS_OK);
+  ck_assert_uint_eq(a.rgb[0], 0x1E2228); /* render's background */
+  int colours = 0;
+  for (int i = 1; i < a.width * a.height; i++) colours += a.rgb[i] != a.rgb[i - 1];
+  ck_assert_int_gt(colours, 20); /* shaded faces, not a flat silhouette */
+  const char *id_args[] = {"walk", "builtin:cubes,n=3", "--cull", "chc", "--frames", "2",
+                           "--size", "96x72", "--frames-dir", dir, "--shade", "id", "--quiet",
+                           NULL};
+  ck_assert_int_eq(zs_test_run_zscan(id_args, out, sizeof out, err, sizeof err), 0);
+  snprintf(ids, sizeof ids, "%s/chc-00001.png", dir);
+  ck_assert_int_eq(zs_png_read(ids, &b, &e), ZS_OK);
+  ck_assert_uint_eq(b.rgb[0], 0); /* id images: background 0, faces id + 1 */
+  for (int i = 0; i < b.width * b.height; i++) ck_assert_uint_le(b.rgb[i], 27 * 6);
+  snprintf(none, sizeof none, "%s/none-00001.png", dir);
+  ck_assert(zs_test_exists(none)); /* the reference's frames too */
+  zs_image_free(&a);
+  zs_image_free(&b);
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -1119,6 +1151,7 @@ int main(void) {
   tcase_add_test(tc, render_tells_a_person_what_it_wrote);
   tcase_add_test(tc, walk_a_model_along_a_named_path);
   tcase_add_test(tc, query_as_json);
+  tcase_add_test(tc, walk_frames_shaded_or_ids);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

@@ -45,7 +45,8 @@ static const char usage[] =
     "  --size WxH          image size (default: the scene's, else 1024x768)\n"
     "  --csv FILE          one row per frame and method\n"
     "  --plot FILE.png     modelled frame time per frame, one line per method\n"
-    "  --frames-dir DIR    each method's image of every frame\n"
+    "  --frames-dir DIR    each method's image of every frame, METHOD-FRAME.png\n"
+    "  --shade flat|id     those images shaded (default flat) or by face id + 1\n"
     "  --clock FILE.json   the device clock's constants\n"
     "  --clock-set K=V     set one clock constant, ns\n"
     "  --cost-set K=V      set one parameter of the cost model (chc-prob, auto,\n"
@@ -80,6 +81,7 @@ typedef struct walk_opts {
   const char *scene, *csv, *plot, *frames_dir, *tradeoff, *md;
   const char *named; /* --named: a camera path of zscan path's, not the scene's */
   FILE *report; /* the summary's stream: stdout, or stderr when an output is "-" */
+  zs_shade frames_shade; /* --frames-dir's pictures: flat, or id */
   zs_algo algos[2];
   int nalgos;
   int methods[ZS_CULL_METHODS], nmethods;
@@ -190,6 +192,11 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       if (zs_cli_double(a, v, &o->looseness, err)) return err->code;
     } else if (strcmp(a, "--quiet") == 0) {
       o->quiet = 1;
+    } else if (strcmp(a, "--shade") == 0) {
+      VALUE();
+      if (strcmp(v, "flat") != 0 && strcmp(v, "id") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat or id, got '%s'", v);
+      o->frames_shade = v[0] == 'f' ? ZS_SHADE_FLAT : ZS_SHADE_ID;
     } else if (strcmp(a, "--named") == 0) {
       VALUE();
       o->named = v;
@@ -217,18 +224,18 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   return zs_out_report(streams, 4, "--csv, --md, --plot and --tradeoff", &o->report, err);
 }
 
-static zs_status write_frame(const walk_opts *o, const method_run *r, int f, zs_error *err) {
-  /* the id image: face id + 1 as 24-bit RGB, like --shade id */
-  const zs_device_config *cfg = zs_device_config_of(r->dev);
-  zs_image im;
-  if (zs_image_alloc(&im, cfg->width, cfg->height, err)) return err->code;
-  const uint32_t *ids = zs_device_id_buffer(r->dev);
-  for (size_t i = 0; i < (size_t)cfg->width * (size_t)cfg->height; i++)
-    im.rgb[i] = ids[i] == ZS_ID_NONE ? 0 : (ids[i] + 1) & 0xFFFFFF;
+/* A method's frame as the device finished it: the rows into an image. */
+static void keep_rows(void *user, const zs_row *row) {
+  zs_image *im = user;
+  memcpy(im->rgb + (size_t)row->y * (size_t)row->width, row->rgb,
+         (size_t)row->width * sizeof *row->rgb);
+}
+
+static zs_status write_frame(const walk_opts *o, const method_run *r, const zs_image *im, int f,
+                             zs_error *err) {
   char path[4200];
   snprintf(path, sizeof path, "%s/%s-%05d.png", o->frames_dir, zs_cull_method_name(r->m), f);
-  zs_status st = zs_png_write(path, &im, err);
-  zs_image_free(&im);
+  zs_status st = zs_png_write(path, im, err);
   return st ? zs_out_error_option(err, "--frames-dir") : ZS_OK;
 }
 
@@ -375,6 +382,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   FILE *csv = NULL; /* csv_out.fp while the CSV is open */
   zs_out csv_out;
   uint32_t *ref_ids = NULL, *algo_ids = NULL;
+  zs_image frame_image = {0, 0, NULL}; /* a method's frame, for --frames-dir */
   double *frame_ms = NULL; /* per frame and method, for the plot */
   double *frame_wall = NULL; /* per row (methods, then modes) and frame: the medians */
   algo_run algos[2];
@@ -398,7 +406,10 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   for (int k = 0; k < o->nmethods; k++) {
     method_run *r = &runs[k];
     r->m = (zs_cull_method)o->methods[k];
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+    /* id shading, which the comparisons read; flat when --frames-dir shows
+     * the frames shaded (the ids are kept either way, the clock the same) */
+    zs_shade shade = o->frames_dir ? o->frames_shade : ZS_SHADE_ID;
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, shade, 0, 1, ZS_BACKGROUND_RGB, 0};
     if ((st = zs_device_create(&cfg, &r->dev, err))) goto done;
     if ((st = zs_culler_create(r->m, &o->cost, &r->culler, err)) ||
         (st = zs_culler_set_bounds(r->culler, o->bounds, err)))
@@ -426,6 +437,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
         (st = zs_device_set_clock(algos[k].dev, &clock, err)))
       goto done;
   }
+  if (o->frames_dir && (st = zs_image_alloc(&frame_image, w, h, err))) goto done;
   if (!(ref_ids = malloc((size_t)w * (size_t)h * sizeof *ref_ids)) ||
       !(algo_ids = malloc((size_t)w * (size_t)h * sizeof *algo_ids)) ||
       !(frame_wall = calloc((size_t)frames * (size_t)nrows, sizeof *frame_wall)) ||
@@ -458,7 +470,8 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       zs_cull_stats cs;
       double t0 = zs_wall_ms();
       if ((st = zs_culler_frame(r->culler, r->dev, &s, &tree, view, proj, &cs, err))) break;
-      if ((st = zs_device_finish(r->dev, NULL, NULL, err))) break;
+      if ((st = zs_device_finish(r->dev, o->frames_dir ? keep_rows : NULL, &frame_image, err)))
+        break;
       double wall = zs_wall_ms() - t0;
       const zs_clock_stats *ck = zs_device_clock(r->dev);
       double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
@@ -498,7 +511,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
                 (unsigned long long)cs.queries_hidden, (unsigned long long)cs.faces_drawn,
                 (unsigned long long)cs.objects_drawn, (unsigned long long)cs.nodes_visited,
                 (unsigned long long)diff, split[0], split[1], split[2], split[3]);
-      if (o->frames_dir && (st = write_frame(o, r, f, err))) break;
+      if (o->frames_dir && (st = write_frame(o, r, &frame_image, f, err))) break;
     }
     for (int k = 0; k < o->nalgos && st == ZS_OK; k++) { /* everything, in another mode */
       algo_run *r = &algos[k];
@@ -621,6 +634,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
 
 done:
   if (csv) zs_out_discard(&csv_out);
+  zs_image_free(&frame_image);
   free(ref_ids);
   free(algo_ids);
   free(frame_ms);
