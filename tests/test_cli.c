@@ -1016,6 +1016,26 @@ START_TEST(walk_frames_shaded_or_ids) {
 }
 END_TEST
 
+/* walk --reference off: none is not run and no pixel compared. */
+START_TEST(walk_without_reference) {
+  const char *args[] = {"walk", "builtin:cubes,n=3", "--cull", "vfc,chc", "--frames", "3",
+                        "--size", "96x72", "--reference", "off", "--csv", "-", "--quiet", NULL};
+  ck_assert_msg(zs_test_run_zscan(args, out, sizeof out, err, sizeof err) == 0, "%s", err);
+  ck_assert_ptr_null(strstr(out, ",none,"));
+  ck_assert_ptr_nonnull(strstr(out, "\n2,chc,chc,"));
+  ck_assert_ptr_nonnull(strstr(err, "\nvfc "));
+  ck_assert_ptr_null(strstr(err, "\nnone "));
+  const char *with_none[] = {"walk", "builtin:cubes,n=3", "--cull", "none,chc", "--frames", "2",
+                             "--size", "96x72", "--reference", "off", "--quiet", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(with_none, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "\nnone "));
+  const char *bad[] = {"walk", "builtin:cubes", "--cull", "chc", "--reference", "off", "--algos",
+                       "scanline", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 2);
+  ck_assert_ptr_nonnull(strstr(err, "--reference off: "));
+}
+END_TEST
+
 START_TEST(render_writes_png_and_stats) {
   char png[4096], pfm[4096];
   snprintf(png, sizeof png, "%s/cli-ok.png", ZS_BINARY_DIR);
@@ -1152,6 +1172,7 @@ int main(void) {
   tcase_add_test(tc, walk_a_model_along_a_named_path);
   tcase_add_test(tc, query_as_json);
   tcase_add_test(tc, walk_frames_shaded_or_ids);
+  tcase_add_test(tc, walk_without_reference);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);

@@ -38,6 +38,9 @@ static const char usage[] =
     "                      the reference.  The methods:\n"
     "                      " ZS_CULL_METHOD_LIST "\n"
     "  --frames N          frames of the walk (default: the scene's path)\n"
+    "  --reference none|off  none (default): also draw everything, and count each\n"
+    "                      method's pixels that differ from it; off: neither (faster;\n"
+    "                      diff_pixels shows -)\n"
     "  --named PATH        walk a named camera path instead of the scene's: static,\n"
     "                      translate, roll, yaw or fast (as zscan path); any model\n"
     "                      file can be walked so (default: 100 frames)\n"
@@ -82,6 +85,7 @@ typedef struct walk_opts {
   const char *named; /* --named: a camera path of zscan path's, not the scene's */
   FILE *report; /* the summary's stream: stdout, or stderr when an output is "-" */
   zs_shade frames_shade; /* --frames-dir's pictures: flat, or id */
+  int no_reference;      /* --reference off: none is not run, no pixel compared */
   zs_algo algos[2];
   int nalgos;
   int methods[ZS_CULL_METHODS], nmethods;
@@ -113,8 +117,8 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   o->step = 1;
   zs_clock_params_default(&o->clock);
   zs_cost_params_default(&o->cost);
-  o->methods[o->nmethods++] = ZS_CULL_NONE;
-  int have_cull = 0;
+  o->methods[o->nmethods++] = ZS_CULL_NONE; /* the reference, unless --reference off */
+  int have_cull = 0, none_listed = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
 #define VALUE() \
@@ -126,6 +130,7 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       snprintf(buf, sizeof buf, "%s", v);
       for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
         int m = zs_cull_method_parse(tok);
+        none_listed |= m == ZS_CULL_NONE;
         if (m < 0)
           return zs_error_set(err, ZS_ERR_ARG,
                               "--cull: unknown method '%s' (" ZS_CULL_METHOD_LIST ")", tok);
@@ -197,6 +202,11 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       if (strcmp(v, "flat") != 0 && strcmp(v, "id") != 0)
         return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat or id, got '%s'", v);
       o->frames_shade = v[0] == 'f' ? ZS_SHADE_FLAT : ZS_SHADE_ID;
+    } else if (strcmp(a, "--reference") == 0) {
+      VALUE();
+      if (strcmp(v, "none") != 0 && strcmp(v, "off") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--reference: expected none or off, got '%s'", v);
+      o->no_reference = strcmp(v, "off") == 0;
     } else if (strcmp(a, "--named") == 0) {
       VALUE();
       o->named = v;
@@ -217,6 +227,17 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   }
   if (!o->scene) return zs_error_set(err, ZS_ERR_ARG, "missing SCENE (see zscan walk --help)");
   if (!have_cull) return zs_error_set(err, ZS_ERR_ARG, "missing --cull (see zscan walk --help)");
+  if (o->no_reference) {
+    if (o->latency_frames >= 0 || o->nalgos || o->tradeoff)
+      return zs_error_set(err, ZS_ERR_ARG, "--reference off: --latency-frames, --algos and "
+                                           "--tradeoff measure against none");
+    if (!none_listed) { /* none stays when --cull names it */
+      memmove(o->methods, o->methods + 1, (size_t)(o->nmethods - 1) * sizeof o->methods[0]);
+      o->nmethods--;
+    }
+    if (o->nmethods == 0)
+      return zs_error_set(err, ZS_ERR_ARG, "--reference off: --cull names no method to run");
+  }
   if (o->frames_dir && zs_out_dir("--frames-dir", o->frames_dir, err)) return err->code;
   /* Standard output carries one stream: the summary, or the one output
    * named "-" (the summary then goes to standard error). */
@@ -347,7 +368,8 @@ typedef struct summary_row {
  * time over the ideal's.  The columns have the CSV's names in the table
  * and in Markdown alike: means per frame, but diff_pixels over all
  * frames. */
-static void write_summary(FILE *f, int md, const summary_row *rows, int n, double ideal_ms) {
+static void write_summary(FILE *f, int md, const summary_row *rows, int n, double ideal_ms,
+                          int has_reference) {
   const int x = ideal_ms > 0;
   if (md)
     fprintf(f, "| method | queries | faces_drawn | objects_drawn | modelled_ms | %s"
@@ -363,11 +385,13 @@ static void write_summary(FILE *f, int md, const summary_row *rows, int n, doubl
     double fps = r->modelled_ms > 0 ? 1000.0 / r->modelled_ms : 0.0;
     char ratio[32] = "";
     if (x) snprintf(ratio, sizeof ratio, md ? "%.3f | " : "%9.3f ", r->modelled_ms / ideal_ms);
+    char diff[32] = "-"; /* no reference, no comparison */
+    if (has_reference) snprintf(diff, sizeof diff, "%llu", (unsigned long long)r->diff_pixels);
     fprintf(f,
-            md ? "| %s | %.1f | %.0f | %.1f | %.3f | %s%.1f | %.3f | %.3f | %llu |\n"
-               : "%-13s %9.1f %12.0f %13.1f %11.3f %s%12.1f %9.3f %9.3f %11llu\n",
+            md ? "| %s | %.1f | %.0f | %.1f | %.3f | %s%.1f | %.3f | %.3f | %s |\n"
+               : "%-13s %9.1f %12.0f %13.1f %11.3f %s%12.1f %9.3f %9.3f %11s\n",
             r->name, r->queries, r->faces, r->objects, r->modelled_ms, ratio, fps, r->stall_ms,
-            r->wall_ms, (unsigned long long)r->diff_pixels);
+            r->wall_ms, diff);
   }
 }
 
@@ -480,9 +504,13 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       for (int i = 0; i < 4; i++) r->gpu_ms[i] += split[i];
       const uint32_t *ids = zs_device_id_buffer(r->dev);
       uint64_t diff = 0;
-      if (k == 0) memcpy(ref_ids, ids, (size_t)w * (size_t)h * sizeof *ids);
-      else
+      if (o->no_reference) {
+        /* nothing to compare with */
+      } else if (k == 0) {
+        memcpy(ref_ids, ids, (size_t)w * (size_t)h * sizeof *ids);
+      } else {
         for (size_t i = 0; i < (size_t)w * (size_t)h; i++) diff += ids[i] != ref_ids[i];
+      }
       r->modelled_ms += modelled;
       r->stall_ms += stall;
       r->wall_ms += wall;
@@ -504,13 +532,16 @@ static zs_status run(const walk_opts *o, zs_error *err) {
       }
       frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
       frame_wall[(size_t)k * (size_t)frames + (size_t)f] = wall;
-      if (csv)
-        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%llu,%.6f,%.6f,%.6f,%.6f\n",
+      if (csv) {
+        char diff_text[32] = ""; /* empty without a reference */
+        if (!o->no_reference) snprintf(diff_text, sizeof diff_text, "%llu", (unsigned long long)diff);
+        fprintf(csv, "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,%.6f,%.6f,%.6f,%.6f\n",
                 f * o->step, zs_cull_method_name(r->m), zs_cull_method_name(cs.chosen), modelled,
                 stall, wall, (unsigned long long)cs.queries,
                 (unsigned long long)cs.queries_hidden, (unsigned long long)cs.faces_drawn,
                 (unsigned long long)cs.objects_drawn, (unsigned long long)cs.nodes_visited,
-                (unsigned long long)diff, split[0], split[1], split[2], split[3]);
+                diff_text, split[0], split[1], split[2], split[3]);
+      }
       if (o->frames_dir && (st = write_frame(o, r, &frame_image, f, err))) break;
     }
     for (int k = 0; k < o->nalgos && st == ZS_OK; k++) { /* everything, in another mode */
@@ -570,7 +601,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     if (runs[k].m == ZS_CULL_IDEAL) ideal_ms = runs[k].modelled_ms / frames;
   fprintf(o->report, "%s: %d frames at %dx%d, %d objects, %llu faces\n", o->scene, frames, w, h, (int)s.ninst,
          (unsigned long long)zs_scene_faces(&s));
-  write_summary(o->report, 0, rows, nrows, ideal_ms);
+  write_summary(o->report, 0, rows, nrows, ideal_ms, !o->no_reference);
   /* Where each method's modelled frame goes on the GPU: a method that
    * draws less but leaves the GPU idle, or pays in queries and switches,
    * shows it here. */
@@ -599,7 +630,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
   if (o->md) {
     zs_out md;
     if (!(st = zs_out_open(&md, o->md, err))) {
-      write_summary(md.fp, 1, rows, nrows, ideal_ms);
+      write_summary(md.fp, 1, rows, nrows, ideal_ms, !o->no_reference);
       st = zs_out_commit(&md, err);
     }
     if (st) {
