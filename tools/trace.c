@@ -33,12 +33,13 @@ static const char usage[] =
     "                      object per scanline\n"
     "  --png-dir DIR       also a picture per scanline: the frame so far, the\n"
     "                      scanline, its active edges and spans, the z-buffer\n"
-    "  --scale S           picture pixels per image pixel (default 16)\n";
+    "  --scale S           picture pixels per image pixel (default 16)\n"
+    "  --quiet             no progress of the pictures on stderr\n";
 
 typedef struct trace_opts {
   const char *input, *png_dir;
   zs_view_opts view;
-  int row0, row1, json, scale;
+  int row0, row1, json, scale, quiet;
 } trace_opts;
 
 /* What the observer saw of the row being finished, kept until the sink
@@ -54,6 +55,8 @@ typedef struct tracer {
   int failed;
   /* the step pictures: the frame so far */
   uint32_t *ids, *depth;
+  zs_progress progress; /* of the pictures, on stderr */
+  int pictures;
   zs_error err;
 } tracer;
 
@@ -394,7 +397,10 @@ static void on_sink(void *user, const zs_row *row) {
   }
   if (!in_rows(t->o, row->y) || t->failed) return;
   print_row(t, row);
-  if (t->o->png_dir) write_picture(t, row->y);
+  if (t->o->png_dir) {
+    write_picture(t, row->y);
+    zs_progress_step(&t->progress, ++t->pictures);
+  }
 }
 
 /* ---- the command ---- */
@@ -422,6 +428,8 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
         return zs_error_set(err, ZS_ERR_ARG, "--rows: expected 0 <= Y0 <= Y1, got '%s'", v);
       o->row0 = (int)y0;
       o->row1 = (int)y1;
+    } else if (strcmp(a, "--quiet") == 0) {
+      o->quiet = 1;
     } else if (strcmp(a, "--format") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
       if (strcmp(v, "json") == 0) o->json = 1;
@@ -485,6 +493,9 @@ int zs_cmd_trace(int argc, char **argv) {
   t.proj10 = proj[10];
   t.proj11 = proj[11];
   if (o.png_dir) {
+    int first = o.row0 > 0 ? o.row0 : 0;
+    int last = o.row1 >= 0 && o.row1 < o.view.height - 1 ? o.row1 : o.view.height - 1;
+    zs_progress_start(&t.progress, "trace", "picture", last - first + 1, o.quiet);
     size_t n = (size_t)o.view.width * (size_t)o.view.height;
     t.ids = malloc(n * sizeof *t.ids);
     t.depth = malloc(n * sizeof *t.depth);

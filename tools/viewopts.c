@@ -11,7 +11,7 @@
 #include "tools/cli.h"
 
 const char zs_view_opts_usage[] =
-    "  --size WxH          image size\n"
+    "  --size WxH          image size (default: the scene's, else 1024x768)\n"
     "  --eye x,y,z         camera position (default: frame the input)\n"
     "  --target x,y,z      point looked at (default: centre of the input)\n"
     "  --up x,y,z          up direction (default 0,1,0)\n"
@@ -24,7 +24,7 @@ const char zs_view_opts_usage[] =
     "                      top, bottom or iso (default: front, right and above)\n"
     "  --fit F             the automatic camera F times closer (default 1: the\n"
     "                      bounding sphere with 5 % to spare)\n"
-    "  --cull-back         drop faces turned away from the camera\n";
+    "  --cull-back         drop faces turned away from the camera (default: drawn)\n";
 
 void zs_view_opts_default(zs_view_opts *o, int width, int height) {
   memset(o, 0, sizeof *o); /* nothing given yet */
