@@ -116,9 +116,14 @@ START_TEST(ids_match_render_shade_id) {
     cJSON *ids = cJSON_GetObjectItem(row, "ids");
     ck_assert_int_eq(cJSON_GetArraySize(ids), 12);
     for (int x = 0; x < 12; x++) {
-      uint32_t want = im.rgb[y * 12 + x];
-      ck_assert_uint_eq((uint32_t)cJSON_GetArrayItem(ids, x)->valuedouble, want);
-      covered += want != 0;
+      uint32_t want = im.rgb[y * 12 + x]; /* the id render: id + 1, background 0 */
+      const cJSON *id = cJSON_GetArrayItem(ids, x);
+      if (want == 0) {
+        ck_assert(cJSON_IsNull(id)); /* no polygon */
+      } else {
+        ck_assert_uint_eq((uint32_t)id->valuedouble, want - 1); /* the polygon's own id */
+        covered++;
+      }
     }
     cJSON_Delete(row);
   }
@@ -144,6 +149,29 @@ static void check_grid(const char *obj, const int want[6][8]) {
     cJSON_Delete(row);
   }
 }
+
+/* --grid 12x10 is the lecture's long option line; --brief drops the
+ * fixed-point lines; the text's ids row numbers polygons as the spans do;
+ * --rows beyond the image is an error. */
+START_TEST(grid_brief_ids_rows) {
+  char path[4096], longer[1 << 14];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
+  const char *a[] = {"trace", path, TWO_POLYGONS_VIEW, "--near", "5", "--far", "15", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(a, longer, sizeof longer, err, sizeof err), 0);
+  const char *b[] = {"trace", path, "--grid", "12x10", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(b, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(out, longer);
+  ck_assert_ptr_nonnull(strstr(out, "fixed: "));
+  ck_assert_ptr_nonnull(strstr(out, "  spans: [4,6] id 0 [7,9] id 1\n  ids: - - - - 0 0 0 1 1 1 - -\n"));
+  const char *brief[] = {"trace", path, "--grid", "12x10", "--brief", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(brief, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_null(strstr(out, "fixed: "));
+  ck_assert_ptr_nonnull(strstr(out, "id 1: xl 41/6 dxl 5/6 dyl 5 | xr 73/8 dxr 3/8 dyr 5"));
+  const char *rows[] = {"trace", path, "--grid", "12x10", "--rows", "10:12", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(rows, out, sizeof out, err, sizeof err), 1);
+  ck_assert_str_eq(err, "zscan trace: --rows 10:12: the image has rows 0 to 9\n");
+}
+END_TEST
 
 START_TEST(lecture_zbuffer_grids) {
   static const int square[6][8] = {
@@ -193,6 +221,7 @@ int main(void) {
   tcase_add_test(tc, two_polygons_active_edges_at_y6);
   tcase_add_test(tc, ids_match_render_shade_id);
   tcase_add_test(tc, lecture_zbuffer_grids);
+  tcase_add_test(tc, grid_brief_ids_rows);
   tcase_add_test(tc, step_pictures_one_per_scanline);
   suite_add_tcase(s, tc);
   return zs_test_run(s);

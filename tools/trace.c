@@ -34,12 +34,13 @@ static const char usage[] =
     "  --png-dir DIR       also a picture per scanline: the frame so far, the\n"
     "                      scanline, its active edges and spans, the z-buffer\n"
     "  --scale S           picture pixels per image pixel (default 16)\n"
+    "  --brief             the exact fractions only, without the fixed-point lines\n"
     "  --quiet             no progress of the pictures on stderr\n";
 
 typedef struct trace_opts {
   const char *input, *png_dir;
   zs_view_opts view;
-  int row0, row1, json, scale, quiet;
+  int row0, row1, json, scale, quiet, brief, rows_given;
 } trace_opts;
 
 /* What the observer saw of the row being finished, kept until the sink
@@ -287,7 +288,8 @@ static void print_row(tracer *t, const zs_row *row) {
     cJSON *zv = cJSON_AddArrayToObject(o, "z_view");
     for (int x = 0; x < w; x++) {
       int bg = row->id[x] == ZS_ID_NONE;
-      cJSON_AddItemToArray(ids, cJSON_CreateNumber(bg ? 0 : (double)((row->id[x] + 1) & 0xFFFFFF)));
+      /* the polygon's id, as in the spans; null where no polygon won */
+      cJSON_AddItemToArray(ids, bg ? cJSON_CreateNull() : cJSON_CreateNumber(row->id[x]));
       cJSON_AddItemToArray(zs, bg ? cJSON_CreateNull() : cJSON_CreateNumber(row->depth[x] / 4294967296.0));
       cJSON_AddItemToArray(zv, cJSON_CreateNumber(view_z(t, row->depth[x])));
     }
@@ -307,17 +309,22 @@ static void print_row(tracer *t, const zs_row *row) {
     slope(dxr, sizeof dxr, p->dxr_num, p->dr);
     fprintf(f, "    id %u: xl %s dxl %s dyl %d | xr %s dxr %s dyr %d | zl %.9f dzx %.9f dzy %.9f\n",
             p->id, xl, dxl, p->dyl, xr, dxr, p->dyr, p->zl_real, p->dzx, p->dzy);
-    fprintf(f, "          fixed: first column %lld (rem %lld/%lld), past the last %lld (rem %lld/%lld), "
-               "zl %lld >> %d\n",
-            (long long)p->xl, (long long)p->reml, (long long)p->dl, (long long)p->xr,
-            (long long)p->remr, (long long)p->dr, (long long)p->zl, 32 + p->zshift);
+    if (!t->o->brief)
+      fprintf(f, "          fixed: first column %lld (rem %lld/%lld), past the last %lld (rem %lld/%lld), "
+                 "zl %lld >> %d\n",
+              (long long)p->xl, (long long)p->reml, (long long)p->dl, (long long)p->xr,
+              (long long)p->remr, (long long)p->dr, (long long)p->zl, 32 + p->zshift);
   }
   fprintf(f, "  spans:");
   for (int i = 0; i < t->nspans; i++)
     fprintf(f, " [%d,%d] id %u", t->spans[i].x0, t->spans[i].x1, t->spans[i].id);
+  /* the same numbering as the spans and the tables: the polygon's id, and
+   * - where no polygon won */
   fprintf(f, "%s\n  ids:", t->nspans ? "" : " none");
-  for (int x = 0; x < w; x++)
-    fprintf(f, " %u", row->id[x] == ZS_ID_NONE ? 0u : (row->id[x] + 1) & 0xFFFFFF);
+  for (int x = 0; x < w; x++) {
+    if (row->id[x] == ZS_ID_NONE) fprintf(f, " -");
+    else fprintf(f, " %u", row->id[x]);
+  }
   fprintf(f, "\n  z:  ");
   for (int x = 0; x < w; x++) {
     if (row->id[x] == ZS_ID_NONE) fprintf(f, " far");
@@ -428,8 +435,11 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
         return zs_error_set(err, ZS_ERR_ARG, "--rows: expected 0 <= Y0 <= Y1, got '%s'", v);
       o->row0 = (int)y0;
       o->row1 = (int)y1;
+      o->rows_given = 1;
     } else if (strcmp(a, "--quiet") == 0) {
       o->quiet = 1;
+    } else if (strcmp(a, "--brief") == 0) {
+      o->brief = 1;
     } else if (strcmp(a, "--format") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
       if (strcmp(v, "json") == 0) o->json = 1;
@@ -481,6 +491,11 @@ int zs_cmd_trace(int argc, char **argv) {
   have_model = 1;
   zs_view_opts asked = o.view; /* (the result must not alias what is read) */
   zs_view_opts_for_scene(&asked, &model, &o.view.cam, &o.view.width, &o.view.height);
+  if (o.rows_given && o.row0 >= o.view.height) {
+    zs_error_set(&err, ZS_ERR_ARG, "--rows %d:%d: the image has rows 0 to %d", o.row0, o.row1,
+                 o.view.height - 1);
+    goto fail;
+  }
   double view[16], proj[16];
   if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
     goto fail;

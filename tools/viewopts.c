@@ -24,6 +24,10 @@ const char zs_view_opts_usage[] =
     "                      top, bottom or iso (default: front, right and above)\n"
     "  --fit F             the automatic camera F times closer (default 1: the\n"
     "                      bounding sphere with 5 % to spare)\n"
+    "  --grid WxH          a WxH image where world (x, y) falls on the centre of\n"
+    "                      pixel column x, row H-1-y: orthographic, looking down -z\n"
+    "                      from z = 10, near 5, far 15 (depth (5 - z) / 10), as the\n"
+    "                      lecture's examples are drawn\n"
     "  --cull-back         drop faces turned away from the camera (default: drawn)\n";
 
 void zs_view_opts_default(zs_view_opts *o, int width, int height) {
@@ -59,7 +63,7 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
   }
   static const char *const with_value[] = {"--size", "--eye",  "--target",  "--up",
                                            "--fovy", "--ortho", "--near",    "--far",
-                                           "--up-axis", "--view", "--fit"};
+                                           "--up-axis", "--view", "--fit", "--grid"};
   int known = 0;
   for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
     known |= strcmp(a, with_value[k]) == 0;
@@ -95,6 +99,17 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
     if (!o->view)
       st = zs_error_set(err, ZS_ERR_ARG,
                         "--view: expected front, back, left, right, top, bottom or iso, got '%s'", v);
+  } else if (strcmp(a, "--grid") == 0) {
+    st = zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err);
+    o->size_given = 1;
+    const double extent[4] = {-0.5, o->width - 0.5, -0.5, o->height - 0.5};
+    const double eye[3] = {0, 0, 10}, target[3] = {0, 0, 0};
+    memcpy(c->extent, extent, sizeof extent);
+    memcpy(c->eye, eye, sizeof eye);
+    memcpy(c->target, target, sizeof target);
+    c->ortho = c->has_eye = c->has_target = 1;
+    if (!c->has_near) c->znear = 5, c->has_near = 1;
+    if (!c->has_far) c->zfar = 15, c->has_far = 1;
   } else if (strcmp(a, "--fit") == 0) {
     st = zs_cli_double(a, v, &o->fit, err);
     if (st == ZS_OK && !(o->fit > 0 && o->fit <= 1000))
