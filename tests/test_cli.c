@@ -657,12 +657,8 @@ START_TEST(calibrate_keeps_the_modelled_latency) {
   ck_assert_msg(eol && strstr(lat, "200000.0000 ns  default") != NULL &&
                     strstr(lat, "200000.0000 ns  default") < eol,
                 "%s", lat);
-  FILE *f = fopen(clock, "r");
-  ck_assert_ptr_nonnull(f);
   char text[4096];
-  size_t n = fread(text, 1, sizeof text - 1, f);
-  text[n] = '\0';
-  fclose(f);
+  zs_test_read(clock, text, sizeof text);
   ck_assert_ptr_nonnull(strstr(text, "\"query_latency_ns\":200000,"));
   ck_assert_ptr_nonnull(strstr(text, "\"switch_ns\":1000,"));
   ck_assert_ptr_nonnull(strstr(text, "\"per_pixel_ns\":\"measured\""));

@@ -7,8 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include "raster/rng.h"
 #include "tests/testutil.h"
 #include "lib/image.h"
 
@@ -173,6 +175,103 @@ START_TEST(grid_brief_ids_rows) {
 }
 END_TEST
 
+/* Chromium's DOM of page at #row=y, into dom; its exit status. */
+static int page_dom(const char *page, int y, char *dom, size_t cap) {
+  char cmd[9000];
+  snprintf(cmd, sizeof cmd,
+           "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic "
+           "--no-first-run --disable-background-networking --disable-component-update "
+           "--disable-sync --user-data-dir=%s/trace-chromium --dump-dom 'file://%s#row=%d' "
+           "2>/dev/null",
+           ZS_BINARY_DIR, page, y);
+  FILE *p = popen(cmd, "r");
+  ck_assert_ptr_nonnull(p);
+  size_t n = fread(dom, 1, cap - 1, p);
+  dom[n] = '\0';
+  int rc = pclose(p);
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+/* The cells of the active edge table in dom: "xl dxl dyl xr dxr dyr" of
+ * each pair, one line each, into want's format. */
+static void aet_cells(const char *dom, char *cells, size_t cap) {
+  const char *t = strstr(dom, "<div id=\"aet\">");
+  ck_assert_ptr_nonnull(t);
+  const char *end = strstr(t, "</table>");
+  size_t n = 0;
+  cells[0] = '\0';
+  for (const char *r = strstr(t, "<tr><td>"); r && r < end; r = strstr(r + 1, "<tr><td>")) {
+    const char *c = r;
+    for (int k = 0; k < 6; k++) {
+      c = strstr(c, "<td>") + 4;
+      n += (size_t)snprintf(cells + n, cap - n, "%.*s%s", (int)(strchr(c, '<') - c), c,
+                            k < 5 ? " " : "\n");
+    }
+  }
+}
+
+/* The page of --html: at #row=3 of the lecture's example its active edge
+ * table shows the lecture's fractions, and on seeded random triangles
+ * every scanline's pairs are the JSON trace's; nothing is loaded from
+ * outside the file. */
+START_TEST(html_page_steps_through_the_walk) {
+  static char dom[1 << 20], json[1 << 18];
+  char path[4096], page[4200];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
+  snprintf(page, sizeof page, "%s/trace-page.html", ZS_BINARY_DIR);
+  const char *args[] = {"trace", path, "--grid", "12x10", "--html", page, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  zs_test_read(page, dom, sizeof dom);
+  ck_assert_ptr_null(strstr(dom, "src=\"http"));
+  ck_assert_ptr_null(strstr(dom, "href="));
+  ck_assert_ptr_null(strstr(dom, "@import"));
+  ck_assert_ptr_null(strstr(dom, "url("));
+  int rc = page_dom(page, 3, dom, sizeof dom);
+  ck_assert_msg(rc == 0, "chromium could not open the page (exit %d): tools/setup.sh installs it",
+                rc);
+  ck_assert_ptr_nonnull(strstr(dom, "scanline 3 ("));
+  char cells[4096];
+  aet_cells(dom, cells, sizeof cells);
+  ck_assert_str_eq(cells, "4 1 3 7 0 3\n41/6 5/6 5 73/8 3/8 5\n");
+  /* seeded random triangles: the page's pairs are the JSON trace's */
+  char obj[4200];
+  snprintf(obj, sizeof obj, "%s/trace-random.obj", ZS_BINARY_DIR);
+  zs_rng rng;
+  zs_rng_seed(&rng, 5);
+  FILE *f = fopen(obj, "w");
+  for (int i = 0; i < 18; i++)
+    fprintf(f, "v %d %d %d\n", (int)zs_rng_below(&rng, 16), (int)zs_rng_below(&rng, 12),
+            -(int)zs_rng_below(&rng, 5));
+  for (int i = 0; i < 6; i++) fprintf(f, "f %d %d %d\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+  fclose(f);
+  const char *rnd[] = {"trace", obj, "--grid", "16x12", "--html", page, NULL};
+  ck_assert_msg(zs_test_run_zscan(rnd, out, sizeof out, err, sizeof err) == 0, "%s", err);
+  const char *js[] = {"trace", obj, "--grid", "16x12", "--format", "json", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(js, json, sizeof json, err, sizeof err), 0);
+  for (int y = 0; y < 12; y += 3) {
+    ck_assert_int_eq(page_dom(page, y, dom, sizeof dom), 0);
+    aet_cells(dom, cells, sizeof cells);
+    /* the same row of the JSON, as the page's cells */
+    char key[32], want[4096];
+    snprintf(key, sizeof key, "{\"y\":%d,", y);
+    cJSON *row = cJSON_Parse(strstr(json, key));
+    ck_assert_ptr_nonnull(row);
+    size_t w = 0;
+    want[0] = '\0';
+    for (const cJSON *p = cJSON_GetObjectItem(row, "active_edges")->child; p; p = p->next)
+      w += (size_t)snprintf(want + w, sizeof want - w, "%s %s %d %s %s %d\n",
+                            cJSON_GetObjectItem(p, "xl_fraction")->valuestring,
+                            cJSON_GetObjectItem(p, "dxl_fraction")->valuestring,
+                            cJSON_GetObjectItem(p, "dyl")->valueint,
+                            cJSON_GetObjectItem(p, "xr_fraction")->valuestring,
+                            cJSON_GetObjectItem(p, "dxr_fraction")->valuestring,
+                            cJSON_GetObjectItem(p, "dyr")->valueint);
+    cJSON_Delete(row);
+    ck_assert_msg(strcmp(cells, want) == 0, "row %d: page\n%sJSON\n%s", y, cells, want);
+  }
+}
+END_TEST
+
 START_TEST(lecture_zbuffer_grids) {
   static const int square[6][8] = {
       {-5, -5, -5, -5, -5, -5, -5, -5}, {-5, -5, -1, -1, -1, -1, -5, -5},
@@ -222,6 +321,7 @@ int main(void) {
   tcase_add_test(tc, ids_match_render_shade_id);
   tcase_add_test(tc, lecture_zbuffer_grids);
   tcase_add_test(tc, grid_brief_ids_rows);
+  tcase_add_test(tc, html_page_steps_through_the_walk);
   tcase_add_test(tc, step_pictures_one_per_scanline);
   suite_add_tcase(s, tc);
   return zs_test_run(s);

@@ -70,6 +70,15 @@ int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *
   return rc;
 }
 
+size_t zs_test_read(const char *path, char *buf, size_t cap) {
+  FILE *f = fopen(path, "rb");
+  ck_assert_msg(f != NULL, "%s: cannot open", path);
+  size_t n = fread(buf, 1, cap - 1, f);
+  buf[n] = '\0';
+  fclose(f);
+  return n;
+}
+
 int zs_test_exists(const char *path) {
   struct stat st;
   return stat(path, &st) == 0;

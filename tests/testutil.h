@@ -24,6 +24,10 @@ uint64_t zs_test_fnv1a(const void *data, size_t n);
 int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *err,
                       size_t err_cap);
 
+/* Reads the file at path into buf (at most cap - 1 bytes, NUL-terminated;
+ * the test fails when it cannot be opened); returns the bytes read. */
+size_t zs_test_read(const char *path, char *buf, size_t cap);
+
 /* Whether a file exists. */
 int zs_test_exists(const char *path);
 

@@ -24,6 +24,7 @@
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
+#include "tools/trace_page.h"
 #include "tools/viewopts.h"
 
 static const char usage[] =
@@ -35,12 +36,17 @@ static const char usage[] =
     "                      scanline, its active edges and spans, the z-buffer\n"
     "  --scale S           picture pixels per image pixel (default 16)\n"
     "  --brief             the exact fractions only, without the fixed-point lines\n"
+    "  --html FILE.html    a page to step through the walk in a browser: the pixel\n"
+    "                      grid, the sorted and active tables with the exact\n"
+    "                      fractions, the row's z-buffer and who won each pixel;\n"
+    "                      #row=N opens at scanline N; everything inline\n"
     "  --quiet             no progress of the pictures on stderr\n";
 
 typedef struct trace_opts {
   const char *input, *png_dir;
   zs_view_opts view;
   int row0, row1, json, scale, quiet, brief, rows_given;
+  const char *html; /* --html FILE: the page */
 } trace_opts;
 
 /* What the observer saw of the row being finished, kept until the sink
@@ -57,6 +63,7 @@ typedef struct tracer {
   /* the step pictures: the frame so far */
   uint32_t *ids, *depth;
   zs_progress progress; /* of the pictures, on stderr */
+  int lines;            /* JSON objects written */
   int pictures;
   zs_error err;
 } tracer;
@@ -130,12 +137,17 @@ static cJSON *json_edge(const zs_trace_edge *e) {
   cJSON_AddNumberToObject(o, "dx", e->dx);
   slope(s, sizeof s, (int64_t)e->X1 - e->X0, (int64_t)e->Y1 - e->Y0);
   cJSON_AddStringToObject(o, "dx_fraction", s);
+  /* the snapped end points in pixel-centre units (column c at x = c) */
+  const double ends[4] = {e->X0 / (double)ZS_SUBPIXEL_ONE - 0.5, e->Y0 / (double)ZS_SUBPIXEL_ONE - 0.5,
+                          e->X1 / (double)ZS_SUBPIXEL_ONE - 0.5, e->Y1 / (double)ZS_SUBPIXEL_ONE - 0.5};
+  cJSON_AddItemToObject(o, "ends", cJSON_CreateDoubleArray(ends, 4));
   return o;
 }
 
+/* One JSON line; for the page (--html), one element of its array. */
 static void print_json(tracer *t, cJSON *o) {
   char *s = cJSON_PrintUnformatted(o);
-  if (s) fprintf(t->out, "%s\n", s);
+  if (s) fprintf(t->out, t->o->html ? "%s%s\n" : "%.0s%s\n", t->lines++ ? "," : "", s);
   else t->failed = 1;
   free(s);
   cJSON_Delete(o);
@@ -440,6 +452,11 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
       o->quiet = 1;
     } else if (strcmp(a, "--brief") == 0) {
       o->brief = 1;
+    } else if (strcmp(a, "--html") == 0) {
+      if (zs_cli_output_value(argc, argv, &i, &v, err) || zs_cli_output_format(a, v, "html", err))
+        return err->code;
+      o->html = v;
+      o->json = 1; /* the page reads the JSON trace */
     } else if (strcmp(a, "--format") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
       if (strcmp(v, "json") == 0) o->json = 1;
@@ -484,6 +501,9 @@ int zs_cmd_trace(int argc, char **argv) {
   zs_device *dev = NULL;
   tracer t;
   memset(&t, 0, sizeof t);
+  char *page_data = NULL; /* --html: the JSON trace, gathered */
+  size_t page_size = 0;
+  FILE *mem = NULL;
   int have_model = 0;
   if (parse(argc, argv, &o, &err)) goto fail;
   parsing = 0;
@@ -524,12 +544,31 @@ int zs_cmd_trace(int argc, char **argv) {
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
   if (zs_frame_draw_scene(dev, &model, &err)) goto fail;
+  if (o.html && !(t.out = mem = open_memstream(&page_data, &page_size))) {
+    zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
+    goto fail;
+  }
   if (zs_device_finish(dev, on_sink, &t, &err)) goto fail;
   if (t.failed) {
     if (t.err.code) err = t.err;
     else zs_error_set(&err, ZS_ERR_NOMEM, "out of memory while tracing");
     goto fail;
   }
+  if (o.html) {
+    fclose(mem);
+    mem = NULL;
+    zs_out page;
+    if (zs_out_open(&page, o.html, &err)) {
+      zs_out_error_option(&err, "--html");
+      goto fail;
+    }
+    fprintf(page.fp, "%s[%s]%s", zs_trace_page_head, page_data, zs_trace_page_tail);
+    if (zs_out_commit(&page, &err)) {
+      zs_out_error_option(&err, "--html");
+      goto fail;
+    }
+  }
+  free(page_data);
   free(t.pairs);
   free(t.spans);
   free(t.ids);
@@ -539,6 +578,8 @@ int zs_cmd_trace(int argc, char **argv) {
   return 0;
 fail:
   fprintf(stderr, "zscan trace: %s\n", err.msg);
+  if (mem) fclose(mem);
+  free(page_data);
   free(t.pairs);
   free(t.spans);
   free(t.ids);
