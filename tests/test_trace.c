@@ -283,6 +283,27 @@ START_TEST(lecture_zbuffer_grids) {
       {-5, -5, -1, -1, -1, -1, -5, -5}, {-5, -5, -5, -5, -5, -5, -5, -5}};
   check_grid("tests/data/lecture/zbuffer_square.obj", square);
   check_grid("tests/data/lecture/zbuffer_two.obj", both);
+  /* the plain z-buffer polygon by polygon (--algo zbuffer): its page's
+   * depth grid after polygon 0 is the lecture's first grid, after
+   * polygon 1 its second */
+  char path[4096], page[4200];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/zbuffer_two.obj"));
+  snprintf(page, sizeof page, "%s/trace-zbuffer.html", ZS_BINARY_DIR);
+  const char *args[] = {"trace", path, ZBUFFER_VIEW, "--algo", "zbuffer", "--html", page, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  static char dom[1 << 20];
+  for (int step = 1; step <= 2; step++) {
+    ck_assert_int_eq(page_dom(page, step, dom, sizeof dom), 0);
+    const char *t = strstr(dom, "<div id=\"zgrid\">");
+    ck_assert_ptr_nonnull(t);
+    const int(*want)[8] = step == 1 ? square : both;
+    const char *c = strstr(t, "</tr>"); /* past the header */
+    for (int y = 0; y < 6; y++)
+      for (int x = -1; x < 8; x++) { /* the row number, then the cells */
+        c = strstr(c, "<td>") + 4;
+        if (x >= 0) ck_assert_msg(atoi(c) == want[y][x], "step %d row %d column %d: %.8s", step, y, x, c);
+      }
+  }
 }
 END_TEST
 

@@ -36,6 +36,9 @@ static const char usage[] =
     "                      scanline, its active edges and spans, the z-buffer\n"
     "  --scale S           picture pixels per image pixel (default 16)\n"
     "  --brief             the exact fractions only, without the fixed-point lines\n"
+    "  --algo scanline|zbuffer  the scanline z-buffer row by row (default), or the\n"
+    "                      plain z-buffer polygon by polygon: the whole depth grid\n"
+    "                      (view z) and frame buffer after each polygon drawn\n"
     "  --html FILE.html    a page to step through the walk in a browser: the pixel\n"
     "                      grid, the sorted and active tables with the exact\n"
     "                      fractions, the row's z-buffer and who won each pixel;\n"
@@ -47,6 +50,7 @@ typedef struct trace_opts {
   zs_view_opts view;
   int row0, row1, json, scale, quiet, brief, rows_given;
   const char *html; /* --html FILE: the page */
+  int zbuffer;      /* --algo zbuffer: the plain z-buffer, a step per polygon */
 } trace_opts;
 
 /* What the observer saw of the row being finished, kept until the sink
@@ -422,6 +426,71 @@ static void on_sink(void *user, const zs_row *row) {
   }
 }
 
+/* ---- the plain z-buffer, polygon by polygon ---- */
+
+/* After each polygon drawn, the whole depth grid (view z, as the lecture
+ * draws it) and frame buffer (ids; - or null for none). */
+static void print_step(tracer *t, zs_device *dev, int step, uint32_t id) {
+  const zs_device_config *cfg = zs_device_config_of(dev);
+  const uint32_t *depth = zs_device_depth_buffer(dev), *ids = zs_device_id_buffer(dev);
+  const int w = cfg->width, h = cfg->height;
+  if (t->o->json) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "step", step);
+    cJSON_AddNumberToObject(o, "id", id);
+    cJSON *zv = cJSON_AddArrayToObject(o, "z_view"), *iv = cJSON_AddArrayToObject(o, "ids");
+    for (int i = 0; i < w * h; i++) {
+      cJSON_AddItemToArray(zv, cJSON_CreateNumber(view_z(t, depth[i])));
+      cJSON_AddItemToArray(iv, ids[i] == ZS_ID_NONE ? cJSON_CreateNull() : cJSON_CreateNumber(ids[i]));
+    }
+    print_json(t, o);
+    return;
+  }
+  fprintf(t->out, "after polygon %u (step %d): view z, then ids\n", id, step);
+  for (int y = 0; y < h; y++) {
+    fprintf(t->out, "  ");
+    for (int x = 0; x < w; x++) {
+      double z = view_z(t, depth[y * w + x]);
+      fprintf(t->out, " %6.4g", fabs(z) < 1e-6 ? 0.0 : z);
+    }
+    fprintf(t->out, "    ");
+    for (int x = 0; x < w; x++) {
+      uint32_t v = ids[y * w + x];
+      if (v == ZS_ID_NONE) fprintf(t->out, " -");
+      else fprintf(t->out, " %u", v);
+    }
+    fputc('\n', t->out);
+  }
+}
+
+/* Draws the scene one polygon (face of an instance) at a time, in the
+ * scene's order, and shows the buffers after each. */
+static zs_status zbuffer_steps(tracer *t, zs_device *dev, const zs_scene *s, zs_error *err) {
+  const zs_device_config *cfg = zs_device_config_of(dev);
+  if (t->o->json) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "width", cfg->width);
+    cJSON_AddNumberToObject(o, "height", cfg->height);
+    cJSON_AddStringToObject(o, "mode", "zbuffer");
+    print_json(t, o);
+  }
+  int step = 0;
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_instance *in = &s->inst[i];
+    const zs_mesh *m = &s->meshes[in->mesh].mesh;
+    for (int32_t f = 0; f < m->nfaces; f++) {
+      /* the one face, over the mesh's own arrays */
+      zs_mesh one = {m->pos, m->nverts, m->face_start + f, m->face_vert, 1,
+                     m->face_rgb ? m->face_rgb + f : NULL, m->face_id ? m->face_id + f : NULL};
+      if (zs_device_draw(dev, &one, in->model, in->id_base, in->rgb, err)) return err->code;
+      uint32_t id = in->id_base + (uint32_t)(m->face_id ? m->face_id[f] : f);
+      print_step(t, dev, ++step, id);
+      if (t->failed) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory while tracing");
+    }
+  }
+  return ZS_OK;
+}
+
 /* ---- the command ---- */
 
 static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
@@ -452,6 +521,11 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
       o->quiet = 1;
     } else if (strcmp(a, "--brief") == 0) {
       o->brief = 1;
+    } else if (strcmp(a, "--algo") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      if (strcmp(v, "scanline") != 0 && strcmp(v, "zbuffer") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--algo: expected scanline or zbuffer, got '%s'", v);
+      o->zbuffer = v[0] == 'z';
     } else if (strcmp(a, "--html") == 0) {
       if (zs_cli_output_value(argc, argv, &i, &v, err) || zs_cli_output_format(a, v, "html", err))
         return err->code;
@@ -519,8 +593,8 @@ int zs_cmd_trace(int argc, char **argv) {
   double view[16], proj[16];
   if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
     goto fail;
-  zs_device_config cfg = {o.view.width, o.view.height, ZS_ALGO_SCANLINE, ZS_SHADE_ID,
-                          o.view.cull_back, 1, ZS_BACKGROUND_RGB, 0};
+  zs_device_config cfg = {o.view.width, o.view.height, o.zbuffer ? ZS_ALGO_ZBUFFER : ZS_ALGO_SCANLINE,
+                          ZS_SHADE_ID, o.view.cull_back, 1, ZS_BACKGROUND_RGB, 0};
   if (zs_device_create(&cfg, &dev, &err)) goto fail;
   t.o = &o;
   t.out = stdout;
@@ -540,15 +614,19 @@ int zs_cmd_trace(int argc, char **argv) {
     }
   }
   zs_trace_observer obs = {on_tables, on_row, &t};
-  zs_device_set_trace(dev, &obs);
+  if (!o.zbuffer) zs_device_set_trace(dev, &obs);
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
-  if (zs_frame_draw_scene(dev, &model, &err)) goto fail;
   if (o.html && !(t.out = mem = open_memstream(&page_data, &page_size))) {
     zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
     goto fail;
   }
-  if (zs_device_finish(dev, on_sink, &t, &err)) goto fail;
+  if (o.zbuffer) {
+    if (zbuffer_steps(&t, dev, &model, &err) || zs_device_finish(dev, NULL, NULL, &err)) goto fail;
+  } else {
+    if (zs_frame_draw_scene(dev, &model, &err)) goto fail;
+    if (zs_device_finish(dev, on_sink, &t, &err)) goto fail;
+  }
   if (t.failed) {
     if (t.err.code) err = t.err;
     else zs_error_set(&err, ZS_ERR_NOMEM, "out of memory while tracing");
