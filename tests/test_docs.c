@@ -40,7 +40,8 @@ typedef struct page {
 static const page pages[] = {
     {"docs/ALGORITHMS.md", 7, 2}, {"docs/SCENES.md", 10, 0}, {"docs/CULLING.md", 5, 0},
     {"docs/GOLDEN.md", 7, 2},     {"docs/CLI.md", 13, 13},   {"docs/ARCHITECTURE.md", 0, 0},
-    {"docs/RESULTS.md", 0, 0},    {"docs/REFERENCES.md", 0, 0},
+    {"docs/RESULTS.md", 0, 0},    {"docs/REFERENCES.md", 0, 0}, {"docs/TEACHING.md", 4, 0},
+    {"docs/API.md", 0, 0},
 };
 enum { NPAGES = sizeof pages / sizeof pages[0] };
 
