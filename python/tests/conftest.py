@@ -55,7 +55,7 @@ class CliResult:
         return msg[len(prefix):] if msg.startswith(prefix) else msg
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")  # one run of the suite
 def cli():
     """Runs `zscan render ARGS -o OUT --stats` and returns a CliResult
     (remembered, when OUT is /dev/null, for the next call with the same
