@@ -150,13 +150,20 @@ static zs_status stream_fail(zs_png_stream *s, zs_status code, zs_error *err) {
   return zs_error_set(err, code, "%s: %s", s->path, s->reason);
 }
 
-static int png_begin(zs_png_stream *s) {
+static int png_begin(zs_png_stream *s, int ids) {
   if (setjmp(png_jmpbuf(s->png))) return 1;
   png_set_write_fn(s->png, s, write_data, flush_data);
   png_set_IHDR(s->png, s->info, (png_uint_32)s->width,
                (png_uint_32)s->height, 8, PNG_COLOR_TYPE_RGB,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
+  if (ids) {
+    png_text mark = {.compression = PNG_TEXT_COMPRESSION_NONE,
+                     .key = (png_charp)ZS_PNG_SHADE_KEY,
+                     .text = (png_charp)ZS_PNG_SHADE_IDS,
+                     .text_length = sizeof ZS_PNG_SHADE_IDS - 1};
+    png_set_text(s->png, s->info, &mark, 1);
+  }
   png_set_compression_level(s->png, 6);
   png_set_filter(s->png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
   png_write_info(s->png, s->info);
@@ -183,8 +190,9 @@ static void stream_free(zs_png_stream *s) {
   free(s);
 }
 
-zs_status zs_png_stream_open(zs_png_stream **out, const char *path, int width,
-                             int height, zs_error *err) {
+/* Opens the stream; ids = 1 marks the file as face ids (lib/image.h). */
+static zs_status stream_open(zs_png_stream **out, const char *path, int width,
+                             int height, int ids, zs_error *err) {
   *out = NULL;
   if (!valid_size(width, height))
     return zs_error_set(err, ZS_ERR_LIMIT,
@@ -212,13 +220,18 @@ zs_status zs_png_stream_open(zs_png_stream **out, const char *path, int width,
     stream_free(s);
     return zs_error_set(err, ZS_ERR_NOMEM, "%s: cannot set up libpng", path);
   }
-  if (png_begin(s)) {
+  if (png_begin(s, ids)) {
     st = stream_fail(s, ZS_ERR_IO, err);
     stream_free(s);
     return st;
   }
   *out = s;
   return ZS_OK;
+}
+
+zs_status zs_png_stream_open(zs_png_stream **out, const char *path, int width,
+                             int height, zs_error *err) {
+  return stream_open(out, path, width, height, 0, err);
 }
 
 zs_status zs_png_stream_row(zs_png_stream *s, const uint32_t *rgb,
@@ -256,14 +269,24 @@ zs_status zs_png_stream_close(zs_png_stream *s, int commit, zs_error *err) {
   return st;
 }
 
-zs_status zs_png_write(const char *path, const zs_image *im, zs_error *err) {
+/* Writes im whole; ids = 1 marks it as face ids (lib/image.h). */
+static zs_status png_write(const char *path, const zs_image *im, int ids, zs_error *err) {
   zs_png_stream *s;
-  zs_status st = zs_png_stream_open(&s, path, im->width, im->height, err);
+  zs_status st = stream_open(&s, path, im->width, im->height, ids, err);
   if (st != ZS_OK) return st;
   for (int y = 0; y < im->height && st == ZS_OK; y++)
     st = zs_png_stream_row(s, im->rgb + (size_t)y * (size_t)im->width, err);
   zs_status closed = zs_png_stream_close(s, st == ZS_OK, err);
   return st != ZS_OK ? st : closed;
+}
+
+zs_status zs_png_write(const char *path, const zs_image *im, zs_error *err) {
+  return png_write(path, im, 0, err);
+}
+
+zs_status zs_png_write_shaded(const char *path, const zs_image *im, zs_shade shade,
+                              zs_error *err) {
+  return png_write(path, im, shade == ZS_SHADE_ID, err);
 }
 
 /* ---- Reading PNG ---- */
@@ -273,6 +296,7 @@ typedef struct png_reader {
   png_structp png;
   png_infop info;
   int passes;        /* 1, or 7 for an interlaced image */
+  int ids;           /* the file carries the face-id mark */
   zs_status failure; /* ZS_ERR_IO for a read error, else ZS_ERR_PARSE */
   char reason[REASON_MAX];
 } png_reader;
@@ -294,6 +318,13 @@ static void read_data(png_structp png, png_bytep data, size_t n) {
 static int png_read_header(png_reader *r) {
   if (setjmp(png_jmpbuf(r->png))) return 1;
   png_read_info(r->png, r->info);
+  png_textp text;
+  int ntext = 0;
+  png_get_text(r->png, r->info, &text, &ntext);
+  for (int i = 0; i < ntext; i++)
+    if (strcmp(text[i].key, ZS_PNG_SHADE_KEY) == 0 && text[i].text &&
+        strcmp(text[i].text, ZS_PNG_SHADE_IDS) == 0)
+      r->ids = 1;
   int color = png_get_color_type(r->png, r->info);
   int depth = png_get_bit_depth(r->png, r->info);
   if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(r->png);
@@ -376,12 +407,14 @@ static zs_status png_decode(png_reader *r, const char *path, zs_image *out,
   return st;
 }
 
-zs_status zs_png_read(const char *path, zs_image *out, zs_error *err) {
+zs_status zs_png_read_marked(const char *path, zs_image *out, int *ids,
+                             zs_error *err) {
+  if (ids) *ids = 0;
   out->width = 0;
   out->height = 0;
   out->rgb = NULL;
   png_reader r = {.fp = NULL, .png = NULL, .info = NULL, .passes = 1,
-                  .failure = ZS_ERR_PARSE, .reason = ""};
+                  .ids = 0, .failure = ZS_ERR_PARSE, .reason = ""};
   r.fp = fopen(path, "rb");
   if (!r.fp)
     return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", path,
@@ -389,7 +422,12 @@ zs_status zs_png_read(const char *path, zs_image *out, zs_error *err) {
   zs_status st = png_decode(&r, path, out, err);
   if (r.png) png_destroy_read_struct(&r.png, &r.info, NULL);
   fclose(r.fp);
+  if (st == ZS_OK && ids) *ids = r.ids;
   return st;
+}
+
+zs_status zs_png_read(const char *path, zs_image *out, zs_error *err) {
+  return zs_png_read_marked(path, out, NULL, err);
 }
 
 /* ---- Writing PFM ---- */

@@ -16,8 +16,10 @@
  *
  *   PNGs are written deterministically: 8-bit RGB, not interlaced, zlib
  *   level 6, the fixed row filter "Up", and only the IHDR, IDAT and IEND
- *   chunks (no time, no gamma, no text).  With a given zlib, the same pixels
- *   give the same bytes.
+ *   chunks (no time, no gamma), with one exception: a `--shade id`
+ *   rendering also carries the text chunk "zscan shade" = "id", so that
+ *   `zscan diff --ids` can refuse an ordinary picture, whose colours are
+ *   not face ids.  With a given zlib, the same pixels give the same bytes.
  *
  * ERRORS
  *   Failures return a status and set err to "PATH: reason", e.g.
@@ -32,6 +34,20 @@
 
 #include "raster/error.h"
 #include "zscan/zscan.h"
+
+/* The text chunk (keyword, text) that marks a PNG whose pixels are face
+ * id + 1, background 0. */
+#define ZS_PNG_SHADE_KEY "zscan shade"
+#define ZS_PNG_SHADE_IDS "id"
+
+/* zs_png_write, marking the file as face ids when shade is ZS_SHADE_ID. */
+zs_status zs_png_write_shaded(const char *path, const zs_image *im, zs_shade shade,
+                              zs_error *err);
+
+/* zs_png_read, also telling (ids, may be NULL) whether the file carries
+ * the face-id mark: 1 or 0. */
+zs_status zs_png_read_marked(const char *path, zs_image *out, int *ids,
+                             zs_error *err);
 
 /* A PNG written row by row, so a renderer need not hold the whole frame:
  *   zs_png_stream *s;

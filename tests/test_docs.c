@@ -8,7 +8,9 @@
  * 300 lines.
  * The pages of docs/: every "$ build/zscan" line of their text blocks is run, must
  * exit 0, and must print exactly the lines shown under it, when any are
- * shown (docs/CLI.md: every command's --help).
+ * shown (docs/CLI.md: every command's --help); where what is shown is one
+ * error line ("zscan CMD: ..."), the command must exit 1 and print exactly
+ * that line on standard error.
  * Every page: each relative link names a file that exists, and no page
  * tells the project's history: no working period by name, no tracker
  * number.
@@ -101,14 +103,15 @@ static void enter_scratch(void) {
   ck_assert_int_eq(chdir(dir), 0);
 }
 
-/* Runs "build/zscan ARGS" (line without the "build/zscan "); 0 on exit 0. */
-static void run_zscan(const char *where, const char *line, const char *args) {
+/* Runs "build/zscan ARGS" (line without the "build/zscan "), which must
+ * exit 0, or 1 when it is shown failing. */
+static void run_zscan(const char *where, const char *line, const char *args, int fails) {
   char cmd[4096];
   snprintf(cmd, sizeof cmd, "%s", args);
   const char *argv[64];
   split(cmd, argv, 64);
   int rc = zs_test_run_zscan(argv, out, sizeof out, err, sizeof err);
-  ck_assert_msg(rc == 0, "%s: '%s' exited %d: %s", where, line, rc, err);
+  ck_assert_msg(rc == (fails ? 1 : 0), "%s: '%s' exited %d: %s", where, line, rc, err);
 }
 
 /* Every "$ build/zscan" line of the page's text blocks: run it, and
@@ -140,10 +143,13 @@ static void run_page(const page *pg) {
         }
         l = e ? e + 1 : NULL;
       }
-      run_zscan(pg->path, line, line + 14);
+      int fails = len > 6 && memcmp(expect, "zscan ", 6) == 0 &&
+                  strchr(expect, '\n') == expect + len - 1;
+      run_zscan(pg->path, line, line + 14, fails);
       if (len) {
-        ck_assert_msg(strcmp(out, expect) == 0, "%s: '%s' printed\n%s\nthe page shows\n%s",
-                      pg->path, line, out, expect);
+        const char *got = fails ? err : out;
+        ck_assert_msg(strcmp(got, expect) == 0, "%s: '%s' printed\n%s\nthe page shows\n%s",
+                      pg->path, line, got, expect);
         compared++;
       }
       commands++;
@@ -188,7 +194,7 @@ START_TEST(every_command_of_the_readme) {
       } else {
         ck_assert_msg(strncmp(line, "build/zscan ", 12) == 0,
                       "README.md shows '%s', which this test does not know how to run", line);
-        run_zscan("README.md", line, line + 12);
+        run_zscan("README.md", line, line + 12, 0);
         run++;
       }
     }

@@ -766,8 +766,8 @@ START_TEST(cmd_diff_lists_face_ids) {
   zs_image a = {5, 1, va}, b = {5, 1, vb};
   zs_error err;
   zs_error_clear(&err);
-  ck_assert_int_eq(zs_png_write(pa, &a, &err), ZS_OK);
-  ck_assert_int_eq(zs_png_write(pb, &b, &err), ZS_OK);
+  ck_assert_int_eq(zs_png_write_shaded(pa, &a, ZS_SHADE_ID, &err), ZS_OK);
+  ck_assert_int_eq(zs_png_write_shaded(pb, &b, ZS_SHADE_ID, &err), ZS_OK);
   char *args[] = {"diff", "--ids", pa, pb};
   captured c = run_diff(4, args);
   ck_assert_int_eq(c.status, 1);
@@ -788,8 +788,8 @@ START_TEST(cmd_diff_lists_face_ids) {
     wb[i] = (uint32_t)(2000 + i);
   }
   zs_image a2 = {25, 1, wa}, b2 = {25, 1, wb};
-  ck_assert_int_eq(zs_png_write(pa, &a2, &err), ZS_OK);
-  ck_assert_int_eq(zs_png_write(pb, &b2, &err), ZS_OK);
+  ck_assert_int_eq(zs_png_write_shaded(pa, &a2, ZS_SHADE_ID, &err), ZS_OK);
+  ck_assert_int_eq(zs_png_write_shaded(pb, &b2, ZS_SHADE_ID, &err), ZS_OK);
   c = run_diff(4, args);
   ck_assert_int_eq(c.status, 1);
   char want[1024];
@@ -797,6 +797,48 @@ START_TEST(cmd_diff_lists_face_ids) {
   for (int i = 0; i < 20; i++) len += snprintf(want + len, sizeof want - len, " %d", 999 + i);
   snprintf(want + len, sizeof want - len, " ...\n");
   ck_assert_ptr_nonnull(strstr(c.out, want));
+}
+END_TEST
+
+/* An ordinary picture's colours are not face ids: --ids refuses it, and
+ * says which file, while a plain diff of the same files still works. */
+START_TEST(cmd_diff_ids_refuses_plain_pictures) {
+  char pa[PATH_MAX_LEN], pb[PATH_MAX_LEN];
+  out_file(pa, "marked.png");
+  out_file(pb, "plain.png");
+  uint32_t v[3] = {0, 5, 7};
+  zs_image im = {3, 1, v};
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_png_write_shaded(pa, &im, ZS_SHADE_ID, &err), ZS_OK);
+  ck_assert_int_eq(zs_png_write_shaded(pb, &im, ZS_SHADE_FLAT, &err), ZS_OK);
+
+  /* the mark is read back; the pixels are the same either way */
+  zs_image back;
+  int ids = -1;
+  ck_assert_int_eq(zs_png_read_marked(pa, &back, &ids, &err), ZS_OK);
+  ck_assert_int_eq(ids, 1);
+  ck_assert_uint_eq(zs_image_hash(&back), zs_image_hash(&im));
+  zs_image_free(&back);
+  ck_assert_int_eq(zs_png_read_marked(pb, &back, &ids, &err), ZS_OK);
+  ck_assert_int_eq(ids, 0);
+  zs_image_free(&back);
+
+  for (int order = 0; order < 2; order++) {
+    char *args[] = {"diff", "--ids", order ? pb : pa, order ? pa : pb};
+    captured c = run_diff(4, args);
+    ck_assert_int_eq(c.status, 1);
+    ck_assert_str_eq(c.out, "");
+    char want[PATH_MAX_LEN + 128];
+    snprintf(want, sizeof want,
+             "zscan diff: --ids: %s is not a --shade id render written by zscan; "
+             "its colours are not face ids\n", pb);
+    ck_assert_str_eq(c.err, want);
+  }
+  char *plain[] = {"diff", pa, pb};
+  captured c = run_diff(3, plain);
+  ck_assert_int_eq(c.status, 0);
+  ck_assert_str_eq(c.out, "pixels_differing 0 of 3\nmax_channel_diff 0\n");
 }
 END_TEST
 
@@ -895,6 +937,7 @@ static Suite *suite(void) {
   tcase_add_test(other, image_diff_counts_and_max);
   tcase_add_test(other, cmd_diff_exit_status_and_report);
   tcase_add_test(other, cmd_diff_lists_face_ids);
+  tcase_add_test(other, cmd_diff_ids_refuses_plain_pictures);
   tcase_add_test(other, crosscheck_tells_ties_from_coverage);
   suite_add_tcase(s, other);
   return s;

@@ -19,7 +19,9 @@
  * M is the largest |a - b| over the R, G and B channels of all pixels.
  *
  * --ids reads the images as `--shade id` renderings, where a pixel is the
- * face id + 1 as a 24-bit number 0xRRGGBB and 0 is the background.  K is the
+ * face id + 1 as a 24-bit number 0xRRGGBB and 0 is the background; it
+ * refuses (exit 1) a PNG without the mark zscan writes on those renderings
+ * (lib/image.h), as an ordinary picture's colours are not face ids.  K is the
  * number of distinct values seen at the differing pixels, in either image;
  * they are listed in ascending order as face ids (value - 1), "background"
  * (value 0) first, at most 20 of them followed by "..." when there are
@@ -75,7 +77,8 @@ static const char usage[] =
     "  --max-diff-pixels N      the images are the same with up to N such pixels\n"
     "                           (default 0)\n"
     "  --ids                    read both as --shade id renders: also list the faces\n"
-    "                           involved (faces_involved K: ID ...)\n";
+    "                           involved (faces_involved K: ID ...); a PNG that\n"
+    "                           zscan did not write with --shade id is refused\n";
 
 static int fail(const char *fmt, ...)
 #if defined(__GNUC__)
@@ -207,9 +210,15 @@ int zs_cmd_diff(int argc, char **argv) {
   zs_image a = {0, 0, NULL}, b = {0, 0, NULL}, diff = {0, 0, NULL}, all = {0, 0, NULL};
   zs_diff_result res;
   int status = EXIT_DIFFERENT; /* a file that cannot be read is bad input */
-  if (zs_png_read(args.a, &a, &err) != ZS_OK ||
-      zs_png_read(args.b, &b, &err) != ZS_OK)
+  int ids_a, ids_b;
+  if (zs_png_read_marked(args.a, &a, &ids_a, &err) != ZS_OK ||
+      zs_png_read_marked(args.b, &b, &ids_b, &err) != ZS_OK)
     goto done;
+  if (args.ids && !(ids_a && ids_b)) {
+    fail("--ids: %s is not a --shade id render written by zscan; its colours are not face ids",
+         ids_a ? args.b : args.a);
+    goto done;
+  }
   if (zs_image_compare(&a, &b, args.max_channel_diff, args.out || args.side ? &diff : NULL, &res,
                        &err) != ZS_OK) {
     /* the sizes: say which files */

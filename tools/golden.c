@@ -445,7 +445,7 @@ static zs_status write_report(const golden_run *r, int tests, int failures, doub
     const golden_case *c = &r->cases[i];
     if (!in_shard(r, i) || !c->failed) continue;
     snprintf(p, sizeof p, "%s/%s.actual.png", r->report, c->name);
-    if (c->rendered && zs_png_write(p, &c->actual, err)) return err->code;
+    if (c->rendered && zs_png_write_shaded(p, &c->actual, c->opts.shade, err)) return err->code;
     snprintf(p, sizeof p, "%s/%s.diff.png", r->report, c->name);
     if (c->heat.rgb && zs_png_write(p, &c->heat, err)) return err->code;
   }
@@ -537,7 +537,7 @@ int zs_cmd_golden(int argc, char **argv) {
       golden_path(&r, c, p, sizeof p);
       zs_error e;
       zs_error_clear(&e);
-      if (zs_png_write(p, &c->actual, &e)) {
+      if (zs_png_write_shaded(p, &c->actual, c->opts.shade, &e)) {
         c->err = e;
         c->failed = 1;
       }

@@ -450,7 +450,7 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
     goto done;
   }
 
-  if ((st = zs_png_write(o->out_png, &im, err))) {
+  if ((st = zs_png_write_shaded(o->out_png, &im, o->shade, err))) {
     zs_out_error_option(err, "-o");
     goto done;
   }

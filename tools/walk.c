@@ -258,7 +258,7 @@ static zs_status write_frame(const walk_opts *o, const method_run *r, const zs_i
                              zs_error *err) {
   char path[4200];
   snprintf(path, sizeof path, "%s/%s-%05d.png", o->frames_dir, zs_cull_method_name(r->m), f);
-  zs_status st = zs_png_write(path, im, err);
+  zs_status st = zs_png_write_shaded(path, im, o->frames_shade, err);
   return st ? zs_out_error_option(err, "--frames-dir") : ZS_OK;
 }
 
