@@ -317,10 +317,17 @@ START_TEST(bench_suite_writes_every_file) {
     snprintf(path, sizeof path, "%s/%s", dir, files[k]);
     unlink(path);
   }
-  /* everything small: every walk, method and mode, with its files */
+  /* everything small: every walk, method and mode, with its files; a
+   * progress line after each benchmark, and the walks of tradeoff */
   const char *args[] = {"bench", "suite", "--quick", "--size", "500x500", "--out", dir, NULL};
+  setenv("ZSCAN_PROGRESS_MS", "1", 1);
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  unsetenv("ZSCAN_PROGRESS_MS");
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  ck_assert_msg(strstr(err, "bench suite: benchmark 1/8 (12 %), ") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "bench suite: benchmark 8/8 (100 %), ") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "bench tradeoff: walk 3/3, plant\n") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "walk: frame 5/5 (100 %), ") != NULL, "%s", err);
   for (int k = 0; k < NFILES; k++) {
     snprintf(path, sizeof path, "%s/%s", dir, files[k]);
     ck_assert_msg(zs_test_exists(path), "no %s", path);

@@ -51,14 +51,16 @@
 #include "tools/spawn.h"
 
 static const char usage[] =
-    "usage: zscan bench suite [--out DIR] [--quick] [--size WxH] [--docs DIR]\n"
+    "usage: zscan bench suite [--out DIR] [--quick] [--size WxH] [--docs DIR] [--quiet]\n"
     "  --out DIR   where every benchmark's files go (default bench-suite), with\n"
     "              RESULTS.md, the page of them all\n"
     "  --quick     a few frames of each: a check that it all runs\n"
     "  --size WxH  the image size of raster, tradeoff, depthsort and the walks (raster\n"
     "              needs 500x500 or more; default each one's own, 1024x768)\n"
     "  --docs DIR  also that page as DIR/RESULTS.md, its plots in DIR/images\n"
-    "              (zscan bench suite --docs docs refreshes docs/RESULTS.md)\n";
+    "              (zscan bench suite --docs docs refreshes docs/RESULTS.md)\n"
+    "  --quiet     no progress on stderr (else a line after each benchmark, and\n"
+    "              the walks of tradeoff as bench tradeoff shows them)\n";
 
 /* Every culling method, and the few whose lines a plot can tell apart
  * (hsw, which waits for every answer, would flatten them). */
@@ -106,6 +108,7 @@ enum { CMD = 2048, PATH = 4200 };
 typedef struct suite {
   const char *dir, *size;
   int quick, mesa, callgrind, threads; /* threads: of the second raster pass, 0: none */
+  int quiet;                           /* --quiet */
   int have_mesa;                       /* built with OSMesa (mesa: and used) */
   int plots;                           /* gnuplot is there */
   char self[4096];
@@ -865,6 +868,8 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--quick") == 0) {
       s.quick = 1;
+    } else if (strcmp(argv[i], "--quiet") == 0) {
+      s.quiet = 1;
     } else if (strcmp(argv[i], "--out") == 0) {
       if (zs_cli_value(argc, argv, &i, &s.dir, &err)) goto fail;
     } else if (strcmp(argv[i], "--docs") == 0) {
@@ -924,6 +929,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   char *tradeoff[8] = {"tradeoff", "--out", (char *)s.dir}, *depthsort[8] = {"depthsort"};
   int nt = 3, nd = 1;
   if (s.quick) tradeoff[nt++] = "--quick";
+  if (s.quiet) tradeoff[nt++] = "--quiet";
   depthsort[nd++] = "--frames";
   depthsort[nd++] = s.quick ? "4" : "40";
   depthsort[nd++] = "--csv";
@@ -938,19 +944,34 @@ int zs_cmd_bench_suite(int argc, char **argv) {
                     "--csv", path[4], "--plot", path[5], NULL};
   char *calibrate[] = {"calibrate", "--repeat", s.quick ? "1" : "9", "-o", path[7], NULL};
 
+  /* the benchmarks in turn: raster, on all threads, memory, calibrate,
+   * two walks, tradeoff, depthsort, octree */
+  zs_progress progress;
+  int done = 0;
+  zs_progress_start(&progress, "bench suite", "benchmark", 8 + (s.threads > 0), s.quiet);
   /* llvmpipe on one thread beside zscan's one */
   if (s.mesa) setenv("LP_NUM_THREADS", "1", 1);
   if (run(zs_cmd_bench_raster, raster, NULL)) return 1; /* the benchmark said why */
+  zs_progress_step(&progress, ++done);
   join_cmd(s.cmd_raster, s.mesa ? "LP_NUM_THREADS=1 zscan bench" : "zscan bench", raster);
-  if (s.threads && run_threads(&s, &err)) goto fail;
+  if (s.threads) {
+    if (run_threads(&s, &err)) goto fail;
+    zs_progress_step(&progress, ++done);
+  }
   if (run_memory(&s, &err)) goto fail;
+  zs_progress_step(&progress, ++done);
   if (run_child(&s, calibrate, path[6], NULL, s.cmd_calibrate, &err)) goto fail;
-  for (int k = 0; k < 2; k++)
+  zs_progress_step(&progress, ++done);
+  for (int k = 0; k < 2; k++) {
     if (run_walk(&s, k, &err)) goto fail;
-  if (run(zs_cmd_bench_tradeoff, tradeoff, NULL) ||
-      run(zs_cmd_bench_depthsort, depthsort, s.cmd_depthsort) ||
-      run(zs_cmd_bench_octree, octree, s.cmd_octree))
-    return 1;
+    zs_progress_step(&progress, ++done);
+  }
+  if (run(zs_cmd_bench_tradeoff, tradeoff, NULL)) return 1;
+  zs_progress_step(&progress, ++done);
+  if (run(zs_cmd_bench_depthsort, depthsort, s.cmd_depthsort)) return 1;
+  zs_progress_step(&progress, ++done);
+  if (run(zs_cmd_bench_octree, octree, s.cmd_octree)) return 1;
+  zs_progress_step(&progress, ++done);
   if (s.plots) {
     static const char *const walk_name[2][2] = {{"walk-plant", "tradeoff-plant"},
                                                 {"walk-teapots", "tradeoff-teapots"}};

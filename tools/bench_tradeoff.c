@@ -20,10 +20,12 @@
 #include "tools/commands.h"
 
 static const char usage[] =
-    "usage: zscan bench tradeoff [--out DIR] [--quick] [--size WxH]\n"
+    "usage: zscan bench tradeoff [--out DIR] [--quick] [--size WxH] [--quiet]\n"
     "  --out DIR   where the CSVs, tables and plots go (default bench-tradeoff)\n"
     "  --quick     smaller scenes, a few frames of each walk\n"
-    "  --size WxH  image size (default: each scene's)\n";
+    "  --size WxH  image size (default: each scene's)\n"
+    "  --quiet     no progress on stderr (else each walk's name, then its frames\n"
+    "              as zscan walk shows them)\n";
 
 static const char methods[] = "vfc,vfc-box,hsw,chc,chc-prob,chcpp,chcpp-prob,nohc,ideal-box,ideal,auto";
 static const char modes[] = "scanline,depthsort";
@@ -50,7 +52,7 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
     return 0;
   }
   const char *dir = "bench-tradeoff", *size = NULL;
-  int is_quick = 0, w, h;
+  int is_quick = 0, quiet = 0, w, h;
   zs_error err;
   zs_error_clear(&err);
   int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
@@ -58,6 +60,8 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
     const char *a = argv[i];
     if (strcmp(a, "--quick") == 0) {
       is_quick = 1;
+    } else if (strcmp(a, "--quiet") == 0) {
+      quiet = 1;
     } else if (strcmp(a, "--out") == 0) {
       if (zs_cli_value(argc, argv, &i, &dir, &err)) goto fail;
     } else if (strcmp(a, "--size") == 0) {
@@ -93,12 +97,13 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
     args[n++] = path[k][1];
     args[n++] = "--tradeoff";
     args[n++] = path[k][2];
-    args[n++] = "--quiet";
+    if (quiet) args[n++] = "--quiet";
     if (size) {
       args[n++] = "--size";
       args[n++] = (char *)size;
     }
     args[n] = NULL;
+    if (!quiet) fprintf(stderr, "bench tradeoff: walk %d/%d, %s\n", k + 1, NWALKS, walks[k].name);
     if (zs_cmd_walk(n, args) != 0) return 1; /* walk said why */
   }
   /* the tables together, each under its command */
