@@ -115,6 +115,7 @@ void zs_device_destroy(zs_device *d) {
   free(d->row_rgb);
   free(d->row_count);
   free(d->row_out);
+  free(d->runs);
   zs_batch_free(&d->batch);
   zs_walk_scratch_free(&d->scratch);
   zs_depthsort_free(&d->depthsort);
@@ -201,6 +202,8 @@ static void clear_part(void *ctx, int part) {
 void zs_device_clear(zs_device *d) {
   zs_defer_discard(d); /* drawn and cleared away: the same frame */
   memset(&d->stats, 0, sizeof d->stats);
+  d->nruns = 0;
+  d->nomem_runs = 0;
   zs_clock_reset(d);
   zs_batch_reset(&d->batch);
   d->depthsort.nfaces = 0;

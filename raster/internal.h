@@ -409,6 +409,11 @@ struct zs_device {
                                    * t > 0 (thread 0 uses batch) */
   int last_was_query;             /* the GPU's last command was a query box */
   zs_deferred *deferred;          /* zs_device_defer_draws: the queued draws */
+  /* zs_device_keep_line_runs: the hidden lines as vectors (lines.c) */
+  int keep_runs;
+  int nomem_runs;                 /* a run could not be kept */
+  zs_line_run *runs;
+  int32_t nruns, cap_runs;
 };
 
 /* device.c: a draw's preparation, its vertices [i0, i1) transformed into

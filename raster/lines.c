@@ -2,6 +2,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "raster/grow.h"
 #include "raster/internal.h"
 
 zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {
@@ -43,9 +44,37 @@ static int clip_segment(const zs_device *d, zs_clip_vert *a, zs_clip_vert *b) {
   return 1;
 }
 
+void zs_device_keep_line_runs(zs_device *d, int keep) { d->keep_runs = keep; }
+
+const zs_line_run *zs_device_line_runs(const zs_device *d, int32_t *n) {
+  *n = d->nomem_runs ? -1 : d->nruns;
+  return d->nruns && !d->nomem_runs ? d->runs : NULL;
+}
+
+/* Records the painted columns c0 .. c1 of the segment p-q (major axis
+ * from a0, length len) as one run, the pixels' outer sides included. */
+static void keep_run(zs_device *d, const double p[3], const double q[3], double a0, double len,
+                     int c0, int c1) {
+  if (!zs_grow((void **)&d->runs, &d->cap_runs, (int64_t)d->nruns + 1, sizeof *d->runs)) {
+    d->nomem_runs = 1;
+    return;
+  }
+  double t0 = (c0 - a0) / len, t1 = (c1 + 1 - a0) / len;
+  if (t0 > t1) {
+    double t = t0;
+    t0 = t1;
+    t1 = t;
+  }
+  t0 = t0 < 0.0 ? 0.0 : t0;
+  t1 = t1 > 1.0 ? 1.0 : t1;
+  d->runs[d->nruns++] = (zs_line_run){p[0] + t0 * (q[0] - p[0]), p[1] + t0 * (q[1] - p[1]),
+                                      p[0] + t1 * (q[0] - p[0]), p[1] + t1 * (q[1] - p[1])};
+}
+
 /* Draws the segment p-q (window coordinates) with depth bias `bias`
  * (window depth units): one pixel per column (or row) along the major axis,
- * the pixel whose area holds the exact edge at that column's centre. */
+ * the pixel whose area holds the exact edge at that column's centre; with
+ * d->keep_runs, each stretch of painted pixels is kept as a run. */
 static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3], double bias,
                              uint32_t rgb, int depth_test) {
   const int w = d->cfg.width, h = d->cfg.height;
@@ -59,21 +88,31 @@ static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3],
   if (c0 < 0) c0 = 0;
   if (c1 > limit) c1 = limit;
   uint64_t written = 0;
+  int run = -1; /* the first column of the painted stretch, or -1 */
   for (int c = c0; c <= c1; c++) {
     double t = (c + 0.5 - a0) / len;
     double minor = major_x ? p[1] + t * dy : p[0] + t * dx;
     int m = (int)floor(minor);
     int x = major_x ? c : m, y = major_x ? m : c;
-    if (x < 0 || y < 0 || x >= w || y >= h) continue;
-    double z = p[2] + t * (q[2] - p[2]) - bias;
-    double zq = z * 4294967296.0;
-    uint32_t zd = zq <= 0 ? 0 : zq >= 4294967295.0 ? ZS_DEPTH_FAR : (uint32_t)zq;
-    size_t i = (size_t)y * (size_t)w + (size_t)x;
-    if (!depth_test || zd <= d->depth[i]) {
-      d->rgb[i] = rgb;
-      written++;
+    int painted = 0;
+    if (x >= 0 && y >= 0 && x < w && y < h) {
+      double z = p[2] + t * (q[2] - p[2]) - bias;
+      double zq = z * 4294967296.0;
+      uint32_t zd = zq <= 0 ? 0 : zq >= 4294967295.0 ? ZS_DEPTH_FAR : (uint32_t)zq;
+      size_t i = (size_t)y * (size_t)w + (size_t)x;
+      if (!depth_test || zd <= d->depth[i]) {
+        d->rgb[i] = rgb;
+        written++;
+        painted = 1;
+      }
+    }
+    if (painted && run < 0) run = c;
+    if (!painted && run >= 0) {
+      if (d->keep_runs) keep_run(d, p, q, a0, len, run, c - 1);
+      run = -1;
     }
   }
+  if (run >= 0 && d->keep_runs) keep_run(d, p, q, a0, len, run, c1);
   return written;
 }
 

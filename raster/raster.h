@@ -161,6 +161,21 @@ const char *zs_simd_name(zs_simd level);
  * centre. */
 enum { ZS_EDGE_DEPTH_UNITS = 1024 };
 
+/* A visible piece of an edge as zs_device_draw_edges painted it, for
+ * vector output: in window coordinates (pixels, x right, y down), from the
+ * first painted pixel's outer side to the last one's, along the exact edge.
+ * Consecutive painted pixels of one edge make one run. */
+typedef struct zs_line_run {
+  double x0, y0, x1, y1;
+} zs_line_run;
+
+/* keep = 1: zs_device_draw_edges also records its runs (0, the default:
+ * it does not); zs_device_clear empties them. */
+void zs_device_keep_line_runs(zs_device *d, int keep);
+/* The runs recorded since the last clear, n of them (NULL when none; n
+ * is -1 when one could not be kept for want of memory). */
+const zs_line_run *zs_device_line_runs(const zs_device *d, int32_t *n);
+
 /* out = m (p, 1): inline, as set-up calls it once or twice per vertex. */
 static inline void zs_mat_apply(const double m[16], const double p[3], double out[4]) {
   for (int i = 0; i < 4; i++)

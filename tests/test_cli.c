@@ -137,6 +137,7 @@ static const bad_option bad_options[] = {
     {{"render", "--style", "hidden-line", "--algo", "scanline", NULL},
      "--style hidden-line needs --algo zbuffer and --shade flat", 2},
     {{"render", "--shade", "pink", NULL}, "--shade: expected flat, id, depth or overdraw", 2},
+    {{"render", "-o", "lines.svg", NULL}, "-o: lines.svg: an SVG holds hidden lines (--style hidden-line)", 2},
     {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 64", 2},
     {{"render", "--repeat", NULL}, "--repeat: missing value", 2},
     {{"render", "a.obj", "b.obj", NULL}, "more than one INPUT", 2},
@@ -320,7 +321,7 @@ START_TEST(bench_suite_writes_every_file) {
   /* everything small: every walk, method and mode, with its files; a
    * progress line after each benchmark, and the walks of tradeoff */
   const char *args[] = {"bench", "suite", "--quick", "--size", "500x500", "--out", dir, NULL};
-  setenv("ZSCAN_PROGRESS_MS", "1", 1);
+  setenv("ZSCAN_PROGRESS_MS", "0", 1);
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
   unsetenv("ZSCAN_PROGRESS_MS");
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
@@ -682,10 +683,11 @@ START_TEST(calibrate_keeps_the_modelled_latency) {
 END_TEST
 
 /* A long command behind a pipe or in a log is never silent: plain
- * progress lines on stderr (every ZSCAN_PROGRESS_MS, 5 s by default);
+ * progress lines on stderr (every ZSCAN_PROGRESS_MS, 5 s by default; 0
+ * here, a line every frame, as a walk this small can end within 1 ms);
  * --quiet leaves stderr empty. */
 START_TEST(progress_in_logs_unless_quiet) {
-  setenv("ZSCAN_PROGRESS_MS", "1", 1);
+  setenv("ZSCAN_PROGRESS_MS", "0", 1);
   const char *args[] = {"walk", "builtin:cubes,n=3", "--cull", "vfc", "--frames", "20", "--size",
                         "64x48", NULL};
   ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
@@ -696,6 +698,74 @@ START_TEST(progress_in_logs_unless_quiet) {
   ck_assert_int_eq(zs_test_run_zscan(quiet, out, sizeof out, err, sizeof err), 0);
   ck_assert_str_eq(err, "");
   unsetenv("ZSCAN_PROGRESS_MS");
+}
+END_TEST
+
+/* -o FILE.svg with --style hidden-line: the PNG's lines as vectors.  Every
+ * run lies in the image and on the PNG's ink (its middle in a black pixel
+ * or one beside it), the runs cover the PNG's ink, and the same options
+ * give the same bytes. */
+START_TEST(hidden_lines_as_svg) {
+  char svg[4096], svg2[4096], png[4096];
+  snprintf(svg, sizeof svg, "%s/cli-lines.svg", ZS_BINARY_DIR);
+  snprintf(svg2, sizeof svg2, "%s/cli-lines-2.svg", ZS_BINARY_DIR);
+  snprintf(png, sizeof png, "%s/cli-lines.png", ZS_BINARY_DIR);
+  const char *as_svg[] = {"render", "builtin:cubes", "--style", "hidden-line", "--size", "320x240",
+                          "-q", "-o", svg, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(as_svg, out, sizeof out, err, sizeof err), 0);
+  as_svg[8] = svg2;
+  ck_assert_int_eq(zs_test_run_zscan(as_svg, out, sizeof out, err, sizeof err), 0);
+  as_svg[8] = png;
+  ck_assert_int_eq(zs_test_run_zscan(as_svg, out, sizeof out, err, sizeof err), 0);
+
+  static char text[1 << 20], text2[1 << 20];
+  size_t n = zs_test_read(svg, text, sizeof text);
+  ck_assert(n > 0 && n < sizeof text - 1);
+  ck_assert_uint_eq(zs_test_read(svg2, text2, sizeof text2), n);
+  ck_assert(memcmp(text, text2, n) == 0);
+  ck_assert_ptr_nonnull(strstr(text, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"320\" "
+                                     "height=\"240\" viewBox=\"0 0 320 240\">"));
+  ck_assert_ptr_nonnull(strstr(text, "<rect width=\"320\" height=\"240\" fill=\"#ffffff\"/>"));
+  ck_assert_ptr_nonnull(strstr(text, "stroke=\"#000000\""));
+
+  zs_image im;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+  const int w = im.width, h = im.height;
+  unsigned char *covered = calloc((size_t)w * (size_t)h, 1);
+  ck_assert_ptr_nonnull(covered);
+  int runs = 0;
+  for (const char *p = strchr(text, 'M'); p; p = strchr(p + 1, 'M')) {
+    double x0, y0, x1, y1;
+    ck_assert_int_eq(sscanf(p, "M%lf %lfL%lf %lf", &x0, &y0, &x1, &y1), 4);
+    ck_assert(x0 >= 0 && x0 <= w && x1 >= 0 && x1 <= w && y0 >= 0 && y0 <= h && y1 >= 0 && y1 <= h);
+    int ink = 0;
+    int mx = (int)((x0 + x1) / 2), my = (int)((y0 + y1) / 2);
+    for (int dy = -1; dy <= 1; dy++)
+      for (int dx = -1; dx <= 1; dx++) {
+        int x = mx + dx, y = my + dy;
+        if (x >= 0 && y >= 0 && x < w && y < h) ink |= (im.rgb[(size_t)y * w + x] & 0xFFFFFF) == 0;
+      }
+    ck_assert_msg(ink, "run %d (%g,%g)-(%g,%g) is not on the PNG's lines", runs, x0, y0, x1, y1);
+    /* the pixels along the run, sampled every quarter pixel */
+    double len = fabs(x1 - x0) > fabs(y1 - y0) ? fabs(x1 - x0) : fabs(y1 - y0);
+    int steps = (int)(len * 4) + 1;
+    for (int k = 0; k <= steps; k++) {
+      double t = (double)k / steps;
+      int x = (int)(x0 + t * (x1 - x0)), y = (int)(y0 + t * (y1 - y0));
+      if (x >= 0 && y >= 0 && x < w && y < h) covered[(size_t)y * w + x] = 1;
+    }
+    runs++;
+  }
+  ck_assert_int_gt(runs, 100);
+  /* every black pixel of the PNG is on a run */
+  for (int y = 0; y < h; y++)
+    for (int x = 0; x < w; x++)
+      if ((im.rgb[(size_t)y * w + x] & 0xFFFFFF) == 0)
+        ck_assert_msg(covered[(size_t)y * w + x], "ink at (%d,%d) is on no run", x, y);
+  free(covered);
+  zs_image_free(&im);
 }
 END_TEST
 
@@ -1168,6 +1238,7 @@ int main(void) {
   tcase_add_test(tc, calibrate_keeps_the_modelled_latency);
   tcase_add_test(tc, progress_in_logs_unless_quiet);
   tcase_add_test(tc, render_background);
+  tcase_add_test(tc, hidden_lines_as_svg);
   tcase_add_test(tc, printed_camera_reproduces_the_image);
   tcase_add_test(tc, camera_from_the_model_file);
   tcase_add_test(tc, automatic_camera_options);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "cull/cull.h"
 #include "cull/octree.h"
@@ -21,6 +22,7 @@
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
+#include "lib/svg.h"
 #include "tools/viewopts.h"
 
 static const char usage_head[] =
@@ -28,7 +30,8 @@ static const char usage_head[] =
     "  INPUT               FILE.obj, FILE.json (a scene), another model format\n"
     "                      (through assimp), or builtin:NAME[,k=v]: default, teapots,\n"
     "                      spheres, city, plant, cubes (default: the teapot field)\n"
-    "  -o FILE.png         output image (default zscan.png; - for standard output)\n";
+    "  -o FILE.png         output image (default zscan.png; - for standard output);\n"
+    "                      FILE.svg with --style hidden-line: the lines as vectors\n";
 static const char usage_tail[] =
     "  --algo zbuffer|scanline|depthsort   hidden-surface mode (default zbuffer)\n"
     "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
@@ -177,7 +180,12 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
     if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
     return ZS_OK;
   }
-  if (zs_cli_output_format("-o", o->out_png, "png", err)) return err->code;
+  const char *dot = strrchr(o->out_png, '.');
+  o->svg = dot && !strchr(dot, '/') && strcasecmp(dot, ".svg") == 0;
+  if (o->svg && !o->hidden_line)
+    return zs_error_set(err, ZS_ERR_ARG, "-o: %s: an SVG holds hidden lines (--style hidden-line)",
+                        o->out_png);
+  if (!o->svg && zs_cli_output_format("-o", o->out_png, "png", err)) return err->code;
   if (o->out_pfm && zs_cli_output_format("--depth", o->out_pfm, "pfm", err)) return err->code;
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
@@ -367,6 +375,15 @@ static zs_status file_camera(const render_opts *o, double aspect, zs_view_opts *
   return ZS_OK;
 }
 
+/* The last frame's hidden lines as vectors (lib/svg.h). */
+static zs_status write_svg(const render_opts *o, const zs_device *dev, zs_error *err) {
+  int32_t n;
+  const zs_line_run *runs = zs_device_line_runs(dev, &n);
+  if (n < 0) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory for the lines", o->out_png);
+  return zs_svg_write_lines(o->out_png, o->view.width, o->view.height, runs, n,
+                            ZS_HIDDEN_LINE_PAPER, ZS_HIDDEN_LINE_INK, err);
+}
+
 /* Renders the frame o asks for; keep == NULL: as the command does (the
  * PNG, the depth map, the counters); else the image goes into *keep. */
 static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
@@ -412,6 +429,7 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
                           o->view.cull_back, o->threads, o->background, 0};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
+  zs_device_keep_line_runs(dev, o->svg && !keep);
   if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;
   if (o->out_pfm && !(depth = malloc((size_t)o->view.width * (size_t)o->view.height * sizeof *depth))) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory for the depth map");
@@ -450,7 +468,7 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
     goto done;
   }
 
-  if ((st = zs_png_write_shaded(o->out_png, &im, o->shade, err))) {
+  if ((st = o->svg ? write_svg(o, dev, err) : zs_png_write_shaded(o->out_png, &im, o->shade, err))) {
     zs_out_error_option(err, "-o");
     goto done;
   }

@@ -11,6 +11,7 @@
 typedef struct render_opts {
   const char *input, *out_png, *out_pfm;
   int out_given; /* -o was given */
+  int svg;       /* -o FILE.svg: the hidden lines as vectors */
   uint32_t background; /* flat shading's background, 0xRRGGBB */
   int verbose;         /* -v: the camera used, as options, on stderr */
   int quiet;           /* -q: no line on stderr */
