@@ -314,15 +314,42 @@ START_TEST(step_pictures_one_per_scanline) {
   snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
   const char *args[] = {"trace", path, TWO_POLYGONS_VIEW, "--png-dir", dir, "--scale", "4", NULL};
   ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
-  for (int y = 0; y < 10; y++) {
+  /* at scale 4 the labels' cells are 1 pixel: a margin of 14 on the left
+   * (row numbers), 8 on top (column numbers), 3 legend lines of 8 below */
+  enum { S = 4, LEFT = 14, TOP = 8, W = 12, H = 10 };
+  for (int y = 0; y < H; y++) {
     char png[4200];
     snprintf(png, sizeof png, "%s/scanline-%04d.png", dir, y);
     zs_image im;
     zs_error e;
     zs_error_clear(&e);
     ck_assert_msg(zs_png_read(png, &im, &e) == ZS_OK, "%s", e.msg);
-    ck_assert_int_eq(im.width, (2 * 12 + 1) * 4);
-    ck_assert_int_eq(im.height, 10 * 4);
+    ck_assert_int_eq(im.width, LEFT + (2 * W + 1) * S);
+    ck_assert_int_eq(im.height, TOP + H * S + 3 * 8 + 1);
+    /* the current row's number, and only its, in yellow (5 pixels high,
+     * from the top of its row) */
+    int yellow = 0;
+    for (int py = 0; py < im.height; py++)
+      for (int px = 0; px < LEFT; px++)
+        if (im.rgb[(size_t)py * im.width + px] == 0xFFFF00) {
+          ck_assert_msg(py >= TOP + y * S && py < TOP + y * S + 5, "scanline %d: yellow at %d", y, py);
+          yellow++;
+        }
+    ck_assert_int_gt(yellow, 0);
+    /* both polygons' outlines over the grid (their colours halfway to
+     * white), and in the legend their colours and the crossings' marks */
+    static const uint32_t outline[2] = {0xA6BBD2, 0xF8C694}, legend[4] = {0x4E79A7, 0xF28E2B,
+                                                                          0xFF3030, 0x30A0FF};
+    int seen_outline[2] = {0, 0}, seen_legend[4] = {0, 0, 0, 0};
+    for (int py = 0; py < im.height; py++)
+      for (int px = 0; px < im.width; px++) {
+        uint32_t c = im.rgb[(size_t)py * im.width + px];
+        for (int i = 0; i < 2; i++)
+          seen_outline[i] |= py < TOP + H * S && px < LEFT + W * S && c == outline[i];
+        for (int i = 0; i < 4; i++) seen_legend[i] |= py >= TOP + H * S && c == legend[i];
+      }
+    ck_assert(seen_outline[0] && seen_outline[1]);
+    ck_assert(seen_legend[0] && seen_legend[1] && seen_legend[2] && seen_legend[3]);
     zs_image_free(&im);
   }
   /* a file where the folder should be (a missing folder is made) */

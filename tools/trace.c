@@ -20,6 +20,7 @@
 
 #include "raster/raster.h"
 #include "tools/cli.h"
+#include "tools/glyphs.h"
 #include "lib/frame.h"
 #include "lib/image.h"
 #include "lib/input.h"
@@ -33,7 +34,8 @@ static const char usage[] =
     "  --format text|json  text (default) or JSON lines: the tables, then one\n"
     "                      object per scanline\n"
     "  --png-dir DIR       also a picture per scanline: the frame so far, the\n"
-    "                      scanline, its active edges and spans, the z-buffer\n"
+    "                      scanline, its active edges and spans, the polygons'\n"
+    "                      outlines, the z-buffer, row and column numbers, a legend\n"
     "  --scale S           picture pixels per image pixel (default 16)\n"
     "  --brief             the exact fractions only, without the fixed-point lines\n"
     "  --algo scanline|zbuffer  the scanline z-buffer row by row (default), or the\n"
@@ -69,6 +71,11 @@ typedef struct tracer {
   zs_progress progress; /* of the pictures, on stderr */
   int lines;            /* JSON objects written */
   int pictures;
+  /* the polygons' outlines: the edge table's edges, picture units */
+  double (*outline)[4];
+  uint32_t *outline_id;
+  int noutline;
+  uint32_t max_id; /* the largest polygon id, for the legend */
   zs_error err;
 } tracer;
 
@@ -185,6 +192,19 @@ static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
       e[j] = e[j - 1];
       e[j - 1] = tmp;
     }
+  if (t->o->png_dir && nedges) { /* kept for the step pictures */
+    t->outline = malloc((size_t)nedges * sizeof *t->outline);
+    t->outline_id = malloc((size_t)nedges * sizeof *t->outline_id);
+    if (!t->outline || !t->outline_id) t->failed = 1;
+    for (int i = 0; i < nedges && !t->failed; i++) {
+      const double one = ZS_SUBPIXEL_ONE;
+      t->outline[i][0] = e[i].X0 / one, t->outline[i][1] = e[i].Y0 / one;
+      t->outline[i][2] = e[i].X1 / one, t->outline[i][3] = e[i].Y1 / one;
+      t->outline_id[i] = e[i].id;
+      if (e[i].id > t->max_id) t->max_id = e[i].id;
+      t->noutline = i + 1;
+    }
+  }
   if (t->o->json) {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddNumberToObject(o, "width", t->o->view.width);
@@ -372,36 +392,118 @@ static void rect(zs_image *im, int x0, int y0, int x1, int y1, uint32_t c, int f
     }
 }
 
+/* A line from (x0, y0) to (x1, y1), picture pixels, one pixel wide. */
+static void line(zs_image *im, double x0, double y0, double x1, double y1, uint32_t c) {
+  double dx = x1 - x0, dy = y1 - y0;
+  double len = fabs(dx) > fabs(dy) ? fabs(dx) : fabs(dy);
+  int n = (int)len + 1;
+  for (int i = 0; i <= n; i++) {
+    int x = (int)floor(x0 + dx * i / n), y = (int)floor(y0 + dy * i / n);
+    if (x >= 0 && y >= 0 && x < im->width && y < im->height)
+      im->rgb[(size_t)y * (size_t)im->width + (size_t)x] = c;
+  }
+}
+
+/* Halfway to white: an outline that shows over its own polygon's fill. */
+static uint32_t light(uint32_t c) { return ((c & 0xFEFEFE) >> 1) + 0x7F7F7F; }
+
+enum { PICTURE_PAPER = 0x101010, LABEL_INK = 0xD0D0D0 };
+
+/* The step picture of scanline y, in picture pixels (s per image pixel):
+ *
+ *   column numbers           |
+ *   row  the frame so far,   | the z-buffer as grey
+ *   nos  outlines, scanline, | (near is light)
+ *        spans, crossings    |
+ *   legend: the polygons' colours; XL, XR, SPAN, ROW; Z NEAR = LIGHT
+ */
 static void write_picture(tracer *t, int y) {
   const int w = t->o->view.width, h = t->o->view.height, s = t->o->scale;
+  const int k = s >= 12 ? 2 : 1; /* the labels' cell size */
+  const int line_h = (ZS_GLYPH_H + 3) * k;
+  const int left = 3 * ZS_GLYPH_ADVANCE * k + 2 * k, top = line_h;
+  /* the numbers every `every` columns, as they fit */
+  int every = 1, every_row = 1;
+  while (every * s < 3 * ZS_GLYPH_ADVANCE * k) every++;
+  while (every_row * s < (ZS_GLYPH_H + 1) * k) every_row++;
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
-  /* left: the frame so far; right: the z-buffer as grey (near white) */
-  if (zs_image_alloc(&im, 2 * w * s + s, h * s, &err)) {
+  if (zs_image_alloc(&im, left + 2 * w * s + s, top + h * s + 3 * line_h + k, &err)) {
     t->failed = 1;
     t->err = err;
     return;
   }
+  for (size_t i = 0; i < (size_t)im.width * (size_t)im.height; i++) im.rgb[i] = PICTURE_PAPER;
+  const int ox = left, oy = top, dx = left + (w + 1) * s; /* the frame's and depth's corners */
   for (int r = 0; r <= y; r++)
     for (int x = 0; x < w; x++) {
       size_t i = (size_t)r * (size_t)w + (size_t)x;
-      rect(&im, x * s, r * s, (x + 1) * s, (r + 1) * s, id_colour(t->ids[i]), 1);
+      rect(&im, ox + x * s, oy + r * s, ox + (x + 1) * s, oy + (r + 1) * s, id_colour(t->ids[i]), 1);
       uint32_t g = t->ids[i] == ZS_ID_NONE ? 0 : 255 - (t->depth[i] >> 24);
-      rect(&im, (w + 1 + x) * s, r * s, (w + 2 + x) * s, (r + 1) * s, g << 16 | g << 8 | g, 1);
+      rect(&im, dx + x * s, oy + r * s, dx + (x + 1) * s, oy + (r + 1) * s, g << 16 | g << 8 | g, 1);
     }
-  /* the pixel grid, faint */
-  for (int r = 0; r < h; r++)
-    for (int x = 0; x < w; x++) rect(&im, x * s, r * s, (x + 1) * s, (r + 1) * s, 0x303030, 0);
-  /* the scanline, its spans, and the exact edge crossings at its centre */
-  rect(&im, 0, y * s, w * s, (y + 1) * s, 0xFFFF00, 0);
-  for (int i = 0; i < t->nspans; i++)
-    rect(&im, t->spans[i].x0 * s, y * s + 2, (t->spans[i].x1 + 1) * s, (y + 1) * s - 2, 0xFFFFFF, 0);
-  for (int i = 0; i < t->npairs; i++) {
-    int xl = (int)((t->pairs[i].xl_real + 0.5) * s), xr = (int)((t->pairs[i].xr_real + 0.5) * s);
-    rect(&im, xl - 1, y * s, xl + 2, (y + 1) * s, 0xFF3030, 1);
-    rect(&im, xr - 1, y * s, xr + 2, (y + 1) * s, 0x30A0FF, 1);
+  for (int r = y + 1; r < h; r++)
+    for (int x = 0; x < w; x++) {
+      rect(&im, ox + x * s, oy + r * s, ox + (x + 1) * s, oy + (r + 1) * s, 0x202020, 1);
+      rect(&im, dx + x * s, oy + r * s, dx + (x + 1) * s, oy + (r + 1) * s, 0, 1);
+    }
+  /* the pixel grid, faint, and the row and column numbers */
+  char num[16];
+  for (int r = 0; r < h; r++) {
+    for (int x = 0; x < w; x++)
+      rect(&im, ox + x * s, oy + r * s, ox + (x + 1) * s, oy + (r + 1) * s, 0x303030, 0);
+    /* the current row's number always, the others as they fit beside it */
+    if (r != y && (r % every_row || abs(r - y) < every_row)) continue;
+    snprintf(num, sizeof num, "%3d", r % 1000);
+    zs_glyphs_draw(&im, k, oy + r * s + (s - ZS_GLYPH_H * k) / 2, k, r == y ? 0xFFFF00 : LABEL_INK,
+                   num);
   }
+  for (int x = 0; x < w; x += every) {
+    snprintf(num, sizeof num, "%d", x % 1000);
+    int len = (int)strlen(num) * ZS_GLYPH_ADVANCE * k - k;
+    zs_glyphs_draw(&im, ox + x * s + (s - len) / 2, k, k, LABEL_INK, num);
+  }
+  /* the outlines: the edges of the edge table (pixel centre c at c + 0.5) */
+  for (int i = 0; i < t->noutline; i++) {
+    const double *e = t->outline[i];
+    line(&im, ox + e[0] * s, oy + e[1] * s, ox + e[2] * s, oy + e[3] * s,
+         light(id_colour(t->outline_id[i])));
+  }
+  /* the scanline, its spans, and the exact edge crossings at its centre */
+  rect(&im, ox, oy + y * s, ox + w * s, oy + (y + 1) * s, 0xFFFF00, 0);
+  for (int i = 0; i < t->nspans; i++)
+    rect(&im, ox + t->spans[i].x0 * s, oy + y * s + 2, ox + (t->spans[i].x1 + 1) * s,
+         oy + (y + 1) * s - 2, 0xFFFFFF, 0);
+  for (int i = 0; i < t->npairs; i++) {
+    int xl = ox + (int)((t->pairs[i].xl_real + 0.5) * s), xr = ox + (int)((t->pairs[i].xr_real + 0.5) * s);
+    rect(&im, xl - 1, oy + y * s, xl + 2, oy + (y + 1) * s, 0xFF3030, 1);
+    rect(&im, xr - 1, oy + y * s, xr + 2, oy + (y + 1) * s, 0x30A0FF, 1);
+  }
+  /* the legend: the polygons' colours by id (up to 16), the marks, depth */
+  int ly = oy + h * s + k, lx = left;
+  const int sw = ZS_GLYPH_H * k; /* a swatch's side */
+  lx = zs_glyphs_draw(&im, lx, ly, k, LABEL_INK, "ID ");
+  for (uint32_t id = 0; id <= t->max_id && id < 16; id++) {
+    rect(&im, lx, ly, lx + sw, ly + sw, id_colour(id), 1);
+    snprintf(num, sizeof num, "%u ", id);
+    lx = zs_glyphs_draw(&im, lx + sw + k, ly, k, LABEL_INK, num);
+  }
+  ly += line_h;
+  lx = left;
+  static const struct { const char *name; uint32_t c; int filled; } marks[4] = {
+      {"XL ", 0xFF3030, 1}, {"XR ", 0x30A0FF, 1}, {"SPAN ", 0xFFFFFF, 0}, {"ROW", 0xFFFF00, 0}};
+  for (int m = 0; m < 4; m++) {
+    rect(&im, lx, ly, lx + sw, ly + sw, marks[m].c, marks[m].filled);
+    lx = zs_glyphs_draw(&im, lx + sw + k, ly, k, LABEL_INK, marks[m].name);
+  }
+  ly += line_h;
+  lx = zs_glyphs_draw(&im, left, ly, k, LABEL_INK, "Z ");
+  for (int g = 0; g < 4; g++) { /* far (dark) to near (light) */
+    uint32_t v = (uint32_t)(64 + 63 * g);
+    rect(&im, lx + g * sw, ly, lx + (g + 1) * sw, ly + sw, v << 16 | v << 8 | v, 1);
+  }
+  zs_glyphs_draw(&im, lx + 4 * sw + 2 * k, ly, k, LABEL_INK, "NEAR = LIGHT");
   char path[4200];
   snprintf(path, sizeof path, "%s/scanline-%04d.png", t->o->png_dir, y);
   if (zs_png_write(path, &im, &err)) {
@@ -651,6 +753,8 @@ int zs_cmd_trace(int argc, char **argv) {
   free(t.spans);
   free(t.ids);
   free(t.depth);
+  free(t.outline);
+  free(t.outline_id);
   zs_device_destroy(dev);
   zs_scene_free(&model);
   return 0;
@@ -662,6 +766,8 @@ fail:
   free(t.spans);
   free(t.ids);
   free(t.depth);
+  free(t.outline);
+  free(t.outline_id);
   zs_device_destroy(dev);
   if (have_model) zs_scene_free(&model);
   return zs_cli_exit_status(&err, parsing);
