@@ -796,70 +796,56 @@ static void stats_hash(const char *stats, char h[17]) {
   h[16] = '\0';
 }
 
-/* render -v's camera, passed back as options, draws the same bytes; n: the
- * files rendered. */
-static void camera_round_trip(const char *dir, int *rendered, int *seen) {
-  DIR *d = opendir(dir);
-  if (!d) return;
-  static const char *const suffixes[] = {".obj", ".ply", ".stl", ".off", ".gltf", ".json"};
-  for (struct dirent *e; (e = readdir(d));) {
-    if (e->d_name[0] == '.') continue;
-    char path[4200];
-    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-    struct stat st;
-    if (stat(path, &st) != 0) continue;
-    if (S_ISDIR(st.st_mode)) {
-      camera_round_trip(path, rendered, seen);
-      continue;
-    }
-    size_t n = strlen(e->d_name);
-    int model = 0;
-    for (size_t k = 0; k < sizeof suffixes / sizeof suffixes[0]; k++) {
-      size_t m = strlen(suffixes[k]);
-      model |= n > m && strcasecmp(e->d_name + n - m, suffixes[k]) == 0;
-    }
-    if (!model) continue;
-    (*seen)++;
-    char png[4096];
-    snprintf(png, sizeof png, "%s/cli-camera.png", ZS_BINARY_DIR);
-    const char *first[] = {"render", path, "--size", "96x72", "-v", "--stats", "-o", png, NULL};
-    if (zs_test_run_zscan(first, out, sizeof out, err, sizeof err) != 0) continue;
-    char h1[17], h2[17];
-    stats_hash(out, h1);
-    const char *cam = strstr(err, "zscan render: camera: ");
-    ck_assert_msg(cam != NULL, "%s: %s", path, err);
-    static char line[4096];
-    snprintf(line, sizeof line, "%s", cam + strlen("zscan render: camera: "));
-    line[strcspn(line, "\n")] = '\0';
-    const char *again[48] = {"render", path, "--size", "96x72", "--stats", "-o", png};
-    int k = 7;
-    for (char *w = strtok(line, " "); w && k < 46; w = strtok(NULL, " ")) again[k++] = w;
-    again[k] = NULL;
-    ck_assert_msg(zs_test_run_zscan(again, out, sizeof out, err, sizeof err) == 0, "%s: %s", path,
-                  err);
-    stats_hash(out, h2);
-    ck_assert_msg(strcmp(h1, h2) == 0, "%s: %s, again with its camera %s", path, h1, h2);
-    (*rendered)++;
-  }
-  closedir(d);
+typedef struct round_trip {
+  int rendered, seen; /* files rendered twice, and model files met */
+} round_trip;
+
+/* render -v's camera, passed back as options, draws the same bytes. */
+static void camera_round_trip(const char *path, void *user) {
+  round_trip *r = user;
+  r->seen++;
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-camera.png", ZS_BINARY_DIR);
+  const char *first[] = {"render", path, "--size", "96x72", "-v", "--stats", "-o", png, NULL};
+  if (zs_test_run_zscan(first, out, sizeof out, err, sizeof err) != 0) return;
+  char h1[17], h2[17];
+  stats_hash(out, h1);
+  const char *cam = strstr(err, "zscan render: camera: ");
+  ck_assert_msg(cam != NULL, "%s: %s", path, err);
+  static char line[4096];
+  snprintf(line, sizeof line, "%s", cam + strlen("zscan render: camera: "));
+  line[strcspn(line, "\n")] = '\0';
+  const char *again[48] = {"render", path, "--size", "96x72", "--stats", "-o", png};
+  int k = 7;
+  for (char *w = strtok(line, " "); w && k < 46; w = strtok(NULL, " ")) again[k++] = w;
+  again[k] = NULL;
+  ck_assert_msg(zs_test_run_zscan(again, out, sizeof out, err, sizeof err) == 0, "%s: %s", path,
+                err);
+  stats_hash(out, h2);
+  ck_assert_msg(strcmp(h1, h2) == 0, "%s: %s, again with its camera %s", path, h1, h2);
+  r->rendered++;
 }
 
+static const char *const model_suffixes[] = {".obj", ".ply", ".stl", ".off", ".gltf", ".json"};
+enum { NMODEL_SUFFIXES = sizeof model_suffixes / sizeof model_suffixes[0] };
+
 START_TEST(printed_camera_reproduces_the_image) {
-  int rendered = 0, seen = 0;
-  camera_round_trip(zs_test_src("tests/data"), &rendered, &seen);
-  camera_round_trip(zs_test_src("scene/examples"), &rendered, &seen);
-  int ours = rendered;
+  round_trip r = {0, 0};
+  zs_test_each_file(zs_test_src("tests/data"), model_suffixes, NMODEL_SUFFIXES, camera_round_trip, &r);
+  zs_test_each_file(zs_test_src("scene/examples"), model_suffixes, NMODEL_SUFFIXES,
+                    camera_round_trip, &r);
+  int ours = r.rendered;
   ck_assert_int_ge(ours, 20);
   static const char *const assimp_dirs[] = {"OBJ", "PLY", "STL", "OFF", "glTF2"};
   for (size_t k = 0; k < sizeof assimp_dirs / sizeof assimp_dirs[0]; k++) {
     char dir[256];
     snprintf(dir, sizeof dir, "/usr/share/assimp/models/%s", assimp_dirs[k]);
-    camera_round_trip(dir, &rendered, &seen);
+    zs_test_each_file(dir, model_suffixes, NMODEL_SUFFIXES, camera_round_trip, &r);
   }
 #ifdef ZS_HAVE_ASSIMP
-  ck_assert_int_ge(rendered - ours, 30);
+  ck_assert_int_ge(r.rendered - ours, 30);
 #endif
-  printf("camera round trip: %d of %d files rendered twice, the same bytes\n", rendered, seen);
+  printf("camera round trip: %d of %d files rendered twice, the same bytes\n", r.rendered, r.seen);
 }
 END_TEST
 

@@ -220,33 +220,19 @@ static int compare_one(const char *exe, const char *input, int *rendered) {
   return 1;
 }
 
-/* Every model file below dir (recursively) with one of the suffixes. */
-static void compare_tree(const char *exe, const char *dir, int *rendered, int *seen) {
-  DIR *d = opendir(dir);
-  if (!d) return;
-  struct dirent *e;
-  static const char *const suffixes[] = {".obj", ".ply", ".stl", ".off", ".gltf", ".glb"};
-  while ((e = readdir(d))) {
-    if (e->d_name[0] == '.') continue;
-    char path[4200];
-    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-    struct stat st;
-    if (stat(path, &st) != 0) continue;
-    if (S_ISDIR(st.st_mode)) {
-      compare_tree(exe, path, rendered, seen);
-      continue;
-    }
-    size_t n = strlen(e->d_name);
-    for (size_t k = 0; k < sizeof suffixes / sizeof suffixes[0]; k++) {
-      size_t m = strlen(suffixes[k]);
-      if (n > m && strcasecmp(e->d_name + n - m, suffixes[k]) == 0) {
-        (*seen)++;
-        compare_one(exe, path, rendered);
-      }
-    }
-  }
-  closedir(d);
+typedef struct comparison {
+  const char *exe;    /* the example program */
+  int rendered, seen; /* files rendered by both, and model files met */
+} comparison;
+
+static void compare_file(const char *path, void *user) {
+  comparison *c = user;
+  c->seen++;
+  compare_one(c->exe, path, &c->rendered);
 }
+
+static const char *const model_suffixes[] = {".obj", ".ply", ".stl", ".off", ".gltf", ".glb"};
+enum { NMODEL_SUFFIXES = sizeof model_suffixes / sizeof model_suffixes[0] };
 
 /* Builds examples/NAME.EXT with the compiler (and standard) given, against
  * the source tree's public headers and the shared library, as a user
@@ -267,23 +253,23 @@ static void build_example(const char *compiler, const char *std, const char *fil
 START_TEST(render_hash_equals_the_command) {
   char exe[4200];
   build_example(cc(), "c11", "render_hash.c", exe, sizeof exe);
-  int rendered = 0, seen = 0;
-  compare_tree(exe, zs_test_src("tests/data"), &rendered, &seen);
+  comparison c = {exe, 0, 0};
+  zs_test_each_file(zs_test_src("tests/data"), model_suffixes, NMODEL_SUFFIXES, compare_file, &c);
   /* tests/data holds the bad files too: both refuse those */
-  ck_assert_int_ge(seen, 40);
-  ck_assert_int_ge(rendered, 12);
-  int ours = rendered;
+  ck_assert_int_ge(c.seen, 40);
+  ck_assert_int_ge(c.rendered, 12);
+  int ours = c.rendered;
   static const char *const assimp_dirs[] = {"OBJ", "PLY", "STL", "OFF", "glTF2"};
   for (size_t k = 0; k < sizeof assimp_dirs / sizeof assimp_dirs[0]; k++) {
     char dir[256];
     snprintf(dir, sizeof dir, "/usr/share/assimp/models/%s", assimp_dirs[k]);
-    compare_tree(exe, dir, &rendered, &seen);
+    zs_test_each_file(dir, model_suffixes, NMODEL_SUFFIXES, compare_file, &c);
   }
 #ifdef ZS_HAVE_ASSIMP
-  ck_assert_int_ge(rendered - ours, 30); /* assimp-testmodels is installed by setup.sh */
+  ck_assert_int_ge(c.rendered - ours, 30); /* assimp-testmodels is installed by setup.sh */
 #endif
-  printf("render_hash: %d of %d model files rendered, each with the command's hash\n", rendered,
-         seen);
+  printf("render_hash: %d of %d model files rendered, each with the command's hash\n", c.rendered,
+         c.seen);
 }
 END_TEST
 

@@ -37,6 +37,8 @@ uint64_t zs_test_fnv1a(const void *data, size_t n) {
   return h;
 }
 
+#include <dirent.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -82,6 +84,32 @@ size_t zs_test_read(const char *path, char *buf, size_t cap) {
 int zs_test_exists(const char *path) {
   struct stat st;
   return stat(path, &st) == 0;
+}
+
+void zs_test_each_file(const char *dir, const char *const *suffixes, int n,
+                       void (*fn)(const char *path, void *user), void *user) {
+  DIR *d = opendir(dir);
+  if (!d) return;
+  for (struct dirent *e; (e = readdir(d));) {
+    if (e->d_name[0] == '.') continue;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+    struct stat st;
+    if (stat(path, &st) != 0) continue;
+    if (S_ISDIR(st.st_mode)) {
+      zs_test_each_file(path, suffixes, n, fn, user);
+      continue;
+    }
+    size_t len = strlen(e->d_name);
+    for (int k = 0; k < n; k++) {
+      size_t m = strlen(suffixes[k]);
+      if (len > m && strcasecmp(e->d_name + len - m, suffixes[k]) == 0) {
+        fn(path, user);
+        break;
+      }
+    }
+  }
+  closedir(d);
 }
 
 /* ---- meshes built by hand ---- */

@@ -31,6 +31,12 @@ size_t zs_test_read(const char *path, char *buf, size_t cap);
 /* Whether a file exists. */
 int zs_test_exists(const char *path);
 
+/* Calls fn(path, user) for every file below dir (recursively, hidden
+ * names skipped) whose name ends in one of the n suffixes, any case; a
+ * folder that cannot be opened is skipped. */
+void zs_test_each_file(const char *dir, const char *const *suffixes, int n,
+                       void (*fn)(const char *path, void *user), void *user);
+
 /* A mesh built by hand in a test: mb_vert / mb_face append, mb_free frees. */
 #include "raster/raster.h"
 typedef struct mesh_buf {

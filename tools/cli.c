@@ -95,13 +95,18 @@ zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err) {
   return ZS_OK;
 }
 
-zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
-                               zs_error *err) {
+const char *zs_cli_extension(const char *path) {
   const char *base = strrchr(path, '/');
   base = base ? base + 1 : path;
   const char *dot = strrchr(base, '.');
-  if (!dot || dot == base) return ZS_OK; /* no extension: a device, a pipe, a plain name */
-  if (strcasecmp(dot + 1, ext) == 0) return ZS_OK;
+  return dot && dot != base ? dot + 1 : NULL;
+}
+
+zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
+                               zs_error *err) {
+  const char *given = zs_cli_extension(path);
+  if (!given) return ZS_OK; /* no extension: a device, a pipe, a plain name */
+  if (strcasecmp(given, ext) == 0) return ZS_OK;
   char upper[16];
   size_t n = 0;
   for (; ext[n] && n + 1 < sizeof upper; n++)

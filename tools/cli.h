@@ -28,6 +28,9 @@ zs_status zs_cli_value(int argc, char **argv, int *i, const char **out, zs_error
 /* Refuses an output path whose directory does not exist or cannot be
  * written, before any work is done. */
 zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
+/* The extension of path's file name (after its last '.', not the name's
+ * first character), or NULL when it has none. */
+const char *zs_cli_extension(const char *path);
 /* An output whose name says another format than the one written (-o x.jpg
  * for a PNG) is refused: "-o: x.jpg: zscan writes PNG".  ext is the
  * format's extension ("png"), any case; a name without an extension, "-",

@@ -180,8 +180,8 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
     if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
     return ZS_OK;
   }
-  const char *dot = strrchr(o->out_png, '.');
-  o->svg = dot && !strchr(dot, '/') && strcasecmp(dot, ".svg") == 0;
+  const char *ext = zs_cli_extension(o->out_png);
+  o->svg = ext && strcasecmp(ext, "svg") == 0;
   if (o->svg && !o->hidden_line)
     return zs_error_set(err, ZS_ERR_ARG, "-o: %s: an SVG holds hidden lines (--style hidden-line)",
                         o->out_png);
