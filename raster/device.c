@@ -434,21 +434,6 @@ static int ordered_by_painter(const zs_device *d, const zs_setup_params *sp,
   return meets_sort_circle(d, poly, n);
 }
 
-/* Newell's normal of the face whose nv corners are eye[3 fv[i]]; inlined
- * with nv a constant for triangles and quads, whose loop then unrolls
- * (the same sums in the same order: the same bits). */
-__attribute__((always_inline)) static inline void newell_normal(const double *eye,
-                                                                const int32_t *fv,
-                                                                const int nv, double nrm[3]) {
-  nrm[0] = nrm[1] = nrm[2] = 0.0;
-  for (int i = 0, j = 1; i < nv; i++, j = j + 1 < nv ? j + 1 : 0) {
-    const double *a = &eye[3 * fv[i]], *c = &eye[3 * fv[j]];
-    nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
-    nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
-    nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
-  }
-}
-
 /* Faces [f0, f1): trivial reject, flat colour, clipping where a face
  * crosses a plane. */
 zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
@@ -503,11 +488,11 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
        * Newell's normal of the face in eye space gives their colour */
       double nrm[3];
       if (nv == 3)
-        newell_normal(v->eyepos, fv, 3, nrm);
+        zs_newell_normal(v->eyepos, 3, fv, 3, nrm);
       else if (nv == 4)
-        newell_normal(v->eyepos, fv, 4, nrm);
+        zs_newell_normal(v->eyepos, 3, fv, 4, nrm);
       else
-        newell_normal(v->eyepos, fv, nv, nrm);
+        zs_newell_normal(v->eyepos, 3, fv, nv, nrm);
       const uint32_t shaded = zs_shade_flat(sp.rgb, nrm);
       for (int32_t i = first_poly; i < b->npolys; i++) b->polys[i].rgb = shaded;
     }

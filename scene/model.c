@@ -178,20 +178,6 @@ static double turn(const double *a, const double *b, const double *c) {
   return (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
 }
 
-/* Newell's normal: twice the vector area of the polygon, exact for planar
- * polygons and the best-fitting plane's normal for non-planar ones.  Its
- * component along an axis is twice the signed area of the projection onto
- * the plane of the other two axes. */
-static void newell_normal(vec3 *p, int n, vec3 nrm) {
-  nrm[0] = nrm[1] = nrm[2] = 0.0;
-  for (int i = 0; i < n; i++) {
-    const double *a = p[i], *b = p[(i + 1) % n];
-    nrm[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    nrm[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    nrm[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-}
-
 /* p is relative to the centroid, so the plane of nrm through the centroid
  * passes through the origin. */
 static int is_planar(vec3 *p, int n, const vec3 nrm) {
@@ -398,7 +384,7 @@ static void add_split(zs_model *m, const int32_t *v, int n, split_scratch *sc, u
       p[i][k] = m->mesh.pos[3 * (size_t)v[i] + k] - centre[k];
 
   vec3 nrm;
-  newell_normal(p, n, nrm);
+  zs_newell_normal(&p[0][0], 3, NULL, n, nrm);
   if (nrm[0] == 0.0 && nrm[1] == 0.0 && nrm[2] == 0.0) {
     /* No area and no plane (collinear points, or a figure eight whose
      * halves cancel): triangles are at least convex. */
