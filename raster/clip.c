@@ -76,3 +76,28 @@ int zs_clip_polygon(const zs_clip_vert *in, int n, unsigned mask, double gx,
   for (int i = 0; i < count; i++) out[i] = src[i];
   return count;
 }
+
+/* Liang-Barsky in clip space, over the same planes in the same order as
+ * the polygons; the point where the segment leaves a plane is
+ * interpolated from both ends (a line has no neighbour to agree with). */
+int zs_clip_segment(zs_clip_vert *a, zs_clip_vert *b, double gx, double gy) {
+  double t0 = 0.0, t1 = 1.0;
+  for (int p = ZS_CLIP_NEAR; p <= ZS_CLIP_TOP; p <<= 1) {
+    const double da = zs_clip_plane_dist(a, p, gx, gy), db = zs_clip_plane_dist(b, p, gx, gy);
+    if (da < 0 && db < 0) return 0;
+    if (da < 0) {
+      double t = da / (da - db);
+      if (t > t0) t0 = t;
+    } else if (db < 0) {
+      double t = da / (da - db);
+      if (t < t1) t1 = t;
+    }
+  }
+  if (t0 > t1) return 0;
+  zs_clip_vert A = *a, B = *b;
+  if (t0 > 0) *a = (zs_clip_vert){A.x + t0 * (B.x - A.x), A.y + t0 * (B.y - A.y),
+                                  A.z + t0 * (B.z - A.z), A.w + t0 * (B.w - A.w)};
+  if (t1 < 1) *b = (zs_clip_vert){A.x + t1 * (B.x - A.x), A.y + t1 * (B.y - A.y),
+                                  A.z + t1 * (B.z - A.z), A.w + t1 * (B.w - A.w)};
+  return 1;
+}

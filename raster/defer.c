@@ -54,7 +54,7 @@
  * set up its next chunk until the slowest band was through the last one;
  * with two it can, and more gain nothing (zscan bench raster --case
  * builtin:plant --threads 2 measures it). */
-enum { MAX_CHUNKS = 64, MAX_BANDS = 64, DEFER_SLOTS_PER_THREAD = 2 };
+enum { MAX_CHUNKS = 64, DEFER_SLOTS_PER_THREAD = 2 };
 
 /* Polls before a task with nothing to take sleeps: enough to outlast most
  * waits of the flush for a set-up or a band, as a task that sleeps costs
@@ -75,7 +75,6 @@ typedef struct queued_draw {
 } queued_draw;
 
 struct zs_deferred {
-  int on;
   queued_draw *q;
   int32_t n, cap;
   int32_t first[MAX_CHUNKS + 1];   /* chunk c: draws first[c] .. first[c + 1] - 1 */
@@ -90,31 +89,22 @@ struct zs_deferred {
   pthread_cond_t changed;
 };
 
-void zs_device_defer_draws(zs_device *d, int on) {
-  if (!d->deferred) {
-    if (!on) return;
-    /* without memory for the queue, drawing stays immediate */
-    zs_deferred *q = calloc(1, sizeof *q);
-    if (!q) return;
-    if (pthread_mutex_init(&q->lock, NULL) != 0) {
-      free(q);
-      return;
-    }
-    if (pthread_cond_init(&q->changed, NULL) != 0) {
-      pthread_mutex_destroy(&q->lock);
-      free(q);
-      return;
-    }
-    q->rows1 = -1; /* no rows covered yet */
-    d->deferred = q;
+int zs_defer_start(zs_device *d) {
+  if (d->deferred) return 1;
+  zs_deferred *q = calloc(1, sizeof *q);
+  if (!q) return 0;
+  if (pthread_mutex_init(&q->lock, NULL) != 0) {
+    free(q);
+    return 0;
   }
-  d->deferred->on = on != 0;
-}
-
-int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k) {
-  return d->deferred && d->deferred->on && d->pool && d->cfg.algo == ZS_ALGO_ZBUFFER &&
-         (k == ZS_KERNEL_DRAW || k == ZS_KERNEL_OVERDRAW) && !d->query_open &&
-         mesh->nfaces < ZS_DEFER_MAX_FACES;
+  if (pthread_cond_init(&q->changed, NULL) != 0) {
+    pthread_mutex_destroy(&q->lock);
+    free(q);
+    return 0;
+  }
+  q->rows1 = -1; /* no rows covered yet */
+  d->deferred = q;
+  return 1;
 }
 
 zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
@@ -162,14 +152,14 @@ typedef struct flush_job {
   zs_target t;
   int nbands, row0, rows;      /* bands split rows row0 .. row0 + rows - 1 */
   int nslots;                   /* chunk c is set up in batch c % nslots */
-  int ok[MAX_BANDS];
+  int ok[ZS_MAX_BANDS];
   /* the flow, under q->lock */
   int next_setup;               /* the next chunk to set up */
   int last_chunk;               /* the last chunk to walk: a failed set-up ends the queue */
   int bands_left;               /* bands not through last_chunk */
   uint8_t set_up[MAX_CHUNKS];   /* chunk set up (whole, or up to its failed draw) */
-  int band_next[MAX_BANDS];     /* the next chunk each band walks */
-  uint8_t band_busy[MAX_BANDS];
+  int band_next[ZS_MAX_BANDS];     /* the next chunk each band walks */
+  uint8_t band_busy[ZS_MAX_BANDS];
   _Atomic uint32_t changes;     /* bumped under q->lock at each change of the flow */
 } flush_job;
 
@@ -450,8 +440,8 @@ zs_status zs_device_flush(zs_device *d, zs_error *err) {
   atomic_init(&j.changes, 0);
   j.d = d;
   j.q = q;
-  j.k = zs_draw_kernel(d);
-  j.t = zs_device_frame_target(d);
+  j.k = d->kernel;
+  j.t = zs_draw_frame_target(d);
   zs_status st = flush_queue(d, &j, err);
   q->n = 0;
   for (int c = 0; c < MAX_CHUNKS; c++) zs_batch_reset(&q->batch[c]);

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "raster/exactmath.h"
+#include "raster/grow.h"
 #include "raster/internal.h"
 
 const char *zs_motion_class_name(zs_motion_class m) {
@@ -38,11 +39,9 @@ void zs_depthsort_free(zs_depthsort *ds) {
 int zs_depthsort_note(zs_depthsort *ds, uint32_t id, double key) {
   if (ds->nfaces == ds->cap_faces) {
     uint32_t cap = ds->cap_faces ? 2 * ds->cap_faces : 1024;
-    uint32_t *i = realloc(ds->face_ids, (size_t)cap * sizeof *i);
-    if (i) ds->face_ids = i;
-    double *k = realloc(ds->face_keys, (size_t)cap * sizeof *k);
-    if (k) ds->face_keys = k;
-    if (!i || !k) return 0;
+    void **const arrays[] = {(void **)&ds->face_ids, (void **)&ds->face_keys};
+    const size_t sizes[] = {sizeof *ds->face_ids, sizeof *ds->face_keys};
+    if (!zs_resize_each(arrays, sizes, 2, cap)) return 0;
     ds->cap_faces = cap;
   }
   ds->face_ids[ds->nfaces] = id;
@@ -181,20 +180,14 @@ static int reserve_ids(zs_depthsort *ds, uint32_t max_id) {
   if (max_id < ds->cap_ids) return 1;
   uint32_t cap = ds->cap_ids ? ds->cap_ids : 1024;
   while (cap <= max_id) cap *= 2;
-  double *k = realloc(ds->key_of, (size_t)cap * sizeof *k);
-  if (k) ds->key_of = k;
-  double *pk = realloc(ds->prev_key, (size_t)cap * sizeof *pk);
-  if (pk) ds->prev_key = pk;
-  int32_t *r = realloc(ds->rank_of, (size_t)cap * sizeof *r);
-  if (r) ds->rank_of = r;
-  uint32_t *s = realloc(ds->seen, (size_t)cap * sizeof *s);
-  if (s) ds->seen = s;
-  uint32_t *w = realloc(ds->was, (size_t)cap * sizeof *w);
-  if (w) ds->was = w;
-  if (!k || !pk || !r || !s || !w) return 0;
+  void **const arrays[] = {(void **)&ds->key_of, (void **)&ds->prev_key, (void **)&ds->rank_of,
+                           (void **)&ds->seen, (void **)&ds->was};
+  const size_t sizes[] = {sizeof *ds->key_of, sizeof *ds->prev_key, sizeof *ds->rank_of,
+                          sizeof *ds->seen, sizeof *ds->was};
+  if (!zs_resize_each(arrays, sizes, 5, cap)) return 0;
   /* new ids were never seen: stamp 0 is no frame (frames count from 1) */
-  memset(ds->seen + ds->cap_ids, 0, (size_t)(cap - ds->cap_ids) * sizeof *s);
-  memset(ds->was + ds->cap_ids, 0, (size_t)(cap - ds->cap_ids) * sizeof *w);
+  memset(ds->seen + ds->cap_ids, 0, (size_t)(cap - ds->cap_ids) * sizeof *ds->seen);
+  memset(ds->was + ds->cap_ids, 0, (size_t)(cap - ds->cap_ids) * sizeof *ds->was);
   ds->cap_ids = cap;
   return 1;
 }
@@ -203,12 +196,11 @@ static int reserve_order(zs_depthsort *ds, uint32_t n) {
   if (n <= ds->cap_order) return 1;
   uint32_t cap = ds->cap_order ? ds->cap_order : 1024;
   while (cap < n) cap *= 2;
-  uint32_t **lists[4] = {&ds->order, &ds->prev_order, &ds->tmp, &ds->fresh};
-  for (int i = 0; i < 4; i++) {
-    uint32_t *p = realloc(*lists[i], (size_t)cap * sizeof *p);
-    if (!p) return 0;
-    *lists[i] = p;
-  }
+  void **const arrays[] = {(void **)&ds->order, (void **)&ds->prev_order, (void **)&ds->tmp,
+                           (void **)&ds->fresh};
+  const size_t sizes[] = {sizeof *ds->order, sizeof *ds->prev_order, sizeof *ds->tmp,
+                          sizeof *ds->fresh};
+  if (!zs_resize_each(arrays, sizes, 4, cap)) return 0;
   ds->cap_order = cap;
   return 1;
 }
@@ -359,4 +351,94 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
   clock_gettime(CLOCK_MONOTONIC, &t1);
   ds->ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
   return 1;
+}
+
+/* ---- which faces the painter orders (the face stage asks, draw.c) ---- */
+
+/* Whether the polygon p[0..n-1] (clip space, w > 0) meets depth sort's
+ * circle around the window: some edge passes within its radius (a corner
+ * inside is an edge's end inside), or the polygon holds its centre (by
+ * the crossings of the ray from the centre along +u). */
+static int meets_sort_circle(const zs_device *d, const zs_clip_vert *p, int n) {
+  double u0 = (p[n - 1].x / p[n - 1].w - d->sort_cx) * d->sort_sx;
+  double v0 = (p[n - 1].y / p[n - 1].w - d->sort_cy) * d->sort_sy;
+  int inside = 0;
+  for (int i = 0; i < n; i++) {
+    double u = (p[i].x / p[i].w - d->sort_cx) * d->sort_sx;
+    double v = (p[i].y / p[i].w - d->sort_cy) * d->sort_sy;
+    /* the point of the edge (u0, v0)-(u, v) nearest the centre */
+    double du = u - u0, dv = v - v0, len2 = du * du + dv * dv;
+    double t = len2 > 0.0 ? -(u0 * du + v0 * dv) / len2 : 0.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    double nu = u0 + t * du, nv = v0 + t * dv;
+    if (nu * nu + nv * nv <= d->sort_r2) return 1;
+    if ((v0 > 0.0) != (v > 0.0) && u0 - v0 * du / dv > 0.0) inside = !inside;
+    u0 = u;
+    v0 = v;
+  }
+  return inside;
+}
+
+/* Whether a face that set-up found turned away or without area may be
+ * turned to the eye after all: its area in pixels from the unsnapped
+ * corners is at most what snapping to 1/256 pixel can move it by (half a
+ * subpixel a coordinate: under 1/256 of the lengths of the corners'
+ * neighbour chords, which no rotation changes).  Set-up's back test is on
+ * snapped corners, so a face far off or seen edge-on turns from drawn to
+ * back or to no area as the view rolls; this test does not. */
+static int nearly_turned_to_eye(const zs_setup_params *sp, const zs_clip_vert *p, int n) {
+  double X[ZS_CLIP_MAX_VERTS], Y[ZS_CLIP_MAX_VERTS];
+  for (int i = 0; i < n; i++) { /* window pixels, y down, as snapped */
+    zs_window_xy(sp->width, sp->height, &p[i], &X[i], &Y[i]);
+    Y[i] = sp->height - Y[i];
+  }
+  double area2 = 0.0, chords = 0.0;
+  for (int i = 0, j = n - 1, k = n - 2; i < n; k = j, j = i++) {
+    area2 += X[j] * Y[i] - X[i] * Y[j];
+    double cx = X[i] - X[k], cy = Y[i] - Y[k]; /* the chord around corner j */
+    chords += sqrt(cx * cx + cy * cy);
+  }
+  return area2 <= chords / 256.0 + n / 65536.0; /* back faces: area2 > 0 */
+}
+
+/* Whether depth sort orders a face set-up has seen (result r): whether
+ * it meets the circle, and, where back faces are culled, is or may be
+ * turned to the eye.  An unclipped face (clipped NULL; its corners fv,
+ * snapped in v->snap) drawn with a corner in the window does, and one
+ * plainly turned away does not; else the tests run on the clipped polygon
+ * or on the corners copied to scratch. */
+int zs_depthsort_selects(const zs_device *d, const zs_setup_params *sp,
+                              zs_setup_result r, const zs_vert_scratch *v, const int32_t *fv,
+                              const zs_clip_vert *clipped, int n, zs_clip_vert *scratch) {
+  const zs_clip_vert *poly = clipped;
+  if (!clipped) {
+    const zs_snap_vert *sn = v->snap; /* corner i at sn[fv[i]] */
+    if (r == ZS_SETUP_BACK && sp->cull_back) {
+      /* Most back faces are plainly so: twice their snapped area (in
+       * subpixels) beyond four times their L1 perimeter (which bounds
+       * twice the chords) plus the corners, more than snapping can take
+       * away and nearly_turned_to_eye allow. */
+      int64_t area2 = 0, perimeter = 0;
+      for (int i = 0, j = n - 1; i < n; j = i++) {
+        const zs_snap_vert *si = &sn[fv[i]], *sj = &sn[fv[j]];
+        area2 += (int64_t)sj->x * si->y - (int64_t)si->x * sj->y;
+        perimeter += llabs((int64_t)si->x - sj->x) + llabs((int64_t)si->y - sj->y);
+      }
+      if (area2 > 4 * perimeter + n + 1) return 0;
+    }
+    if (r == ZS_SETUP_DRAWN) {
+      const int64_t wx = (int64_t)sp->width * ZS_SUBPIXEL_ONE;
+      const int64_t wy = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
+      for (int i = 0; i < n; i++) {
+        const zs_snap_vert *si = &sn[fv[i]];
+        if (si->x >= 0 && si->x <= wx && si->y >= 0 && si->y <= wy) return 1;
+      }
+    }
+    for (int i = 0; i < n; i++) scratch[i] = v->clip[fv[i]];
+    poly = scratch;
+  }
+  if ((r == ZS_SETUP_BACK || r == ZS_SETUP_DEGENERATE) && sp->cull_back &&
+      !nearly_turned_to_eye(sp, poly, n))
+    return 0;
+  return meets_sort_circle(d, poly, n);
 }

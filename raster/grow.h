@@ -24,4 +24,18 @@ static inline int zs_grow(void **p, int32_t *cap, int64_t need, size_t size) {
   return 1;
 }
 
+/* Resizes n parallel arrays to cap elements each: *arrays[i], of
+ * sizes[i] bytes an element.  On failure (0) every array is still valid
+ * (some at the new size); the caller keeps its old capacity. */
+static inline int zs_resize_each(void **const arrays[], const size_t sizes[], int n,
+                                 size_t cap) {
+  int ok = 1;
+  for (int i = 0; i < n; i++) {
+    void *q = realloc(*arrays[i], cap * sizes[i]);
+    if (q) *arrays[i] = q;
+    else ok = 0;
+  }
+  return ok;
+}
+
 #endif

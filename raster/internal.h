@@ -10,6 +10,14 @@
 
 #include "raster/raster.h"
 
+/* Threads a device may have, and bands of rows a walk is cut into: the
+ * fixed sizes of the per-thread and per-band records. */
+enum { ZS_MAX_THREADS = 64, ZS_MAX_BANDS = 64 };
+
+static inline void zs_fill_u32(uint32_t *p, size_t n, uint32_t v) {
+  for (size_t i = 0; i < n; i++) p[i] = v;
+}
+
 /* A polygon may gain one vertex per clip plane (6 planes). */
 enum { ZS_CLIP_MAX_VERTS = ZS_MAX_POLY_VERTS + 6 };
 
@@ -98,6 +106,9 @@ static inline unsigned zs_clip_outcode(const zs_clip_vert *v, double gx, double 
  * vertex count (0 when nothing is left). */
 int zs_clip_polygon(const zs_clip_vert *in, int n, unsigned mask, double gx,
                     double gy, zs_clip_vert *out);
+/* Clips the segment a-b to the same planes (all six); returns 0 when
+ * nothing is left (hidden-line edges, lines.c). */
+int zs_clip_segment(zs_clip_vert *a, zs_clip_vert *b, double gx, double gy);
 
 /* ---- setup.c ---- */
 typedef struct zs_setup_params {
@@ -143,13 +154,15 @@ static inline void zs_window_xy(int width, int height, const zs_clip_vert *v, do
   *xw = (v->x / v->w + 1.0) * (0.5 * width);
   *yw = (v->y / v->w + 1.0) * (0.5 * height);
 }
+/* Its window depth, in [0, 1] inside the near and far planes. */
+static inline double zs_window_depth(const zs_clip_vert *v) { return (v->z / v->w + 1.0) * 0.5; }
 
 static inline void zs_snap_vertex(const zs_setup_params *sp, const zs_clip_vert *v,
                                   zs_snap_vert *out) {
   const int64_t h_sub = (int64_t)sp->height * ZS_SUBPIXEL_ONE;
   double xw, yw;
   zs_window_xy(sp->width, sp->height, v, &xw, &yw);
-  double zw = (v->z / v->w + 1.0) * 0.5;
+  double zw = zs_window_depth(v);
   out->x = (int32_t)lrint(xw * ZS_SUBPIXEL_ONE);
   out->y = (int32_t)(h_sub - lrint(yw * ZS_SUBPIXEL_ONE));
   out->z = zw < 0.0 ? 0.0 : zw > 1.0 ? 1.0 : zw;
@@ -214,7 +227,7 @@ typedef struct zs_row_hooks {
   void *user;
 } zs_row_hooks;
 
-/* An edge being walked: the exact integer DDA of scanline.c. */
+/* An edge being walked: the exact integer DDA (edge_dda.h). */
 typedef struct zs_edge_dda {
   int64_t x, rem, q, rs, d;
   int32_t last;  /* the last row it covers (the lecture's dy: last - y) */
@@ -243,8 +256,6 @@ typedef struct zs_active {
 static inline int64_t zs_plane_at(uint64_t zrow, int64_t dzdx, int64_t x) {
   return (int64_t)(zrow + (uint64_t)dzdx * (uint64_t)x);
 }
-
-void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row);
 
 /* Per-walk scratch, kept by the device so walks do not allocate. */
 typedef struct zs_walk_scratch {
@@ -287,11 +298,11 @@ static inline uint32_t zs_shade_flat(uint32_t rgb, const double n[3]) {
   return r << 16 | g << 8 | b;
 }
 
-/* The colours of one finished row for the shading mode. */
-void zs_shade_row(zs_shade shade, int width, const uint32_t *depth,
-                  const uint32_t *id, const uint32_t *count,
-                  uint32_t background, double znear, double zfar,
-                  int perspective, uint32_t *rgb_out);
+/* The colours of one finished row (out) for a shading mode other than
+ * flat; chosen with the projection, when the camera is set (device.c). */
+typedef void (*zs_row_shader)(int width, const uint32_t *depth, const uint32_t *id,
+                              const uint32_t *count, double znear, double zfar, uint32_t *out);
+zs_row_shader zs_row_shader_for(zs_shade shade, int perspective);
 
 /* ---- depthsort.c ---- */
 typedef struct zs_depthsort {
@@ -347,6 +358,15 @@ typedef struct zs_draw_prep {
   zs_setup_params sp;
   int flat, need_eye;
 } zs_draw_prep;
+
+/* depthsort.c: whether the painter orders a face that set-up has seen
+ * (result r): it meets the circle around the window and, where back faces
+ * are culled, is or may be turned to the eye.  An unclipped face
+ * (clipped NULL; corners fv, snapped in v->snap) or the clipped polygon
+ * of n corners; scratch holds n corners. */
+int zs_depthsort_selects(const zs_device *d, const zs_setup_params *sp, zs_setup_result r,
+                         const zs_vert_scratch *v, const int32_t *fv, const zs_clip_vert *clipped,
+                         int n, zs_clip_vert *scratch);
 
 /* The counters the set-up of a range of faces adds. */
 typedef struct zs_face_counts {
@@ -408,6 +428,22 @@ struct zs_device {
   zs_batch *setup_parts;          /* a large draw's faces set up by thread
                                    * t > 0 (thread 0 uses batch) */
   int last_was_query;             /* the GPU's last command was a query box */
+  /* Chosen once, at create, from the mode, the shading and the threads
+   * (device.c, choose_stages; draw again when deferral is switched), so
+   * that no command asks which mode it is in. */
+  zs_kernel kernel;               /* what a draw's pixels do: DRAW or OVERDRAW */
+  zs_draw_prep prep_of[3];        /* a draw's fixed part, per kernel */
+  zs_depthsort *painter;          /* &depthsort in depthsort mode, else NULL */
+  zs_status (*draw)(zs_device *d, const zs_mesh *mesh, const double model[16],
+                    uint32_t id_base, uint32_t rgb, zs_error *err);
+  zs_status (*set_up)(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
+                      uint32_t id_base, uint32_t rgb, zs_error *err);
+  int (*walk)(zs_device *d, zs_kernel k, zs_walk_counts *out);
+  void (*clear_buffers)(zs_device *d);
+  zs_status (*finish)(zs_device *d, zs_row_sink sink, void *user, zs_error *err);
+  zs_row_shader shade_row;        /* and with the projection (set_camera) */
+  void (*emit)(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+               const uint32_t *rgb, const uint32_t *count, zs_row_sink sink, void *user);
   zs_deferred *deferred;          /* zs_device_defer_draws: the queued draws */
   /* zs_device_keep_line_runs: the hidden lines as vectors (lines.c) */
   int keep_runs;
@@ -416,10 +452,12 @@ struct zs_device {
   int32_t nruns, cap_runs;
 };
 
-/* device.c: a draw's preparation, its vertices [i0, i1) transformed into
- * v, its faces [f0, f1) set up into b (the painter's keys to ds, NULL when
- * not the painter); a face with a vertex out of range stops it with an
- * error. */
+/* draw.c, the draw stage: a draw's preparation (its fixed part per
+ * kernel, chosen at create, and its matrices), its vertices [i0, i1)
+ * transformed into v, its faces [f0, f1) set up into b (the painter's
+ * keys to ds, NULL when not the painter); a face with a vertex out of
+ * range stops it with an error. */
+void zs_draw_prep_fixed(const zs_device *d, zs_kernel k, zs_draw_prep *p);
 void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p);
 void zs_draw_transform(const zs_device *d, const zs_draw_prep *p, const zs_mesh *mesh,
                        zs_vert_scratch *v, int32_t i0, int32_t i1);
@@ -430,6 +468,9 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *p, const zs_vert
 void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc);
 /* A drawn walk's counts into the device's counters. */
 void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c);
+/* The full-frame buffers of zbuffer mode as a walk's target. */
+zs_target zs_draw_frame_target(zs_device *d);
+
 /* Drawing at once, a draw from ZS_PARALLEL_SETUP_FACES faces is
  * transformed and set up in parts over the threads; below, handing the
  * work over costs more than it saves.  Deferred, draws below
@@ -443,36 +484,43 @@ void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c);
 enum { ZS_PARALLEL_SETUP_FACES = 4096, ZS_DEFER_MAX_FACES = 262144 };
 /* The bands a walk of `rows` rows takes on `threads` threads: four a
  * thread, taken in turn (the rows of a picture do not hold equal work: the
- * objects sit where they sit), at least 16 rows a band, at most 64 bands;
- * 0 or 1 means one walk. */
+ * objects sit where they sit), at least 16 rows a band, at most
+ * ZS_MAX_BANDS; 0 or 1 means one walk. */
 static inline int zs_band_count(int threads, int rows) {
-  int n = 4 * threads < 64 ? 4 * threads : 64;
+  int n = 4 * threads < ZS_MAX_BANDS ? 4 * threads : ZS_MAX_BANDS;
   return n < rows / 16 ? n : rows / 16;
 }
-/* The kernel a draw uses in the device's shading mode. */
-static inline zs_kernel zs_draw_kernel(const zs_device *d) {
-  return d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
-}
-/* The full-frame buffers of zbuffer mode as a walk's target. */
-zs_target zs_device_frame_target(zs_device *d);
+
+/* immediate.c: drawing at once.  A draw through the draw stage into the
+ * batch (set_up: whole on one thread, or split over the pool when large),
+ * then the batch walked (walk: into the full frame, on one thread or in
+ * bands, or kept for finish in scanline and depthsort modes); the walk's
+ * counts go to out.  Shared by zs_device_draw and the query boxes. */
+zs_status zs_set_up_whole(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
+                          uint32_t id_base, uint32_t rgb, zs_error *err);
+zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
+                          uint32_t id_base, uint32_t rgb, zs_error *err);
+int zs_walk_frame(zs_device *d, zs_kernel k, zs_walk_counts *out);
+int zs_walk_frame_banded(zs_device *d, zs_kernel k, zs_walk_counts *out);
+int zs_walk_kept(zs_device *d, zs_kernel k, zs_walk_counts *out);
+zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[16],
+                          uint32_t id_base, uint32_t rgb, zs_kernel k, zs_walk_counts *out,
+                          zs_error *err);
+
+/* finish.c: sets d->finish and d->emit for the mode and the shading. */
+void zs_finish_choose(zs_device *d);
 
 /* defer.c: draws queued while zs_device_defer_draws is on, and rendered
  * together at the next flush: set up in parallel, walked in bands of rows,
  * each band taking the draws in order; counters and clock settled draw by
- * draw in issue order, so everything is what immediate drawing gives. */
-int zs_defer_wanted(const zs_device *d, const zs_mesh *mesh, zs_kernel k);
+ * draw in issue order, so everything is what immediate drawing gives.
+ * zs_defer_start makes the queue (0: no memory for it). */
+int zs_defer_start(zs_device *d);
 zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
                         uint32_t id_base, uint32_t rgb, zs_kernel k, zs_error *err);
 void zs_defer_discard(zs_device *d);
 void zs_defer_free(zs_device *d);
 size_t zs_defer_bytes(const zs_device *d);
-
-/* Draws mesh with kernel k (DRAW or QUERY); the walk's counts go to out.
- * Shared by zs_device_draw and zs_device_query_box. */
-zs_status zs_device_draw_with(zs_device *d, const zs_mesh *mesh,
-                              const double model[16], uint32_t id_base,
-                              uint32_t rgb, zs_kernel k, zs_walk_counts *out,
-                              zs_error *err);
 
 /* clock.c: the GPU time (ps) of a draw or query box with these counts. */
 int64_t zs_clock_command_cost(const zs_device *d, int32_t vertices, uint64_t polygons,

@@ -18,30 +18,7 @@ zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {
 static void to_window(const zs_device *d, const zs_clip_vert *v, double out[3]) {
   zs_window_xy(d->cfg.width, d->cfg.height, v, &out[0], &out[1]);
   out[1] = d->cfg.height - out[1];
-  out[2] = (v->z / v->w + 1.0) * 0.5;
-}
-
-/* Clips the segment a-b to the near and far planes and the guard band
- * (Liang-Barsky in clip space); returns 0 when nothing is left. */
-static int clip_segment(const zs_device *d, zs_clip_vert *a, zs_clip_vert *b) {
-  double t0 = 0.0, t1 = 1.0;
-  const double gx = d->gx, gy = d->gy;
-  double da[6] = {a->z + a->w, a->w - a->z, gx * a->w + a->x, gx * a->w - a->x,
-                  gy * a->w + a->y, gy * a->w - a->y};
-  double db[6] = {b->z + b->w, b->w - b->z, gx * b->w + b->x, gx * b->w - b->x,
-                  gy * b->w + b->y, gy * b->w - b->y};
-  for (int p = 0; p < 6; p++) {
-    if (da[p] < 0 && db[p] < 0) return 0;
-    if (da[p] < 0) { double t = da[p] / (da[p] - db[p]); if (t > t0) t0 = t; }
-    else if (db[p] < 0) { double t = da[p] / (da[p] - db[p]); if (t < t1) t1 = t; }
-  }
-  if (t0 > t1) return 0;
-  zs_clip_vert A = *a, B = *b;
-  if (t0 > 0) *a = (zs_clip_vert){A.x + t0 * (B.x - A.x), A.y + t0 * (B.y - A.y),
-                                  A.z + t0 * (B.z - A.z), A.w + t0 * (B.w - A.w)};
-  if (t1 < 1) *b = (zs_clip_vert){A.x + t1 * (B.x - A.x), A.y + t1 * (B.y - A.y),
-                                  A.z + t1 * (B.z - A.z), A.w + t1 * (B.w - A.w)};
-  return 1;
+  out[2] = zs_window_depth(v);
 }
 
 void zs_device_keep_line_runs(zs_device *d, int keep) { d->keep_runs = keep; }
@@ -170,7 +147,7 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
       zs_clip_vert a = {o[0], o[1], o[2], o[3]};
       zs_mat_apply(mvp, &mesh->pos[3 * fv[(i + 1) % n]], o);
       zs_clip_vert b = {o[0], o[1], o[2], o[3]};
-      if (!clip_segment(d, &a, &b)) continue;
+      if (!zs_clip_segment(&a, &b, d->gx, d->gy)) continue;
       double p[3], q[3];
       to_window(d, &a, p);
       to_window(d, &b, q);
@@ -201,7 +178,7 @@ zs_status zs_device_draw_box_lines(zs_device *d, const double lo[3], const doubl
       zs_clip_vert va = {o[0], o[1], o[2], o[3]};
       zs_mat_apply(mvp, pb, o);
       zs_clip_vert vb = {o[0], o[1], o[2], o[3]};
-      if (!clip_segment(d, &va, &vb)) continue;
+      if (!zs_clip_segment(&va, &vb, d->gx, d->gy)) continue;
       double p[3], q[3];
       to_window(d, &va, p);
       to_window(d, &vb, q);

@@ -113,7 +113,7 @@ zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const doubl
   uint64_t polygons = zs_polygons_set_up(&d->stats);
   zs_walk_counts c;
   zs_clock_cpu(d, d->costs.cpu_per_query);
-  zs_status st = zs_device_draw_with(d, &boxes, NULL, 0, 0, ZS_KERNEL_QUERY, &c, err);
+  zs_status st = zs_draw_at_once(d, &boxes, NULL, 0, 0, ZS_KERNEL_QUERY, &c, err);
   free(pos);
   free(start);
   free(vert);

@@ -29,33 +29,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/edge_dda.h"
+#include "raster/grow.h"
 #include "raster/internal.h"
-
-static int64_t floor_div(int64_t a, int64_t d) {
-  return a >= 0 ? a / d : -((-a + d - 1) / d);
-}
-
-static inline void dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
-  int64_t dy = (int64_t)e->Y1 - e->Y0, dx = (int64_t)e->X1 - e->X0;
-  s->d = 256 * dy;
-  int64_t num = ((int64_t)e->X0 - 128) * dy + ((int64_t)row * 256 + 128 - e->Y0) * dx;
-  s->x = floor_div(num + s->d - 1, s->d); /* ceil */
-  s->rem = s->x * s->d - num;
-  s->q = floor_div(256 * dx, s->d);
-  s->rs = 256 * dx - s->q * s->d;
-  s->last = zs_last_row(e->Y1);
-}
-
-void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) { dda_start(s, e, row); }
-
-/* The carry without a branch: its pattern follows the edge's slope, which
- * the branch predictor cannot learn across thousands of small edges. */
-static inline void dda_step(zs_edge_dda *s) {
-  int64_t rem = s->rem - s->rs;
-  int64_t carry = rem < 0;
-  s->rem = rem + (s->d & -carry);
-  s->x += s->q + carry;
-}
 
 /* Index of the edge of chain [first, last] that covers row. */
 static int32_t edge_at(const zs_edge *edges, int32_t first, int32_t last,
@@ -159,21 +135,15 @@ static int cmp_int64(const void *a, const void *b) {
 
 static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
   if (rows > s->cap_rows) {
-    int32_t *p = realloc(s->bucket_head, (size_t)rows * sizeof *p);
-    if (!p) return 0;
-    s->bucket_head = p;
+    void **const arrays[] = {(void **)&s->bucket_head};
+    const size_t sizes[] = {sizeof *s->bucket_head};
+    if (!zs_resize_each(arrays, sizes, 1, (size_t)rows)) return 0;
     s->cap_rows = rows;
   }
   if (polys > s->cap_polys) {
-    int32_t *p = realloc(s->next, (size_t)polys * sizeof *p);
-    if (!p) return 0;
-    s->next = p;
-    zs_active *a = realloc(s->active, (size_t)polys * sizeof *a);
-    if (!a) return 0;
-    s->active = a;
-    int64_t *c = realloc(s->cross, (size_t)polys * sizeof *c);
-    if (!c) return 0;
-    s->cross = c;
+    void **const arrays[] = {(void **)&s->next, (void **)&s->active, (void **)&s->cross};
+    const size_t sizes[] = {sizeof *s->next, sizeof *s->active, sizeof *s->cross};
+    if (!zs_resize_each(arrays, sizes, 3, (size_t)polys)) return 0;
     s->cap_polys = polys;
     s->cap_active = polys;
   }
@@ -238,8 +208,8 @@ static inline void activate(zs_active *a, int32_t i, const zs_poly *p, const zs_
   a->right_end = a->left_end + p->nright;
   a->left = edge_at(edges, p->edge0, a->left_end, y);
   a->right = edge_at(edges, a->left_end + 1, a->right_end, y);
-  dda_start(&a->l, &edges[a->left], y);
-  dda_start(&a->r, &edges[a->right], y);
+  zs_edge_dda_start(&a->l, &edges[a->left], y);
+  zs_edge_dda_start(&a->r, &edges[a->right], y);
   a->zrow = (uint64_t)p->zc - (uint64_t)p->dzdx * (uint64_t)(int64_t)p->ox +
             (uint64_t)p->dzdy * (uint64_t)((int64_t)y - p->oy);
   a->dzdx = p->dzdx;
@@ -275,10 +245,10 @@ static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const z
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; the plane at column 0 moves by dzdy. */
 static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
-  if (y < a->l.last) dda_step(&a->l);
-  else dda_start(&a->l, &edges[++a->left], y + 1);
-  if (y < a->r.last) dda_step(&a->r);
-  else dda_start(&a->r, &edges[++a->right], y + 1);
+  if (y < a->l.last) zs_edge_dda_step(&a->l);
+  else zs_edge_dda_start(&a->l, &edges[++a->left], y + 1);
+  if (y < a->r.last) zs_edge_dda_step(&a->r);
+  else zs_edge_dda_start(&a->r, &edges[++a->right], y + 1);
   a->zrow += (uint64_t)a->dzdy;
 }
 
@@ -356,11 +326,9 @@ int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
   if (obs) {
     /* one pair and at most one span per active polygon and row */
     size_t n = (size_t)(b->npolys > 0 ? b->npolys : 1);
-    zs_trace_pair *tp = realloc(s->trace_pairs, n * sizeof *tp);
-    if (tp) s->trace_pairs = tp;
-    zs_trace_span *ts = realloc(s->trace_spans, n * sizeof *ts);
-    if (ts) s->trace_spans = ts;
-    if (!tp || !ts) return 0;
+    void **const arrays[] = {(void **)&s->trace_pairs, (void **)&s->trace_spans};
+    const size_t sizes[] = {sizeof *s->trace_pairs, sizeof *s->trace_spans};
+    if (!zs_resize_each(arrays, sizes, 2, n)) return 0;
   }
   /* a copy of the walk per kernel, and per kernel a copy without hooks
    * and observer (drawing and querying): their tests fold away there */

@@ -23,39 +23,56 @@ static const uint32_t heat[9] = {0x000000, 0x2050E0, 0x20C040, 0xF0E020,
                                  0xF09020, 0xE02020, 0xE02020, 0xE02020,
                                  0xFFFFFF};
 
-void zs_shade_row(zs_shade shade, int width, const uint32_t *depth,
-                  const uint32_t *id, const uint32_t *count,
-                  uint32_t background, double znear, double zfar,
-                  int perspective, uint32_t *out) {
-  (void)background;
+static void shade_ids(int width, const uint32_t *depth, const uint32_t *id,
+                      const uint32_t *count, double znear, double zfar, uint32_t *out) {
+  (void)depth, (void)count, (void)znear, (void)zfar;
+  for (int x = 0; x < width; x++) out[x] = id[x] == ZS_ID_NONE ? 0 : (id[x] + 1) & 0xFFFFFF;
+}
+
+/* grey from t, 0 near .. 1 far (clamped) */
+static inline uint32_t grey_of(double t) {
+  if (t < 0.0) t = 0.0;
+  if (t > 1.0) t = 1.0;
+  uint32_t g = (uint32_t)lrint(255.0 * (1.0 - t));
+  return g << 16 | g << 8 | g;
+}
+
+/* a parallel projection: the window depth is linear in the distance */
+static void shade_depths_parallel(int width, const uint32_t *depth, const uint32_t *id,
+                                  const uint32_t *count, double znear, double zfar,
+                                  uint32_t *out) {
+  (void)count, (void)znear, (void)zfar;
+  for (int x = 0; x < width; x++)
+    out[x] = id[x] == ZS_ID_NONE ? 0 : grey_of(depth[x] / 4294967296.0);
+}
+
+/* a perspective: the eye distance from the window depth d in [0, 1) */
+static void shade_depths_perspective(int width, const uint32_t *depth, const uint32_t *id,
+                                     const uint32_t *count, double znear, double zfar,
+                                     uint32_t *out) {
+  (void)count;
+  for (int x = 0; x < width; x++) {
+    if (id[x] == ZS_ID_NONE) {
+      out[x] = 0;
+      continue;
+    }
+    double ndc = 2.0 * (depth[x] / 4294967296.0) - 1.0;
+    double dist = 2.0 * zfar * znear / ((zfar + znear) - ndc * (zfar - znear));
+    out[x] = grey_of((dist - znear) / (zfar - znear));
+  }
+}
+
+static void shade_overdraw(int width, const uint32_t *depth, const uint32_t *id,
+                           const uint32_t *count, double znear, double zfar, uint32_t *out) {
+  (void)depth, (void)id, (void)znear, (void)zfar;
+  for (int x = 0; x < width; x++) out[x] = heat[count[x] < 8 ? count[x] : 8];
+}
+
+zs_row_shader zs_row_shader_for(zs_shade shade, int perspective) {
   switch (shade) {
-    case ZS_SHADE_ID:
-      for (int x = 0; x < width; x++)
-        out[x] = id[x] == ZS_ID_NONE ? 0 : (id[x] + 1) & 0xFFFFFF;
-      break;
-    case ZS_SHADE_DEPTH:
-      for (int x = 0; x < width; x++) {
-        if (id[x] == ZS_ID_NONE) {
-          out[x] = 0;
-          continue;
-        }
-        double d = depth[x] / 4294967296.0; /* window depth in [0, 1) */
-        double t = d;                       /* 0 near .. 1 far, linear */
-        if (perspective) {
-          double ndc = 2.0 * d - 1.0;
-          double dist = 2.0 * zfar * znear / ((zfar + znear) - ndc * (zfar - znear));
-          t = (dist - znear) / (zfar - znear);
-        }
-        if (t < 0.0) t = 0.0;
-        if (t > 1.0) t = 1.0;
-        uint32_t g = (uint32_t)lrint(255.0 * (1.0 - t));
-        out[x] = g << 16 | g << 8 | g;
-      }
-      break;
-    case ZS_SHADE_OVERDRAW:
-      for (int x = 0; x < width; x++) out[x] = heat[count[x] < 8 ? count[x] : 8];
-      break;
-    case ZS_SHADE_FLAT:
-      break; /* the colour buffer already holds the image */
+    case ZS_SHADE_ID: return shade_ids;
+    case ZS_SHADE_DEPTH: return perspective ? shade_depths_perspective : shade_depths_parallel;
+    case ZS_SHADE_OVERDRAW: return shade_overdraw;
+    default: return NULL; /* flat: the colour buffer already holds the image */
   }
 }

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "raster/edge_dda.h"
 #include "raster/internal.h"
 
 static double depth_real(int64_t z, int zshift) { return ldexp((double)z, -(32 + zshift)); }

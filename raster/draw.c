@@ -1,0 +1,182 @@
+/* The draw stage: a draw's vertices transformed (the vertex stage) and its
+ * faces rejected, shaded, clipped and set up into a batch (the face
+ * stage), with the counters they add.  The device runs it at once
+ * (immediate.c) or queued (defer.c); it calls neither. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/grow.h"
+#include "raster/internal.h"
+
+#define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
+
+int zs_vert_scratch_reserve(zs_vert_scratch *v, int32_t n) {
+  if (n <= v->cap) return 1;
+  void **const arrays[] = {(void **)&v->clip, (void **)&v->eyepos, (void **)&v->outcode,
+                           (void **)&v->snap};
+  const size_t sizes[] = {sizeof *v->clip, 3 * sizeof *v->eyepos, sizeof *v->outcode,
+                          sizeof *v->snap};
+  if (!zs_resize_each(arrays, sizes, 4, (size_t)n)) return 0;
+  v->cap = n;
+  return 1;
+}
+
+void zs_vert_scratch_free(zs_vert_scratch *v) {
+  free(v->clip);
+  free(v->eyepos);
+  free(v->outcode);
+  free(v->snap);
+  memset(v, 0, sizeof *v);
+}
+
+size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
+  return (size_t)v->cap *
+         (sizeof(zs_clip_vert) + 3 * sizeof(double) + sizeof(unsigned) + sizeof(zs_snap_vert));
+}
+
+zs_target zs_draw_frame_target(zs_device *d) {
+  zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width, d->simd};
+  return t;
+}
+
+void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c) {
+  s->spans += c->spans;
+  s->pixels_tested += c->tested;
+  s->pixels_written += c->written;
+}
+
+void zs_draw_prep_fixed(const zs_device *d, zs_kernel k, zs_draw_prep *p) {
+  memset(p, 0, sizeof *p);
+  p->flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
+  p->need_eye = p->flat || d->cfg.algo == ZS_ALGO_DEPTHSORT;
+  p->sp = (zs_setup_params){d->cfg.width, d->cfg.height, d->cfg.cull_back && k != ZS_KERNEL_QUERY,
+                            0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0,
+                            d->prefetch_write};
+}
+
+void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p) {
+  *p = d->prep_of[k];
+  if (model) zs_mat_mul(p->mv, d->view, model);
+  else memcpy(p->mv, d->view, sizeof p->mv);
+  zs_mat_mul(p->mvp, d->proj, p->mv);
+}
+
+/* Vertices [i0, i1): to eye space (for the normals of flat shading and
+ * the painter's keys) and to clip space, with the outcode, snapped when
+ * inside every plane. */
+void zs_draw_transform(const zs_device *d, const zs_draw_prep *pr, const zs_mesh *mesh,
+                       zs_vert_scratch *v, int32_t i0, int32_t i1) {
+  for (int32_t i = i0; i < i1; i++) {
+    const double *p = &mesh->pos[3 * i];
+    double c[4];
+    zs_mat_apply(pr->mvp, p, c);
+    v->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
+    v->outcode[i] = zs_clip_outcode(&v->clip[i], d->gx, d->gy);
+    /* snapped once here for all the faces that share it (set-up snaps
+     * the vertices of a clipped face itself) */
+    if (v->outcode[i] == 0) zs_snap_vertex(&pr->sp, &v->clip[i], &v->snap[i]);
+    if (pr->need_eye) {
+      double e[4];
+      zs_mat_apply(pr->mv, p, e);
+      memcpy(&v->eyepos[3 * i], e, 3 * sizeof e[0]);
+    }
+  }
+}
+
+/* Faces [f0, f1): trivial reject, flat colour, clipping where a face
+ * crosses a plane. */
+zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
+                        const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
+                        uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
+                        zs_error *err) {
+  zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
+  zs_setup_params sp = pr->sp;
+  for (int32_t f = f0; f < f1; f++) {
+    /* nv: the face's vertices; n: its polygon's, once clipped */
+    const int32_t s = mesh->face_start[f], nv = mesh->face_start[f + 1] - s;
+    int32_t n = nv;
+    fc->in++;
+    if (n < 3 || n > ZS_MAX_POLY_VERTS) {
+      fc->degenerate++;
+      continue;
+    }
+    const int32_t *fv = &mesh->face_vert[s];
+    unsigned and_code = ~0u, or_code = 0;
+    for (int i = 0; i < n; i++) {
+      if (fv[i] < 0 || fv[i] >= mesh->nverts)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "draw: face %d uses vertex %d of %d", (int)f,
+                            (int)fv[i], (int)mesh->nverts);
+      and_code &= v->outcode[fv[i]];
+      or_code |= v->outcode[fv[i]];
+    }
+    if (and_code) {
+      fc->outside++;
+      continue;
+    }
+    sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
+    sp.rgb = rgb != ZS_RGB_MESH ? rgb
+             : mesh->face_rgb ? mesh->face_rgb[f] : ZS_DEFAULT_RGB;
+    const int32_t first_poly = b->npolys;
+    zs_setup_result r;
+    if (or_code) {
+      for (int i = 0; i < n; i++) in[i] = v->clip[fv[i]];
+      fc->clipped++;
+      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
+      if (n == 0) {
+        fc->outside++;
+        continue;
+      }
+      r = zs_setup_polygon(b, &sp, clipped, n);
+    } else {
+      r = zs_setup_snapped(b, &sp, v->snap, fv, n);
+    }
+    if (pr->flat && b->npolys > first_poly) {
+      /* Flat shading, for the faces that became polygons only (not the
+       * ones culled, off the window or too small to hold a pixel centre):
+       * Newell's normal of the face in eye space gives their colour */
+      double nrm[3];
+      if (nv == 3)
+        zs_newell_normal(v->eyepos, 3, fv, 3, nrm);
+      else if (nv == 4)
+        zs_newell_normal(v->eyepos, 3, fv, 4, nrm);
+      else
+        zs_newell_normal(v->eyepos, 3, fv, nv, nrm);
+      const uint32_t shaded = zs_shade_flat(sp.rgb, nrm);
+      for (int32_t i = first_poly; i < b->npolys; i++) b->polys[i].rgb = shaded;
+    }
+    /* The painter orders the faces that meet the circle around the
+     * window, drawn or not, turned to the eye or nearly: a roll keeps that
+     * set whole, so the faces that turn into the window are in the old
+     * order already.  A face drawn outside it (its box met a pixel centre,
+     * the face does not) covers no pixel and is painted farthest. */
+    if (ds && r != ZS_SETUP_NOMEM) {
+      if (zs_depthsort_selects(d, &sp, r, v, fv, or_code ? clipped : NULL, n, in)) {
+        /* the sort key: distance along the view axis of the centroid of
+         * the face's vertices */
+        double zsum = 0.0;
+        for (int i = 0; i < nv; i++) zsum += v->eyepos[3 * fv[i] + 2];
+        if (!zs_depthsort_note(ds, sp.id, -zsum / nv))
+          return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+      }
+    }
+    switch (r) {
+      case ZS_SETUP_DRAWN: fc->rasterized++; break;
+      case ZS_SETUP_BACK: fc->culled_back++; break;
+      case ZS_SETUP_DEGENERATE: fc->degenerate++; break;
+      case ZS_SETUP_OFFSCREEN: fc->offscreen++; break;
+      case ZS_SETUP_NOMEM: return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    }
+  }
+  return ZS_OK;
+}
+
+void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc) {
+  s->polygons_in += fc->in;
+  s->polygons_outside += fc->outside;
+  s->polygons_clipped += fc->clipped;
+  s->polygons_culled_back += fc->culled_back;
+  s->polygons_degenerate += fc->degenerate;
+  s->polygons_offscreen += fc->offscreen;
+  s->polygons_rasterized += fc->rasterized;
+}

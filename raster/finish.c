@@ -1,0 +1,119 @@
+/* Finishing a frame: its rows handed out, shaded, in order.
+ *
+ * zbuffer mode hands out the rows of the full frame it has drawn.
+ * scanline mode walks the frame's batch now, with buffers one row long,
+ * handing each row out as soon as it is complete; depthsort mode orders
+ * the batch's faces first (depthsort.c).  Which finish and which row
+ * shading a device uses is chosen once, at create (zs_finish_choose). */
+#include <string.h>
+
+#include "raster/internal.h"
+
+/* ---- a row handed out ---- */
+
+static void emit_as_drawn(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+                          const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
+                          void *user) {
+  (void)count;
+  zs_row row = {y, d->cfg.width, rgb, depth, id, NULL};
+  sink(user, &row);
+}
+
+/* depth, id and overdraw shading: the colours from the row's buffers;
+ * the counts go out with the row (out_count) in overdraw shading only */
+static void emit_colours_of(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+                            const uint32_t *count, const uint32_t *out_count, zs_row_sink sink,
+                            void *user) {
+  d->shade_row(d->cfg.width, depth, id, count, d->znear, d->zfar, d->row_out);
+  zs_row row = {y, d->cfg.width, d->row_out, depth, id, out_count};
+  sink(user, &row);
+}
+
+static void emit_shaded(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+                        const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
+                        void *user) {
+  (void)rgb;
+  emit_colours_of(d, y, depth, id, count, NULL, sink, user);
+}
+
+static void emit_overdraw(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+                          const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
+                          void *user) {
+  (void)rgb;
+  emit_colours_of(d, y, depth, id, count, count, sink, user);
+}
+
+/* ---- scanline and depthsort: the walk, row by row ---- */
+
+typedef struct row_emit {
+  zs_device *d;
+  zs_row_sink sink;
+  void *user;
+} row_emit;
+
+/* The one-row buffers are cleared before each row and shaded and handed
+ * out after it. */
+static void begin_row(void *user, int y) {
+  (void)y;
+  zs_device *d = ((row_emit *)user)->d;
+  size_t w = (size_t)d->cfg.width;
+  zs_fill_u32(d->row_depth, w, ZS_DEPTH_FAR);
+  zs_fill_u32(d->row_id, w, ZS_ID_NONE);
+  zs_fill_u32(d->row_rgb, w, d->cfg.background);
+  memset(d->row_count, 0, w * sizeof *d->row_count);
+}
+
+static void end_row(void *user, int y) {
+  row_emit *e = user;
+  zs_device *d = e->d;
+  if (e->sink) d->emit(d, y, d->row_depth, d->row_id, d->row_rgb, d->row_count, e->sink, e->user);
+}
+
+static zs_status finish_walk(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
+  row_emit e = {d, sink, user};
+  zs_row_hooks hooks = {begin_row, end_row, &e};
+  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, d->simd};
+  zs_walk_counts c = {0, 0, 0};
+  if (!zs_scan_batch(&d->batch, d->kernel, &t, 0, d->cfg.height, &hooks, d->trace, &d->scratch,
+                     &c))
+    return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
+  zs_add_walk_counts(&d->stats, &c);
+  zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);
+  zs_batch_reset(&d->batch);
+  return ZS_OK;
+}
+
+static zs_status finish_painter(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
+  if (!zs_depthsort_order(&d->depthsort, &d->batch, d->view))
+    return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
+  return finish_walk(d, sink, user, err);
+}
+
+/* ---- zbuffer: the drawn frame's rows ---- */
+
+static zs_status finish_frame(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
+  (void)err;
+  if (!sink) return ZS_OK;
+  const size_t w = (size_t)d->cfg.width;
+  for (int y = 0; y < d->cfg.height; y++) {
+    size_t off = (size_t)y * w;
+    d->emit(d, y, d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL,
+            sink, user);
+  }
+  return ZS_OK;
+}
+
+void zs_finish_choose(zs_device *d) {
+  d->finish = d->cfg.algo == ZS_ALGO_ZBUFFER     ? finish_frame
+              : d->cfg.algo == ZS_ALGO_DEPTHSORT ? finish_painter
+                                                 : finish_walk;
+  d->emit = d->cfg.shade == ZS_SHADE_FLAT       ? emit_as_drawn
+            : d->cfg.shade == ZS_SHADE_OVERDRAW ? emit_overdraw
+                                                : emit_shaded;
+}
+
+zs_status zs_device_finish(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
+  zs_status st = zs_device_flush(d, err);
+  if (st != ZS_OK) return st;
+  return d->finish(d, sink, user, err);
+}

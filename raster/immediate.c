@@ -1,0 +1,177 @@
+/* Drawing at once: a draw's vertices and faces through the draw stage
+ * (draw.c) into the device's batch, then, in zbuffer mode, the batch
+ * walked into the full frame.  Which set-up and which walk a device uses
+ * is chosen once, at create (device.c, choose_stages): one thread or
+ * split over the pool, the frame walked or the batch kept for finish.
+ * Every choice gives the same bytes: work split over threads is summed in
+ * a fixed order. */
+#include <stdlib.h>
+
+#include "raster/internal.h"
+#include "raster/pool.h"
+
+/* ---- walks ---- */
+
+int zs_walk_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
+  zs_target t = zs_draw_frame_target(d);
+  int ok = zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
+  zs_batch_reset(&d->batch);
+  return ok;
+}
+
+int zs_walk_kept(zs_device *d, zs_kernel k, zs_walk_counts *out) {
+  (void)d;
+  (void)k;
+  *out = (zs_walk_counts){0, 0, 0};
+  return 1;
+}
+
+/* A batch walked in bands of rows, one per thread: each band writes only
+ * its rows and counts into its own counters; they are summed in band
+ * order, so images, counters and modelled times are the same for every
+ * number of threads. */
+typedef struct band_job {
+  zs_device *d;
+  zs_kernel k;
+  zs_target t;
+  zs_walk_counts counts[ZS_MAX_BANDS];
+  int ok[ZS_MAX_BANDS];
+  int nbands, row0, rows;  /* the bands split rows [row0, row0 + rows) */
+} band_job;
+
+static void walk_band(void *ctx, int band) {
+  band_job *j = ctx;
+  int y0 = j->row0 + (int)zs_part_start(j->rows, band, j->nbands);
+  int y1 = j->row0 + (int)zs_part_start(j->rows, band + 1, j->nbands);
+  j->counts[band] = (zs_walk_counts){0, 0, 0};
+  j->ok[band] = zs_scan_batch(&j->d->batch, j->k, &j->t, y0, y1, NULL, NULL,
+                              &j->d->band_scratch[band], &j->counts[band]);
+}
+
+int zs_walk_frame_banded(zs_device *d, zs_kernel k, zs_walk_counts *out) {
+  /* below a thousand polygons, waking the threads costs more than it saves:
+   * a teapot's 688 faces are walked on one thread (zscan render
+   * builtin:teapots --cull vfc --repeat 11, drawing object by object, with
+   * --threads 2 against --threads 1 measures it) */
+  if (d->batch.npolys < 1024) return zs_walk_frame(d, k, out);
+  /* The rows the batch covers: bands over the whole frame would leave
+   * most of them idle for an object that covers a few rows, and each band
+   * still reads every polygon. */
+  int32_t lo, hi;
+  zs_batch_rows(&d->batch, 0, d->batch.npolys, d->cfg.height, &lo, &hi);
+  int rows = hi - lo + 1, nbands = zs_band_count(d->cfg.threads, rows);
+  if (nbands < 2) return zs_walk_frame(d, k, out);
+  band_job j;
+  j.d = d;
+  j.k = k;
+  j.t = zs_draw_frame_target(d);
+  j.nbands = nbands;
+  j.row0 = lo;
+  j.rows = rows;
+  zs_pool_run(d->pool, walk_band, &j, nbands);
+  *out = (zs_walk_counts){0, 0, 0};
+  int ok = 1;
+  for (int b = 0; b < nbands; b++) {
+    ok &= j.ok[b];
+    zs_walk_counts_add(out, &j.counts[b]);
+  }
+  zs_batch_reset(&d->batch);
+  return ok;
+}
+
+/* ---- set-ups ---- */
+
+zs_status zs_set_up_whole(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
+                          uint32_t id_base, uint32_t rgb, zs_error *err) {
+  zs_draw_transform(d, prep, mesh, &d->verts, 0, mesh->nverts);
+  zs_face_counts fc = {0, 0, 0, 0, 0, 0, 0};
+  zs_status st = zs_draw_setup(d, prep, &d->verts, mesh, 0, mesh->nfaces, id_base, rgb,
+                               d->painter, &d->batch, &fc, err);
+  zs_add_face_counts(&d->stats, &fc);
+  return st;
+}
+
+/* A large draw in zbuffer mode, split over the threads: the vertices in
+ * ranges, then the faces in ranges, each set up into a batch of its own;
+ * the batches are joined in face order, so the walk, the picture and the
+ * counters are those of one thread. */
+typedef struct setup_job {
+  zs_device *d;
+  const zs_mesh *mesh;
+  const zs_draw_prep *prep;
+  int nparts;
+  uint32_t id_base, rgb;
+  zs_batch *batch[ZS_MAX_THREADS];
+  zs_face_counts fc[ZS_MAX_THREADS];
+  zs_status st[ZS_MAX_THREADS];
+  zs_error err[ZS_MAX_THREADS];
+} setup_job;
+
+static void transform_part(void *ctx, int part) {
+  setup_job *j = ctx;
+  int64_t n = j->mesh->nverts;
+  zs_draw_transform(j->d, j->prep, j->mesh, &j->d->verts, (int32_t)zs_part_start(n, part, j->nparts),
+                    (int32_t)zs_part_start(n, part + 1, j->nparts));
+}
+
+static void setup_part(void *ctx, int part) {
+  setup_job *j = ctx;
+  int64_t n = j->mesh->nfaces;
+  j->fc[part] = (zs_face_counts){0, 0, 0, 0, 0, 0, 0};
+  zs_error_clear(&j->err[part]);
+  j->st[part] = zs_draw_setup(j->d, j->prep, &j->d->verts, j->mesh,
+                              (int32_t)zs_part_start(n, part, j->nparts),
+                              (int32_t)zs_part_start(n, part + 1, j->nparts), j->id_base, j->rgb, NULL,
+                              j->batch[part], &j->fc[part], &j->err[part]);
+}
+
+zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
+                          uint32_t id_base, uint32_t rgb, zs_error *err) {
+  if (mesh->nfaces < ZS_PARALLEL_SETUP_FACES)
+    return zs_set_up_whole(d, mesh, prep, id_base, rgb, err);
+  setup_job *j = malloc(sizeof *j);
+  if (!j) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  *j = (setup_job){d, mesh, prep, d->cfg.threads, id_base, rgb,
+                   {NULL}, {{0, 0, 0, 0, 0, 0, 0}}, {ZS_OK}, {{0, {0}}}};
+  j->batch[0] = &d->batch;
+  for (int t = 1; t < j->nparts; t++) j->batch[t] = &d->setup_parts[t];
+  zs_pool_run(d->pool, transform_part, j, j->nparts);
+  zs_pool_run(d->pool, setup_part, j, j->nparts);
+  zs_status st = ZS_OK;
+  for (int t = 0; t < j->nparts; t++) {
+    if (st == ZS_OK) { /* as one thread would: counted up to the first error */
+      zs_add_face_counts(&d->stats, &j->fc[t]);
+      if ((st = j->st[t]) != ZS_OK) zs_error_set(err, st, "%s", j->err[t].msg);
+      else if (t > 0 && !zs_batch_append(&d->batch, j->batch[t]))
+        st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    }
+    if (t > 0) zs_batch_reset(j->batch[t]);
+  }
+  free(j);
+  return st;
+}
+
+/* ---- a draw ---- */
+
+zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[16],
+                          uint32_t id_base, uint32_t rgb, zs_kernel k, zs_walk_counts *out,
+                          zs_error *err) {
+  if (mesh->nverts < 0 || mesh->nfaces < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
+  if (!zs_vert_scratch_reserve(&d->verts, mesh->nverts > 0 ? mesh->nverts : 1))
+    return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  d->stats.draws++;
+  d->stats.vertices += (uint64_t)mesh->nverts;
+  zs_draw_prep prep;
+  zs_draw_prepare(d, model, k, &prep);
+  zs_status st = d->set_up(d, mesh, &prep, id_base, rgb, err);
+  if (st != ZS_OK) return st;
+  *out = (zs_walk_counts){0, 0, 0};
+  if (!d->walk(d, k, out)) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  d->stats.spans += out->spans;
+  if (k != ZS_KERNEL_QUERY) { /* a query box tests pixels; the clock counts them */
+    d->stats.pixels_tested += out->tested;
+    d->stats.pixels_written += out->written;
+  }
+  return ZS_OK;
+}
