@@ -19,6 +19,11 @@
  *   cpu_per_node        100 ns    visiting a hierarchy node
  *   cpu_per_frustum     50 ns     one box-frustum test
  *   cpu_per_cost_eval   50 ns     one cost-model evaluation
+ *   hzb_pass            5 us      a depth-pyramid pass: a compute dispatch
+ *                                 per level, with a barrier between levels
+ *   hzb_per_texel       0.1 ns    a pyramid texel: read four, write one
+ *   hzb_per_box         1 ns      a box against the pyramid: eight corners
+ *                                 projected, at most four texels read
  */
 #include <math.h>
 #include <string.h>
@@ -41,6 +46,9 @@ void zs_clock_params_default(zs_clock_params *p) {
       .cpu_per_node_ns = 100.0,
       .cpu_per_frustum_ns = 50.0,
       .cpu_per_cost_eval_ns = 50.0,
+      .hzb_pass_ns = 5000.0,
+      .hzb_per_texel_ns = 0.1,
+      .hzb_per_box_ns = 1.0,
   };
 }
 
@@ -55,15 +63,17 @@ zs_status zs_device_set_clock(zs_device *d, const zs_clock_params *p, zs_error *
                       p->per_span_ns,        p->per_pixel_ns,        p->per_write_ns,
                       p->per_query_pixel_ns, p->switch_ns,           p->query_latency_ns,
                       p->cpu_per_call_ns,    p->cpu_per_query_ns,    p->cpu_per_node_ns,
-                      p->cpu_per_frustum_ns, p->cpu_per_cost_eval_ns};
+                      p->cpu_per_frustum_ns, p->cpu_per_cost_eval_ns, p->hzb_pass_ns,
+                      p->hzb_per_texel_ns,   p->hzb_per_box_ns};
   int64_t ps[sizeof v / sizeof v[0]];
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
     if ((ps[i] = to_ps(v[i])) < 0)
       return zs_error_set(err, ZS_ERR_ARG, "clock parameter %g: must be a finite number of "
                                            "nanoseconds from 0 to 1e12", v[i]);
   d->clock_params = *p;
-  d->costs = (zs_clock_costs){ps[0], ps[1], ps[2],  ps[3],  ps[4],  ps[5],  ps[6],
-                              ps[7], ps[8], ps[9], ps[10], ps[11], ps[12], ps[13]};
+  d->costs = (zs_clock_costs){ps[0], ps[1], ps[2],  ps[3],  ps[4],  ps[5],  ps[6],  ps[7],
+                              ps[8], ps[9], ps[10], ps[11], ps[12], ps[13], ps[14], ps[15],
+                              ps[16]};
   return ZS_OK;
 }
 

@@ -120,6 +120,7 @@ void zs_device_destroy(zs_device *d) {
   zs_batch_free(&d->batch);
   zs_walk_scratch_free(&d->scratch);
   zs_depthsort_free(&d->depthsort);
+  zs_hzb_free(&d->hzb);
   zs_pool_destroy(d->pool);
   if (d->band_scratch)
     for (int i = 0; i < ZS_MAX_BANDS; i++) zs_walk_scratch_free(&d->band_scratch[i]);
@@ -221,6 +222,7 @@ void zs_device_clear(zs_device *d) {
   zs_clock_reset(d);
   zs_batch_reset(&d->batch);
   d->depthsort.nfaces = 0;
+  d->hzb.built = 0;
   d->clear_buffers(d);
 }
 
@@ -307,7 +309,7 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + scratch_bytes(&d->scratch);
   if (d->band_scratch)
     for (int i = 0; i < ZS_MAX_BANDS; i++) m.tables += scratch_bytes(&d->band_scratch[i]);
-  m.tables += zs_defer_bytes(d);
+  m.tables += zs_defer_bytes(d) + zs_hzb_bytes(&d->hzb);
   m.vertices = zs_vert_scratch_bytes(&d->verts);
   return m;
 }

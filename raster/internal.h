@@ -387,7 +387,23 @@ typedef struct zs_clock_costs {
   int64_t per_call, per_vertex, per_polygon, per_span, per_pixel, per_write, per_query_pixel;
   int64_t switch_cost, latency;
   int64_t cpu_per_call, cpu_per_query, cpu_per_node, cpu_per_frustum, cpu_per_cost_eval;
+  int64_t hzb_pass, hzb_per_texel, hzb_per_box;
 } zs_clock_costs;
+
+/* hzb.c: the depth pyramid's levels 1 .. levels - 1 (level 0 is the depth
+ * buffer), level k at texel + offset[k], w[k] x h[k]. */
+enum { ZS_HZB_MAX_LEVELS = 24 };
+typedef struct zs_hzb {
+  uint32_t *texel;
+  int32_t cap;
+  int levels;
+  int w[ZS_HZB_MAX_LEVELS], h[ZS_HZB_MAX_LEVELS];
+  int64_t offset[ZS_HZB_MAX_LEVELS];
+  int64_t texels;                 /* in levels 1 .. levels - 1 */
+  int built;                      /* built since the last clear */
+} zs_hzb;
+void zs_hzb_free(zs_hzb *h);
+size_t zs_hzb_bytes(const zs_hzb *h);
 
 struct zs_device {
   zs_device_config cfg;
@@ -421,6 +437,7 @@ struct zs_device {
   int query_open;                 /* a query is between begin and end */
   const zs_trace_observer *trace; /* scanline mode's observer, or NULL */
   zs_depthsort depthsort;
+  zs_hzb hzb;
   /* threads: zbuffer mode walks large batches in bands of rows */
   struct zs_pool *pool;
   int prefetch_write;             /* threads, and the CPU has PREFETCHW (setup.c) */

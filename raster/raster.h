@@ -121,6 +121,20 @@ zs_status zs_device_flush(zs_device *dev, zs_error *err);
 enum { ZS_QUERY_DEPTH_BIAS = 16, ZS_QUERY_SLOPE_SHIFT = 4 };
 typedef uint32_t zs_query;
 
+/* ---- hzb.c: the hierarchical depth buffer ----
+ *
+ * zs_device_hzb_build builds the depth pyramid of what is drawn so far
+ * (level k: the farthest depth of each 2x2 texels of level k - 1, level 0
+ * the depth buffer); zs_device_hzb_test tests n boxes against the last
+ * pyramid built this frame, setting maybe_visible[i] to 0 only for a box
+ * whose query box (above) would count no sample against that depth
+ * buffer, and so against any drawn over it later.  A box the near plane
+ * cuts, or that holds the eye, is maybe visible.  Costs: clock.h.  The
+ * full-frame depth buffer: zbuffer mode only. */
+zs_status zs_device_hzb_build(zs_device *dev, zs_error *err);
+zs_status zs_device_hzb_test(zs_device *dev, const double (*lo)[3], const double (*hi)[3], int n,
+                             uint8_t *maybe_visible, zs_error *err);
+
 
 /* The memory a device holds now, in bytes: pixel buffers (full-frame in
  * zbuffer mode; one row in scanline and depthsort modes), the polygon and

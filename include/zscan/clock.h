@@ -33,6 +33,11 @@ extern "C" {
  *        queued GPU work (sync: the GPU is the bottleneck), after it for
  *        the latency (a stall: what CHC-style methods hide).  With latency
  *        0 nothing ever stalls.
+ *   The depth pyramid (raster.h, hzb.c): a build costs hzb_pass + texels
+ *        written * hzb_per_texel, a test of n boxes hzb_pass + n *
+ *        hzb_per_box, both GPU commands counted with the drawing commands,
+ *        each issued for cpu_per_call; their results stay on the GPU
+ *        (they drive the next draws), so no latency and no stall.
  *   A frame's modelled time is the later of the two clocks at its end.
  *   The GPU's part of it is split four ways: drawing commands (clears and
  *   draws), query boxes, switches, and idle (waiting for the CPU to issue
@@ -54,6 +59,9 @@ typedef struct zs_clock_params {
   double cpu_per_node_ns;     /* CPU: visiting a hierarchy node */
   double cpu_per_frustum_ns;  /* CPU: one box-frustum test */
   double cpu_per_cost_eval_ns;/* CPU: one cost-model evaluation */
+  double hzb_pass_ns;         /* GPU: fixed cost of a depth-pyramid pass (build or test) */
+  double hzb_per_texel_ns;    /* GPU: per pyramid texel written */
+  double hzb_per_box_ns;      /* GPU: per box tested against the pyramid */
 } zs_clock_params;
 
 typedef enum zs_cpu_work {
@@ -72,6 +80,8 @@ typedef struct zs_clock_stats {
   /* GPU time so far: drawing commands, query boxes, switches (the rest of
    * the frame it waited for the CPU: zs_clock_gpu_split) */
   int64_t draw_ps, query_ps, switch_ps;
+  uint64_t hzb_texels;        /* depth-pyramid texels written */
+  uint64_t hzb_boxes;         /* boxes tested against the pyramid */
 } zs_clock_stats;
 
 /* The frame so far on the GPU, in picoseconds: draw + query + switch + idle
