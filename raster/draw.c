@@ -83,6 +83,16 @@ void zs_draw_transform(const zs_device *d, const zs_draw_prep *pr, const zs_mesh
   }
 }
 
+/* Newell's normal of the face whose nv corners are eye[3 fv[i]]; inlined
+ * with nv a constant for triangles and quads, whose loop then unrolls. */
+__attribute__((always_inline)) static inline void newell_of_face(const double *eye,
+                                                                 const int32_t *fv, const int nv,
+                                                                 double nrm[3]) {
+  nrm[0] = nrm[1] = nrm[2] = 0.0;
+  for (int i = 0, j = 1; i < nv; i++, j = j + 1 < nv ? j + 1 : 0)
+    zs_newell_add(nrm, &eye[3 * fv[i]], &eye[3 * fv[j]]);
+}
+
 /* Faces [f0, f1): trivial reject, flat colour, clipping where a face
  * crosses a plane. */
 zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
@@ -137,11 +147,11 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
        * Newell's normal of the face in eye space gives their colour */
       double nrm[3];
       if (nv == 3)
-        zs_newell_normal(v->eyepos, 3, fv, 3, nrm);
+        newell_of_face(v->eyepos, fv, 3, nrm);
       else if (nv == 4)
-        zs_newell_normal(v->eyepos, 3, fv, 4, nrm);
+        newell_of_face(v->eyepos, fv, 4, nrm);
       else
-        zs_newell_normal(v->eyepos, 3, fv, nv, nrm);
+        newell_of_face(v->eyepos, fv, nv, nrm);
       const uint32_t shaded = zs_shade_flat(sp.rgb, nrm);
       for (int32_t i = first_poly; i < b->npolys; i++) b->polys[i].rgb = shaded;
     }

@@ -107,7 +107,7 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
     int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
     if (n < 3 || n > ZS_MAX_POLY_VERTS) continue;
     const int32_t *fv = &mesh->face_vert[s];
-    double eye[ZS_MAX_POLY_VERTS][4], c[3] = {0, 0, 0}, nrm[3];
+    double eye[ZS_MAX_POLY_VERTS][4], c[3] = {0, 0, 0}, nrm[3] = {0, 0, 0};
     for (int i = 0; i < n; i++) {
       if (fv[i] < 0 || fv[i] >= mesh->nverts)
         return zs_error_set(err, ZS_ERR_ARG, "edges: face %d uses vertex %d of %d", (int)f,
@@ -115,7 +115,7 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
       zs_mat_apply(mv, &mesh->pos[3 * fv[i]], eye[i]);
       for (int k = 0; k < 3; k++) c[k] += eye[i][k] / n;
     }
-    zs_newell_normal(&eye[0][0], 4, NULL, n, nrm); /* eye space */
+    for (int i = 0; i < n; i++) zs_newell_add(nrm, eye[i], eye[(i + 1) % n]); /* eye space */
     /* V . N >= 0, V from the face to the eye (at the origin): a front face */
     if (-(c[0] * nrm[0] + c[1] * nrm[1] + c[2] * nrm[2]) < 0.0) continue;
 

@@ -196,24 +196,16 @@ static inline void zs_mat_apply(const double m[16], const double p[3], double ou
     out[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
 }
 
-/* Newell's normal of a polygon of n corners: twice its vector area, exact
- * for planar polygons and the best-fitting plane's normal for others.  Its
- * component along an axis is twice the signed area of the projection onto
- * the plane of the other two.  Corner i is at pts + stride * idx[i] (or
- * pts + stride * i when idx is NULL).  Inlined: with n a constant for
- * triangles and quads the loop unrolls to the same sums in the same order,
- * so every caller gets the same bits. */
-__attribute__((always_inline)) static inline void zs_newell_normal(const double *pts, int stride,
-                                                                   const int32_t *idx, int n,
-                                                                   double nrm[3]) {
-  nrm[0] = nrm[1] = nrm[2] = 0.0;
-  for (int i = 0, j = 1; i < n; i++, j = j + 1 < n ? j + 1 : 0) {
-    const double *a = pts + stride * (idx ? idx[i] : i);
-    const double *c = pts + stride * (idx ? idx[j] : j);
-    nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
-    nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
-    nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
-  }
+/* Newell's normal of a polygon is the sum of this term over its edges a-c
+ * (corner i to corner i + 1, the last back to the first): twice its vector
+ * area, exact for planar polygons and the best-fitting plane's normal for
+ * others; its component along an axis is twice the signed area of the
+ * projection onto the plane of the other two.  Every caller sums the edges
+ * in that order from nrm = 0, so all get the same bits. */
+static inline void zs_newell_add(double nrm[3], const double *a, const double *c) {
+  nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
+  nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
+  nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
 }
 
 #endif

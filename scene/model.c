@@ -384,7 +384,8 @@ static void add_split(zs_model *m, const int32_t *v, int n, split_scratch *sc, u
       p[i][k] = m->mesh.pos[3 * (size_t)v[i] + k] - centre[k];
 
   vec3 nrm;
-  zs_newell_normal(&p[0][0], 3, NULL, n, nrm);
+  nrm[0] = nrm[1] = nrm[2] = 0.0;
+  for (int i = 0; i < n; i++) zs_newell_add(nrm, p[i], p[(i + 1) % n]);
   if (nrm[0] == 0.0 && nrm[1] == 0.0 && nrm[2] == 0.0) {
     /* No area and no plane (collinear points, or a figure eight whose
      * halves cancel): triangles are at least convex. */
