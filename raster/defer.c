@@ -87,25 +87,8 @@ struct zs_deferred {
   int32_t rows0, rows1;            /* rows the last flush's draws covered (rows1 < rows0: none yet) */
   pthread_mutex_t lock;            /* guards the flow of a flush (below) */
   pthread_cond_t changed;
+  zs_status (*flush)(zs_device *d, zs_error *err); /* zbuffer or scanline mode's */
 };
-
-int zs_defer_start(zs_device *d) {
-  if (d->deferred) return 1;
-  zs_deferred *q = calloc(1, sizeof *q);
-  if (!q) return 0;
-  if (pthread_mutex_init(&q->lock, NULL) != 0) {
-    free(q);
-    return 0;
-  }
-  if (pthread_cond_init(&q->changed, NULL) != 0) {
-    pthread_mutex_destroy(&q->lock);
-    free(q);
-    return 0;
-  }
-  q->rows1 = -1; /* no rows covered yet */
-  d->deferred = q;
-  return 1;
-}
 
 zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
                         uint32_t id_base, uint32_t rgb, zs_kernel k, zs_error *err) {
@@ -188,10 +171,12 @@ static void setup_chunk(flush_job *j, int c) {
     st = zs_draw_setup(j->d, &e->prep, &v, m, 0, m->nfaces, e->id_base, e->rgb, NULL, &b, &fc,
                        &err);
     e->fc = fc;
-    if (st != ZS_OK) break;
+    /* a failed draw's polygons too: drawing at once leaves those set up
+     * before its bad face in scanline mode's batch */
     e->slot = slot;
     e->poly0 = poly0;
     e->npolys = b.npolys - poly0;
+    if (st != ZS_OK) break;
     zs_batch_rows(&b, poly0, e->npolys, j->d->cfg.height, &e->row0, &e->row1);
     e->set_up = 1;
   }
@@ -342,6 +327,48 @@ static void flush_worker(void *ctx, int task) {
   pthread_mutex_unlock(&q->lock);
 }
 
+/* The first draw not set up ends the queue (its index, or q->n); its
+ * chunk holds the error, set in *st and err. */
+static int32_t first_failure(const zs_deferred *q, zs_status *st, zs_error *err) {
+  for (int32_t i = 0; i < q->n; i++)
+    if (!q->q[i].set_up) {
+      int c = 0;
+      while (q->first[c + 1] <= i) c++;
+      *st = zs_error_set(err, q->st[c], "%s", q->err[c].msg);
+      return i;
+    }
+  return q->n;
+}
+
+/* Settles draws 0 .. ndraw - 1 in the order issued: their set-up
+ * counters, their walk counters summed over nbands bands (none: the
+ * pixels are walked and charged at finish), and the clock, each charged
+ * as issued when the CPU queued it.  After a failed draw (st), its set-up
+ * counters, as zs_device_draw would have added; the draws queued behind
+ * it are taken back, counters and CPU time, as a caller drawing at once
+ * would have stopped there. */
+static void settle(zs_device *d, const zs_deferred *q, int32_t ndraw, zs_status st, int nbands) {
+  for (int32_t i = 0; i < ndraw; i++) {
+    const queued_draw *e = &q->q[i];
+    zs_add_face_counts(&d->stats, &e->fc);
+    zs_walk_counts c = {0, 0, 0};
+    for (int b = 0; b < nbands; b++)
+      zs_walk_counts_add(&c, &q->counts[(size_t)b * (size_t)q->n + (size_t)i]);
+    zs_add_walk_counts(&d->stats, &c);
+    int64_t cost = zs_clock_command_cost(d, e->mesh->nverts, e->fc.rasterized + e->fc.offscreen,
+                                         &c, 0);
+    zs_clock_gpu_command_at(d, cost, 0, e->cpu_ps);
+  }
+  if (st != ZS_OK) {
+    zs_add_face_counts(&d->stats, &q->q[ndraw].fc);
+    for (int32_t i = ndraw + 1; i < q->n; i++) {
+      d->stats.draws--;
+      d->stats.vertices -= (uint64_t)q->q[i].mesh->nverts;
+    }
+    d->clock.cpu_ps = q->q[ndraw].cpu_ps;
+  }
+}
+
 /* Sets up and walks the queue; returns the status of the first failed
  * draw (its set-up or, for all of them, memory for the walk). */
 static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
@@ -380,17 +407,8 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   for (int b = 0; b < j->nbands; b++) j->ok[b] = 1;
   zs_pool_run(d->pool, flush_worker, j, d->cfg.threads);
 
-  /* the first draw not set up ends the queue; its chunk holds the error */
   zs_status st = ZS_OK;
-  int32_t ndraw = q->n;
-  for (int32_t i = 0; i < q->n; i++)
-    if (!q->q[i].set_up) {
-      ndraw = i;
-      int c = 0;
-      while (q->first[c + 1] <= i) c++;
-      st = zs_error_set(err, q->st[c], "%s", q->err[c].msg);
-      break;
-    }
+  const int32_t ndraw = first_failure(q, &st, err);
   for (int b = 0; b < j->nbands; b++)
     if (!j->ok[b]) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
 
@@ -405,36 +423,13 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
     q->rows0 = lo > 0 ? lo : 0;
     q->rows1 = hi < d->cfg.height - 1 ? hi : d->cfg.height - 1;
   }
-
-  /* settle draw by draw, in the order issued */
-  for (int32_t i = 0; i < ndraw; i++) {
-    const queued_draw *e = &q->q[i];
-    zs_add_face_counts(&d->stats, &e->fc);
-    zs_walk_counts c = {0, 0, 0};
-    for (int b = 0; b < j->nbands; b++)
-      zs_walk_counts_add(&c, &q->counts[(size_t)b * (size_t)q->n + (size_t)i]);
-    zs_add_walk_counts(&d->stats, &c);
-    int64_t cost = zs_clock_command_cost(d, e->mesh->nverts, e->fc.rasterized + e->fc.offscreen,
-                                         &c, 0);
-    zs_clock_gpu_command_at(d, cost, 0, e->cpu_ps);
-  }
-  if (st != ZS_OK) {
-    /* the failed draw's set-up counters, as zs_device_draw would have
-     * added; the draws queued behind it are taken back, counters and CPU
-     * time, as a caller drawing at once would have stopped there */
-    zs_add_face_counts(&d->stats, &q->q[ndraw].fc);
-    for (int32_t i = ndraw + 1; i < q->n; i++) {
-      d->stats.draws--;
-      d->stats.vertices -= (uint64_t)q->q[i].mesh->nverts;
-    }
-    d->clock.cpu_ps = q->q[ndraw].cpu_ps;
-  }
+  settle(d, q, ndraw, st, j->nbands);
   return st;
 }
 
-zs_status zs_device_flush(zs_device *d, zs_error *err) {
+/* zbuffer mode: the queue set up and walked into the frame. */
+static zs_status flush_walking(zs_device *d, zs_error *err) {
   zs_deferred *q = d->deferred;
-  if (!q || q->n == 0) return ZS_OK;
   flush_job j;
   memset(&j, 0, sizeof j);
   atomic_init(&j.changes, 0);
@@ -442,7 +437,77 @@ zs_status zs_device_flush(zs_device *d, zs_error *err) {
   j.q = q;
   j.k = d->kernel;
   j.t = zs_draw_frame_target(d);
-  zs_status st = flush_queue(d, &j, err);
+  return flush_queue(d, &j, err);
+}
+
+/* ---- scanline mode: the queue set up into the frame's batch ----
+ *
+ * The frame is walked at finish, in bands (finish.c); what its draws
+ * leave to the threads before is their set-up: chunks of draws set up in
+ * parallel, each into its own batch, then appended to the frame's batch
+ * in issue order, so the batch, and with it every pixel and counter, is
+ * the one drawing at once builds. */
+
+typedef struct setup_round {
+  zs_device *d;
+  zs_deferred *q;
+  int nchunks;
+  flush_job *slots; /* setup_chunk's view: chunk c in batch c */
+} setup_round;
+
+static void setup_task(void *ctx, int task) {
+  setup_round *r = ctx;
+  for (int c = task; c < r->nchunks; c += r->d->cfg.threads) setup_chunk(r->slots, c);
+}
+
+static zs_status flush_setting_up(zs_device *d, zs_error *err) {
+  zs_deferred *q = d->deferred;
+  int nchunks = 4 * d->cfg.threads < MAX_CHUNKS ? 4 * d->cfg.threads : MAX_CHUNKS;
+  if (nchunks > q->n) nchunks = q->n;
+  cut_chunks(q, nchunks, 0);
+  flush_job j;
+  memset(&j, 0, sizeof j);
+  j.d = d;
+  j.q = q;
+  j.nslots = MAX_CHUNKS;
+  setup_round r = {d, q, nchunks, &j};
+  zs_pool_run(d->pool, setup_task, &r, d->cfg.threads);
+  zs_status st = ZS_OK;
+  const int32_t ndraw = first_failure(q, &st, err);
+  for (int32_t i = 0; i < ndraw + (st != ZS_OK); i++) {
+    const queued_draw *e = &q->q[i];
+    const zs_batch *b = &q->batch[e->slot];
+    if (!zs_batch_append_range(&d->batch, b, e->poly0, e->npolys))
+      return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  }
+  settle(d, q, ndraw, st, 0);
+  return st;
+}
+
+int zs_defer_start(zs_device *d) {
+  if (d->deferred) return 1;
+  zs_deferred *q = calloc(1, sizeof *q);
+  if (!q) return 0;
+  if (pthread_mutex_init(&q->lock, NULL) != 0) {
+    free(q);
+    return 0;
+  }
+  if (pthread_cond_init(&q->changed, NULL) != 0) {
+    pthread_mutex_destroy(&q->lock);
+    free(q);
+    return 0;
+  }
+  q->rows1 = -1; /* no rows covered yet */
+  /* what a flush does, for the mode: chosen once */
+  q->flush = d->cfg.algo == ZS_ALGO_ZBUFFER ? flush_walking : flush_setting_up;
+  d->deferred = q;
+  return 1;
+}
+
+zs_status zs_device_flush(zs_device *d, zs_error *err) {
+  zs_deferred *q = d->deferred;
+  if (!q || q->n == 0) return ZS_OK;
+  zs_status st = q->flush(d, err);
   q->n = 0;
   for (int c = 0; c < MAX_CHUNKS; c++) zs_batch_reset(&q->batch[c]);
   return st;

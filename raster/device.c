@@ -79,11 +79,12 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
                         "image size %dx%d: not enough memory for the buffers",
                         cfg->width, cfg->height);
   }
-  if (ok && cfg->threads > 1 && cfg->algo == ZS_ALGO_ZBUFFER) {
+  if (ok && cfg->threads > 1) {
     d->pool = zs_pool_create(cfg->threads);
     d->band_scratch = calloc(ZS_MAX_BANDS, sizeof *d->band_scratch); /* one per band */
     d->setup_parts = calloc((size_t)cfg->threads, sizeof *d->setup_parts);
     ok = d->pool && d->band_scratch && d->setup_parts;
+    if (ok && cfg->algo != ZS_ALGO_ZBUFFER) ok = zs_finish_bands_alloc(d);
     d->prefetch_write = zs_cpu_has_prefetchw();
     if (!ok) {
       zs_device_destroy(d);
@@ -116,6 +117,7 @@ void zs_device_destroy(zs_device *d) {
   free(d->row_rgb);
   free(d->row_count);
   free(d->row_out);
+  free(d->band_rows);
   free(d->runs);
   zs_batch_free(&d->batch);
   zs_walk_scratch_free(&d->scratch);
@@ -136,7 +138,10 @@ void zs_device_destroy(zs_device *d) {
 
 const zs_device_config *zs_device_config_of(const zs_device *d) { return &d->cfg; }
 const zs_raster_stats *zs_device_stats(const zs_device *d) { return &d->stats; }
-void zs_device_set_trace(zs_device *d, const zs_trace_observer *obs) { d->trace = obs; }
+void zs_device_set_trace(zs_device *d, const zs_trace_observer *obs) {
+  d->trace = obs;
+  zs_finish_choose(d); /* the trace follows one walk, row by row */
+}
 const zs_depthsort_stats *zs_device_depthsort_stats(const zs_device *d) {
   return &d->depthsort.stats;
 }
@@ -267,12 +272,14 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh, const double model[1
   return d->draw(d, mesh, model, id_base, rgb, err);
 }
 
-/* Deferral pays where threads walk the frame: zbuffer mode with a pool
- * (the only mode that has one).  Without memory for the queue, drawing
- * stays immediate.  Turned off, the queue is drawn at the next command
- * that flushes (a draw does). */
+/* Deferral pays where there are threads: zbuffer mode sets the queue up
+ * and walks it in parallel (defer.c), scanline mode sets it up in
+ * parallel and walks the frame in bands at finish (finish.c); depth sort
+ * notes its faces in one list, so its draws stay immediate.  Without
+ * memory for the queue, drawing stays immediate.  Turned off, the queue is
+ * drawn at the next command that flushes (a draw does). */
 void zs_device_defer_draws(zs_device *d, int on) {
-  d->draw = on && d->pool && zs_defer_start(d) ? draw_queued : draw_now;
+  d->draw = on && d->pool && !d->painter && zs_defer_start(d) ? draw_queued : draw_now;
 }
 
 /* ---- the stages, chosen once ---- */
@@ -285,7 +292,8 @@ static void choose_stages(zs_device *d) {
   for (int k = ZS_KERNEL_DRAW; k <= ZS_KERNEL_QUERY; k++)
     zs_draw_prep_fixed(d, (zs_kernel)k, &d->prep_of[k]);
   d->painter = d->cfg.algo == ZS_ALGO_DEPTHSORT ? &d->depthsort : NULL;
-  d->set_up = d->pool ? zs_set_up_split : zs_set_up_whole;
+  /* the painter notes its faces' keys in one list: set up whole */
+  d->set_up = d->pool && !d->painter ? zs_set_up_split : zs_set_up_whole;
   d->walk = !zbuffer ? zs_walk_kept : d->pool ? zs_walk_frame_banded : zs_walk_frame;
   d->clear_buffers = !zbuffer ? clear_rows_later : d->pool ? clear_frame_in_parts : clear_frame;
   d->draw = draw_now;
@@ -304,6 +312,7 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
   if (d->depth) m.pixel_buffers += 3 * px * sizeof(uint32_t);
   if (d->count) m.pixel_buffers += px * sizeof(uint32_t);
   if (d->row_depth) m.pixel_buffers += 4 * w * sizeof(uint32_t);
+  m.pixel_buffers += d->band_cap * sizeof(uint32_t);
   m.pixel_buffers += w * sizeof(uint32_t); /* the shaded row */
   m.tables = (size_t)d->batch.cap_polys * sizeof(zs_poly) +
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + scratch_bytes(&d->scratch);

@@ -5,9 +5,11 @@
  * handing each row out as soon as it is complete; depthsort mode orders
  * the batch's faces first (depthsort.c).  Which finish and which row
  * shading a device uses is chosen once, at create (zs_finish_choose). */
+#include <stdlib.h>
 #include <string.h>
 
 #include "raster/internal.h"
+#include "raster/pool.h"
 
 /* ---- a row handed out ---- */
 
@@ -72,7 +74,7 @@ static void end_row(void *user, int y) {
 static zs_status finish_walk(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   row_emit e = {d, sink, user};
   zs_row_hooks hooks = {begin_row, end_row, &e};
-  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, d->simd};
+  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, d->simd, 0};
   zs_walk_counts c = {0, 0, 0};
   if (!zs_scan_batch(&d->batch, d->kernel, &t, 0, d->cfg.height, &hooks, d->trace, &d->scratch,
                      &c))
@@ -83,10 +85,97 @@ static zs_status finish_walk(zs_device *d, zs_row_sink sink, void *user, zs_erro
   return ZS_OK;
 }
 
+/* ---- scanline and depthsort on threads: bands of rows ----
+ *
+ * The rows of a frame are independent in the scanline walk, so the
+ * frame's batch is walked in bands (zs_band_count: four a thread), a
+ * round of one band a thread at a time, each into its thread's buffers of
+ * a band's rows; after each round the rows are handed out in order.  The
+ * counts are summed in band order: the same bytes and counters as one
+ * walk.  The device then holds a band of rows a thread, not one row. */
+
+int zs_finish_bands_alloc(zs_device *d) {
+  const int h = d->cfg.height, nbands = zs_band_count(d->cfg.threads, h);
+  d->band_max_rows = nbands > 1 ? (h + nbands - 1) / nbands : h;
+  d->band_cap = 4 * (size_t)d->cfg.threads * (size_t)d->band_max_rows * (size_t)d->cfg.width;
+  d->band_rows = malloc(d->band_cap * sizeof *d->band_rows);
+  return d->band_rows != NULL;
+}
+
+typedef struct band_round {
+  zs_device *d;
+  int nbands, first;          /* this round: bands first .. first + threads - 1 */
+  zs_walk_counts counts[ZS_MAX_BANDS];
+  int ok[ZS_MAX_BANDS];
+} band_round;
+
+static int band_start(const band_round *j, int b) {
+  return (int)zs_part_start(j->d->cfg.height, b, j->nbands);
+}
+
+/* Thread t's buffers: depth, id, colour, count, a band's rows each. */
+static zs_target band_target(const zs_device *d, int t, int row0) {
+  const size_t n = (size_t)d->band_max_rows * (size_t)d->cfg.width;
+  uint32_t *base = d->band_rows + 4 * n * (size_t)t;
+  return (zs_target){base, base + n, base + 2 * n, base + 3 * n, d->cfg.width, d->cfg.width,
+                     d->simd, row0};
+}
+
+static void walk_band_rows(void *ctx, int t) {
+  band_round *j = ctx;
+  zs_device *d = j->d;
+  const int b = j->first + t;
+  if (b >= j->nbands) return;
+  const int y0 = band_start(j, b), y1 = band_start(j, b + 1);
+  zs_target tg = band_target(d, t, y0);
+  const size_t n = (size_t)(y1 - y0) * (size_t)d->cfg.width;
+  zs_fill_u32(tg.depth, n, ZS_DEPTH_FAR);
+  zs_fill_u32(tg.id, n, ZS_ID_NONE);
+  zs_fill_u32(tg.rgb, n, d->cfg.background);
+  memset(tg.count, 0, n * sizeof *tg.count);
+  j->counts[b] = (zs_walk_counts){0, 0, 0};
+  j->ok[b] = zs_scan_batch(&d->batch, d->kernel, &tg, y0, y1, NULL, NULL, &d->band_scratch[b],
+                           &j->counts[b]);
+}
+
+static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
+  band_round j;
+  j.d = d;
+  j.nbands = zs_band_count(d->cfg.threads, d->cfg.height);
+  if (j.nbands < 2) return finish_walk(d, sink, user, err);
+  const int threads = d->cfg.threads, w = d->cfg.width;
+  zs_walk_counts c = {0, 0, 0};
+  for (j.first = 0; j.first < j.nbands; j.first += threads) {
+    zs_pool_run(d->pool, walk_band_rows, &j, threads);
+    for (int t = 0; t < threads && j.first + t < j.nbands; t++) {
+      const int b = j.first + t, y0 = band_start(&j, b), y1 = band_start(&j, b + 1);
+      if (!j.ok[b]) return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
+      zs_walk_counts_add(&c, &j.counts[b]);
+      if (!sink) continue;
+      const zs_target tg = band_target(d, t, y0);
+      for (int y = y0; y < y1; y++) {
+        const size_t off = (size_t)(y - y0) * (size_t)w;
+        d->emit(d, y, tg.depth + off, tg.id + off, tg.rgb + off, tg.count + off, sink, user);
+      }
+    }
+  }
+  zs_add_walk_counts(&d->stats, &c);
+  zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);
+  zs_batch_reset(&d->batch);
+  return ZS_OK;
+}
+
 static zs_status finish_painter(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   if (!zs_depthsort_order(&d->depthsort, &d->batch, d->view))
     return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
   return finish_walk(d, sink, user, err);
+}
+
+static zs_status finish_painter_bands(zs_device *d, zs_row_sink sink, void *user,
+                                      zs_error *err) {
+  if (!zs_depthsort_order(&d->depthsort, &d->batch, d->view))
+    return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
+  return finish_bands(d, sink, user, err);
 }
 
 /* ---- zbuffer: the drawn frame's rows ---- */
@@ -104,8 +193,11 @@ static zs_status finish_frame(zs_device *d, zs_row_sink sink, void *user, zs_err
 }
 
 void zs_finish_choose(zs_device *d) {
+  /* the trace follows one walk; threads walk bands of rows */
+  const int bands = d->band_rows && !d->trace;
   d->finish = d->cfg.algo == ZS_ALGO_ZBUFFER     ? finish_frame
-              : d->cfg.algo == ZS_ALGO_DEPTHSORT ? finish_painter
+              : d->cfg.algo == ZS_ALGO_DEPTHSORT ? (bands ? finish_painter_bands : finish_painter)
+              : bands                            ? finish_bands
                                                  : finish_walk;
   d->emit = d->cfg.shade == ZS_SHADE_FLAT       ? emit_as_drawn
             : d->cfg.shade == ZS_SHADE_OVERDRAW ? emit_overdraw

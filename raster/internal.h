@@ -176,8 +176,10 @@ void zs_batch_reset(zs_batch *b);
  * 0 .. height - 1 (*lo > *hi when none). */
 void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, int32_t *lo,
                    int32_t *hi);
-/* Appends src's polygons and edges to dst, in order (0: out of memory). */
+/* Appends src's polygons and edges to dst, in order (0: out of memory);
+ * or its polygons first .. first + count - 1 with their edges. */
 int zs_batch_append(zs_batch *dst, const zs_batch *src);
+int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count);
 void zs_batch_free(zs_batch *b);
 
 /* ---- span_simd.c: the draw kernel's span fill with SSE2 or AVX2 ----
@@ -205,6 +207,7 @@ typedef struct zs_target {
   int64_t row_stride;
   int width;
   zs_simd simd;  /* the device's span fill */
+  int32_t row0;  /* the first row the buffers hold (bands of rows) */
 } zs_target;
 
 typedef struct zs_walk_counts {
@@ -423,6 +426,10 @@ struct zs_device {
   uint32_t *depth, *id, *rgb, *count;  /* full frame (zbuffer mode) */
   uint32_t *row_depth, *row_id, *row_rgb, *row_count; /* scanline mode */
   uint32_t *row_out;                   /* one shaded row */
+  uint32_t *band_rows;                 /* scanline mode on threads: each thread's
+                                        * band of rows, four buffers (finish.c) */
+  size_t band_cap;                     /* its uint32_t */
+  int band_max_rows;
 
   zs_batch batch;
   zs_walk_scratch scratch;
@@ -524,8 +531,11 @@ zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[
                           uint32_t id_base, uint32_t rgb, zs_kernel k, zs_walk_counts *out,
                           zs_error *err);
 
-/* finish.c: sets d->finish and d->emit for the mode and the shading. */
+/* finish.c: sets d->finish and d->emit for the mode, the shading, the
+ * threads and the trace; zs_finish_bands_alloc gives scanline and
+ * depthsort modes on threads their bands of rows (0: out of memory). */
 void zs_finish_choose(zs_device *d);
+int zs_finish_bands_alloc(zs_device *d);
 
 /* defer.c: draws queued while zs_device_defer_draws is on, and rendered
  * together at the next flush: set up in parallel, walked in bands of rows,

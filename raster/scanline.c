@@ -61,7 +61,7 @@ typedef struct row_ptrs {
 } row_ptrs;
 
 static inline row_ptrs row_of(const zs_target *t, int32_t y) {
-  const int64_t off = t->row_stride * y;
+  const int64_t off = t->row_stride * (y - t->row0);
   row_ptrs r = {t->depth ? t->depth + off : NULL, t->id ? t->id + off : NULL,
                 t->rgb ? t->rgb + off : NULL, t->count ? t->count + off : NULL};
   return r;

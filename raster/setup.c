@@ -60,17 +60,25 @@ void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, 
   *hi = h > height - 1 ? height - 1 : h;
 }
 
-int zs_batch_append(zs_batch *dst, const zs_batch *src) {
-  if (!reserve(dst, src->npolys, src->nedges)) return 0;
-  for (int32_t i = 0; i < src->npolys; i++) {
-    zs_poly p = src->polys[i];
-    p.edge0 += dst->nedges;
+int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count) {
+  if (count <= 0) return 1;
+  /* the polygons' edges lie together, in the polygons' order */
+  const int32_t e0 = src->polys[first].edge0;
+  const int32_t e1 = first + count < src->npolys ? src->polys[first + count].edge0 : src->nedges;
+  if (!reserve(dst, count, e1 - e0)) return 0;
+  for (int32_t i = 0; i < count; i++) {
+    zs_poly p = src->polys[first + i];
+    p.edge0 += dst->nedges - e0;
     dst->polys[dst->npolys + i] = p;
   }
-  memcpy(dst->edges + dst->nedges, src->edges, (size_t)src->nedges * sizeof *src->edges);
-  dst->npolys += src->npolys;
-  dst->nedges += src->nedges;
+  memcpy(dst->edges + dst->nedges, src->edges + e0, (size_t)(e1 - e0) * sizeof *src->edges);
+  dst->npolys += count;
+  dst->nedges += e1 - e0;
   return 1;
+}
+
+int zs_batch_append(zs_batch *dst, const zs_batch *src) {
+  return zs_batch_append_range(dst, src, 0, src->npolys);
 }
 
 /* Asks for the cache line at p, to be written (PREFETCHW).  With two
