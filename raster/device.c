@@ -63,7 +63,15 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
     d->depth = alloc_u32(px);
     d->id = alloc_u32(px);
     d->rgb = alloc_u32(px);
-    ok = d->depth && d->id && d->rgb;
+    d->fresh = malloc((size_t)cfg->height);
+    d->blank = alloc_u32(4 * w);
+    ok = d->depth && d->id && d->rgb && d->fresh && d->blank;
+    if (ok) {
+      zs_fill_u32(d->blank, w, ZS_DEPTH_FAR);
+      zs_fill_u32(d->blank + w, w, ZS_ID_NONE);
+      zs_fill_u32(d->blank + 2 * w, w, cfg->background);
+      memset(d->blank + 3 * w, 0, w * sizeof *d->blank);
+    }
     if (ok && cfg->shade == ZS_SHADE_OVERDRAW) ok = (d->count = alloc_u32(px)) != NULL;
   } else {
     d->row_depth = alloc_u32(w);
@@ -112,6 +120,8 @@ void zs_device_destroy(zs_device *d) {
   free(d->id);
   free(d->rgb);
   free(d->count);
+  free(d->fresh);
+  free(d->blank);
   free(d->row_depth);
   free(d->row_id);
   free(d->row_rgb);
@@ -147,8 +157,6 @@ const zs_depthsort_stats *zs_device_depthsort_stats(const zs_device *d) {
 }
 double zs_device_depthsort_ms(const zs_device *d) { return d->depthsort.ms; }
 void zs_device_depthsort_reset(zs_device *d) { d->depthsort.has_prev = 0; }
-const uint32_t *zs_device_depth_buffer(const zs_device *d) { return d->depth; }
-const uint32_t *zs_device_id_buffer(const zs_device *d) { return d->id; }
 
 void zs_device_set_camera(zs_device *d, const double view[16],
                           const double proj[16]) {
@@ -186,7 +194,33 @@ void zs_device_set_camera(zs_device *d, const double view[16],
 
 /* ---- clear ---- */
 
-/* Clears the full-frame buffers' part `part` of nparts (whole rows). */
+/* zbuffer mode clears lazily: a clear marks every row fresh, and a row is
+ * cleared when a walk first reaches it (zs_target.fresh) or a reader of
+ * the whole frame asks (zs_frame_clear_fresh); finish hands out a blank
+ * row for a row no draw reached.  A small model's frame so clears only
+ * the rows it covers (zscan bench raster --case models measures it). */
+static void mark_rows_fresh(zs_device *d) { memset(d->fresh, 1, (size_t)d->cfg.height); }
+
+void zs_frame_clear_fresh(const zs_device *d) {
+  if (!d->fresh) return;
+  const zs_target t = zs_draw_frame_target((zs_device *)d);
+  const size_t w = (size_t)d->cfg.width;
+  for (int y = 0; y < d->cfg.height; y++)
+    if (d->fresh[y]) {
+      const size_t off = (size_t)y * w;
+      zs_fill_u32(t.depth + off, w, ZS_DEPTH_FAR);
+      zs_fill_u32(t.id + off, w, ZS_ID_NONE);
+      zs_fill_u32(t.rgb + off, w, d->cfg.background);
+      if (t.count) memset(t.count + off, 0, w * sizeof *t.count);
+      d->fresh[y] = 0;
+    }
+}
+
+/* scanline and depthsort modes clear their one-row buffers row by row */
+static void clear_rows_later(zs_device *d) { (void)d; }
+
+/* Eager clearing, for a caller that holds the buffers' pointers: it may
+ * read them at any time.  Part `part` of nparts (whole rows). */
 typedef struct clear_job {
   zs_device *d;
   int nparts;
@@ -205,9 +239,6 @@ static void clear_part(void *ctx, int part) {
   if (d->count) memset(d->count + off, 0, px * sizeof *d->count);
 }
 
-/* scanline and depthsort modes clear their one-row buffers row by row */
-static void clear_rows_later(zs_device *d) { (void)d; }
-
 static void clear_frame(zs_device *d) {
   clear_job j = {d, 1};
   clear_part(&j, 0);
@@ -218,6 +249,18 @@ static void clear_frame_in_parts(zs_device *d) {
   clear_job j = {d, d->cfg.threads};
   zs_pool_run(d->pool, clear_part, &j, j.nparts);
 }
+
+/* The buffers handed out: cleared now, and eagerly from now on.  (The
+ * device is the caller's own, never a const object: only the view is.) */
+static const uint32_t *hand_out(const zs_device *cd, const uint32_t *buffer) {
+  zs_device *d = (zs_device *)cd;
+  zs_frame_clear_fresh(d);
+  d->clear_buffers = d->pool ? clear_frame_in_parts : clear_frame;
+  return buffer;
+}
+
+const uint32_t *zs_device_depth_buffer(const zs_device *d) { return hand_out(d, d->depth); }
+const uint32_t *zs_device_id_buffer(const zs_device *d) { return hand_out(d, d->id); }
 
 void zs_device_clear(zs_device *d) {
   zs_defer_discard(d); /* drawn and cleared away: the same frame */
@@ -295,7 +338,7 @@ static void choose_stages(zs_device *d) {
   /* the painter notes its faces' keys in one list: set up whole */
   d->set_up = d->pool && !d->painter ? zs_set_up_split : zs_set_up_whole;
   d->walk = !zbuffer ? zs_walk_kept : d->pool ? zs_walk_frame_banded : zs_walk_frame;
-  d->clear_buffers = !zbuffer ? clear_rows_later : d->pool ? clear_frame_in_parts : clear_frame;
+  d->clear_buffers = zbuffer ? mark_rows_fresh : clear_rows_later;
   d->draw = draw_now;
   d->shade_row = zs_row_shader_for(d->cfg.shade, d->perspective);
   zs_finish_choose(d);
@@ -309,7 +352,8 @@ static size_t scratch_bytes(const zs_walk_scratch *s) {
 zs_device_memory zs_device_memory_of(const zs_device *d) {
   zs_device_memory m = {0, 0, 0};
   size_t w = (size_t)d->cfg.width, px = w * (size_t)d->cfg.height;
-  if (d->depth) m.pixel_buffers += 3 * px * sizeof(uint32_t);
+  if (d->depth) /* and the blank row's four buffers, and a flag a row */
+    m.pixel_buffers += 3 * px * sizeof(uint32_t) + 4 * w * sizeof(uint32_t) + (size_t)d->cfg.height;
   if (d->count) m.pixel_buffers += px * sizeof(uint32_t);
   if (d->row_depth) m.pixel_buffers += 4 * w * sizeof(uint32_t);
   m.pixel_buffers += d->band_cap * sizeof(uint32_t);

@@ -35,7 +35,8 @@ size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
 }
 
 zs_target zs_draw_frame_target(zs_device *d) {
-  zs_target t = {d->depth, d->id, d->rgb, d->count, d->cfg.width, d->cfg.width, d->simd, 0};
+  zs_target t = {d->depth, d->id,  d->rgb,  d->count, d->cfg.width,
+                 d->cfg.width, d->simd, 0, d->fresh, d->cfg.background};
   return t;
 }
 

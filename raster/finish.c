@@ -74,7 +74,8 @@ static void end_row(void *user, int y) {
 static zs_status finish_walk(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   row_emit e = {d, sink, user};
   zs_row_hooks hooks = {begin_row, end_row, &e};
-  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, d->simd, 0};
+  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, d->simd,
+                 0, NULL, 0};
   zs_walk_counts c = {0, 0, 0};
   if (!zs_scan_batch(&d->batch, d->kernel, &t, 0, d->cfg.height, &hooks, d->trace, &d->scratch,
                      &c))
@@ -118,7 +119,7 @@ static zs_target band_target(const zs_device *d, int t, int row0) {
   const size_t n = (size_t)d->band_max_rows * (size_t)d->cfg.width;
   uint32_t *base = d->band_rows + 4 * n * (size_t)t;
   return (zs_target){base, base + n, base + 2 * n, base + 3 * n, d->cfg.width, d->cfg.width,
-                     d->simd, row0};
+                     d->simd, row0, NULL, 0};
 }
 
 static void walk_band_rows(void *ctx, int t) {
@@ -184,10 +185,15 @@ static zs_status finish_frame(zs_device *d, zs_row_sink sink, void *user, zs_err
   (void)err;
   if (!sink) return ZS_OK;
   const size_t w = (size_t)d->cfg.width;
+  const uint32_t *blank = d->blank; /* rows no draw reached: cleared, not stored */
   for (int y = 0; y < d->cfg.height; y++) {
     size_t off = (size_t)y * w;
-    d->emit(d, y, d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL,
-            sink, user);
+    if (d->fresh[y])
+      d->emit(d, y, blank, blank + w, blank + 2 * w, d->count ? blank + 3 * w : NULL, sink,
+              user);
+    else
+      d->emit(d, y, d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL,
+              sink, user);
   }
   return ZS_OK;
 }

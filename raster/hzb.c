@@ -50,6 +50,7 @@ zs_status zs_device_hzb_build(zs_device *d, zs_error *err) {
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "the depth pyramid needs the z-buffer mode");
   zs_status st = zs_device_flush(d, err); /* the pyramid is of what is drawn */
   if (st != ZS_OK) return st;
+  zs_frame_clear_fresh(d);
   zs_hzb *h = &d->hzb;
   /* the levels' sizes and offsets, once for the device's size */
   if (h->levels == 0) {

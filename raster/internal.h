@@ -208,6 +208,11 @@ typedef struct zs_target {
   int width;
   zs_simd simd;  /* the device's span fill */
   int32_t row0;  /* the first row the buffers hold (bands of rows) */
+  /* Full-frame buffers cleared lazily: a row y with fresh[y] set holds
+   * nothing yet and is cleared (to the far depth, no id, the background,
+   * no count) when a walk first reaches it; NULL: every row is ready. */
+  uint8_t *fresh;
+  uint32_t background;
 } zs_target;
 
 typedef struct zs_walk_counts {
@@ -424,6 +429,8 @@ struct zs_device {
   zs_raster_stats stats;
 
   uint32_t *depth, *id, *rgb, *count;  /* full frame (zbuffer mode) */
+  uint8_t *fresh;                      /* per row: not cleared yet (zs_target) */
+  uint32_t *blank;                     /* a cleared row: depth, id, colour, count */
   uint32_t *row_depth, *row_id, *row_rgb, *row_count; /* scanline mode */
   uint32_t *row_out;                   /* one shaded row */
   uint32_t *band_rows;                 /* scanline mode on threads: each thread's
@@ -530,6 +537,11 @@ int zs_walk_kept(zs_device *d, zs_kernel k, zs_walk_counts *out);
 zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[16],
                           uint32_t id_base, uint32_t rgb, zs_kernel k, zs_walk_counts *out,
                           zs_error *err);
+
+/* device.c: clears the rows of the full frame not cleared yet, for a
+ * reader of the whole frame (the buffers' getters, the pyramid, the
+ * hidden lines). */
+void zs_frame_clear_fresh(const zs_device *d);
 
 /* finish.c: sets d->finish and d->emit for the mode, the shading, the
  * threads and the trace; zs_finish_bands_alloc gives scanline and

@@ -67,6 +67,18 @@ static inline row_ptrs row_of(const zs_target *t, int32_t y) {
   return r;
 }
 
+/* Clears row y of a lazily cleared target, the first time a walk reaches
+ * it (zs_target.fresh). */
+static void clear_row(const zs_target *t, int32_t y) {
+  const row_ptrs r = row_of(t, y);
+  const size_t w = (size_t)t->width;
+  zs_fill_u32(r.depth, w, ZS_DEPTH_FAR);
+  zs_fill_u32(r.id, w, ZS_ID_NONE);
+  zs_fill_u32(r.rgb, w, t->background);
+  if (r.count) memset(r.count, 0, w * sizeof *r.count);
+  t->fresh[y] = 0;
+}
+
 /* The span kernels, one loop per kernel, chosen once per batch: the walk
  * below is inlined into a copy per kernel with k a constant.  The span
  * [x0, x1) of a's polygon, z its depth plane at x0. */
@@ -283,6 +295,7 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
     for (int32_t i = head[y - row_begin]; i >= 0; i = next[i])
       activate(&act[nact++], i, &polys[i], edges, y);
 
+    if (t->fresh && t->fresh[y]) clear_row(t, y);
     const row_ptrs row = row_of(t, y);
     int32_t kept = 0, ntrace_spans = 0;
     for (int32_t j = 0; j < nact; j++) {

@@ -430,10 +430,11 @@ START_TEST(scanline_memory_grows_with_width_not_area) {
   /* scanline: four rows of 4 bytes per pixel of width, and the shaded row */
   for (int k = 0; k < 4; k++) ck_assert_uint_eq(s[k].pixel_buffers, (size_t)sizes[k][0] * 5 * 4);
   ck_assert_uint_eq(s[0].pixel_buffers, s[2].pixel_buffers); /* 4x the height: the same */
-  /* zbuffer: depth, id and colour for every pixel, and the shaded row */
+  /* zbuffer: depth, id and colour for every pixel, the shaded row, the
+   * blank row's four buffers and a flag a row (cleared or not) */
   for (int k = 0; k < 4; k++)
-    ck_assert_uint_eq(z[k].pixel_buffers,
-                      (size_t)sizes[k][0] * sizes[k][1] * 12 + (size_t)sizes[k][0] * 4);
+    ck_assert_uint_eq(z[k].pixel_buffers, (size_t)sizes[k][0] * sizes[k][1] * 12 +
+                                              (size_t)sizes[k][0] * 4 * 5 + (size_t)sizes[k][1]);
   ck_assert_uint_eq(s[0].tables, s[1].tables); /* 4x the width: the same tables */
   mb_free(&b);
 }

@@ -215,7 +215,9 @@ zs_status zs_device_finish(zs_device *dev, zs_row_sink sink, void *user, zs_erro
 const zs_raster_stats *zs_device_stats(const zs_device *dev);
 
 /* The full-frame buffers of zbuffer mode (NULL in scanline mode), row 0 at
- * the top, width * height entries. */
+ * the top, width * height entries, current whenever read.  (A device
+ * clears the rows no draw reaches lazily until these are first asked for,
+ * and eagerly from then on.) */
 const uint32_t *zs_device_depth_buffer(const zs_device *dev);
 const uint32_t *zs_device_id_buffer(const zs_device *dev);
 
