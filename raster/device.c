@@ -346,7 +346,8 @@ static void choose_stages(zs_device *d) {
 
 static size_t scratch_bytes(const zs_walk_scratch *s) {
   return (size_t)s->cap_rows * sizeof *s->bucket_head +
-         (size_t)s->cap_polys * (sizeof *s->next + sizeof *s->active + sizeof *s->cross);
+         (size_t)s->cap_polys * (sizeof *s->next + sizeof *s->cross) +
+         (size_t)s->cap_active * sizeof *s->active;
 }
 
 zs_device_memory zs_device_memory_of(const zs_device *d) {

@@ -67,6 +67,11 @@ static inline row_ptrs row_of(const zs_target *t, int32_t y) {
   return r;
 }
 
+/* Room for one more active polygon (0: out of memory). */
+static int grow_active(zs_walk_scratch *s, int32_t nact) {
+  return zs_grow((void **)&s->active, &s->cap_active, (int64_t)nact + 1, sizeof *s->active);
+}
+
 /* Clears row y of a lazily cleared target, the first time a walk reaches
  * it (zs_target.fresh). */
 static void clear_row(const zs_target *t, int32_t y) {
@@ -153,12 +158,15 @@ static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
     s->cap_rows = rows;
   }
   if (polys > s->cap_polys) {
-    void **const arrays[] = {(void **)&s->next, (void **)&s->active, (void **)&s->cross};
-    const size_t sizes[] = {sizeof *s->next, sizeof *s->active, sizeof *s->cross};
-    if (!zs_resize_each(arrays, sizes, 3, (size_t)polys)) return 0;
+    void **const arrays[] = {(void **)&s->next, (void **)&s->cross};
+    const size_t sizes[] = {sizeof *s->next, sizeof *s->cross};
+    if (!zs_resize_each(arrays, sizes, 2, (size_t)polys)) return 0;
     s->cap_polys = polys;
-    s->cap_active = polys;
   }
+  /* the active list grows as the walk needs it (grow_active): most
+   * polygons of a large batch are never active at once */
+  if (s->cap_active == 0 && !zs_grow((void **)&s->active, &s->cap_active, 64, sizeof *s->active))
+    return 0;
   return 1;
 }
 
@@ -270,7 +278,7 @@ static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
  * is slower: rows in order stream through the buffers, a polygon's rows
  * stride across pages (zscan bench raster --case "triangles 25x25"
  * measures it). */
-__attribute__((always_inline)) static inline void walk(const zs_batch *b, const zs_kernel k,
+__attribute__((always_inline)) static inline int walk(const zs_batch *b, const zs_kernel k,
                         const zs_target *t, int row_begin, int row_end,
                         const zs_row_hooks *hooks, const zs_trace_observer *obs,
                         zs_walk_scratch *s, zs_walk_counts *counts) {
@@ -292,8 +300,13 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
     if (hooks && hooks->begin_row) hooks->begin_row(hooks->user, y);
 
     /* New polygons join the active lists with their edge pair. */
-    for (int32_t i = head[y - row_begin]; i >= 0; i = next[i])
+    for (int32_t i = head[y - row_begin]; i >= 0; i = next[i]) {
+      if (nact == s->cap_active) {
+        if (!grow_active(s, nact)) return 0;
+        act = s->active;
+      }
       activate(&act[nact++], i, &polys[i], edges, y);
+    }
 
     if (t->fresh && t->fresh[y]) clear_row(t, y);
     const row_ptrs row = row_of(t, y);
@@ -327,6 +340,7 @@ __attribute__((always_inline)) static inline void walk(const zs_batch *b, const 
   counts->spans += spans;
   counts->tested += tested;
   counts->written += written;
+  return 1;
 }
 
 int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
@@ -348,15 +362,16 @@ int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
 #define ZS_WALK(K)                                                            \
   do {                                                                        \
     if (!hooks && !obs)                                                       \
-      walk(b, K, t, row_begin, row_end, NULL, NULL, s, counts);               \
+      ok = walk(b, K, t, row_begin, row_end, NULL, NULL, s, counts);          \
     else                                                                      \
-      walk(b, K, t, row_begin, row_end, hooks, obs, s, counts);               \
+      ok = walk(b, K, t, row_begin, row_end, hooks, obs, s, counts);          \
   } while (0)
+  int ok = 1;
   switch (k) {
     case ZS_KERNEL_DRAW: ZS_WALK(ZS_KERNEL_DRAW); break;
     case ZS_KERNEL_OVERDRAW: ZS_WALK(ZS_KERNEL_OVERDRAW); break;
     case ZS_KERNEL_QUERY: ZS_WALK(ZS_KERNEL_QUERY); break;
   }
 #undef ZS_WALK
-  return 1;
+  return ok;
 }
