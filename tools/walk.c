@@ -170,6 +170,9 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     const char *a = argv[i], *v = NULL;
 #define VALUE() \
   if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
+    int taken = zs_model_option(argc, argv, &i, &o->clock, &o->cost, err);
+    if (taken < 0) return err->code;
+    if (taken) continue;
     if (strcmp(a, "--cull") == 0) {
       VALUE();
       have_cull = 1;
