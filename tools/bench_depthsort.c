@@ -58,14 +58,13 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
   memset(out, 0, sizeof *out);
   /* the motions start where the scene's own walk starts (the city's at
    * street level, as the paper's), else from its camera */
-  zs_camera base = s->camera;
-  if (s->path.nkeys > 0) zs_path_camera(s, 0, &base);
-  double aspect = (double)w / h;
+  zs_camera key = s->camera, base;
+  if (s->path.nkeys > 0) zs_path_camera(s, 0, &key);
   if (far > 0) {
-    base.zfar = far;
-    base.has_far = 1;
+    key.zfar = far;
+    key.has_far = 1;
   }
-  zs_camera_complete(&base, s->lo, s->hi, aspect);
+  zs_frame_complete_camera(s, &key, w, h, &base);
   if (far > 0 && base.znear >= far) base.znear = far * 1e-3;
   zs_path path;
   if (zs_path_named(motion, &base, frames, &path, err)) return err->code;
@@ -90,7 +89,7 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
     memcpy(cam.target, k.target, sizeof cam.target);
     memcpy(cam.up, k.up, sizeof cam.up);
     double view[16], proj[16];
-    if ((st = zs_camera_matrices(&cam, aspect, view, proj, err))) break;
+    if ((st = zs_camera_matrices(&cam, (double)w / h, view, proj, err))) break;
     /* from scratch */
     zs_device_depthsort_reset(full);
     if ((st = frame(full, s, view, proj, err)) || (st = zs_device_finish(full, NULL, NULL, err)))

@@ -55,17 +55,13 @@ int zs_cmd_path(int argc, char **argv) {
   parsing = 0;
   if (zs_input_load_scene(spec, &s, &err)) goto fail;
   loaded = 1;
-  if (!w) {
-    w = s.width ? s.width : 1024;
-    h = s.height ? s.height : 768;
-  }
-  double aspect = (double)w / h;
+  if (!w) zs_frame_size(&s, 0, 0, &w, &h);
   if (named && zs_frame_named_path(&s, named, frames ? frames : 100, w, h, &err)) goto fail;
   int n = frames ? frames : s.path.nkeys > 0 ? s.path.frames : 1;
   for (int f = 0; f < n; f++) {
-    zs_camera cam = s.camera;
-    if (s.path.nkeys > 0) zs_path_camera(&s, f, &cam);
-    zs_camera_complete(&cam, s.lo, s.hi, aspect);
+    zs_camera key = s.camera, cam;
+    if (s.path.nkeys > 0) zs_path_camera(&s, f, &key);
+    zs_frame_complete_camera(&s, &key, w, h, &cam);
     char line[512];
     zs_path_format(line, sizeof line, f, &cam);
     fputs(line, stdout); /* the line ends in its newline */

@@ -334,8 +334,7 @@ static zs_status make_devices(const walk_opts *o, walk *wk, zs_error *err) {
 static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
   if (zs_input_load_scene(o->scene, &wk->s, err)) return err->code;
   const zs_scene *s = &wk->s;
-  wk->w = o->width ? o->width : s->width ? s->width : 1024;
-  wk->h = o->height ? o->height : s->height ? s->height : 768;
+  zs_frame_size(s, o->width, o->height, &wk->w, &wk->h);
   if (o->named &&
       zs_frame_named_path(&wk->s, o->named, o->frames ? o->frames : 100, wk->w, wk->h, err))
     return err->code;
