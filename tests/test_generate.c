@@ -4,8 +4,8 @@
  * geometry is noticed); closed, outward-facing meshes; instances inside the
  * bounds; moving spheres staying inside the cube; the camera paths; the
  * parameter errors; the instanced default and cubes scenes against the
- * builtin models.  Load times of the two big scenes are printed, never
- * asserted.
+ * builtin models.  (How long the big scenes take to load: zscan bench
+ * tradeoff.)
  *
  * When a generator changes on purpose, the recorded counts and hashes
  * change with it: run this suite, read the values it prints on failure,
@@ -732,25 +732,6 @@ START_TEST(sincos) {
 }
 END_TEST
 
-/* ---- load times (printed, never asserted) ------------------------------ */
-
-START_TEST(load_times) {
-  static const char *specs[] = {"teapots?count=6000", "plant?detail=1", "spheres", "city",
-                                "plant"};
-  for (size_t i = 0; i < sizeof specs / sizeof specs[0]; i++) {
-    zs_scene s;
-    double t0 = seconds();
-    load(specs[i], &s);
-    double t1 = seconds();
-    zs_gen_counts n;
-    zs_gen_count(&s, &n);
-    printf("load %-20s %.3f s  (%lld objects, %lld triangles)\n", specs[i], t1 - t0,
-           (long long)n.objects, (long long)n.triangles);
-    zs_scene_free(&s);
-  }
-}
-END_TEST
-
 int main(void) {
   Suite *s = suite_create("generate");
   TCase *tc = tcase_create("counts");
@@ -782,9 +763,5 @@ int main(void) {
   tcase_add_test(tc, parameter_errors);
   suite_add_tcase(s, tc);
 
-  tc = tcase_create("load times");
-  tcase_set_timeout(tc, 600);
-  tcase_add_test(tc, load_times);
-  suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

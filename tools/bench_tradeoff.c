@@ -7,7 +7,7 @@
  * method), its table in Markdown and its plot of time against pixels wrong
  * (one point per method and mode); DIR/tradeoff.md gathers the tables with
  * the command of each; then the tuning outcomes (tools/bench_tuning.h)
- * on stdout.  --quick takes smaller scenes and every 60th to 80th
+ * and the scenes' load times on stdout.  --quick takes smaller scenes and every 60th to 80th
  * frame: a look in seconds, not the figures of docs/RESULTS.md. */
 #include "tools/bench_tradeoff.h"
 
@@ -18,6 +18,7 @@
 #include "raster/raster.h"
 #include "tools/cli.h"
 #include "lib/outfile.h"
+#include "tools/bench_load.h"
 #include "tools/bench_tuning.h"
 #include "tools/commands.h"
 
@@ -125,8 +126,12 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
     fprintf(f, "\n![run time against error: %s](tradeoff-%s.png)\n", walks[k].name, walks[k].name);
   }
   if (zs_out_commit(&out, &err)) goto fail;
-  /* the comparisons the tests once pinned, as figures */
-  if (zs_bench_tuning_report(stdout, &err)) goto fail;
+  /* the comparisons the tests once pinned, as figures, and the time the
+   * walks' scenes take to build */
+  const char *specs[NWALKS];
+  for (int k = 0; k < NWALKS; k++) specs[k] = walks[k].scene;
+  if (zs_bench_tuning_report(stdout, &err) || zs_bench_load_report(stdout, specs, NWALKS, &err))
+    goto fail;
   printf("wrote %s and, per walk, tradeoff-NAME.csv, .md and .png\n", summary);
   return 0;
 fail:
