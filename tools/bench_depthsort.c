@@ -135,10 +135,7 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
 }
 
 int zs_cmd_bench_depthsort(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   const char *spec = "builtin:city", *csv_path = NULL;
   int frames = 60, w = 1024, h = 768;
   double far = 0;
@@ -205,6 +202,5 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   }
   return 0;
 fail:
-  fprintf(stderr, "zscan bench depthsort: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench depthsort", &err, parsing);
 }

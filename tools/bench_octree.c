@@ -204,10 +204,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, int n, cons
 /* ---- the command ------------------------------------------------------------ */
 
 int zs_cmd_bench_octree(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   bench_opts o = {ZS_GEN_SPHERES_MAX, 50, ZS_OCTREE_DEFAULT_DEPTH, 0,
                   ZS_OCTREE_DEFAULT_LOOSENESS, NULL, NULL};
   bench_row rows[STEPS];
@@ -287,6 +284,5 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   }
   return 0;
 fail:
-  fprintf(stderr, "zscan bench octree: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench octree", &err, parsing);
 }

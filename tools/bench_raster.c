@@ -631,10 +631,7 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
 }
 
 int zs_cmd_bench_raster(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   bench_opts o;
   zs_error err;
   zs_error_clear(&err);
@@ -692,8 +689,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   for (int k = 0; k < 3 && !st; k++)
     if (outs[k] && !zs_out_is_stdout(outs[k])) fprintf(report, "wrote %s\n", outs[k]);
   if (st) {
-    fprintf(stderr, "zscan bench raster: %s\n", err.msg);
-    return zs_cli_exit_status(&err, usage_error);
+    return zs_cli_fail("zscan bench raster", &err, usage_error);
   }
   return 0;
 }

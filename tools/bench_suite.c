@@ -1035,10 +1035,7 @@ static int run_all(suite *s, bench_args *b, zs_error *err) {
 }
 
 int zs_cmd_bench_suite(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   static suite s; /* large: its command lines */
   static bench_args b;
   memset(&s, 0, sizeof s);
@@ -1047,8 +1044,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   zs_error err;
   zs_error_clear(&err);
   if (parse(argc, argv, &s, &docs, &err)) {
-    fprintf(stderr, "zscan bench suite: %s\n", err.msg);
-    return zs_cli_exit_status(&err, 1); /* a usage error exits 2 (tools/cli.h) */
+    return zs_cli_fail("zscan bench suite", &err, 1); /* a usage error exits 2 (tools/cli.h) */
   }
   if (probe(&s, docs, &err)) goto fail;
   bench_arguments(&s, &b);
@@ -1067,6 +1063,5 @@ int zs_cmd_bench_suite(int argc, char **argv) {
          s.callgrind ? "; instructions per frame under callgrind" : "");
   return 0;
 fail:
-  fprintf(stderr, "zscan bench suite: %s\n", err.msg);
-  return zs_cli_exit_status(&err, 0);
+  return zs_cli_fail("zscan bench suite", &err, 0);
 }

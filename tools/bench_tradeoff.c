@@ -50,10 +50,7 @@ static const walk_case quick[] = {
 enum { NWALKS = sizeof full / sizeof full[0] };
 
 int zs_cmd_bench_tradeoff(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   const char *dir = "bench-tradeoff", *size = NULL;
   int is_quick = 0, quiet = 0, w, h;
   zs_error err;
@@ -135,6 +132,5 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
   printf("wrote %s and, per walk, tradeoff-NAME.csv, .md and .png\n", summary);
   return 0;
 fail:
-  fprintf(stderr, "zscan bench tradeoff: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench tradeoff", &err, parsing);
 }

@@ -47,12 +47,22 @@ zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) 
                       name);
 }
 
-int zs_model_option(int argc, char **argv, int *i, zs_clock_params *clock, zs_cost_params *cost,
-                    zs_error *err) {
+int zs_cull_option(int argc, char **argv, int *i, zs_clock_params *clock, zs_cost_params *cost,
+                   zs_query_bounds *bounds, zs_error *err) {
   const char *a = argv[*i], *v = NULL;
   const int load = strcmp(a, "--clock") == 0, set = strcmp(a, "--clock-set") == 0;
-  if (!load && !set && strcmp(a, "--cost-set") != 0) return 0;
+  const int box = strcmp(a, "--bounds") == 0;
+  if (!load && !set && !box && strcmp(a, "--cost-set") != 0) return 0;
   if (zs_cli_value(argc, argv, i, &v, err)) return -1;
+  if (box) {
+    int b = zs_query_bounds_parse(v);
+    if (b < 0) {
+      zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
+      return -1;
+    }
+    *bounds = (zs_query_bounds)b;
+    return 1;
+  }
   zs_status st = load  ? zs_clockfile_load(v, clock, err)
                  : set ? zs_clock_set(v, clock, err)
                        : zs_cost_set(v, cost, err);

@@ -18,10 +18,7 @@ static const char usage[] =
     "usage: zscan path SCENE [--frames N] [--named static|translate|roll|yaw|fast] [--size WxH]\n";
 
 int zs_cmd_path(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   const char *spec = NULL, *named = NULL;
   int frames = 0, w = 0, h = 0;
   zs_error err;
@@ -38,13 +35,7 @@ int zs_cmd_path(int argc, char **argv) {
       if (zs_cli_value(argc, argv, &i, &named, &err)) goto fail;
     } else if (strcmp(a, "--size") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_size(a, v, 16384, &w, &h, &err)) goto fail;
-    } else if (a[0] == '-' && a[1]) {
-      zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan path --help)", a);
-      goto fail;
-    } else if (!spec) {
-      spec = a;
-    } else {
-      zs_error_set(&err, ZS_ERR_ARG, "more than one SCENE: '%s' and '%s'", spec, a);
+    } else if (zs_cli_operand(a, "zscan path", "SCENE", &spec, &err)) {
       goto fail;
     }
   }
@@ -69,7 +60,6 @@ int zs_cmd_path(int argc, char **argv) {
   zs_scene_free(&s);
   return 0;
 fail:
-  fprintf(stderr, "zscan path: %s\n", err.msg);
   if (loaded) zs_scene_free(&s);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan path", &err, parsing);
 }

@@ -115,7 +115,7 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
 #define VALUE() \
   if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
     int taken = zs_view_opts_parse(&o->view, argc, argv, &i, err);
-    if (!taken) taken = zs_model_option(argc, argv, &i, &o->clock, &o->cost, err);
+    if (!taken) taken = zs_cull_option(argc, argv, &i, &o->clock, &o->cost, &o->bounds, err);
     if (taken < 0) return err->code;
     if (taken) continue;
     if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
@@ -140,11 +140,6 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       VALUE();
       if ((o->cull = zs_cull_method_parse(v)) < 0)
         return zs_error_set(err, ZS_ERR_ARG, "--cull: unknown method '%s' (" ZS_CULL_METHOD_LIST ")", v);
-    } else if (strcmp(a, "--bounds") == 0) {
-      VALUE();
-      int b = zs_query_bounds_parse(v);
-      if (b < 0) return zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
-      o->bounds = (zs_query_bounds)b;
     } else if (strcmp(a, "--overlay") == 0) {
       VALUE();
       if (strcmp(v, "culling") != 0)
@@ -184,12 +179,8 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       if (strlen(v) != 6 || *end || v[0] == '-' || v[0] == '+')
         return zs_error_set(err, ZS_ERR_ARG, "--background: expected RRGGBB (hex), got '%s'", v);
       o->background = (uint32_t)rgb;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan render --help)", a);
-    } else if (!o->input) {
-      o->input = a;
-    } else {
-      return zs_error_set(err, ZS_ERR_ARG, "more than one INPUT: '%s' and '%s'", o->input, a);
+    } else if (zs_cli_operand(a, "zscan render", "INPUT", &o->input, err)) {
+      return err->code;
     }
 #undef VALUE
   }
@@ -520,19 +511,13 @@ done:
 }
 
 int zs_cmd_render(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage_head, stdout);
-    fputs(zs_view_opts_usage, stdout);
-    fputs(usage_tail, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage_head, zs_view_opts_usage, usage_tail, NULL)) return 0;
   render_opts o;
   zs_error err;
   zs_error_clear(&err);
   int parsing = 1;
   if (zs_render_parse(argc, argv, 0, &o, &err) || (parsing = 0) || run(&o, NULL, &err)) {
-    fprintf(stderr, "zscan render: %s\n", err.msg);
-    return zs_cli_exit_status(&err, parsing);
+    return zs_cli_fail("zscan render", &err, parsing);
   }
   return 0;
 }

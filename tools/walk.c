@@ -156,6 +156,19 @@ static zs_status check_outputs(walk_opts *o, int none_listed, zs_error *err) {
   return zs_out_report(streams, 4, "--csv, --md, --plot and --tradeoff", &o->report, err);
 }
 
+/* --csv, --md, --plot and --tradeoff: a file each (or - for standard
+ * output).  1: taken; 0: not one of them; -1: an error, in err. */
+static int output_option(int argc, char **argv, int *i, walk_opts *o, zs_error *err) {
+  const struct {
+    const char *name;
+    const char **path;
+  } outputs[] = {{"--csv", &o->csv}, {"--md", &o->md}, {"--plot", &o->plot}, {"--tradeoff", &o->tradeoff}};
+  for (size_t k = 0; k < sizeof outputs / sizeof outputs[0]; k++)
+    if (strcmp(argv[*i], outputs[k].name) == 0)
+      return zs_cli_output_value(argc, argv, i, outputs[k].path, err) ? -1 : 1;
+  return 0;
+}
+
 static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
   memset(o, 0, sizeof *o);
   o->depth = ZS_OCTREE_DEFAULT_DEPTH;
@@ -170,7 +183,8 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     const char *a = argv[i], *v = NULL;
 #define VALUE() \
   if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
-    int taken = zs_model_option(argc, argv, &i, &o->clock, &o->cost, err);
+    int taken = zs_cull_option(argc, argv, &i, &o->clock, &o->cost, &o->bounds, err);
+    if (!taken) taken = output_option(argc, argv, &i, o, err);
     if (taken < 0) return err->code;
     if (taken) continue;
     if (strcmp(a, "--cull") == 0) {
@@ -183,25 +197,12 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
     } else if (strcmp(a, "--algos") == 0) {
       VALUE();
       if (parse_algos(v, o, err)) return err->code;
-    } else if (strcmp(a, "--md") == 0) {
-      if (zs_cli_output_value(argc, argv, &i, &o->md, err)) return err->code;
-    } else if (strcmp(a, "--tradeoff") == 0) {
-      if (zs_cli_output_value(argc, argv, &i, &o->tradeoff, err)) return err->code;
-    } else if (strcmp(a, "--bounds") == 0) {
-      VALUE();
-      int b = zs_query_bounds_parse(v);
-      if (b < 0) return zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
-      o->bounds = (zs_query_bounds)b;
     } else if (strcmp(a, "--step") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 10000, &o->step, err)) return err->code;
     } else if (strcmp(a, "--size") == 0) {
       VALUE();
       if (zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err)) return err->code;
-    } else if (strcmp(a, "--csv") == 0) {
-      if (zs_cli_output_value(argc, argv, &i, &o->csv, err)) return err->code;
-    } else if (strcmp(a, "--plot") == 0) {
-      if (zs_cli_output_value(argc, argv, &i, &o->plot, err)) return err->code;
     } else if (strcmp(a, "--frames-dir") == 0) {
       VALUE();
       o->frames_dir = v; /* created (with its parents) when the walk starts */
@@ -233,12 +234,8 @@ static zs_status parse(int argc, char **argv, walk_opts *o, zs_error *err) {
       if (!named_path_known(v))
         return zs_error_set(err, ZS_ERR_ARG, "--named: expected %s, got '%s'", zs_path_names, v);
       o->named = v;
-    } else if (a[0] == '-' && a[1]) {
-      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan walk --help)", a);
-    } else if (!o->scene) {
-      o->scene = a;
-    } else {
-      return zs_error_set(err, ZS_ERR_ARG, "more than one SCENE: '%s' and '%s'", o->scene, a);
+    } else if (zs_cli_operand(a, "zscan walk", "SCENE", &o->scene, err)) {
+      return err->code;
     }
 #undef VALUE
   }
@@ -497,17 +494,13 @@ static zs_status run(const walk_opts *o, zs_error *err) {
 }
 
 int zs_cmd_walk(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   walk_opts o;
   zs_error err;
   zs_error_clear(&err);
   int parsing = 1;
   if (parse(argc, argv, &o, &err) || (parsing = 0) || run(&o, &err)) {
-    fprintf(stderr, "zscan walk: %s\n", err.msg);
-    return zs_cli_exit_status(&err, parsing);
+    return zs_cli_fail("zscan walk", &err, parsing);
   }
   return 0;
 }
