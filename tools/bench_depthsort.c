@@ -145,12 +145,9 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v;
     if (strcmp(a, "--frames") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 2, 100000, &frames, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 2, 100000, &frames, &err)) goto fail;
     } else if (strcmp(a, "--size") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) ||
-          zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &w, &h, &err))
-        goto fail;
+      if (zs_cli_size_value(argc, argv, &i, ZS_MAX_IMAGE_SIDE, &w, &h, &err)) goto fail;
     } else if (strcmp(a, "--far") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_double(a, v, &far, &err)) goto fail;
       if (!(far > 0)) {

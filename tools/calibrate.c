@@ -296,8 +296,7 @@ int zs_cmd_calibrate(int argc, char **argv) {
       if (zs_cli_value(argc, argv, &i, &v, &err)) goto fail;
       out = v;
     } else if (strcmp(argv[i], "--repeat") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int("--repeat", v, 1, 1000, &repeat, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 1, 1000, &repeat, &err)) goto fail;
     } else {
       zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s'", argv[i]);
       goto fail;

@@ -127,6 +127,20 @@ zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, z
   return zs_cli_output_path(opt, *out, err);
 }
 
+zs_status zs_cli_int_value(int argc, char **argv, int *i, long lo, long hi, int *out,
+                           zs_error *err) {
+  const char *opt = argv[*i], *v = NULL;
+  if (zs_cli_value(argc, argv, i, &v, err)) return err->code;
+  return zs_cli_int(opt, v, lo, hi, out, err);
+}
+
+zs_status zs_cli_size_value(int argc, char **argv, int *i, int max, int *w, int *h,
+                            zs_error *err) {
+  const char *opt = argv[*i], *v = NULL;
+  if (zs_cli_value(argc, argv, i, &v, err)) return err->code;
+  return zs_cli_size(opt, v, max, w, h, err);
+}
+
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);

@@ -41,6 +41,12 @@ const char *zs_cli_extension(const char *path);
  * or a device is taken as it is. */
 zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
                                zs_error *err);
+/* zs_cli_value, then zs_cli_int or zs_cli_size on the value: an option
+ * taking a whole number, or a size. */
+zs_status zs_cli_int_value(int argc, char **argv, int *i, long lo, long hi, int *out,
+                           zs_error *err);
+zs_status zs_cli_size_value(int argc, char **argv, int *i, int max, int *w, int *h,
+                            zs_error *err);
 /* zs_cli_value, then zs_cli_output_path on the value: an output file's option. */
 zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err);
 

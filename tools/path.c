@@ -27,14 +27,13 @@ int zs_cmd_path(int argc, char **argv) {
   zs_scene s;
   int loaded = 0;
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i], *v;
+    const char *a = argv[i];
     if (strcmp(a, "--frames") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 1, 1000000, &frames, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 1, 1000000, &frames, &err)) goto fail;
     } else if (strcmp(a, "--named") == 0) {
       if (zs_cli_value(argc, argv, &i, &named, &err)) goto fail;
     } else if (strcmp(a, "--size") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_size(a, v, 16384, &w, &h, &err)) goto fail;
+      if (zs_cli_size_value(argc, argv, &i, 16384, &w, &h, &err)) goto fail;
     } else if (zs_cli_operand(a, "zscan path", "SCENE", &spec, &err)) {
       goto fail;
     }

@@ -637,8 +637,7 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
       o->png_dir = v;
     } else if (strcmp(a, "--scale") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 64, &o->scale, err))
-        return err->code;
+      if (zs_cli_int_value(argc, argv, &i, 1, 64, &o->scale, err)) return err->code;
     } else if (zs_cli_operand(a, "zscan trace", "INPUT", &o->input, err)) {
       return err->code;
     }
