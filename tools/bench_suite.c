@@ -121,6 +121,13 @@ static void in_dir(char *buf, const suite *s, const char *name) {
   snprintf(buf, PATH, "%s/%s", s->dir, name);
 }
 
+/* in_dir of the name pattern with its %s replaced by word: "walk-%s.csv". */
+static void in_dir_named(char *buf, const suite *s, const char *pattern, const char *word) {
+  char name[256];
+  snprintf(name, sizeof name, pattern, word);
+  in_dir(buf, s, name);
+}
+
 /* args joined by spaces after prefix, a word with a shell's special
  * characters in double quotes. */
 static void join_cmd(char *buf, const char *prefix, char *const *args) {
@@ -315,13 +322,10 @@ static zs_status run_memory(suite *s, zs_error *err) {
 
 /* One of the large walks at every frame, every method. */
 static zs_status run_walk(suite *s, int w, zs_error *err) {
-  char csv[PATH], md[PATH], txt[PATH], name[64];
-  snprintf(name, sizeof name, "walk-%s.csv", walks[w][0]);
-  in_dir(csv, s, name);
-  snprintf(name, sizeof name, "walk-%s.md", walks[w][0]);
-  in_dir(md, s, name);
-  snprintf(name, sizeof name, "walk-%s.txt", walks[w][0]);
-  in_dir(txt, s, name);
+  char csv[PATH], md[PATH], txt[PATH];
+  in_dir_named(csv, s, "walk-%s.csv", walks[w][0]);
+  in_dir_named(md, s, "walk-%s.md", walks[w][0]);
+  in_dir_named(txt, s, "walk-%s.txt", walks[w][0]);
   char *args[24] = {"walk", (char *)walks[w][s->quick ? 2 : 1], "--cull", (char *)all_methods};
   int k = 4;
   if (s->quick) {
@@ -587,9 +591,8 @@ static void page_head(FILE *f, const suite *s) {
                    : "");
 }
 
-/* Raster throughput: the table and its plot. */
-static zs_status page_raster(FILE *f, const suite *s, int docs, zs_error *err) {
-  fprintf(f,
+/* The prose of the page's sections: each begins with its heading. */
+static const char prose_raster[] =
           "\n## Raster throughput\n\n"
           "Screens tiled with triangles (the two halves of S x S pixel squares) in\n"
           "layers drawn back to front, so that every pixel of every layer is tested\n"
@@ -598,15 +601,8 @@ static zs_status page_raster(FILE *f, const suite *s, int docs, zs_error *err) {
           "come from valgrind's callgrind: each case and mode runs alone for 1 and\n"
           "for 3 frames, and half the difference is one frame. Spans of 16 pixels\n"
           "or more are filled with AVX2 (`--simd` caps the level; every level gives\n"
-          "the same pixels).\n");
-  if (command_table(f, s, s->cmd_raster, "raster.md", 0, err)) return err->code;
-  image(f, s, 0, "raster throughput against triangle size", docs);
-  return ZS_OK;
-}
-
-/* zscan against llvmpipe, on one thread and on all. */
-static zs_status page_llvmpipe(FILE *f, const suite *s, zs_error *err) {
-  fprintf(f,
+          "the same pixels).\n";
+static const char prose_llvmpipe[] =
           "\n## Against Mesa's llvmpipe\n\n"
           "The same cases drawn through Mesa's llvmpipe (OSMesa) with the same\n"
           "matrices: vertex arrays, each face fanned into triangles, one colour per\n"
@@ -617,26 +613,8 @@ static zs_status page_llvmpipe(FILE *f, const suite *s, zs_error *err) {
           "both faces and differ only in which is nearer, below the resolution of\n"
           "llvmpipe's 24-bit depth buffer (`tools/crosscheck.c`); everything else\n"
           "counts as coverage. `tests/test_mesa.c` bounds the coverage differences\n"
-          "at 1 in 10,000 pixels.\n\n### One thread each\n");
-  if (s->mesa) {
-    if (command_table(f, s, s->cmd_raster, "raster.md", 1, err)) return err->code;
-  } else {
-    fprintf(f, "\nNot measured: %s.\n",
-            s->have_mesa ? "--quick" : "this zscan was built without OSMesa");
-  }
-  fprintf(f, "\n### Every thread of the machine, each\n");
-  if (s->mesa && s->threads)
-    return command_table(f, s, s->cmd_threads, "raster-threads.md", 1, err);
-  fprintf(f, "\nNot measured: %s.\n",
-          !s->have_mesa ? "this zscan was built without OSMesa"
-          : s->quick    ? "--quick"
-                        : "the machine has one thread");
-  return ZS_OK;
-}
-
-/* zscan on every thread against one. */
-static zs_status page_speedup(FILE *f, const suite *s, zs_error *err) {
-  fprintf(f,
+          "at 1 in 10,000 pixels.\n\n### One thread each\n";
+static const char prose_speedup[] =
           "\n## Threads: the speed-up and its ceiling\n\n"
           "A whole scene on N threads is drawn deferred: set up in chunks, walked in\n"
           "bands of rows, with the same bytes and counters as on one thread.\n"
@@ -645,26 +623,15 @@ static zs_status page_speedup(FILE *f, const suite *s, zs_error *err) {
           "CPU, all at once, each pinned to its CPU (Linux): with t_one the\n"
           "one-thread frame and t_i each CPU's, the ceiling t_one x sum(1 / t_i) is\n"
           "what a perfect split would give in that round, the CPUs' interference\n"
-          "with each other included (two virtual CPUs are not always equal).\n");
-  if (s->threads)
-    return command_table(f, s, s->cmd_threads, "raster-threads.md", s->mesa ? 2 : 1, err);
-  fprintf(f, "\nNot measured: %s.\n", s->quick ? "--quick" : "the machine has one thread");
-  return ZS_OK;
-}
-
-/* What the device holds, and the clock's constants. */
-static zs_status page_memory_clock(FILE *f, const suite *s, zs_error *err) {
-  fprintf(f,
+          "with each other included (two virtual CPUs are not always equal).\n";
+static const char prose_memory[] =
           "\n## Memory\n\n"
           "What the device holds, from `zscan render --stats`: `buffer_bytes`\n"
           "(the pixel buffers) and `table_bytes` (the polygon and edge tables and\n"
           "the walk's scratch), in bytes, for the default scene. Scanline mode\n"
           "keeps rows: its buffers grow with the width, not the area; its tables\n"
-          "hold the whole frame's polygons, zbuffer mode's one draw's.\n");
-  if (command_table(f, s, s->cmd_memory, "memory.md", 0, err)) return err->code;
-  char p[PATH];
-  in_dir(p, s, "calibrate.txt");
-  fprintf(f,
+          "hold the whole frame's polygons, zbuffer mode's one draw's.\n";
+static const char prose_calibrate[] =
           "\n## The device clock, calibrated\n\n"
           "The clock models each command's GPU time from counts (calls, vertices,\n"
           "polygons, spans, pixels tested and written, query pixels). `zscan\n"
@@ -672,17 +639,8 @@ static zs_status page_memory_clock(FILE *f, const suite *s, zs_error *err) {
           "whole scenes on zscan's own raster code, fits the constants by least\n"
           "squares on relative error, and prints each workload's measured time\n"
           "against the model's. The culling walks below use the default clock,\n"
-          "which describes a GPU, not these constants.\n");
-  command(f, s, s->cmd_calibrate);
-  fputs("```\n", f);
-  zs_status st = append_lines(f, p, "workload", err);
-  fputs("```\n", f);
-  return st;
-}
-
-/* The two large walks at every frame, with their plots. */
-static zs_status page_walks(FILE *f, const suite *s, int docs, zs_error *err) {
-  fprintf(f,
+          "which describes a GPU, not these constants.\n";
+static const char prose_walks[] =
           "\n## Culling walks, every frame\n\n"
           "`zscan walk` runs every method in lockstep over the scene's camera path,\n"
           "each on its own device with the default clock, and compares every frame\n"
@@ -692,33 +650,11 @@ static zs_status page_walks(FILE *f, const suite *s, int docs, zs_error *err) {
           "make, which their modelled time does not see. Every column and method:\n"
           "[CULLING.md](CULLING.md#reading-a-walk). Below each table: how\n"
           "ideal-box's set changes from frame to frame, and the least that change\n"
-          "costs a method that learns visibility from the last frame.\n");
-  for (int w = 0; w < 2; w++) {
-    char p[PATH], q[PATH], extent[256], name[64];
-    snprintf(name, sizeof name, "walk-%s.txt", walks[w][0]);
-    in_dir(p, s, name);
-    snprintf(name, sizeof name, "walk-%s.md", walks[w][0]);
-    in_dir(q, s, name);
-    walk_extent(p, extent, sizeof extent);
-    fprintf(f, "\n### `%s`, every frame (%s)\n", walks[w][s->quick ? 2 : 1], extent);
-    command(f, s, s->cmd_walk[w]);
-    if (append_table(f, q, 0, err)) return err->code;
-    fputs("\n```\n", f);
-    zs_status st = append_lines(f, p, "ideal-box's set", err);
-    fputs("```\n", f);
-    if (st) return st;
-  }
-  fprintf(f,
-          "\nModelled frame time along the two walks, a few methods (hsw, which\n"
-          "waits for every answer, left out: it would flatten the others):\n");
-  image(f, s, 2, "the teapots walk, every frame", docs);
-  image(f, s, 1, "the plant walk, every frame", docs);
-  return ZS_OK;
-}
-
-/* bench tradeoff's walks: a table and a plot each. */
-static zs_status page_tradeoff(FILE *f, const suite *s, int docs, zs_error *err) {
-  fprintf(f,
+          "costs a method that learns visibility from the last frame.\n";
+static const char prose_walk_plots[] =
+    "\nModelled frame time along the two walks, a few methods (hsw, which\n"
+    "waits for every answer, left out: it would flatten the others):\n";
+static const char prose_tradeoff[] =
           "\n## Run time against error\n\n"
           "`zscan bench tradeoff` walks the teapots, the city and the plant at every\n"
           "10th, 8th and 8th frame with every method and, beside the z-buffer, the\n"
@@ -726,32 +662,11 @@ static zs_status page_tradeoff(FILE *f, const suite *s, int docs, zs_error *err)
           "counted against none in zbuffer mode: scanline mode draws its image\n"
           "exactly, depth sort and vfc-box do not. Each plot puts every method and\n"
           "mode at its pixels wrong per frame against its median wall time (left)\n"
-          "and its modelled time (right).\n");
-  for (int w = 0; w < 3; w++) {
-    char cmd[CMD], name[64];
-    tradeoff_cmd(s, w, cmd);
-    snprintf(name, sizeof name, "tradeoff-%s.md", tradeoff_walks[w]);
-    char scene[256], every[64];
-    walk_of(cmd, scene, sizeof scene, every, sizeof every);
-    fprintf(f, "\n### `%s`, %s\n", scene, every);
-    if (command_table(f, s, cmd, name, 0, err)) return err->code;
-    char alt[96];
-    snprintf(alt, sizeof alt, "run time against error: %s", tradeoff_walks[w]);
-    image(f, s, 5 + w, alt, docs);
-  }
-  fprintf(f,
-          "\nModelled frame time along the teapots and plant walks above, a few\n"
-          "methods:\n");
-  image(f, s, 3, "the teapots walk, every 10th frame", docs);
-  image(f, s, 4, "the plant walk, every 8th frame", docs);
-  return ZS_OK;
-}
-
-/* bench depthsort's table: the depth-sort paper's Table 1. */
-static zs_status page_depthsort(FILE *f, const suite *s, zs_error *err) {
-  char p[PATH];
-  in_dir(p, s, "depthsort.csv");
-  fprintf(f,
+          "and its modelled time (right).\n";
+static const char prose_tradeoff_plots[] =
+    "\nModelled frame time along the teapots and plant walks above, a few\n"
+    "methods:\n";
+static const char prose_depthsort[] =
           "\n## Depth sort with frame coherence\n\n"
           "The depth-sort paper's Table 1 on the city at street level. The sorter\n"
           "tells the camera's motion between two frames from the view matrices:\n"
@@ -759,45 +674,15 @@ static zs_status page_depthsort(FILE *f, const suite *s, zs_error *err) {
           "slowly, `fast` moves far enough that most faces are new. Reused: faces\n"
           "kept from the last frame's order. Times are medians of the frames after\n"
           "the first; comparisons are exact; diff pixels are the pixels a frame\n"
-          "that differ from the z-buffer's image.\n");
-  command(f, s, s->cmd_depthsort);
-  static const int col[8] = {0, 1, 2, 3, 4, 5, 6, 7};
-  static const char *const head[8] = {"motion",
-                                      "faces",
-                                      "reused %",
-                                      "full sort ms",
-                                      "coherent sort ms",
-                                      "full comparisons",
-                                      "coherent comparisons",
-                                      "diff pixels"};
-  static const char *const fmt[8] = {NULL, "%.0f", "%.2f", "%.3f", "%.3f", "%.0f", "%.0f", "%.1f"};
-  return csv_table(f, p, 8, col, head, fmt, err);
-}
-
-/* bench octree's table and plot. */
-static zs_status page_octree(FILE *f, const suite *s, int docs, zs_error *err) {
-  char p[PATH];
-  in_dir(p, s, "octree.csv");
-  fprintf(f,
+          "that differ from the z-buffer's image.\n";
+static const char prose_octree[] =
           "\n## Loose against plain octree\n\n"
           "The cost-model paper's experiment 1: spheres of 576 faces moving in a\n"
           "1,000-unit cube, the time to update each tree per frame (median). The\n"
           "loose octree places an object in constant time, its level from its\n"
           "radius and its cell from its centre; the plain one deletes, descends\n"
-          "from the root and inserts.\n");
-  command(f, s, s->cmd_octree);
-  static const int col[5] = {0, 1, 2, 3, 4};
-  static const char *const head[5] = {"moving", "loose ms/frame", "plain ms/frame",
-                                      "loose us/object", "plain us/object"};
-  static const char *const fmt[5] = {"%.0f", "%.3f", "%.3f", "%.3f", "%.3f"};
-  if (csv_table(f, p, 5, col, head, fmt, err)) return err->code;
-  image(f, s, 8, "loose against plain octree updates", docs);
-  return ZS_OK;
-}
-
-/* What was tried and dropped. */
-static void page_not_paid(FILE *f) {
-  fprintf(f,
+          "from the root and inserts.\n";
+static const char prose_not_paid[] =
           "\n## Things that did not pay\n\n"
           "Tried, measured, and not kept (the measurements are in the history of\n"
           "the code that was dropped):\n\n"
@@ -827,21 +712,166 @@ static void page_not_paid(FILE *f) {
           "- Split sort and natural merge sort for depth sort under slow yaw on the\n"
           "  large city: more comparisons than the insertion sort.\n"
           "- Learning w1 and w2 of the cost model from a walk's own queries\n"
-          "  (`--cost-set learn=K`) as the default: slower on both large walks.\n");
+          "  (`--cost-set learn=K`) as the default: slower on both large walks.\n";
+
+/* Raster throughput: the table. */
+static zs_status page_raster(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  return command_table(f, s, s->cmd_raster, "raster.md", 0, err);
 }
+
+/* zscan against llvmpipe, on one thread and on all. */
+static zs_status page_llvmpipe(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  if (s->mesa) {
+    if (command_table(f, s, s->cmd_raster, "raster.md", 1, err)) return err->code;
+  } else {
+    fprintf(f, "\nNot measured: %s.\n",
+            s->have_mesa ? "--quick" : "this zscan was built without OSMesa");
+  }
+  fprintf(f, "\n### Every thread of the machine, each\n");
+  if (s->mesa && s->threads)
+    return command_table(f, s, s->cmd_threads, "raster-threads.md", 1, err);
+  fprintf(f, "\nNot measured: %s.\n",
+          !s->have_mesa ? "this zscan was built without OSMesa"
+          : s->quick    ? "--quick"
+                        : "the machine has one thread");
+  return ZS_OK;
+}
+
+/* zscan on every thread against one. */
+static zs_status page_speedup(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  if (s->threads)
+    return command_table(f, s, s->cmd_threads, "raster-threads.md", s->mesa ? 2 : 1, err);
+  fprintf(f, "\nNot measured: %s.\n", s->quick ? "--quick" : "the machine has one thread");
+  return ZS_OK;
+}
+
+/* What the device holds. */
+static zs_status page_memory(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  return command_table(f, s, s->cmd_memory, "memory.md", 0, err);
+}
+
+/* The clock's constants, as zscan calibrate fitted them. */
+static zs_status page_calibrate(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  char p[PATH];
+  in_dir(p, s, "calibrate.txt");
+  command(f, s, s->cmd_calibrate);
+  fputs("```\n", f);
+  zs_status st = append_lines(f, p, "workload", err);
+  fputs("```\n", f);
+  return st;
+}
+
+/* The two large walks at every frame. */
+static zs_status page_walks(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  for (int w = 0; w < 2; w++) {
+    char p[PATH], q[PATH], extent[256];
+    in_dir_named(p, s, "walk-%s.txt", walks[w][0]);
+    in_dir_named(q, s, "walk-%s.md", walks[w][0]);
+    walk_extent(p, extent, sizeof extent);
+    fprintf(f, "\n### `%s`, every frame (%s)\n", walks[w][s->quick ? 2 : 1], extent);
+    command(f, s, s->cmd_walk[w]);
+    if (append_table(f, q, 0, err)) return err->code;
+    fputs("\n```\n", f);
+    zs_status st = append_lines(f, p, "ideal-box's set", err);
+    fputs("```\n", f);
+    if (st) return st;
+  }
+  return ZS_OK;
+}
+
+/* bench tradeoff's walks: a table and a plot each. */
+static zs_status page_tradeoff(FILE *f, const suite *s, int docs, zs_error *err) {
+  for (int w = 0; w < 3; w++) {
+    char cmd[CMD], name[64];
+    tradeoff_cmd(s, w, cmd);
+    snprintf(name, sizeof name, "tradeoff-%s.md", tradeoff_walks[w]);
+    char scene[256], every[64];
+    walk_of(cmd, scene, sizeof scene, every, sizeof every);
+    fprintf(f, "\n### `%s`, %s\n", scene, every);
+    if (command_table(f, s, cmd, name, 0, err)) return err->code;
+    char alt[96];
+    snprintf(alt, sizeof alt, "run time against error: %s", tradeoff_walks[w]);
+    image(f, s, 5 + w, alt, docs);
+  }
+  return ZS_OK;
+}
+
+/* bench depthsort's table: the depth-sort paper's Table 1. */
+static zs_status page_depthsort(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  char p[PATH];
+  in_dir(p, s, "depthsort.csv");
+  command(f, s, s->cmd_depthsort);
+  static const int col[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  static const char *const head[8] = {"motion",
+                                      "faces",
+                                      "reused %",
+                                      "full sort ms",
+                                      "coherent sort ms",
+                                      "full comparisons",
+                                      "coherent comparisons",
+                                      "diff pixels"};
+  static const char *const fmt[8] = {NULL, "%.0f", "%.2f", "%.3f", "%.3f", "%.0f", "%.0f", "%.1f"};
+  return csv_table(f, p, 8, col, head, fmt, err);
+}
+
+/* bench octree's table. */
+static zs_status page_octree(FILE *f, const suite *s, int docs, zs_error *err) {
+  char p[PATH];
+  in_dir(p, s, "octree.csv");
+  command(f, s, s->cmd_octree);
+  static const int col[5] = {0, 1, 2, 3, 4};
+  static const char *const head[5] = {"moving", "loose ms/frame", "plain ms/frame",
+                                      "loose us/object", "plain us/object"};
+  static const char *const fmt[5] = {"%.0f", "%.3f", "%.3f", "%.3f", "%.3f"};
+  (void)docs;
+  return csv_table(f, p, 5, col, head, fmt, err);
+}
+
+/* The page's sections in turn: the prose, then what the benchmark wrote
+ * (none: the prose alone), then up to two plots (none: NULL). */
+typedef zs_status (*section_body)(FILE *f, const suite *s, int docs, zs_error *err);
+static const struct {
+  const char *prose;
+  section_body body;
+  int plot[2];
+  const char *alt[2];
+} sections[] = {
+    {prose_raster, page_raster, {0, 0}, {"raster throughput against triangle size", NULL}},
+    {prose_llvmpipe, page_llvmpipe, {0, 0}, {NULL, NULL}},
+    {prose_speedup, page_speedup, {0, 0}, {NULL, NULL}},
+    {prose_memory, page_memory, {0, 0}, {NULL, NULL}},
+    {prose_calibrate, page_calibrate, {0, 0}, {NULL, NULL}},
+    {prose_walks, page_walks, {0, 0}, {NULL, NULL}},
+    {prose_walk_plots, NULL, {2, 1}, {"the teapots walk, every frame", "the plant walk, every frame"}},
+    {prose_tradeoff, page_tradeoff, {0, 0}, {NULL, NULL}},
+    {prose_tradeoff_plots, NULL, {3, 4},
+     {"the teapots walk, every 10th frame", "the plant walk, every 8th frame"}},
+    {prose_depthsort, page_depthsort, {0, 0}, {NULL, NULL}},
+    {prose_octree, page_octree, {8, 0}, {"loose against plain octree updates", NULL}},
+    {prose_not_paid, NULL, {0, 0}, {NULL, NULL}},
+};
 
 static zs_status write_page(const suite *s, const char *path, int docs, zs_error *err) {
   zs_out out;
   if (zs_out_open(&out, path, err)) return err->code;
   FILE *f = out.fp;
   page_head(f, s);
-  if (page_raster(f, s, docs, err) || page_llvmpipe(f, s, err) || page_speedup(f, s, err) ||
-      page_memory_clock(f, s, err) || page_walks(f, s, docs, err) ||
-      page_tradeoff(f, s, docs, err) || page_depthsort(f, s, err) || page_octree(f, s, docs, err)) {
-    zs_out_discard(&out);
-    return err->code;
+  for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++) {
+    fputs(sections[k].prose, f);
+    if (sections[k].body && sections[k].body(f, s, docs, err)) {
+      zs_out_discard(&out);
+      return err->code;
+    }
+    for (int i = 0; i < 2 && sections[k].alt[i]; i++)
+      image(f, s, sections[k].plot[i], sections[k].alt[i], docs);
   }
-  page_not_paid(f);
   return zs_out_commit(&out, err);
 }
 
@@ -981,17 +1011,13 @@ static zs_status plot_walks(const suite *s, zs_error *err) {
   static const char *const walk_name[2][2] = {{"walk-plant", "tradeoff-plant"},
                                               {"walk-teapots", "tradeoff-teapots"}};
   for (int k = 0; k < 2; k++) {
-    char csv[PATH], png[PATH], name[64], title[400];
-    snprintf(name, sizeof name, "%s.csv", walk_name[k][0]);
-    in_dir(csv, s, name);
-    snprintf(name, sizeof name, "%s-every.png", walk_name[k][0]);
-    in_dir(png, s, name);
+    char csv[PATH], png[PATH], title[400];
+    in_dir_named(csv, s, "%s.csv", walk_name[k][0]);
+    in_dir_named(png, s, "%s-every.png", walk_name[k][0]);
     snprintf(title, sizeof title, "%s, every frame", walks[k][s->quick ? 2 : 1]);
     if (plot_walk(csv, png, title, err)) return err->code;
-    snprintf(name, sizeof name, "%s.csv", walk_name[k][1]);
-    in_dir(csv, s, name);
-    snprintf(name, sizeof name, "%s.png", walk_name[k][0]);
-    in_dir(png, s, name);
+    in_dir_named(csv, s, "%s.csv", walk_name[k][1]);
+    in_dir_named(png, s, "%s.png", walk_name[k][0]);
     char cmd[CMD], scene[256], every[64];
     tradeoff_cmd(s, k ? 0 : 2, cmd); /* its walks: teapots, city, plant */
     walk_of(cmd, scene, sizeof scene, every, sizeof every);
