@@ -515,11 +515,8 @@ int zs_cmd_render(int argc, char **argv) {
   render_opts o;
   zs_error err;
   zs_error_clear(&err);
-  int parsing = 1;
-  if (zs_render_parse(argc, argv, 0, &o, &err) || (parsing = 0) || run(&o, NULL, &err)) {
-    return zs_cli_fail("zscan render", &err, parsing);
-  }
-  return 0;
+  if (zs_render_parse(argc, argv, 0, &o, &err)) return zs_cli_fail("zscan render", &err, 1);
+  return run(&o, NULL, &err) ? zs_cli_fail("zscan render", &err, 0) : 0;
 }
 
 zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err) {

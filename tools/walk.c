@@ -498,9 +498,6 @@ int zs_cmd_walk(int argc, char **argv) {
   walk_opts o;
   zs_error err;
   zs_error_clear(&err);
-  int parsing = 1;
-  if (parse(argc, argv, &o, &err) || (parsing = 0) || run(&o, &err)) {
-    return zs_cli_fail("zscan walk", &err, parsing);
-  }
-  return 0;
+  if (parse(argc, argv, &o, &err)) return zs_cli_fail("zscan walk", &err, 1);
+  return run(&o, &err) ? zs_cli_fail("zscan walk", &err, 0) : 0;
 }
