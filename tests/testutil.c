@@ -37,6 +37,34 @@ uint64_t zs_test_fnv1a(const void *data, size_t n) {
   return h;
 }
 
+unsigned char *zs_test_slurp(const char *path, size_t *n) {
+  FILE *f = fopen(path, "rb");
+  ck_assert_msg(f != NULL, "%s: cannot open", path);
+  size_t cap = 1 << 16, len = 0, got;
+  unsigned char *b = malloc(cap);
+  ck_assert_ptr_nonnull(b);
+  while ((got = fread(b + len, 1, cap - len, f)) > 0) {
+    len += got;
+    if (len == cap) {
+      b = realloc(b, cap *= 2);
+      ck_assert_ptr_nonnull(b);
+    }
+  }
+  fclose(f);
+  b[len] = '\0'; /* the loop leaves len < cap */
+  *n = len;
+  return b;
+}
+
+void zs_test_assert_same_file(const char *a, const char *b) {
+  size_t na, nb;
+  unsigned char *x = zs_test_slurp(a, &na), *y = zs_test_slurp(b, &nb);
+  ck_assert_msg(na == nb && na > 0 && memcmp(x, y, na) == 0,
+                "%s (%zu bytes) and %s (%zu bytes) differ", a, na, b, nb);
+  free(x);
+  free(y);
+}
+
 uint64_t zs_test_hash_values(const uint64_t *v, size_t n) {
   unsigned char b[8];
   uint64_t h = 0xcbf29ce484222325ull;

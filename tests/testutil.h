@@ -44,6 +44,13 @@ int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *
  * the test fails when it cannot be opened); returns the bytes read. */
 size_t zs_test_read(const char *path, char *buf, size_t cap);
 
+/* The whole file at path in a malloc'd buffer, its size in *n, a NUL
+ * after its last byte (text can be read as a string); the test fails
+ * when it cannot be read. */
+unsigned char *zs_test_slurp(const char *path, size_t *n);
+/* The two files hold the same bytes, and some. */
+void zs_test_assert_same_file(const char *a, const char *b);
+
 /* Whether a file exists. */
 int zs_test_exists(const char *path);
 
