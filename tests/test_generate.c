@@ -15,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "raster/exactmath.h"
 #include "raster/raster.h"
@@ -33,12 +32,6 @@ static void load(const char *spec, zs_scene *s) {
   zs_error_clear(&err);
   zs_status st = zs_gen_scene(spec, s, &err);
   ck_assert_msg(st == ZS_OK, "%s: %s", spec, err.msg);
-}
-
-static double seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* A growable byte buffer, hashed at the end with zs_test_fnv1a. */
@@ -144,13 +137,9 @@ enum { NCOUNTS = sizeof counts / sizeof counts[0] };
 START_TEST(scene_counts) {
   const count_case *c = &counts[_i];
   zs_scene s;
-  double t0 = seconds();
   load(c->spec, &s);
-  double t1 = seconds();
   zs_gen_counts n;
   zs_gen_count(&s, &n);
-  printf("%-26s objects %7lld  faces %9lld  triangles %9lld  (%.3f s)\n", c->spec,
-         (long long)n.objects, (long long)n.faces, (long long)n.triangles, t1 - t0);
   ck_assert_msg(n.objects == c->objects && n.faces == c->faces && n.triangles == c->triangles,
                 "%s: objects %lld, faces %lld, triangles %lld; expected %lld, %lld, %lld",
                 c->spec, (long long)n.objects, (long long)n.faces, (long long)n.triangles,
