@@ -57,10 +57,10 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
   user.zfar = o->zfar;
   user.has_far = o->zfar != 0.0;
   zs_frame_view(scene, &user, o->fovy != 0.0, cam);
-  *fo = (zs_frame_opts){
-      o->width ? o->width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH,
-      o->height ? o->height : scene->height ? scene->height : ZS_DEVICE_DEFAULT_HEIGHT,
-      o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1, o->hidden_line};
+  int width, height;
+  zs_frame_size(scene, o->width, o->height, &width, &height);
+  *fo = (zs_frame_opts){width,    height,   o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1,
+                        o->hidden_line};
   return ZS_OK;
 }
 

@@ -19,6 +19,11 @@ static void gather_row(void *user, const zs_row *row) {
           row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
 }
 
+void zs_frame_size(const zs_scene *scene, int width, int height, int *w, int *h) {
+  *w = width ? width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH;
+  *h = height ? height : scene->height ? scene->height : ZS_DEVICE_DEFAULT_HEIGHT;
+}
+
 void zs_frame_complete_camera(const zs_scene *scene, const zs_camera *cam, int width, int height,
                               zs_camera *used) {
   *used = *cam;
@@ -116,20 +121,13 @@ zs_status zs_frame_path_camera(const zs_scene *s, int32_t f, int w, int h, doubl
                                double proj[16], zs_error *err) {
   zs_camera cam = s->camera;
   if (s->path.nkeys > 0) zs_path_camera(s, f % (s->path.frames > 0 ? s->path.frames : 1), &cam);
-  double aspect = (double)w / h;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; k++) {
-    lo[k] = s->lo[k];
-    hi[k] = s->hi[k];
-  }
-  zs_camera_complete(&cam, lo, hi, aspect);
-  return zs_camera_matrices(&cam, aspect, view, proj, err);
+  return zs_frame_camera(s, &cam, w, h, view, proj, err);
 }
 
 zs_status zs_frame_named_path(zs_scene *s, const char *name, int32_t frames, int width, int height,
                               zs_error *err) {
-  zs_camera base = s->camera;
-  zs_camera_complete(&base, s->lo, s->hi, (double)width / height);
+  zs_camera base;
+  zs_frame_complete_camera(s, &s->camera, width, height, &base);
   zs_path p;
   if (zs_path_named(name, &base, frames, &p, err)) return err->code;
   zs_path_free(&s->path);

@@ -42,13 +42,17 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
 /* Draws every instance of scene (no clear, no finish). */
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
 
-/* The camera's matrices for the scene at aspect w/h: cam completed from
- * the scene's bounds, then checked. */
+/* The image size of a frame of scene: width and height where given (not
+ * 0), else the scene's own, else the device's default. */
+void zs_frame_size(const zs_scene *scene, int width, int height, int *w, int *h);
+
 /* The camera a frame is drawn with: cam completed from the scene's bounds
  * (eye, target, near and far where cam lacks them) at aspect w/h. */
 void zs_frame_complete_camera(const zs_scene *scene, const zs_camera *cam, int width, int height,
                               zs_camera *used);
 
+/* The camera's matrices for the scene at aspect w/h: cam completed from
+ * the scene's bounds, then checked. */
 zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
                           int height, double view[16], double proj[16], zs_error *err);
 

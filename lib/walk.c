@@ -40,8 +40,7 @@ zs_status zs_walk_create(zs_scene *scene, const zs_walk_opts *opts, zs_walk **ou
   zs_walk *w = calloc(1, sizeof *w);
   if (!w) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   w->scene = scene;
-  w->width = o->width ? o->width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH;
-  w->height = o->height ? o->height : scene->height ? scene->height : ZS_DEVICE_DEFAULT_HEIGHT;
+  zs_frame_size(scene, o->width, o->height, &w->width, &w->height);
   w->step = o->step ? o->step : 1;
   w->frames = scene->path.frames > 0 ? (scene->path.frames + w->step - 1) / w->step : 1;
   zs_octree_params tp;

@@ -162,26 +162,6 @@ START_TEST(exact_on_every_frame_of_every_walk) {
 }
 END_TEST
 
-/* The oracle is the floor of time as well as of objects: it draws only
- * what owns a pixel, front to back as the traversals do.  Drawn in the
- * scene's order it would write nearer cubes over farther ones and cost
- * more than vfc in modelled time on the cubes' walk at full size. */
-START_TEST(ideal_is_the_floor_of_time_on_the_cubes) {
-  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_VFC, ZS_CULL_IDEAL, ZS_CULL_IDEAL_BOX};
-  walk_result r;
-  walk_w = 1024;
-  walk_h = 768;
-  walk("cubes", 50, 1, m, 4, -1, &r);
-  walk_w = W;
-  walk_h = H;
-  ck_assert_uint_lt(r.objects[2], r.objects[1]);
-  ck_assert_msg(r.modelled_ps[2] < r.modelled_ps[1], "ideal %lld ps, vfc %lld ps",
-                (long long)r.modelled_ps[2], (long long)r.modelled_ps[1]);
-  ck_assert_msg(r.modelled_ps[3] < r.modelled_ps[1], "ideal-box %lld ps, vfc %lld ps",
-                (long long)r.modelled_ps[3], (long long)r.modelled_ps[1]);
-}
-END_TEST
-
 /* A camera anywhere: the eye in or around the scene's box (inside
  * objects too), looking anywhere in it; the field of view from 5 to 175
  * degrees, or orthographic one frame in four; the near plane from 1e-8
@@ -268,22 +248,6 @@ START_TEST(query_ordering_on_the_plant) {
   ck_assert_uint_lt(r.queries[2], r.queries[1]);
   /* hsw waits for every answer: the slowest of them */
   ck_assert_int_gt(r.modelled_ps[1], r.modelled_ps[2]);
-}
-END_TEST
-
-START_TEST(chcpp_features_each_pay_on_the_plant) {
-  /* CHC++ with all its features is faster in modelled time than with any
-   * one of them off, and than CHC, on the plant walk */
-  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_CHC, ZS_CULL_CHCPP, ZS_CULL_CHCPP_NOBATCH,
-                              ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI};
-  walk_result r;
-  walk("plant?detail=0.25", 12, 8, m, 6, -1, &r);
-  for (int k = 1; k < 6; k++) {
-    ck_assert_uint_eq(r.diff[k], 0);
-    if (k != 2)
-      ck_assert_msg(r.modelled_ps[2] < r.modelled_ps[k], "chcpp %lld ps, %s %lld ps",
-                    (long long)r.modelled_ps[2], zs_cull_method_name(m[k]), (long long)r.modelled_ps[k]);
-  }
 }
 END_TEST
 
@@ -404,19 +368,6 @@ START_TEST(flat_triangle_in_a_box_without_area) {
                   (double[3]){2.3115178930805085, 0.74829846958275903, 0.56322110204035214},
                   (double[3]){0.63054699189940377, -0.47418007969387244, 0.88699014340236515},
                   86.885893345846213, 0.1498466053764714, 4.7602896796201373);
-}
-END_TEST
-
-START_TEST(chcpp_prob_asks_least_on_the_plant) {
-  /* the cost model's test before CHC++'s queries: fewer queries than
-   * either parent method, the same pixels */
-  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_CHC_PROB, ZS_CULL_CHCPP, ZS_CULL_CHCPP_PROB};
-  walk_result r;
-  walk("plant?detail=0.25", 12, 8, m, 4, -1, &r);
-  ck_assert_uint_eq(r.diff[3], 0);
-  ck_assert_uint_gt(r.queries[3], 0);
-  ck_assert_uint_lt(r.queries[3], r.queries[1]);
-  ck_assert_uint_lt(r.queries[3], r.queries[2]);
 }
 END_TEST
 
@@ -705,8 +656,6 @@ int main(void) {
   tcase_add_test(tc, ideal_box_churn_adds_up);
   tcase_add_test(tc, parts_hold_every_face_inside_the_box);
   tcase_add_test(tc, parts_are_exact_and_tighter_than_boxes);
-  tcase_add_test(tc, chcpp_features_each_pay_on_the_plant);
-  tcase_add_test(tc, chcpp_prob_asks_least_on_the_plant);
   tcase_add_test(tc, cost_model_learns_w1_w2_when_asked);
   tcase_add_test(tc, chc_prob_measures_what_it_draws);
   tcase_add_test(tc, method_list_names_every_method);
@@ -715,7 +664,6 @@ int main(void) {
   tcase_add_test(tc, flat_triangle_in_a_box_without_area);
   tcase_add_test(tc, frustum_planes_and_masking);
   tcase_add_test(tc, auto_costs_nothing_without_occlusion);
-  tcase_add_test(tc, ideal_is_the_floor_of_time_on_the_cubes);
   suite_add_tcase(s, tc);
   /* a case of its own, so that ctest runs it beside the others
    * (CMakeLists.txt: test_cull_every_frame) */

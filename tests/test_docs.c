@@ -76,16 +76,8 @@ static int split(char *line, const char **argv, int max) {
 /* The whole file at rel (below the source tree), NUL-terminated, in a
  * buffer the caller frees. */
 static char *slurp(const char *rel) {
-  char path[4096];
-  snprintf(path, sizeof path, "%s", zs_test_src(rel));
-  FILE *f = fopen(path, "rb");
-  ck_assert_msg(f != NULL, "%s: cannot open", path);
-  char *text = malloc(1 << 20);
-  ck_assert_ptr_nonnull(text);
-  size_t n = fread(text, 1, (1 << 20) - 1, f);
-  text[n] = '\0';
-  fclose(f);
-  return text;
+  size_t n;
+  return (char *)zs_test_slurp(zs_test_src(rel), &n);
 }
 
 /* Into the scratch directory, where scene/, tests/ and docs/ lead to the

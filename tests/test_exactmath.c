@@ -69,29 +69,24 @@ START_TEST(exact_where_it_must_be) {
 }
 END_TEST
 
+/* The doubles' bits, n <= 32. */
 static uint64_t hash_doubles(const double *v, int n) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (int i = 0; i < n; i++) {
-    uint64_t u;
-    memcpy(&u, &v[i], sizeof u);
-    for (int k = 0; k < 8; k++) {
-      h ^= (u >> (8 * k)) & 0xff;
-      h *= 0x100000001b3ull;
-    }
-  }
-  return h;
+  uint64_t u[32];
+  memcpy(u, v, (size_t)n * sizeof *v);
+  return zs_test_hash_values(u, (size_t)n);
 }
 
-/* The bits of the matrices an image is made from: these hashes hold with
+/* The bits of the matrices an image is made from: these hashes
+ * (tests/golden/matrices.txt) hold with
  * gcc and clang, -O0 to -O3, on glibc as on any other C library. */
 START_TEST(matrices_pinned) {
   double m[16];
   zs_mat_perspective(m, 45, 4.0 / 3, 0.5, 100);
-  ck_assert_uint_eq(hash_doubles(m, 16), 0xee2a61c4ccfe7744ull);
+  zs_golden_assert("matrices.txt", "perspective", hash_doubles(m, 16));
   zs_mat_rotate(m, 30, 0, 1, 0);
-  ck_assert_uint_eq(hash_doubles(m, 16), 0x1ddfce0a791522adull);
+  zs_golden_assert("matrices.txt", "rotate-30", hash_doubles(m, 16));
   zs_mat_rotate(m, 123.25, 1, 2, 3);
-  ck_assert_uint_eq(hash_doubles(m, 16), 0xbac9100ab15ea539ull);
+  zs_golden_assert("matrices.txt", "rotate-123.25", hash_doubles(m, 16));
 
   zs_camera c;
   zs_camera_default(&c);
@@ -101,16 +96,16 @@ START_TEST(matrices_pinned) {
   zs_error err;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_camera_matrices(&c, 4.0 / 3, both, both + 16, &err), ZS_OK);
-  ck_assert_uint_eq(hash_doubles(both, 32), 0x518b2591194a142cull);
+  zs_golden_assert("matrices.txt", "camera", hash_doubles(both, 32));
 
-  static const struct {
-    const char *name;
-    uint64_t hash;
-  } paths[] = {{"roll", 0xd1e163e81f954081ull}, {"yaw", 0xb5c3b4042b684af1ull}};
+  static const char *const paths[2][2] = {{"roll", "path-roll"}, {"yaw", "path-yaw"}};
   for (int i = 0; i < 2; i++) {
     zs_path p;
-    ck_assert_int_eq(zs_path_named(paths[i].name, &c, 30, &p, &err), ZS_OK);
-    ck_assert_uint_eq(hash_doubles(p.keys[29].eye, 9), paths[i].hash); /* eye, target, up */
+    ck_assert_int_eq(zs_path_named(paths[i][0], &c, 30, &p, &err), ZS_OK);
+    const zs_keyframe *k = &p.keys[29];
+    const double v[9] = {k->eye[0],    k->eye[1],    k->eye[2],  k->target[0], k->target[1],
+                         k->target[2], k->up[0],     k->up[1],   k->up[2]};
+    zs_golden_assert("matrices.txt", paths[i][1], hash_doubles(v, 9));
     zs_path_free(&p);
   }
 }

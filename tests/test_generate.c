@@ -4,17 +4,17 @@
  * geometry is noticed); closed, outward-facing meshes; instances inside the
  * bounds; moving spheres staying inside the cube; the camera paths; the
  * parameter errors; the instanced default and cubes scenes against the
- * builtin models.  Load times of the two big scenes are printed, never
- * asserted.
+ * builtin models.  (How long the big scenes take to load: zscan bench
+ * tradeoff.)
  *
  * When a generator changes on purpose, the recorded counts and hashes
  * change with it: run this suite, read the values it prints on failure,
- * and update the tables below with the reason in the commit message. */
+ * and update the counts below, the hashes with ZS_GOLDEN_UPDATE=1
+ * (tests/golden/scenes.txt), with the reason in the commit message. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "raster/exactmath.h"
 #include "raster/raster.h"
@@ -32,12 +32,6 @@ static void load(const char *spec, zs_scene *s) {
   zs_error_clear(&err);
   zs_status st = zs_gen_scene(spec, s, &err);
   ck_assert_msg(st == ZS_OK, "%s: %s", spec, err.msg);
-}
-
-static double seconds(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* A growable byte buffer, hashed at the end with zs_test_fnv1a. */
@@ -143,13 +137,9 @@ enum { NCOUNTS = sizeof counts / sizeof counts[0] };
 START_TEST(scene_counts) {
   const count_case *c = &counts[_i];
   zs_scene s;
-  double t0 = seconds();
   load(c->spec, &s);
-  double t1 = seconds();
   zs_gen_counts n;
   zs_gen_count(&s, &n);
-  printf("%-26s objects %7lld  faces %9lld  triangles %9lld  (%.3f s)\n", c->spec,
-         (long long)n.objects, (long long)n.faces, (long long)n.triangles, t1 - t0);
   ck_assert_msg(n.objects == c->objects && n.faces == c->faces && n.triangles == c->triangles,
                 "%s: objects %lld, faces %lld, triangles %lld; expected %lld, %lld, %lld",
                 c->spec, (long long)n.objects, (long long)n.faces, (long long)n.triangles,
@@ -161,26 +151,22 @@ END_TEST
 
 /* ---- determinism ------------------------------------------------------- */
 
-typedef struct hash_case {
-  const char *spec;
-  uint64_t hash;
-} hash_case;
-
-/* FNV-1a of scene_bytes: the same on every run and build (gcc, clang, -O0,
- * -O3), since every angle goes through zs_sincos_turns. */
-static const hash_case hashes[] = {
-    {"default", 0x0c13a4a441aad176ull},
-    {"cubes", 0x47a653497376e12full},
-    {"teapots", 0x8047bd77fc8981f2ull},
-    {"teapots?count=200&level=3&moving=20&seed=7", 0xe652e7b5e36e6caeull},
-    {"spheres", 0x0832c9467387c671ull},
-    {"spheres?count=500&moving=100&seed=3", 0x91e03019f8c61769ull},
-    {"city", 0x435eaafe07b5f362ull},
-    {"city?blocks=3&moving=5&seed=9", 0x3bf297b7f1851afdull},
-    {"plant", 0x084fa1c536abc4d7ull},
-    {"plant?detail=0.1&seed=5", 0x9038ce18fcd988dfull},
+/* The scenes whose bytes (scene_bytes) are pinned, by FNV-1a, in
+ * tests/golden/scenes.txt: the same on every run and build (gcc, clang,
+ * -O0, -O3), since every angle goes through zs_sincos_turns. */
+static const char *const pinned_scenes[] = {
+    "default",
+    "cubes",
+    "teapots",
+    "teapots?count=200&level=3&moving=20&seed=7",
+    "spheres",
+    "spheres?count=500&moving=100&seed=3",
+    "city",
+    "city?blocks=3&moving=5&seed=9",
+    "plant",
+    "plant?detail=0.1&seed=5",
 };
-enum { NHASHES = sizeof hashes / sizeof hashes[0] };
+enum { NHASHES = sizeof pinned_scenes / sizeof pinned_scenes[0] };
 
 /* The shell-safe form NAME,k=v,k=v is the URL form NAME?k=v&k=v, byte for
  * byte; the two may mix; a key given twice is an error either way. */
@@ -212,17 +198,15 @@ START_TEST(comma_form_is_the_query_form) {
 END_TEST
 
 START_TEST(scene_same_bytes) {
-  const hash_case *c = &hashes[_i];
+  const char *spec = pinned_scenes[_i];
   zs_scene a, b;
-  load(c->spec, &a);
-  load(c->spec, &b);
+  load(spec, &a);
+  load(spec, &b);
   bytes ba = {0}, bb = {0};
   scene_bytes(&a, &ba);
   scene_bytes(&b, &bb);
-  ck_assert_msg(ba.n == bb.n && memcmp(ba.p, bb.p, ba.n) == 0, "%s: two runs differ", c->spec);
-  uint64_t h = zs_test_fnv1a(ba.p, ba.n);
-  ck_assert_msg(h == c->hash, "%s: hash %016llx, recorded %016llx", c->spec,
-                (unsigned long long)h, (unsigned long long)c->hash);
+  ck_assert_msg(ba.n == bb.n && memcmp(ba.p, bb.p, ba.n) == 0, "%s: two runs differ", spec);
+  zs_golden_assert("scenes.txt", spec, zs_test_fnv1a(ba.p, ba.n));
   free(ba.p);
   free(bb.p);
   zs_scene_free(&a);
@@ -737,25 +721,6 @@ START_TEST(sincos) {
 }
 END_TEST
 
-/* ---- load times (printed, never asserted) ------------------------------ */
-
-START_TEST(load_times) {
-  static const char *specs[] = {"teapots?count=6000", "plant?detail=1", "spheres", "city",
-                                "plant"};
-  for (size_t i = 0; i < sizeof specs / sizeof specs[0]; i++) {
-    zs_scene s;
-    double t0 = seconds();
-    load(specs[i], &s);
-    double t1 = seconds();
-    zs_gen_counts n;
-    zs_gen_count(&s, &n);
-    printf("load %-20s %.3f s  (%lld objects, %lld triangles)\n", specs[i], t1 - t0,
-           (long long)n.objects, (long long)n.triangles);
-    zs_scene_free(&s);
-  }
-}
-END_TEST
-
 int main(void) {
   Suite *s = suite_create("generate");
   TCase *tc = tcase_create("counts");
@@ -787,9 +752,5 @@ int main(void) {
   tcase_add_test(tc, parameter_errors);
   suite_add_tcase(s, tc);
 
-  tc = tcase_create("load times");
-  tcase_set_timeout(tc, 600);
-  tcase_add_test(tc, load_times);
-  suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

@@ -33,13 +33,8 @@ static void write_text(const char *path, const char *text) {
 }
 
 static char *slurp(const char *path) {
-  FILE *f = fopen(path, "r");
-  ck_assert_msg(f != NULL, "%s", path);
-  char *b = malloc(1 << 22);
-  size_t n = fread(b, 1, (1 << 22) - 1, f);
-  b[n] = '\0';
-  fclose(f);
-  return b;
+  size_t n;
+  return (char *)zs_test_slurp(path, &n);
 }
 
 /* Five cases: generated scenes, a file with its own camera (its input

@@ -50,20 +50,6 @@ static int file_exists(const char *path) {
   return stat(path, &st) == 0;
 }
 
-/* The whole file in a malloc'd buffer (NULL when missing). */
-static unsigned char *slurp(const char *path, size_t *size) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long n = ftell(fp);
-  fseek(fp, 0, SEEK_SET);
-  unsigned char *data = malloc(n > 0 ? (size_t)n : 1);
-  ck_assert_ptr_nonnull(data);
-  *size = fread(data, 1, (size_t)n, fp);
-  ck_assert_uint_eq(*size, (size_t)n);
-  fclose(fp);
-  return data;
-}
 
 static void spit(const char *path, const void *data, size_t size) {
   FILE *fp = fopen(path, "wb");
@@ -153,14 +139,7 @@ START_TEST(png_stream_matches_png_write) {
   }
   ck_assert_int_eq(zs_png_stream_close(s, 1, &err), ZS_OK);
 
-  size_t n1, n2;
-  unsigned char *b1 = slurp(whole, &n1), *b2 = slurp(streamed, &n2);
-  ck_assert_ptr_nonnull(b1);
-  ck_assert_ptr_nonnull(b2);
-  ck_assert_uint_eq(n1, n2);
-  ck_assert(memcmp(b1, b2, n1) == 0);
-  free(b1);
-  free(b2);
+  zs_test_assert_same_file(whole, streamed);
   zs_image_free(&im);
 }
 END_TEST
@@ -175,10 +154,9 @@ START_TEST(png_write_is_deterministic) {
   zs_error_clear(&err);
   ck_assert_int_eq(zs_png_write(first, &im, &err), ZS_OK);
   ck_assert_int_eq(zs_png_write(second, &im, &err), ZS_OK);
-  size_t n1, n2;
-  unsigned char *b1 = slurp(first, &n1), *b2 = slurp(second, &n2);
-  ck_assert_uint_eq(n1, n2);
-  ck_assert(memcmp(b1, b2, n1) == 0);
+  zs_test_assert_same_file(first, second);
+  size_t n1;
+  unsigned char *b1 = zs_test_slurp(first, &n1);
   /* Only IHDR, IDAT and IEND: walk the chunks after the signature. */
   size_t pos = 8;
   char types[16][5];
@@ -197,7 +175,6 @@ START_TEST(png_write_is_deterministic) {
   for (int i = 1; i < nchunks - 1; i++) ck_assert_str_eq(types[i], "IDAT");
   ck_assert_str_eq(types[nchunks - 1], "IEND");
   free(b1);
-  free(b2);
   zs_image_free(&im);
 }
 END_TEST
@@ -322,7 +299,7 @@ START_TEST(png_truncated_is_refused) {
   zs_error_clear(&err);
   ck_assert_int_eq(zs_png_write(good, &im, &err), ZS_OK);
   size_t n;
-  unsigned char *bytes = slurp(good, &n);
+  unsigned char *bytes = zs_test_slurp(good, &n);
   /* Every proper prefix of the file is refused with a message. */
   for (size_t len = 0; len < n; len++) {
     spit(cut, bytes, len);
@@ -348,7 +325,7 @@ START_TEST(png_corrupt_is_refused) {
   zs_error_clear(&err);
   ck_assert_int_eq(zs_png_write(path, &im, &err), ZS_OK);
   size_t n;
-  unsigned char *bytes = slurp(path, &n);
+  unsigned char *bytes = zs_test_slurp(path, &n);
   bytes[8 + 25 + 8 + 2] ^= 0x40; /* a byte of the first IDAT's data */
   spit(path, bytes, n);
   ck_assert_int_ne(zs_png_read(path, &back, &err), ZS_OK);
@@ -552,7 +529,7 @@ START_TEST(pfm_header_size_and_values) {
   ck_assert_int_eq(zs_pfm_write(path, W, H, values, &err), ZS_OK);
   ck_assert_int_eq(count_temporaries(), 0);
   size_t n;
-  unsigned char *bytes = slurp(path, &n);
+  unsigned char *bytes = zs_test_slurp(path, &n);
   const char header[] = "Pf\n3 2\n-1.0\n";
   size_t hn = sizeof header - 1;
   ck_assert_uint_eq(n, hn + 4 * W * H);
@@ -647,7 +624,7 @@ typedef struct captured {
 
 static void read_text(const char *path, char *buf, size_t size) {
   size_t n = 0;
-  unsigned char *bytes = slurp(path, &n);
+  unsigned char *bytes = zs_test_slurp(path, &n);
   ck_assert_ptr_nonnull(bytes);
   ck_assert_uint_lt(n, size);
   memcpy(buf, bytes, n);
@@ -892,7 +869,7 @@ START_TEST(crosscheck_tells_ties_from_coverage) {
   ck_assert_uint_eq(x.differ, 4);
   ck_assert_uint_eq(x.ties, 1);
   size_t size;
-  char *text = (char *)slurp(list_path, &size);
+  char *text = (char *)zs_test_slurp(list_path, &size);
   text = realloc(text, size + 1);
   text[size] = 0;
   char want[4][128];

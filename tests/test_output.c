@@ -42,20 +42,6 @@ static const char *in_dir(const char *name) {
 }
 
 /* The whole file, malloc'd; *n its size. */
-static unsigned char *slurp(const char *path, size_t *n) {
-  FILE *f = fopen(path, "rb");
-  ck_assert_msg(f != NULL, "%s: %s", path, strerror(errno));
-  size_t cap = 1 << 16, len = 0;
-  unsigned char *b = malloc(cap);
-  size_t got;
-  while ((got = fread(b + len, 1, cap - len, f)) > 0) {
-    len += got;
-    if (len == cap) b = realloc(b, cap *= 2);
-  }
-  fclose(f);
-  *n = len;
-  return b;
-}
 
 static void write_text(const char *path, const char *text) {
   FILE *f = fopen(path, "w");
@@ -74,14 +60,6 @@ _Noreturn static void copy_and_exit(int in, const char *path) {
   _exit(in >= 0 && out >= 0 ? 0 : 1);
 }
 
-static void assert_same_file(const char *a, const char *b) {
-  size_t na, nb;
-  unsigned char *x = slurp(a, &na), *y = slurp(b, &nb);
-  ck_assert_msg(na == nb && na > 0 && memcmp(x, y, na) == 0, "%s (%zu bytes) and %s (%zu bytes) differ",
-                a, na, b, nb);
-  free(x);
-  free(y);
-}
 
 /* zscan render of a small frame to -o OUT; stdout to out_path (a file,
  * binary safe), stderr into err. */
@@ -123,7 +101,7 @@ START_TEST(stdout_equals_file_byte_for_byte) {
   char err[1024];
   const char *captured = in_dir("captured.png");
   ck_assert_int_eq(render_to("-", captured, err, sizeof err), 0);
-  assert_same_file(ref, captured);
+  zs_test_assert_same_file(ref, captured);
   ck_assert(!zs_test_exists(in_dir("-")));
   /* standard output takes one stream: the image, or the stats */
   const char *args[] = {"render", "builtin:default", "--size", "64x48", "-o", "-", "--stats", NULL};
@@ -145,14 +123,14 @@ START_TEST(symlink_is_followed_and_stays_a_link) {
   struct stat st;
   ck_assert_int_eq(lstat(link, &st), 0);
   ck_assert(S_ISLNK(st.st_mode));
-  assert_same_file(ref, target);
+  zs_test_assert_same_file(ref, target);
   /* a dangling link: its target is created */
   const char *dangling = in_dir("dangling.png");
   ck_assert_int_eq(symlink("made-by-render.png", dangling), 0);
   ck_assert_int_eq(render_to(dangling, NULL, err, sizeof err), 0);
   ck_assert_int_eq(lstat(dangling, &st), 0);
   ck_assert(S_ISLNK(st.st_mode));
-  assert_same_file(ref, in_dir("made-by-render.png"));
+  zs_test_assert_same_file(ref, in_dir("made-by-render.png"));
   assert_no_temporaries();
   remove_dir();
 }
@@ -189,7 +167,7 @@ START_TEST(fifo_written_directly_to_its_reader) {
   struct stat st;
   ck_assert_int_eq(lstat(fifo, &st), 0);
   ck_assert(S_ISFIFO(st.st_mode)); /* still a FIFO, not replaced by a file */
-  assert_same_file(ref, got);
+  zs_test_assert_same_file(ref, got);
   assert_no_temporaries();
   remove_dir();
 }
@@ -217,7 +195,7 @@ START_TEST(socket_written_directly_to_its_listener) {
   struct stat st;
   ck_assert_int_eq(lstat(sock, &st), 0);
   ck_assert(S_ISSOCK(st.st_mode));
-  assert_same_file(ref, got);
+  zs_test_assert_same_file(ref, got);
   remove_dir();
 }
 END_TEST
@@ -294,7 +272,7 @@ START_TEST(discard_keeps_the_old_file) {
   fputs("half of something new", o.fp);
   zs_out_discard(&o);
   size_t n;
-  unsigned char *b = slurp(path, &n);
+  unsigned char *b = zs_test_slurp(path, &n);
   ck_assert_int_eq(n, 4);
   ck_assert_int_eq(memcmp(b, "old\n", 4), 0);
   free(b);
@@ -302,7 +280,7 @@ START_TEST(discard_keeps_the_old_file) {
   ck_assert_int_eq(zs_out_open(&o, path, &err), ZS_OK);
   fputs("new\n", o.fp);
   ck_assert_int_eq(zs_out_commit(&o, &err), ZS_OK);
-  b = slurp(path, &n);
+  b = zs_test_slurp(path, &n);
   ck_assert_int_eq(memcmp(b, "new\n", 4), 0);
   free(b);
   assert_no_temporaries();

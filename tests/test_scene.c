@@ -1087,17 +1087,7 @@ END_TEST
 
 /* Reads a file below the source tree into a malloc'd buffer. */
 static char *slurp_src(const char *rel, size_t *len) {
-  FILE *f = fopen(zs_test_src(rel), "rb");
-  ck_assert_ptr_nonnull(f);
-  ck_assert_int_eq(fseek(f, 0, SEEK_END), 0);
-  long n = ftell(f);
-  ck_assert_int_ge(n, 0);
-  rewind(f);
-  char *buf = malloc((size_t)n + 1);
-  ck_assert_int_eq(fread(buf, 1, (size_t)n, f), (size_t)n);
-  fclose(f);
-  *len = (size_t)n;
-  return buf;
+  return (char *)zs_test_slurp(zs_test_src(rel), len);
 }
 
 START_TEST(mutated_examples) {

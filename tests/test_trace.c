@@ -62,22 +62,23 @@ START_TEST(two_polygons_active_edges_at_y6) {
   ck_assert_ptr_nonnull(row);
   cJSON *edges = cJSON_GetObjectItem(row, "active_edges");
   ck_assert_int_eq(cJSON_GetArraySize(edges), 2);
-  const cJSON *e0 = cJSON_GetArrayItem(edges, 0), *e1 = cJSON_GetArrayItem(edges, 1);
-  ck_assert_double_eq(num(e0, "id"), 0);
-  ck_assert_str_eq(str(e0, "xl_fraction"), "4");
-  ck_assert_str_eq(str(e0, "dxl_fraction"), "1");
-  ck_assert_double_eq(num(e0, "dyl"), 3);
-  ck_assert_str_eq(str(e0, "xr_fraction"), "7");
-  ck_assert_str_eq(str(e0, "dxr_fraction"), "0");
-  ck_assert_double_eq(num(e0, "dyr"), 3);
-  ck_assert_double_eq(num(e1, "id"), 1);
-  ck_assert_str_eq(str(e1, "xl_fraction"), "41/6");
-  ck_assert_str_eq(str(e1, "dxl_fraction"), "5/6");
-  ck_assert_double_eq(num(e1, "dyl"), 5);
-  ck_assert_str_eq(str(e1, "xr_fraction"), "73/8");
-  ck_assert_str_eq(str(e1, "dxr_fraction"), "3/8");
-  ck_assert_double_eq(num(e1, "dyr"), 5);
-  ck_assert_double_eq_tol(num(e1, "xl"), 41.0 / 6.0, 1e-12);
+  /* each pair: its polygon, its edges' x and slope as fractions, and
+   * their rows left */
+  static const struct {
+    double id, dyl, dyr;
+    const char *xl, *dxl, *xr, *dxr;
+  } want[2] = {{0, 3, 3, "4", "1", "7", "0"}, {1, 5, 5, "41/6", "5/6", "73/8", "3/8"}};
+  for (int k = 0; k < 2; k++) {
+    const cJSON *e = cJSON_GetArrayItem(edges, k);
+    ck_assert_double_eq(num(e, "id"), want[k].id);
+    ck_assert_str_eq(str(e, "xl_fraction"), want[k].xl);
+    ck_assert_str_eq(str(e, "dxl_fraction"), want[k].dxl);
+    ck_assert_double_eq(num(e, "dyl"), want[k].dyl);
+    ck_assert_str_eq(str(e, "xr_fraction"), want[k].xr);
+    ck_assert_str_eq(str(e, "dxr_fraction"), want[k].dxr);
+    ck_assert_double_eq(num(e, "dyr"), want[k].dyr);
+  }
+  ck_assert_double_eq_tol(num(cJSON_GetArrayItem(edges, 1), "xl"), 41.0 / 6.0, 1e-12);
   /* spans: columns 4..6 for polygon 1, 7..9 for polygon 2 */
   cJSON *spans = cJSON_GetObjectItem(row, "spans");
   ck_assert_int_eq(cJSON_GetArraySize(spans), 2);

@@ -37,6 +37,106 @@ uint64_t zs_test_fnv1a(const void *data, size_t n) {
   return h;
 }
 
+unsigned char *zs_test_slurp(const char *path, size_t *n) {
+  FILE *f = fopen(path, "rb");
+  ck_assert_msg(f != NULL, "%s: cannot open", path);
+  size_t cap = 1 << 16, len = 0, got;
+  unsigned char *b = malloc(cap);
+  ck_assert_ptr_nonnull(b);
+  while ((got = fread(b + len, 1, cap - len, f)) > 0) {
+    len += got;
+    if (len == cap) {
+      b = realloc(b, cap *= 2);
+      ck_assert_ptr_nonnull(b);
+    }
+  }
+  fclose(f);
+  b[len] = '\0'; /* the loop leaves len < cap */
+  *n = len;
+  return b;
+}
+
+void zs_test_assert_same_file(const char *a, const char *b) {
+  size_t na, nb;
+  unsigned char *x = zs_test_slurp(a, &na), *y = zs_test_slurp(b, &nb);
+  ck_assert_msg(na == nb && na > 0 && memcmp(x, y, na) == 0,
+                "%s (%zu bytes) and %s (%zu bytes) differ", a, na, b, nb);
+  free(x);
+  free(y);
+}
+
+uint64_t zs_test_hash_values(const uint64_t *v, size_t n) {
+  unsigned char b[8];
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = 0; i < n; i++) {
+    for (int k = 0; k < 8; k++) b[k] = (unsigned char)(v[i] >> (8 * k));
+    for (int k = 0; k < 8; k++) {
+      h ^= b[k];
+      h *= 0x100000001b3ull;
+    }
+  }
+  return h;
+}
+
+/* The golden file's lines, at most this many of this length. */
+enum { GOLDEN_LINES = 1024, GOLDEN_LINE = 256 };
+
+static int golden_read(const char *file, char (*lines)[GOLDEN_LINE]) {
+  char rel[256];
+  snprintf(rel, sizeof rel, "tests/golden/%s", file);
+  FILE *f = fopen(zs_test_src(rel), "r");
+  int n = 0;
+  while (f && n < GOLDEN_LINES && fgets(lines[n], GOLDEN_LINE, f)) n++;
+  if (f) fclose(f);
+  return n;
+}
+
+/* The line of name among lines[0..n-1], or -1. */
+static int golden_find(char (*lines)[GOLDEN_LINE], int n, const char *name) {
+  const size_t len = strlen(name);
+  for (int i = 0; i < n; i++)
+    if (strncmp(lines[i], name, len) == 0 && lines[i][len] == ' ') return i;
+  return -1;
+}
+
+static void golden_store(const char *file, const char *name, uint64_t got) {
+  static char lines[GOLDEN_LINES][GOLDEN_LINE];
+  int n = golden_read(file, lines), i = golden_find(lines, n, name);
+  ck_assert_msg(i >= 0 || n < GOLDEN_LINES, "tests/golden/%s: full", file);
+  if (i < 0) i = n++;
+  snprintf(lines[i], GOLDEN_LINE, "%s %016llx\n", name, (unsigned long long)got);
+  char rel[256], path[4096], tmp[4200];
+  snprintf(rel, sizeof rel, "tests/golden/%s", file);
+  snprintf(path, sizeof path, "%s", zs_test_src(rel));
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  FILE *f = fopen(tmp, "w");
+  ck_assert_msg(f != NULL, "%s: cannot write", tmp);
+  for (int k = 0; k < n; k++) fputs(lines[k], f);
+  ck_assert_msg(fclose(f) == 0 && rename(tmp, path) == 0, "%s: cannot write", path);
+}
+
+int zs_golden_check(const char *file, const char *name, uint64_t got, uint64_t *want) {
+  if (getenv("ZS_GOLDEN_UPDATE")) {
+    golden_store(file, name, got);
+    if (want) *want = got;
+    return 1;
+  }
+  static char lines[GOLDEN_LINES][GOLDEN_LINE];
+  int n = golden_read(file, lines), i = golden_find(lines, n, name);
+  if (i < 0) return -1;
+  unsigned long long v = strtoull(lines[i] + strlen(name) + 1, NULL, 16);
+  if (want) *want = v;
+  return v == got;
+}
+
+void zs_golden_assert(const char *file, const char *name, uint64_t got) {
+  uint64_t want = 0;
+  int r = zs_golden_check(file, name, got, &want);
+  ck_assert_msg(r >= 0, "%s: not in tests/golden/%s (run with ZS_GOLDEN_UPDATE=1)", name, file);
+  ck_assert_msg(r == 1, "%s: %016llx, golden %016llx (tests/golden/%s)", name,
+                (unsigned long long)got, (unsigned long long)want, file);
+}
+
 #include <dirent.h>
 #include <strings.h>
 #include <sys/stat.h>

@@ -58,14 +58,13 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
   memset(out, 0, sizeof *out);
   /* the motions start where the scene's own walk starts (the city's at
    * street level, as the paper's), else from its camera */
-  zs_camera base = s->camera;
-  if (s->path.nkeys > 0) zs_path_camera(s, 0, &base);
-  double aspect = (double)w / h;
+  zs_camera key = s->camera, base;
+  if (s->path.nkeys > 0) zs_path_camera(s, 0, &key);
   if (far > 0) {
-    base.zfar = far;
-    base.has_far = 1;
+    key.zfar = far;
+    key.has_far = 1;
   }
-  zs_camera_complete(&base, s->lo, s->hi, aspect);
+  zs_frame_complete_camera(s, &key, w, h, &base);
   if (far > 0 && base.znear >= far) base.znear = far * 1e-3;
   zs_path path;
   if (zs_path_named(motion, &base, frames, &path, err)) return err->code;
@@ -90,7 +89,7 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
     memcpy(cam.target, k.target, sizeof cam.target);
     memcpy(cam.up, k.up, sizeof cam.up);
     double view[16], proj[16];
-    if ((st = zs_camera_matrices(&cam, aspect, view, proj, err))) break;
+    if ((st = zs_camera_matrices(&cam, (double)w / h, view, proj, err))) break;
     /* from scratch */
     zs_device_depthsort_reset(full);
     if ((st = frame(full, s, view, proj, err)) || (st = zs_device_finish(full, NULL, NULL, err)))
@@ -136,10 +135,7 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
 }
 
 int zs_cmd_bench_depthsort(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   const char *spec = "builtin:city", *csv_path = NULL;
   int frames = 60, w = 1024, h = 768;
   double far = 0;
@@ -149,12 +145,9 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v;
     if (strcmp(a, "--frames") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 2, 100000, &frames, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 2, 100000, &frames, &err)) goto fail;
     } else if (strcmp(a, "--size") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) ||
-          zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &w, &h, &err))
-        goto fail;
+      if (zs_cli_size_value(argc, argv, &i, ZS_MAX_IMAGE_SIDE, &w, &h, &err)) goto fail;
     } else if (strcmp(a, "--far") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_double(a, v, &far, &err)) goto fail;
       if (!(far > 0)) {
@@ -206,6 +199,5 @@ int zs_cmd_bench_depthsort(int argc, char **argv) {
   }
   return 0;
 fail:
-  fprintf(stderr, "zscan bench depthsort: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench depthsort", &err, parsing);
 }

@@ -204,10 +204,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, int n, cons
 /* ---- the command ------------------------------------------------------------ */
 
 int zs_cmd_bench_octree(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   bench_opts o = {ZS_GEN_SPHERES_MAX, 50, ZS_OCTREE_DEFAULT_DEPTH, 0,
                   ZS_OCTREE_DEFAULT_LOOSENESS, NULL, NULL};
   bench_row rows[STEPS];
@@ -221,19 +218,13 @@ int zs_cmd_bench_octree(int argc, char **argv) {
       if (zs_cli_value(argc, argv, &i, &v, &err)) goto fail;
       *(a[2] == 'c' ? &o.csv : &o.plot) = v;
     } else if (strcmp(a, "--count") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) ||
-          zs_cli_int(a, v, STEPS, ZS_GEN_SPHERES_MAX, &o.count, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, STEPS, ZS_GEN_SPHERES_MAX, &o.count, &err)) goto fail;
     } else if (strcmp(a, "--frames") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 1, 100000, &o.frames, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 1, 100000, &o.frames, &err)) goto fail;
     } else if (strcmp(a, "--depth") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) ||
-          zs_cli_int(a, v, 0, ZS_OCTREE_MAX_DEPTH, &o.depth, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 0, ZS_OCTREE_MAX_DEPTH, &o.depth, &err)) goto fail;
     } else if (strcmp(a, "--split") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 0, 1000000, &o.split, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 0, 1000000, &o.split, &err)) goto fail;
     } else if (strcmp(a, "--looseness") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_double(a, v, &o.looseness, &err))
         goto fail;
@@ -287,6 +278,5 @@ int zs_cmd_bench_octree(int argc, char **argv) {
   }
   return 0;
 fail:
-  fprintf(stderr, "zscan bench octree: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench octree", &err, parsing);
 }

@@ -598,14 +598,11 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
       if (o->algo != ZS_ALGO_ZBUFFER && o->algo != ZS_ALGO_SCANLINE)
         return zs_error_set(err, ZS_ERR_ARG, "--algo '%s': zbuffer or scanline", v);
     } else if (strcmp(a, "--repeat") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 100000, &o->repeat, err))
-        return err->code;
+      if (zs_cli_int_value(argc, argv, &i, 1, 100000, &o->repeat, err)) return err->code;
     } else if (strcmp(a, "--threads") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 64, &o->threads, err))
-        return err->code;
+      if (zs_cli_int_value(argc, argv, &i, 1, 64, &o->threads, err)) return err->code;
     } else if (strcmp(a, "--size") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, err) ||
-          zs_cli_size(a, v, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err))
+      if (zs_cli_size_value(argc, argv, &i, ZS_MAX_IMAGE_SIDE, &o->width, &o->height, err))
         return err->code;
     } else if (strcmp(a, "--csv") == 0) {
       if (zs_cli_output_value(argc, argv, &i, &o->csv, err))
@@ -631,10 +628,7 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
 }
 
 int zs_cmd_bench_raster(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   bench_opts o;
   zs_error err;
   zs_error_clear(&err);
@@ -692,8 +686,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   for (int k = 0; k < 3 && !st; k++)
     if (outs[k] && !zs_out_is_stdout(outs[k])) fprintf(report, "wrote %s\n", outs[k]);
   if (st) {
-    fprintf(stderr, "zscan bench raster: %s\n", err.msg);
-    return zs_cli_exit_status(&err, usage_error);
+    return zs_cli_fail("zscan bench raster", &err, usage_error);
   }
   return 0;
 }

@@ -121,6 +121,13 @@ static void in_dir(char *buf, const suite *s, const char *name) {
   snprintf(buf, PATH, "%s/%s", s->dir, name);
 }
 
+/* in_dir of the name pattern with its %s replaced by word: "walk-%s.csv". */
+static void in_dir_named(char *buf, const suite *s, const char *pattern, const char *word) {
+  char name[256];
+  snprintf(name, sizeof name, pattern, word);
+  in_dir(buf, s, name);
+}
+
 /* args joined by spaces after prefix, a word with a shell's special
  * characters in double quotes. */
 static void join_cmd(char *buf, const char *prefix, char *const *args) {
@@ -315,13 +322,10 @@ static zs_status run_memory(suite *s, zs_error *err) {
 
 /* One of the large walks at every frame, every method. */
 static zs_status run_walk(suite *s, int w, zs_error *err) {
-  char csv[PATH], md[PATH], txt[PATH], name[64];
-  snprintf(name, sizeof name, "walk-%s.csv", walks[w][0]);
-  in_dir(csv, s, name);
-  snprintf(name, sizeof name, "walk-%s.md", walks[w][0]);
-  in_dir(md, s, name);
-  snprintf(name, sizeof name, "walk-%s.txt", walks[w][0]);
-  in_dir(txt, s, name);
+  char csv[PATH], md[PATH], txt[PATH];
+  in_dir_named(csv, s, "walk-%s.csv", walks[w][0]);
+  in_dir_named(md, s, "walk-%s.md", walks[w][0]);
+  in_dir_named(txt, s, "walk-%s.txt", walks[w][0]);
   char *args[24] = {"walk", (char *)walks[w][s->quick ? 2 : 1], "--cull", (char *)all_methods};
   int k = 4;
   if (s->quick) {
@@ -545,12 +549,17 @@ static void command(FILE *f, const suite *s, const char *cmd) {
   fprintf(f, "\nOn the %s:\n\n```\n$ %s\n```\n\n", s->machine, cmd);
 }
 
-static zs_status write_page(const suite *s, const char *path, int docs, zs_error *err) {
-  zs_out out;
-  if (zs_out_open(&out, path, err)) return err->code;
-  FILE *f = out.fp;
-  char p[PATH], q[PATH];
-  zs_status st = ZS_OK;
+/* The command, then table k of the output directory's file name. */
+static zs_status command_table(FILE *f, const suite *s, const char *cmd, const char *name, int k,
+                               zs_error *err) {
+  char path[PATH];
+  in_dir(path, s, name);
+  command(f, s, cmd);
+  return append_table(f, path, k, err);
+}
+
+/* The page's title, how to read it, and its contents. */
+static void page_head(FILE *f, const suite *s) {
   fprintf(f,
           "# Results\n\n"
           "Every table on this page names the command that produced it and the\n"
@@ -580,247 +589,288 @@ static zs_status write_page(const suite *s, const char *path, int docs, zs_error
           s->quick ? "**These figures are from `--quick`: a check that the suite runs, "
                      "not figures to quote.**\n\n"
                    : "");
+}
 
-  /* raster */
-  in_dir(p, s, "raster.md");
-  fprintf(f, "\n## Raster throughput\n\n"
-             "Screens tiled with triangles (the two halves of S x S pixel squares) in\n"
-             "layers drawn back to front, so that every pixel of every layer is tested\n"
-             "and written, and four whole scenes from their own cameras; one thread,\n"
-             "both hidden-surface modes, the median frame. The instructions per frame\n"
-             "come from valgrind's callgrind: each case and mode runs alone for 1 and\n"
-             "for 3 frames, and half the difference is one frame. Spans of 16 pixels\n"
-             "or more are filled with AVX2 (`--simd` caps the level; every level gives\n"
-             "the same pixels).\n");
-  command(f, s, s->cmd_raster);
-  st = append_table(f, p, 0, err);
-  image(f, s, 0, "raster throughput against triangle size", docs);
+/* The prose of the page's sections: each begins with its heading. */
+static const char prose_raster[] =
+          "\n## Raster throughput\n\n"
+          "Screens tiled with triangles (the two halves of S x S pixel squares) in\n"
+          "layers drawn back to front, so that every pixel of every layer is tested\n"
+          "and written, and four whole scenes from their own cameras; one thread,\n"
+          "both hidden-surface modes, the median frame. The instructions per frame\n"
+          "come from valgrind's callgrind: each case and mode runs alone for 1 and\n"
+          "for 3 frames, and half the difference is one frame. Spans of 16 pixels\n"
+          "or more are filled with AVX2 (`--simd` caps the level; every level gives\n"
+          "the same pixels).\n";
+static const char prose_llvmpipe[] =
+          "\n## Against Mesa's llvmpipe\n\n"
+          "The same cases drawn through Mesa's llvmpipe (OSMesa) with the same\n"
+          "matrices: vertex arrays, each face fanned into triangles, one colour per\n"
+          "object, a \"less\" depth test; frames taken in turn with zscan's zbuffer\n"
+          "mode, so that both see the same machine. A ratio under 1: zscan is faster.\n"
+          "The last three columns compare the face each renderer shows at every\n"
+          "pixel. A differing pixel is a depth tie when both renderers cover it with\n"
+          "both faces and differ only in which is nearer, below the resolution of\n"
+          "llvmpipe's 24-bit depth buffer (`tools/crosscheck.c`); everything else\n"
+          "counts as coverage. `tests/test_mesa.c` bounds the coverage differences\n"
+          "at 1 in 10,000 pixels.\n\n### One thread each\n";
+static const char prose_speedup[] =
+          "\n## Threads: the speed-up and its ceiling\n\n"
+          "A whole scene on N threads is drawn deferred: set up in chunks, walked in\n"
+          "bands of rows, with the same bytes and counters as on one thread.\n"
+          "`--speedup` renders each scene on one thread and on N frame by frame in\n"
+          "turn and reports the pairs' ratios; then one single-thread device per\n"
+          "CPU, all at once, each pinned to its CPU (Linux): with t_one the\n"
+          "one-thread frame and t_i each CPU's, the ceiling t_one x sum(1 / t_i) is\n"
+          "what a perfect split would give in that round, the CPUs' interference\n"
+          "with each other included (two virtual CPUs are not always equal).\n";
+static const char prose_memory[] =
+          "\n## Memory\n\n"
+          "What the device holds, from `zscan render --stats`: `buffer_bytes`\n"
+          "(the pixel buffers) and `table_bytes` (the polygon and edge tables and\n"
+          "the walk's scratch), in bytes, for the default scene. Scanline mode\n"
+          "keeps rows: its buffers grow with the width, not the area; its tables\n"
+          "hold the whole frame's polygons, zbuffer mode's one draw's.\n";
+static const char prose_calibrate[] =
+          "\n## The device clock, calibrated\n\n"
+          "The clock models each command's GPU time from counts (calls, vertices,\n"
+          "polygons, spans, pixels tested and written, query pixels). `zscan\n"
+          "calibrate` times synthetic workloads, each dominated by one count, and\n"
+          "whole scenes on zscan's own raster code, fits the constants by least\n"
+          "squares on relative error, and prints each workload's measured time\n"
+          "against the model's. The culling walks below use the default clock,\n"
+          "which describes a GPU, not these constants.\n";
+static const char prose_walks[] =
+          "\n## Culling walks, every frame\n\n"
+          "`zscan walk` runs every method in lockstep over the scene's camera path,\n"
+          "each on its own device with the default clock, and compares every frame\n"
+          "with drawing everything (none). Figures are per frame on average; `x\n"
+          "ideal` is the modelled time over the ideal's; pixels wrong are summed\n"
+          "over all frames. The oracles' wall time includes the full render they\n"
+          "make, which their modelled time does not see. Every column and method:\n"
+          "[CULLING.md](CULLING.md#reading-a-walk). Below each table: how\n"
+          "ideal-box's set changes from frame to frame, and the least that change\n"
+          "costs a method that learns visibility from the last frame.\n";
+static const char prose_walk_plots[] =
+    "\nModelled frame time along the two walks, a few methods (hsw, which\n"
+    "waits for every answer, left out: it would flatten the others):\n";
+static const char prose_tradeoff[] =
+          "\n## Run time against error\n\n"
+          "`zscan bench tradeoff` walks the teapots, the city and the plant at every\n"
+          "10th, 8th and 8th frame with every method and, beside the z-buffer, the\n"
+          "scanline and depth-sort modes, which draw everything. Pixels wrong are\n"
+          "counted against none in zbuffer mode: scanline mode draws its image\n"
+          "exactly, depth sort and vfc-box do not. Each plot puts every method and\n"
+          "mode at its pixels wrong per frame against its median wall time (left)\n"
+          "and its modelled time (right).\n";
+static const char prose_tradeoff_plots[] =
+    "\nModelled frame time along the teapots and plant walks above, a few\n"
+    "methods:\n";
+static const char prose_depthsort[] =
+          "\n## Depth sort with frame coherence\n\n"
+          "The depth-sort paper's Table 1 on the city at street level. The sorter\n"
+          "tells the camera's motion between two frames from the view matrices:\n"
+          "`translate` moves sideways, `roll` turns about the view axis, `yaw` turns\n"
+          "slowly, `fast` moves far enough that most faces are new. Reused: faces\n"
+          "kept from the last frame's order. Times are medians of the frames after\n"
+          "the first; comparisons are exact; diff pixels are the pixels a frame\n"
+          "that differ from the z-buffer's image.\n";
+static const char prose_octree[] =
+          "\n## Loose against plain octree\n\n"
+          "The cost-model paper's experiment 1: spheres of 576 faces moving in a\n"
+          "1,000-unit cube, the time to update each tree per frame (median). The\n"
+          "loose octree places an object in constant time, its level from its\n"
+          "radius and its cell from its centre; the plain one deletes, descends\n"
+          "from the root and inserts.\n";
+static const char prose_not_paid[] =
+          "\n## Things that did not pay\n\n"
+          "Tried, measured, and not kept (the measurements are in the history of\n"
+          "the code that was dropped):\n\n"
+          "- Filling spans under 16 pixels with AVX2: masked stores for the last\n"
+          "  pixels are slow on AMD CPUs, and full-width stores that write back what\n"
+          "  lies past the span were no faster than the scalar loop.\n"
+          "- SSE2 from 8 pixels instead of 16: more instructions a triangle.\n"
+          "- AVX-512 spans in masked steps of 16: slower, as a masked load of a\n"
+          "  row's next span cannot take its bytes from the masked store of the span\n"
+          "  before it, which neighbouring faces of a mesh always have.\n"
+          "- A branchless scalar span loop: where every pixel tested is written the\n"
+          "  branch is always predicted, and the selects only add loads.\n"
+          "- Unrolling the scalar span loop, indexing it from the span's end, writing\n"
+          "  a polygon's edges through a local pointer: more instructions (the walk\n"
+          "  has no register to spare).\n"
+          "- Painting a polygon at a time in zbuffer mode: fewer instructions, but\n"
+          "  slower, as a polygon's rows stride across pages where the walk's stream.\n"
+          "- The edge step as a subtraction whose borrow is the carry (inline\n"
+          "  assembly): fewer instructions, no faster.\n"
+          "- A branch-free depth test: slower.\n"
+          "- For the deferred walk on threads: more or fewer bands or chunks a\n"
+          "  thread, more batches, balancing bands by polygons, the heaviest band\n"
+          "  first, walking a task's bands in one pass, insertion sort for the\n"
+          "  polygons begun above a band, per-worker vertex scratch, and the sorted\n"
+          "  polygon table as an array sorted once a draw: none faster, several\n"
+          "  slower.\n"
+          "- Split sort and natural merge sort for depth sort under slow yaw on the\n"
+          "  large city: more comparisons than the insertion sort.\n"
+          "- Learning w1 and w2 of the cost model from a walk's own queries\n"
+          "  (`--cost-set learn=K`) as the default: slower on both large walks.\n";
 
-  /* llvmpipe */
-  if (!st) {
-    fprintf(f, "\n## Against Mesa's llvmpipe\n\n"
-               "The same cases drawn through Mesa's llvmpipe (OSMesa) with the same\n"
-               "matrices: vertex arrays, each face fanned into triangles, one colour per\n"
-               "object, a \"less\" depth test; frames taken in turn with zscan's zbuffer\n"
-               "mode, so that both see the same machine. A ratio under 1: zscan is faster.\n"
-               "The last three columns compare the face each renderer shows at every\n"
-               "pixel. A differing pixel is a depth tie when both renderers cover it with\n"
-               "both faces and differ only in which is nearer, below the resolution of\n"
-               "llvmpipe's 24-bit depth buffer (`tools/crosscheck.c`); everything else\n"
-               "counts as coverage. `tests/test_mesa.c` bounds the coverage differences\n"
-               "at 1 in 10,000 pixels.\n\n### One thread each\n");
-    if (s->mesa) {
-      command(f, s, s->cmd_raster);
-      st = append_table(f, p, 1, err);
-    } else {
-      fprintf(f, "\nNot measured: %s.\n",
-              s->have_mesa ? "--quick" : "this zscan was built without OSMesa");
-    }
+/* Raster throughput: the table. */
+static zs_status page_raster(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  return command_table(f, s, s->cmd_raster, "raster.md", 0, err);
+}
+
+/* zscan against llvmpipe, on one thread and on all. */
+static zs_status page_llvmpipe(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  if (s->mesa) {
+    if (command_table(f, s, s->cmd_raster, "raster.md", 1, err)) return err->code;
+  } else {
+    fprintf(f, "\nNot measured: %s.\n",
+            s->have_mesa ? "--quick" : "this zscan was built without OSMesa");
   }
-  if (!st) {
-    fprintf(f, "\n### Every thread of the machine, each\n");
-    in_dir(q, s, "raster-threads.md");
-    if (s->mesa && s->threads) {
-      command(f, s, s->cmd_threads);
-      st = append_table(f, q, 1, err);
-    } else {
-      fprintf(f, "\nNot measured: %s.\n",
-              !s->have_mesa ? "this zscan was built without OSMesa"
-              : s->quick    ? "--quick"
-                            : "the machine has one thread");
-    }
-  }
+  fprintf(f, "\n### Every thread of the machine, each\n");
+  if (s->mesa && s->threads)
+    return command_table(f, s, s->cmd_threads, "raster-threads.md", 1, err);
+  fprintf(f, "\nNot measured: %s.\n",
+          !s->have_mesa ? "this zscan was built without OSMesa"
+          : s->quick    ? "--quick"
+                        : "the machine has one thread");
+  return ZS_OK;
+}
 
-  /* speed-up */
-  if (!st) {
-    fprintf(f, "\n## Threads: the speed-up and its ceiling\n\n"
-               "A whole scene on N threads is drawn deferred: set up in chunks, walked in\n"
-               "bands of rows, with the same bytes and counters as on one thread.\n"
-               "`--speedup` renders each scene on one thread and on N frame by frame in\n"
-               "turn and reports the pairs' ratios; then one single-thread device per\n"
-               "CPU, all at once, each pinned to its CPU (Linux): with t_one the\n"
-               "one-thread frame and t_i each CPU's, the ceiling t_one x sum(1 / t_i) is\n"
-               "what a perfect split would give in that round, the CPUs' interference\n"
-               "with each other included (two virtual CPUs are not always equal).\n");
-    in_dir(q, s, "raster-threads.md");
-    if (s->threads) {
-      command(f, s, s->cmd_threads);
-      st = append_table(f, q, s->mesa ? 2 : 1, err);
-    } else {
-      fprintf(f, "\nNot measured: %s.\n", s->quick ? "--quick" : "the machine has one thread");
-    }
-  }
+/* zscan on every thread against one. */
+static zs_status page_speedup(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  if (s->threads)
+    return command_table(f, s, s->cmd_threads, "raster-threads.md", s->mesa ? 2 : 1, err);
+  fprintf(f, "\nNot measured: %s.\n", s->quick ? "--quick" : "the machine has one thread");
+  return ZS_OK;
+}
 
-  /* memory */
-  if (!st) {
-    in_dir(p, s, "memory.md");
-    fprintf(f, "\n## Memory\n\n"
-               "What the device holds, from `zscan render --stats`: `buffer_bytes`\n"
-               "(the pixel buffers) and `table_bytes` (the polygon and edge tables and\n"
-               "the walk's scratch), in bytes, for the default scene. Scanline mode\n"
-               "keeps rows: its buffers grow with the width, not the area; its tables\n"
-               "hold the whole frame's polygons, zbuffer mode's one draw's.\n");
-    command(f, s, s->cmd_memory);
-    st = append_table(f, p, 0, err);
-  }
+/* What the device holds. */
+static zs_status page_memory(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  return command_table(f, s, s->cmd_memory, "memory.md", 0, err);
+}
 
-  /* calibrate */
-  if (!st) {
-    in_dir(p, s, "calibrate.txt");
-    fprintf(f, "\n## The device clock, calibrated\n\n"
-               "The clock models each command's GPU time from counts (calls, vertices,\n"
-               "polygons, spans, pixels tested and written, query pixels). `zscan\n"
-               "calibrate` times synthetic workloads, each dominated by one count, and\n"
-               "whole scenes on zscan's own raster code, fits the constants by least\n"
-               "squares on relative error, and prints each workload's measured time\n"
-               "against the model's. The culling walks below use the default clock,\n"
-               "which describes a GPU, not these constants.\n");
-    command(f, s, s->cmd_calibrate);
-    fputs("```\n", f);
-    st = append_lines(f, p, "workload", err);
-    fputs("```\n", f);
-  }
+/* The clock's constants, as zscan calibrate fitted them. */
+static zs_status page_calibrate(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  char p[PATH];
+  in_dir(p, s, "calibrate.txt");
+  command(f, s, s->cmd_calibrate);
+  fputs("```\n", f);
+  zs_status st = append_lines(f, p, "workload", err);
+  fputs("```\n", f);
+  return st;
+}
 
-  /* walks, every frame */
-  if (!st)
-    fprintf(f, "\n## Culling walks, every frame\n\n"
-               "`zscan walk` runs every method in lockstep over the scene's camera path,\n"
-               "each on its own device with the default clock, and compares every frame\n"
-               "with drawing everything (none). Figures are per frame on average; `x\n"
-               "ideal` is the modelled time over the ideal's; pixels wrong are summed\n"
-               "over all frames. The oracles' wall time includes the full render they\n"
-               "make, which their modelled time does not see. Every column and method:\n"
-               "[CULLING.md](CULLING.md#reading-a-walk). Below each table: how\n"
-               "ideal-box's set changes from frame to frame, and the least that change\n"
-               "costs a method that learns visibility from the last frame.\n");
-  for (int w = 0; w < 2 && !st; w++) {
-    char extent[256], name[64];
-    snprintf(name, sizeof name, "walk-%s.txt", walks[w][0]);
-    in_dir(p, s, name);
-    snprintf(name, sizeof name, "walk-%s.md", walks[w][0]);
-    in_dir(q, s, name);
+/* The two large walks at every frame. */
+static zs_status page_walks(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  for (int w = 0; w < 2; w++) {
+    char p[PATH], q[PATH], extent[256];
+    in_dir_named(p, s, "walk-%s.txt", walks[w][0]);
+    in_dir_named(q, s, "walk-%s.md", walks[w][0]);
     walk_extent(p, extent, sizeof extent);
     fprintf(f, "\n### `%s`, every frame (%s)\n", walks[w][s->quick ? 2 : 1], extent);
     command(f, s, s->cmd_walk[w]);
-    if (!(st = append_table(f, q, 0, err))) {
-      fputs("\n```\n", f);
-      st = append_lines(f, p, "ideal-box's set", err);
-      fputs("```\n", f);
-    }
+    if (append_table(f, q, 0, err)) return err->code;
+    fputs("\n```\n", f);
+    zs_status st = append_lines(f, p, "ideal-box's set", err);
+    fputs("```\n", f);
+    if (st) return st;
   }
-  if (!st) {
-    fprintf(f, "\nModelled frame time along the two walks, a few methods (hsw, which\n"
-               "waits for every answer, left out: it would flatten the others):\n");
-    image(f, s, 2, "the teapots walk, every frame", docs);
-    image(f, s, 1, "the plant walk, every frame", docs);
-  }
+  return ZS_OK;
+}
 
-  /* tradeoff */
-  if (!st)
-    fprintf(f, "\n## Run time against error\n\n"
-               "`zscan bench tradeoff` walks the teapots, the city and the plant at every\n"
-               "10th, 8th and 8th frame with every method and, beside the z-buffer, the\n"
-               "scanline and depth-sort modes, which draw everything. Pixels wrong are\n"
-               "counted against none in zbuffer mode: scanline mode draws its image\n"
-               "exactly, depth sort and vfc-box do not. Each plot puts every method and\n"
-               "mode at its pixels wrong per frame against its median wall time (left)\n"
-               "and its modelled time (right).\n");
-  for (int w = 0; w < 3 && !st; w++) {
+/* bench tradeoff's walks: a table and a plot each. */
+static zs_status page_tradeoff(FILE *f, const suite *s, int docs, zs_error *err) {
+  for (int w = 0; w < 3; w++) {
     char cmd[CMD], name[64];
     tradeoff_cmd(s, w, cmd);
     snprintf(name, sizeof name, "tradeoff-%s.md", tradeoff_walks[w]);
-    in_dir(p, s, name);
     char scene[256], every[64];
     walk_of(cmd, scene, sizeof scene, every, sizeof every);
     fprintf(f, "\n### `%s`, %s\n", scene, every);
-    command(f, s, cmd);
-    st = append_table(f, p, 0, err);
+    if (command_table(f, s, cmd, name, 0, err)) return err->code;
     char alt[96];
     snprintf(alt, sizeof alt, "run time against error: %s", tradeoff_walks[w]);
     image(f, s, 5 + w, alt, docs);
   }
-  if (!st) {
-    fprintf(f, "\nModelled frame time along the teapots and plant walks above, a few\n"
-               "methods:\n");
-    image(f, s, 3, "the teapots walk, every 10th frame", docs);
-    image(f, s, 4, "the plant walk, every 8th frame", docs);
-  }
+  return ZS_OK;
+}
 
-  /* depth sort */
-  if (!st) {
-    in_dir(p, s, "depthsort.csv");
-    fprintf(f, "\n## Depth sort with frame coherence\n\n"
-               "The depth-sort paper's Table 1 on the city at street level. The sorter\n"
-               "tells the camera's motion between two frames from the view matrices:\n"
-               "`translate` moves sideways, `roll` turns about the view axis, `yaw` turns\n"
-               "slowly, `fast` moves far enough that most faces are new. Reused: faces\n"
-               "kept from the last frame's order. Times are medians of the frames after\n"
-               "the first; comparisons are exact; diff pixels are the pixels a frame\n"
-               "that differ from the z-buffer's image.\n");
-    command(f, s, s->cmd_depthsort);
-    static const int col[8] = {0, 1, 2, 3, 4, 5, 6, 7};
-    static const char *const head[8] = {"motion",           "faces",
-                                        "reused %",         "full sort ms",
-                                        "coherent sort ms", "full comparisons",
-                                        "coherent comparisons", "diff pixels"};
-    static const char *const fmt[8] = {NULL, "%.0f", "%.2f", "%.3f", "%.3f", "%.0f", "%.0f",
-                                       "%.1f"};
-    st = csv_table(f, p, 8, col, head, fmt, err);
-  }
+/* bench depthsort's table: the depth-sort paper's Table 1. */
+static zs_status page_depthsort(FILE *f, const suite *s, int docs, zs_error *err) {
+  (void)docs;
+  char p[PATH];
+  in_dir(p, s, "depthsort.csv");
+  command(f, s, s->cmd_depthsort);
+  static const int col[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  static const char *const head[8] = {"motion",
+                                      "faces",
+                                      "reused %",
+                                      "full sort ms",
+                                      "coherent sort ms",
+                                      "full comparisons",
+                                      "coherent comparisons",
+                                      "diff pixels"};
+  static const char *const fmt[8] = {NULL, "%.0f", "%.2f", "%.3f", "%.3f", "%.0f", "%.0f", "%.1f"};
+  return csv_table(f, p, 8, col, head, fmt, err);
+}
 
-  /* octree */
-  if (!st) {
-    in_dir(p, s, "octree.csv");
-    fprintf(f, "\n## Loose against plain octree\n\n"
-               "The cost-model paper's experiment 1: spheres of 576 faces moving in a\n"
-               "1,000-unit cube, the time to update each tree per frame (median). The\n"
-               "loose octree places an object in constant time, its level from its\n"
-               "radius and its cell from its centre; the plain one deletes, descends\n"
-               "from the root and inserts.\n");
-    command(f, s, s->cmd_octree);
-    static const int col[5] = {0, 1, 2, 3, 4};
-    static const char *const head[5] = {"moving", "loose ms/frame", "plain ms/frame",
-                                        "loose us/object", "plain us/object"};
-    static const char *const fmt[5] = {"%.0f", "%.3f", "%.3f", "%.3f", "%.3f"};
-    st = csv_table(f, p, 5, col, head, fmt, err);
-    image(f, s, 8, "loose against plain octree updates", docs);
-  }
+/* bench octree's table. */
+static zs_status page_octree(FILE *f, const suite *s, int docs, zs_error *err) {
+  char p[PATH];
+  in_dir(p, s, "octree.csv");
+  command(f, s, s->cmd_octree);
+  static const int col[5] = {0, 1, 2, 3, 4};
+  static const char *const head[5] = {"moving", "loose ms/frame", "plain ms/frame",
+                                      "loose us/object", "plain us/object"};
+  static const char *const fmt[5] = {"%.0f", "%.3f", "%.3f", "%.3f", "%.3f"};
+  (void)docs;
+  return csv_table(f, p, 5, col, head, fmt, err);
+}
 
-  if (!st)
-    fprintf(f,
-            "\n## Things that did not pay\n\n"
-            "Tried, measured, and not kept (the measurements are in the history of\n"
-            "the code that was dropped):\n\n"
-            "- Filling spans under 16 pixels with AVX2: masked stores for the last\n"
-            "  pixels are slow on AMD CPUs, and full-width stores that write back what\n"
-            "  lies past the span were no faster than the scalar loop.\n"
-            "- SSE2 from 8 pixels instead of 16: more instructions a triangle.\n"
-            "- AVX-512 spans in masked steps of 16: slower, as a masked load of a\n"
-            "  row's next span cannot take its bytes from the masked store of the span\n"
-            "  before it, which neighbouring faces of a mesh always have.\n"
-            "- A branchless scalar span loop: where every pixel tested is written the\n"
-            "  branch is always predicted, and the selects only add loads.\n"
-            "- Unrolling the scalar span loop, indexing it from the span's end, writing\n"
-            "  a polygon's edges through a local pointer: more instructions (the walk\n"
-            "  has no register to spare).\n"
-            "- Painting a polygon at a time in zbuffer mode: fewer instructions, but\n"
-            "  slower, as a polygon's rows stride across pages where the walk's stream.\n"
-            "- The edge step as a subtraction whose borrow is the carry (inline\n"
-            "  assembly): fewer instructions, no faster.\n"
-            "- A branch-free depth test: slower.\n"
-            "- For the deferred walk on threads: more or fewer bands or chunks a\n"
-            "  thread, more batches, balancing bands by polygons, the heaviest band\n"
-            "  first, walking a task's bands in one pass, insertion sort for the\n"
-            "  polygons begun above a band, per-worker vertex scratch, and the sorted\n"
-            "  polygon table as an array sorted once a draw: none faster, several\n"
-            "  slower.\n"
-            "- Split sort and natural merge sort for depth sort under slow yaw on the\n"
-            "  large city: more comparisons than the insertion sort.\n"
-            "- Learning w1 and w2 of the cost model from a walk's own queries\n"
-            "  (`--cost-set learn=K`) as the default: slower on both large walks.\n");
-  if (st) {
-    zs_out_discard(&out);
-    return st;
+/* The page's sections in turn: the prose, then what the benchmark wrote
+ * (none: the prose alone), then up to two plots (none: NULL). */
+typedef zs_status (*section_body)(FILE *f, const suite *s, int docs, zs_error *err);
+static const struct {
+  const char *prose;
+  section_body body;
+  int plot[2];
+  const char *alt[2];
+} sections[] = {
+    {prose_raster, page_raster, {0, 0}, {"raster throughput against triangle size", NULL}},
+    {prose_llvmpipe, page_llvmpipe, {0, 0}, {NULL, NULL}},
+    {prose_speedup, page_speedup, {0, 0}, {NULL, NULL}},
+    {prose_memory, page_memory, {0, 0}, {NULL, NULL}},
+    {prose_calibrate, page_calibrate, {0, 0}, {NULL, NULL}},
+    {prose_walks, page_walks, {0, 0}, {NULL, NULL}},
+    {prose_walk_plots, NULL, {2, 1}, {"the teapots walk, every frame", "the plant walk, every frame"}},
+    {prose_tradeoff, page_tradeoff, {0, 0}, {NULL, NULL}},
+    {prose_tradeoff_plots, NULL, {3, 4},
+     {"the teapots walk, every 10th frame", "the plant walk, every 8th frame"}},
+    {prose_depthsort, page_depthsort, {0, 0}, {NULL, NULL}},
+    {prose_octree, page_octree, {8, 0}, {"loose against plain octree updates", NULL}},
+    {prose_not_paid, NULL, {0, 0}, {NULL, NULL}},
+};
+
+static zs_status write_page(const suite *s, const char *path, int docs, zs_error *err) {
+  zs_out out;
+  if (zs_out_open(&out, path, err)) return err->code;
+  FILE *f = out.fp;
+  page_head(f, s);
+  for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++) {
+    fputs(sections[k].prose, f);
+    if (sections[k].body && sections[k].body(f, s, docs, err)) {
+      zs_out_discard(&out);
+      return err->code;
+    }
+    for (int i = 0; i < 2 && sections[k].alt[i]; i++)
+      image(f, s, sections[k].plot[i], sections[k].alt[i], docs);
   }
   return zs_out_commit(&out, err);
 }
@@ -852,148 +902,182 @@ static zs_status write_docs(const suite *s, const char *docs, zs_error *err) {
   return ZS_OK;
 }
 
-int zs_cmd_bench_suite(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
-  static suite s; /* large: its command lines */
-  memset(&s, 0, sizeof s);
-  s.dir = "bench-suite";
-  const char *docs = NULL;
+/* The options; a usage error is ZS_ERR_ARG (exit 2). */
+static zs_status parse(int argc, char **argv, suite *s, const char **docs, zs_error *err) {
   int w, h;
-  zs_error err;
-  zs_error_clear(&err);
-  int parsing = 1; /* a usage error exits 2 (tools/cli.h) */
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--quick") == 0) {
-      s.quick = 1;
+      s->quick = 1;
     } else if (strcmp(argv[i], "--quiet") == 0) {
-      s.quiet = 1;
+      s->quiet = 1;
     } else if (strcmp(argv[i], "--out") == 0) {
-      if (zs_cli_value(argc, argv, &i, &s.dir, &err)) goto fail;
+      if (zs_cli_value(argc, argv, &i, &s->dir, err)) return err->code;
     } else if (strcmp(argv[i], "--docs") == 0) {
-      if (zs_cli_value(argc, argv, &i, &docs, &err)) goto fail;
+      if (zs_cli_value(argc, argv, &i, docs, err)) return err->code;
     } else if (strcmp(argv[i], "--size") == 0) {
-      if (zs_cli_value(argc, argv, &i, &s.size, &err) ||
-          zs_cli_size(argv[i - 1], s.size, ZS_MAX_IMAGE_SIDE, &w, &h, &err))
-        goto fail;
+      if (zs_cli_value(argc, argv, &i, &s->size, err) ||
+          zs_cli_size(argv[i - 1], s->size, ZS_MAX_IMAGE_SIDE, &w, &h, err))
+        return err->code;
     } else {
-      zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench suite --help)", argv[i]);
-      goto fail;
+      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan bench suite --help)",
+                          argv[i]);
     }
   }
-  parsing = 0;
-  if (zs_out_dir("--out", s.dir, &err)) goto fail;
-  if (docs && zs_out_dir("--docs", docs, &err)) goto fail;
-  if (!zs_self_path(s.self, sizeof s.self)) {
-    zs_error_set(&err, ZS_ERR_IO, "cannot find this program's path");
-    goto fail;
-  }
-  describe_machine(s.machine, sizeof s.machine);
+  return ZS_OK;
+}
+
+/* The folders, this program's path, and what the machine offers: the
+ * machine's description, llvmpipe, valgrind, gnuplot, its threads. */
+static zs_status probe(suite *s, const char *docs, zs_error *err) {
+  if (zs_out_dir("--out", s->dir, err)) return err->code;
+  if (docs && zs_out_dir("--docs", docs, err)) return err->code;
+  if (!zs_self_path(s->self, sizeof s->self))
+    return zs_error_set(err, ZS_ERR_IO, "cannot find this program's path");
+  describe_machine(s->machine, sizeof s->machine);
   zs_error probe;
   zs_error_clear(&probe);
-  s.have_mesa = zs_mesa_available();
-  s.mesa = s.have_mesa && !s.quick;
-  s.callgrind = !s.quick && zs_callgrind_available(&probe);
-  s.plots = zs_plot_available();
+  s->have_mesa = zs_mesa_available();
+  s->mesa = s->have_mesa && !s->quick;
+  s->callgrind = !s->quick && zs_callgrind_available(&probe);
+  s->plots = zs_plot_available();
   long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-  s.threads = !s.quick && ncpu >= 2 ? (int)(ncpu > 64 ? 64 : ncpu) : 0;
-  char path[8][PATH];
-  static const char *const names[8] = {"raster.csv",    "raster.md",  "raster.png",
-                                       "depthsort.csv", "octree.csv", "octree.png",
-                                       "calibrate.txt", "clock.json"};
-  for (int k = 0; k < 8; k++) in_dir(path[k], &s, names[k]);
+  s->threads = !s->quick && ncpu >= 2 ? (int)(ncpu > 64 ? 64 : ncpu) : 0;
+  return ZS_OK;
+}
 
-  char *raster[20];
+/* The files of the benchmarks run in this process, and their arguments. */
+enum { F_RASTER_CSV, F_RASTER_MD, F_RASTER_PNG, F_DEPTHSORT, F_OCTREE_CSV, F_OCTREE_PNG,
+       F_CALIBRATE, F_CLOCK, NFILES };
+typedef struct bench_args {
+  char path[NFILES][PATH];
+  char *raster[20], *tradeoff[8], *depthsort[8], *octree[10], *calibrate[6];
+} bench_args;
+
+static void bench_arguments(const suite *s, bench_args *b) {
+  static const char *const names[NFILES] = {"raster.csv",    "raster.md",  "raster.png",
+                                            "depthsort.csv", "octree.csv", "octree.png",
+                                            "calibrate.txt", "clock.json"};
+  for (int k = 0; k < NFILES; k++) in_dir(b->path[k], s, names[k]);
+  char **raster = b->raster;
   int n = 0;
   raster[n++] = "raster";
   raster[n++] = "--csv";
-  raster[n++] = path[0];
+  raster[n++] = b->path[F_RASTER_CSV];
   raster[n++] = "--md";
-  raster[n++] = path[1];
+  raster[n++] = b->path[F_RASTER_MD];
   raster[n++] = "--plot";
-  raster[n++] = path[2];
-  if (s.mesa) raster[n++] = "--mesa";
-  if (s.callgrind) raster[n++] = "--callgrind";
-  if (s.quick) {
+  raster[n++] = b->path[F_RASTER_PNG];
+  if (s->mesa) raster[n++] = "--mesa";
+  if (s->callgrind) raster[n++] = "--callgrind";
+  if (s->quick) {
     raster[n++] = "--repeat";
     raster[n++] = "1";
     raster[n++] = "--no-scenes";
   }
-  if (s.size) {
+  if (s->size) {
     raster[n++] = "--size";
-    raster[n++] = (char *)s.size;
+    raster[n++] = (char *)s->size;
   }
   raster[n] = NULL;
-  char *tradeoff[8] = {"tradeoff", "--out", (char *)s.dir}, *depthsort[8] = {"depthsort"};
-  int nt = 3, nd = 1;
-  if (s.quick) tradeoff[nt++] = "--quick";
-  if (s.quiet) tradeoff[nt++] = "--quiet";
+  char **tradeoff = b->tradeoff, **depthsort = b->depthsort;
+  int nt = 0, nd = 0;
+  tradeoff[nt++] = "tradeoff";
+  tradeoff[nt++] = "--out";
+  tradeoff[nt++] = (char *)s->dir;
+  if (s->quick) tradeoff[nt++] = "--quick";
+  if (s->quiet) tradeoff[nt++] = "--quiet";
+  depthsort[nd++] = "depthsort";
   depthsort[nd++] = "--frames";
-  depthsort[nd++] = s.quick ? "4" : "40";
+  depthsort[nd++] = s->quick ? "4" : "40";
   depthsort[nd++] = "--csv";
-  depthsort[nd++] = path[3];
-  if (s.size) {
+  depthsort[nd++] = b->path[F_DEPTHSORT];
+  if (s->size) {
     tradeoff[nt++] = "--size";
-    tradeoff[nt++] = (char *)s.size;
+    tradeoff[nt++] = (char *)s->size;
     depthsort[nd++] = "--size";
-    depthsort[nd++] = (char *)s.size;
+    depthsort[nd++] = (char *)s->size;
   }
-  char *octree[] = {"octree", "--count", s.quick ? "500" : "5000", "--frames", s.quick ? "3" : "50",
-                    "--csv", path[4], "--plot", path[5], NULL};
-  char *calibrate[] = {"calibrate", "--repeat", s.quick ? "1" : "9", "-o", path[7], NULL};
+  tradeoff[nt] = depthsort[nd] = NULL;
+  char *octree[] = {"octree", "--count", s->quick ? "500" : "5000", "--frames", s->quick ? "3" : "50",
+                    "--csv", b->path[F_OCTREE_CSV], "--plot", b->path[F_OCTREE_PNG], NULL};
+  char *calibrate[] = {"calibrate", "--repeat", s->quick ? "1" : "9", "-o", b->path[F_CLOCK], NULL};
+  memcpy(b->octree, octree, sizeof octree);
+  memcpy(b->calibrate, calibrate, sizeof calibrate);
+}
 
-  /* the benchmarks in turn: raster, on all threads, memory, calibrate,
-   * two walks, tradeoff, depthsort, octree */
+/* The two large walks' modelled time along every frame, and along
+ * bench tradeoff's steps. */
+static zs_status plot_walks(const suite *s, zs_error *err) {
+  static const char *const walk_name[2][2] = {{"walk-plant", "tradeoff-plant"},
+                                              {"walk-teapots", "tradeoff-teapots"}};
+  for (int k = 0; k < 2; k++) {
+    char csv[PATH], png[PATH], title[400];
+    in_dir_named(csv, s, "%s.csv", walk_name[k][0]);
+    in_dir_named(png, s, "%s-every.png", walk_name[k][0]);
+    snprintf(title, sizeof title, "%s, every frame", walks[k][s->quick ? 2 : 1]);
+    if (plot_walk(csv, png, title, err)) return err->code;
+    in_dir_named(csv, s, "%s.csv", walk_name[k][1]);
+    in_dir_named(png, s, "%s.png", walk_name[k][0]);
+    char cmd[CMD], scene[256], every[64];
+    tradeoff_cmd(s, k ? 0 : 2, cmd); /* its walks: teapots, city, plant */
+    walk_of(cmd, scene, sizeof scene, every, sizeof every);
+    snprintf(title, sizeof title, "%s, %s", scene, every);
+    if (plot_walk(csv, png, title, err)) return err->code;
+  }
+  return ZS_OK;
+}
+
+/* The benchmarks in turn: raster, on all threads, memory, calibrate, two
+ * walks, tradeoff, depthsort, octree.  1: a benchmark run here failed
+ * (it said why); -1: an error in err. */
+static int run_all(suite *s, bench_args *b, zs_error *err) {
   zs_progress progress;
   int done = 0;
-  zs_progress_start(&progress, "bench suite", "benchmark", 8 + (s.threads > 0), s.quiet);
+  zs_progress_start(&progress, "bench suite", "benchmark", 8 + (s->threads > 0), s->quiet);
   /* llvmpipe on one thread beside zscan's one */
-  if (s.mesa) setenv("LP_NUM_THREADS", "1", 1);
-  if (run(zs_cmd_bench_raster, raster, NULL)) return 1; /* the benchmark said why */
+  if (s->mesa) setenv("LP_NUM_THREADS", "1", 1);
+  if (run(zs_cmd_bench_raster, b->raster, NULL)) return 1;
   zs_progress_step(&progress, ++done);
-  join_cmd(s.cmd_raster, s.mesa ? "LP_NUM_THREADS=1 zscan bench" : "zscan bench", raster);
-  if (s.threads) {
-    if (run_threads(&s, &err)) goto fail;
+  join_cmd(s->cmd_raster, s->mesa ? "LP_NUM_THREADS=1 zscan bench" : "zscan bench", b->raster);
+  if (s->threads) {
+    if (run_threads(s, err)) return -1;
     zs_progress_step(&progress, ++done);
   }
-  if (run_memory(&s, &err)) goto fail;
+  if (run_memory(s, err)) return -1;
   zs_progress_step(&progress, ++done);
-  if (run_child(&s, calibrate, path[6], NULL, s.cmd_calibrate, &err)) goto fail;
+  if (run_child(s, b->calibrate, b->path[F_CALIBRATE], NULL, s->cmd_calibrate, err)) return -1;
   zs_progress_step(&progress, ++done);
   for (int k = 0; k < 2; k++) {
-    if (run_walk(&s, k, &err)) goto fail;
+    if (run_walk(s, k, err)) return -1;
     zs_progress_step(&progress, ++done);
   }
-  if (run(zs_cmd_bench_tradeoff, tradeoff, NULL)) return 1;
+  if (run(zs_cmd_bench_tradeoff, b->tradeoff, NULL)) return 1;
   zs_progress_step(&progress, ++done);
-  if (run(zs_cmd_bench_depthsort, depthsort, s.cmd_depthsort)) return 1;
+  if (run(zs_cmd_bench_depthsort, b->depthsort, s->cmd_depthsort)) return 1;
   zs_progress_step(&progress, ++done);
-  if (run(zs_cmd_bench_octree, octree, s.cmd_octree)) return 1;
+  if (run(zs_cmd_bench_octree, b->octree, s->cmd_octree)) return 1;
   zs_progress_step(&progress, ++done);
-  if (s.plots) {
-    static const char *const walk_name[2][2] = {{"walk-plant", "tradeoff-plant"},
-                                                {"walk-teapots", "tradeoff-teapots"}};
-    for (int k = 0; k < 2; k++) {
-      char csv[PATH], png[PATH], name[64], title[400];
-      snprintf(name, sizeof name, "%s.csv", walk_name[k][0]);
-      in_dir(csv, &s, name);
-      snprintf(name, sizeof name, "%s-every.png", walk_name[k][0]);
-      in_dir(png, &s, name);
-      snprintf(title, sizeof title, "%s, every frame", walks[k][s.quick ? 2 : 1]);
-      if (plot_walk(csv, png, title, &err)) goto fail;
-      snprintf(name, sizeof name, "%s.csv", walk_name[k][1]);
-      in_dir(csv, &s, name);
-      snprintf(name, sizeof name, "%s.png", walk_name[k][0]);
-      in_dir(png, &s, name);
-      char cmd[CMD], scene[256], every[64];
-      tradeoff_cmd(&s, k ? 0 : 2, cmd); /* its walks: teapots, city, plant */
-      walk_of(cmd, scene, sizeof scene, every, sizeof every);
-      snprintf(title, sizeof title, "%s, %s", scene, every);
-      if (plot_walk(csv, png, title, &err)) goto fail;
-    }
+  return 0;
+}
+
+int zs_cmd_bench_suite(int argc, char **argv) {
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
+  static suite s; /* large: its command lines */
+  static bench_args b;
+  memset(&s, 0, sizeof s);
+  s.dir = "bench-suite";
+  const char *docs = NULL;
+  zs_error err;
+  zs_error_clear(&err);
+  if (parse(argc, argv, &s, &docs, &err)) {
+    return zs_cli_fail("zscan bench suite", &err, 1); /* a usage error exits 2 (tools/cli.h) */
   }
+  if (probe(&s, docs, &err)) goto fail;
+  bench_arguments(&s, &b);
+  int rc = run_all(&s, &b, &err);
+  if (rc > 0) return 1; /* the benchmark said why */
+  if (rc < 0) goto fail;
+  if (s.plots && plot_walks(&s, &err)) goto fail;
   char page[PATH];
   in_dir(page, &s, "RESULTS.md");
   if (write_page(&s, page, 0, &err)) goto fail;
@@ -1005,6 +1089,5 @@ int zs_cmd_bench_suite(int argc, char **argv) {
          s.callgrind ? "; instructions per frame under callgrind" : "");
   return 0;
 fail:
-  fprintf(stderr, "zscan bench suite: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench suite", &err, 0);
 }

@@ -6,7 +6,8 @@
  * and depth-sort modes.  Per walk DIR gets its CSV (one row per frame and
  * method), its table in Markdown and its plot of time against pixels wrong
  * (one point per method and mode); DIR/tradeoff.md gathers the tables with
- * the command of each.  --quick takes smaller scenes and every 60th to 80th
+ * the command of each; then the tuning outcomes (tools/bench_tuning.h)
+ * and the scenes' load times on stdout.  --quick takes smaller scenes and every 60th to 80th
  * frame: a look in seconds, not the figures of docs/RESULTS.md. */
 #include "tools/bench_tradeoff.h"
 
@@ -17,6 +18,8 @@
 #include "raster/raster.h"
 #include "tools/cli.h"
 #include "lib/outfile.h"
+#include "tools/bench_load.h"
+#include "tools/bench_tuning.h"
 #include "tools/commands.h"
 
 static const char usage[] =
@@ -47,10 +50,7 @@ static const walk_case quick[] = {
 enum { NWALKS = sizeof full / sizeof full[0] };
 
 int zs_cmd_bench_tradeoff(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   const char *dir = "bench-tradeoff", *size = NULL;
   int is_quick = 0, quiet = 0, w, h;
   zs_error err;
@@ -123,9 +123,14 @@ int zs_cmd_bench_tradeoff(int argc, char **argv) {
     fprintf(f, "\n![run time against error: %s](tradeoff-%s.png)\n", walks[k].name, walks[k].name);
   }
   if (zs_out_commit(&out, &err)) goto fail;
+  /* the comparisons the tests once pinned, as figures, and the time the
+   * walks' scenes take to build */
+  const char *specs[NWALKS];
+  for (int k = 0; k < NWALKS; k++) specs[k] = walks[k].scene;
+  if (zs_bench_tuning_report(stdout, &err) || zs_bench_load_report(stdout, specs, NWALKS, &err))
+    goto fail;
   printf("wrote %s and, per walk, tradeoff-NAME.csv, .md and .png\n", summary);
   return 0;
 fail:
-  fprintf(stderr, "zscan bench tradeoff: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan bench tradeoff", &err, parsing);
 }

@@ -283,10 +283,8 @@ static int fit(const workload *w, int nw, const int use[NTERMS], double x[NTERMS
 }
 
 int zs_cmd_calibrate(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    puts("usage: zscan calibrate [-o clock.json] [--repeat K]");
+  if (zs_cli_help(argc, argv, "usage: zscan calibrate [-o clock.json] [--repeat K]\n", NULL))
     return 0;
-  }
   const char *out = "clock.json";
   int repeat = 9;
   zs_error err;
@@ -298,8 +296,7 @@ int zs_cmd_calibrate(int argc, char **argv) {
       if (zs_cli_value(argc, argv, &i, &v, &err)) goto fail;
       out = v;
     } else if (strcmp(argv[i], "--repeat") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int("--repeat", v, 1, 1000, &repeat, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 1, 1000, &repeat, &err)) goto fail;
     } else {
       zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s'", argv[i]);
       goto fail;
@@ -382,6 +379,5 @@ int zs_cmd_calibrate(int argc, char **argv) {
   printf("wrote %s\n", out);
   return 0;
 fail:
-  fprintf(stderr, "zscan calibrate: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan calibrate", &err, parsing);
 }

@@ -1,5 +1,7 @@
 #include "tools/cli.h"
 
+#include <stdarg.h>
+
 #include "lib/outfile.h"
 
 #include "scene/text.h"
@@ -49,20 +51,24 @@ zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
   return ZS_OK;
 }
 
-zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err) {
+zs_status zs_cli_numbers(const char *opt, const char *s, int n, const char *what, double *out,
+                         zs_error *err) {
   const char *p = s;
-  for (int i = 0; i < 3; i++) {
+  for (int i = 0; i < n; i++) {
     char *end;
     errno = 0;
     double v = strtod(p, &end);
-    int sep_ok = (i < 2) ? *end == ',' : *end == '\0';
+    int sep_ok = i < n - 1 ? *end == ',' : *end == '\0';
     if (end == p || !sep_ok || !isfinite(v) || errno == ERANGE)
-      return zs_error_set(err, ZS_ERR_ARG, "%s: expected x,y,z (three finite numbers), got '%s'",
-                          opt, s);
+      return zs_error_set(err, ZS_ERR_ARG, "%s: expected %s, got '%s'", opt, what, s);
     out[i] = v;
     p = end + 1;
   }
   return ZS_OK;
+}
+
+zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err) {
+  return zs_cli_numbers(opt, s, 3, "x,y,z (three finite numbers)", out, err);
 }
 
 zs_status zs_cli_size(const char *opt, const char *s, int max, int *w, int *h,
@@ -121,6 +127,20 @@ zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, z
   return zs_cli_output_path(opt, *out, err);
 }
 
+zs_status zs_cli_int_value(int argc, char **argv, int *i, long lo, long hi, int *out,
+                           zs_error *err) {
+  const char *opt = argv[*i], *v = NULL;
+  if (zs_cli_value(argc, argv, i, &v, err)) return err->code;
+  return zs_cli_int(opt, v, lo, hi, out, err);
+}
+
+zs_status zs_cli_size_value(int argc, char **argv, int *i, int max, int *w, int *h,
+                            zs_error *err) {
+  const char *opt = argv[*i], *v = NULL;
+  if (zs_cli_value(argc, argv, i, &v, err)) return err->code;
+  return zs_cli_size(opt, v, max, w, h, err);
+}
+
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
@@ -134,6 +154,29 @@ int zs_cli_help_asked(int argc, char **argv) {
   for (int i = 1; i < argc; i++)
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) return 1;
   return 0;
+}
+
+int zs_cli_help(int argc, char **argv, const char *usage, ...) {
+  if (!zs_cli_help_asked(argc, argv)) return 0;
+  va_list ap;
+  va_start(ap, usage);
+  for (const char *piece = usage; piece; piece = va_arg(ap, const char *)) fputs(piece, stdout);
+  va_end(ap);
+  return 1;
+}
+
+zs_status zs_cli_operand(const char *a, const char *cmd, const char *what, const char **slot,
+                         zs_error *err) {
+  if (a[0] == '-' && a[1])
+    return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see %s --help)", a, cmd);
+  if (*slot) return zs_error_set(err, ZS_ERR_ARG, "more than one %s: '%s' and '%s'", what, *slot, a);
+  *slot = a;
+  return ZS_OK;
+}
+
+int zs_cli_fail(const char *cmd, const zs_error *err, int parsing) {
+  fprintf(stderr, "%s: %s\n", cmd, err->msg);
+  return zs_cli_exit_status(err, parsing);
 }
 
 /* A line in a log every five seconds; ZSCAN_PROGRESS_MS sets another

@@ -18,6 +18,10 @@ zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
  * number into *value; opt names the option in messages. */
 zs_status zs_cli_assignment(const char *opt, const char *s, char *key, size_t cap,
                             double *value, zs_error *err);
+/* n finite numbers separated by commas; what describes them in the
+ * message ("x,y,z (three finite numbers)"). */
+zs_status zs_cli_numbers(const char *opt, const char *s, int n, const char *what, double *out,
+                         zs_error *err);
 /* "x,y,z" */
 zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err);
 /* "WxH", each side 1 .. max */
@@ -37,6 +41,12 @@ const char *zs_cli_extension(const char *path);
  * or a device is taken as it is. */
 zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
                                zs_error *err);
+/* zs_cli_value, then zs_cli_int or zs_cli_size on the value: an option
+ * taking a whole number, or a size. */
+zs_status zs_cli_int_value(int argc, char **argv, int *i, long lo, long hi, int *out,
+                           zs_error *err);
+zs_status zs_cli_size_value(int argc, char **argv, int *i, int max, int *w, int *h,
+                            zs_error *err);
 /* zs_cli_value, then zs_cli_output_path on the value: an output file's option. */
 zs_status zs_cli_output_value(int argc, char **argv, int *i, const char **out, zs_error *err);
 
@@ -49,6 +59,24 @@ int zs_cli_exit_status(const zs_error *err, int parsing);
 /* 1 when any argument after the command is --help or -h: help is given
  * before anything else is parsed, so it works beside a bad option too. */
 int zs_cli_help_asked(int argc, char **argv);
+/* When help is asked: the usage, the NULL-terminated pieces in turn, on
+ * stdout, and 1 (the command then exits 0); else 0. */
+int zs_cli_help(int argc, char **argv, const char *usage, ...)
+#if defined(__GNUC__)
+    __attribute__((sentinel))
+#endif
+    ;
+
+/* An argument that is no option the command knows: an unknown option
+ * when it starts with '-' (not "-" alone: standard input), else the
+ * command's operand (what: "INPUT", "SCENE") into *slot, which must not
+ * have one yet. */
+zs_status zs_cli_operand(const char *a, const char *cmd, const char *what, const char **slot,
+                         zs_error *err);
+
+/* A failed command's end: "CMD: message" on stderr; returns the exit
+ * status (zs_cli_exit_status). */
+int zs_cli_fail(const char *cmd, const zs_error *err, int parsing);
 
 /* Progress of a long command on stderr: on a terminal, a bar with the
  * time so far and an estimate of the rest, redrawn in place; elsewhere (a

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "tools/cli.h"
+#include "tools/clockfile.h"
 
 typedef struct cost_field {
   const char *name;
@@ -44,4 +45,26 @@ zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err) 
                       "--cost-set %s: unknown cost-model parameter (w1, w2, ttri_ns, tcall_ns, "
                       "t_ns, tq_ns, rho, learn, measure)",
                       name);
+}
+
+int zs_cull_option(int argc, char **argv, int *i, zs_clock_params *clock, zs_cost_params *cost,
+                   zs_query_bounds *bounds, zs_error *err) {
+  const char *a = argv[*i], *v = NULL;
+  const int load = strcmp(a, "--clock") == 0, set = strcmp(a, "--clock-set") == 0;
+  const int box = strcmp(a, "--bounds") == 0;
+  if (!load && !set && !box && strcmp(a, "--cost-set") != 0) return 0;
+  if (zs_cli_value(argc, argv, i, &v, err)) return -1;
+  if (box) {
+    int b = zs_query_bounds_parse(v);
+    if (b < 0) {
+      zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
+      return -1;
+    }
+    *bounds = (zs_query_bounds)b;
+    return 1;
+  }
+  zs_status st = load  ? zs_clockfile_load(v, clock, err)
+                 : set ? zs_clock_set(v, clock, err)
+                       : zs_cost_set(v, cost, err);
+  return st ? -1 : 1;
 }

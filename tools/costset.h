@@ -19,4 +19,11 @@
 
 zs_status zs_cost_set(const char *assignment, zs_cost_params *p, zs_error *err);
 
+/* The options of the device clock, the cost model and the queries that
+ * render and walk share: --clock FILE.json, --clock-set K=V, --cost-set
+ * K=V and --bounds parts|box at argv[*i] (advancing *i past the value).
+ * 1: taken; 0: not one of them; -1: an error, in err. */
+int zs_cull_option(int argc, char **argv, int *i, zs_clock_params *clock, zs_cost_params *cost,
+                   zs_query_bounds *bounds, zs_error *err);
+
 #endif

@@ -198,10 +198,7 @@ static int print_ids(const zs_image *a, const zs_image *b) {
 }
 
 int zs_cmd_diff(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return EXIT_SAME;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return EXIT_SAME;
   diff_args args;
   if (parse_args(argc, argv, &args) != 0) return EXIT_USAGE;
 

@@ -465,10 +465,7 @@ static int usage_error(const char *fmt, const char *arg) {
 }
 
 int zs_cmd_golden(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   golden_run r = {0};
   r.shard_k = r.shard_n = r.jobs = 1;
   if (argc < 2) return usage_error("%s", "expected update or check");

@@ -18,10 +18,7 @@ static const char usage[] =
     "usage: zscan path SCENE [--frames N] [--named static|translate|roll|yaw|fast] [--size WxH]\n";
 
 int zs_cmd_path(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   const char *spec = NULL, *named = NULL;
   int frames = 0, w = 0, h = 0;
   zs_error err;
@@ -30,21 +27,14 @@ int zs_cmd_path(int argc, char **argv) {
   zs_scene s;
   int loaded = 0;
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i], *v;
+    const char *a = argv[i];
     if (strcmp(a, "--frames") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_int(a, v, 1, 1000000, &frames, &err))
-        goto fail;
+      if (zs_cli_int_value(argc, argv, &i, 1, 1000000, &frames, &err)) goto fail;
     } else if (strcmp(a, "--named") == 0) {
       if (zs_cli_value(argc, argv, &i, &named, &err)) goto fail;
     } else if (strcmp(a, "--size") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, &err) || zs_cli_size(a, v, 16384, &w, &h, &err)) goto fail;
-    } else if (a[0] == '-' && a[1]) {
-      zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan path --help)", a);
-      goto fail;
-    } else if (!spec) {
-      spec = a;
-    } else {
-      zs_error_set(&err, ZS_ERR_ARG, "more than one SCENE: '%s' and '%s'", spec, a);
+      if (zs_cli_size_value(argc, argv, &i, 16384, &w, &h, &err)) goto fail;
+    } else if (zs_cli_operand(a, "zscan path", "SCENE", &spec, &err)) {
       goto fail;
     }
   }
@@ -55,17 +45,13 @@ int zs_cmd_path(int argc, char **argv) {
   parsing = 0;
   if (zs_input_load_scene(spec, &s, &err)) goto fail;
   loaded = 1;
-  if (!w) {
-    w = s.width ? s.width : 1024;
-    h = s.height ? s.height : 768;
-  }
-  double aspect = (double)w / h;
+  if (!w) zs_frame_size(&s, 0, 0, &w, &h);
   if (named && zs_frame_named_path(&s, named, frames ? frames : 100, w, h, &err)) goto fail;
   int n = frames ? frames : s.path.nkeys > 0 ? s.path.frames : 1;
   for (int f = 0; f < n; f++) {
-    zs_camera cam = s.camera;
-    if (s.path.nkeys > 0) zs_path_camera(&s, f, &cam);
-    zs_camera_complete(&cam, s.lo, s.hi, aspect);
+    zs_camera key = s.camera, cam;
+    if (s.path.nkeys > 0) zs_path_camera(&s, f, &key);
+    zs_frame_complete_camera(&s, &key, w, h, &cam);
     char line[512];
     zs_path_format(line, sizeof line, f, &cam);
     fputs(line, stdout); /* the line ends in its newline */
@@ -73,7 +59,6 @@ int zs_cmd_path(int argc, char **argv) {
   zs_scene_free(&s);
   return 0;
 fail:
-  fprintf(stderr, "zscan path: %s\n", err.msg);
   if (loaded) zs_scene_free(&s);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan path", &err, parsing);
 }

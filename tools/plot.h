@@ -17,6 +17,15 @@ zs_status zs_plot_series(const char *png, const char *title, const char *xlabel,
                          const char *ylabel, const double *y, int n, int nseries,
                          const char *const *names, double x0, double dx, int logy, zs_error *err);
 
+/* Run time against error, one labelled point per row i (a method or a
+ * mode), in two panels: wall[i] and model[i] (ms per frame, log scale)
+ * against wrong[i] (pixels wrong per frame); scene names the title.  At
+ * most ZS_PLOT_TRADEOFF_MAX rows. */
+#define ZS_PLOT_TRADEOFF_MAX 32
+zs_status zs_plot_tradeoff(const char *png, const char *scene, const char *const *names,
+                           const double *wall, const double *model, const double *wrong, int n,
+                           zs_error *err);
+
 /* Runs gnuplot on script, which must `set output` to the path it is given
  * as its %s-free variable OUT (the temporary PNG): the script text is
  * prefixed with `OUT = '...'`.  The result is written to png. */

@@ -91,11 +91,7 @@ static zs_status run(const char *input, int json, const zs_view_opts *v, zs_erro
 }
 
 int zs_cmd_query(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    fputs(zs_view_opts_usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, zs_view_opts_usage, NULL)) return 0;
   const char *input = NULL;
   int json = 0;
   zs_view_opts v;
@@ -117,15 +113,7 @@ int zs_cmd_query(int argc, char **argv) {
       json = f[0] == 'j';
       continue;
     }
-    if (argv[i][0] == '-' && argv[i][1]) {
-      zs_error_set(&err, ZS_ERR_ARG, "unknown option '%s' (see zscan query --help)", argv[i]);
-      goto fail;
-    }
-    if (input) {
-      zs_error_set(&err, ZS_ERR_ARG, "more than one INPUT: '%s' and '%s'", input, argv[i]);
-      goto fail;
-    }
-    input = argv[i];
+    if (zs_cli_operand(argv[i], "zscan query", "INPUT", &input, &err)) goto fail;
   }
   if (!input) {
     zs_error_set(&err, ZS_ERR_ARG, "missing INPUT (see zscan query --help)");
@@ -135,6 +123,5 @@ int zs_cmd_query(int argc, char **argv) {
   if (run(input, json, &v, &err)) goto fail;
   return 0;
 fail:
-  fprintf(stderr, "zscan query: %s\n", err.msg);
-  return zs_cli_exit_status(&err, parsing);
+  return zs_cli_fail("zscan query", &err, parsing);
 }

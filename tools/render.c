@@ -68,6 +68,38 @@ static const char usage_tail[] =
 
 
 
+/* What the options ask together, and of the outputs: their formats,
+ * their folders, the one stream standard output carries. */
+static zs_status check_options(render_opts *o, int in_memory, zs_error *err) {
+  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
+    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
+  if (o->overlay && o->cull < 0)
+    return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
+  if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))
+    return zs_error_set(err, ZS_ERR_ARG, "--cull needs --algo zbuffer and --style solid");
+  if (in_memory) { /* the image stays in memory: no file, no counters printed */
+    const char *extra = o->out_pfm ? "--depth" : o->stats ? "--stats" : o->out_given ? "-o" : NULL;
+    if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
+    return ZS_OK;
+  }
+  const char *ext = zs_cli_extension(o->out_png);
+  o->svg = ext && strcasecmp(ext, "svg") == 0;
+  if (o->svg && !o->hidden_line)
+    return zs_error_set(err, ZS_ERR_ARG, "-o: %s: an SVG holds hidden lines (--style hidden-line)",
+                        o->out_png);
+  if (!o->svg && zs_cli_output_format("-o", o->out_png, "png", err)) return err->code;
+  if (o->out_pfm && zs_cli_output_format("--depth", o->out_pfm, "pfm", err)) return err->code;
+  if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
+  if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
+  /* standard output carries one stream */
+  int to_stdout = zs_out_is_stdout(o->out_png) + (o->out_pfm && zs_out_is_stdout(o->out_pfm));
+  if (to_stdout > 1 || (to_stdout && o->stats))
+    return zs_error_set(err, ZS_ERR_ARG,
+                        "standard output (-) takes one stream: only one of -o -, --depth - "
+                        "and --stats");
+  return ZS_OK;
+}
+
 zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, zs_error *err) {
   memset(o, 0, sizeof *o);
   o->out_png = "zscan.png";
@@ -83,6 +115,7 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
 #define VALUE() \
   if (zs_cli_value(argc, argv, &i, &v, err)) return err->code
     int taken = zs_view_opts_parse(&o->view, argc, argv, &i, err);
+    if (!taken) taken = zs_cull_option(argc, argv, &i, &o->clock, &o->cost, &o->bounds, err);
     if (taken < 0) return err->code;
     if (taken) continue;
     if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
@@ -107,11 +140,6 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       VALUE();
       if ((o->cull = zs_cull_method_parse(v)) < 0)
         return zs_error_set(err, ZS_ERR_ARG, "--cull: unknown method '%s' (" ZS_CULL_METHOD_LIST ")", v);
-    } else if (strcmp(a, "--bounds") == 0) {
-      VALUE();
-      int b = zs_query_bounds_parse(v);
-      if (b < 0) return zs_error_set(err, ZS_ERR_ARG, "--bounds: expected parts or box, got '%s'", v);
-      o->bounds = (zs_query_bounds)b;
     } else if (strcmp(a, "--overlay") == 0) {
       VALUE();
       if (strcmp(v, "culling") != 0)
@@ -151,51 +179,12 @@ zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, 
       if (strlen(v) != 6 || *end || v[0] == '-' || v[0] == '+')
         return zs_error_set(err, ZS_ERR_ARG, "--background: expected RRGGBB (hex), got '%s'", v);
       o->background = (uint32_t)rgb;
-    } else if (strcmp(a, "--clock") == 0) {
-      VALUE();
-      if (zs_clockfile_load(v, &o->clock, err)) return err->code;
-    } else if (strcmp(a, "--clock-set") == 0) {
-      VALUE();
-      if (zs_clock_set(v, &o->clock, err)) return err->code;
-    } else if (strcmp(a, "--cost-set") == 0) {
-      VALUE();
-      if (zs_cost_set(v, &o->cost, err)) return err->code;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan render --help)", a);
-    } else if (!o->input) {
-      o->input = a;
-    } else {
-      return zs_error_set(err, ZS_ERR_ARG, "more than one INPUT: '%s' and '%s'", o->input, a);
+    } else if (zs_cli_operand(a, "zscan render", "INPUT", &o->input, err)) {
+      return err->code;
     }
 #undef VALUE
   }
-  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
-    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
-  if (o->overlay && o->cull < 0)
-    return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
-  if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))
-    return zs_error_set(err, ZS_ERR_ARG, "--cull needs --algo zbuffer and --style solid");
-  if (in_memory) { /* the image stays in memory: no file, no counters printed */
-    const char *extra = o->out_pfm ? "--depth" : o->stats ? "--stats" : o->out_given ? "-o" : NULL;
-    if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
-    return ZS_OK;
-  }
-  const char *ext = zs_cli_extension(o->out_png);
-  o->svg = ext && strcasecmp(ext, "svg") == 0;
-  if (o->svg && !o->hidden_line)
-    return zs_error_set(err, ZS_ERR_ARG, "-o: %s: an SVG holds hidden lines (--style hidden-line)",
-                        o->out_png);
-  if (!o->svg && zs_cli_output_format("-o", o->out_png, "png", err)) return err->code;
-  if (o->out_pfm && zs_cli_output_format("--depth", o->out_pfm, "pfm", err)) return err->code;
-  if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
-  if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
-  /* standard output carries one stream */
-  int to_stdout = zs_out_is_stdout(o->out_png) + (o->out_pfm && zs_out_is_stdout(o->out_pfm));
-  if (to_stdout > 1 || (to_stdout && o->stats))
-    return zs_error_set(err, ZS_ERR_ARG,
-                        "standard output (-) takes one stream: only one of -o -, --depth - "
-                        "and --stats");
-  return ZS_OK;
+  return check_options(o, in_memory, err);
 }
 
 /* The culling method's work in the frame (render --cull): what it skipped
@@ -384,6 +373,25 @@ static zs_status write_svg(const render_opts *o, const zs_device *dev, zs_error 
                             ZS_HIDDEN_LINE_PAPER, ZS_HIDDEN_LINE_INK, err);
 }
 
+/* The painter's error: pixels whose face differs from the z-buffer's. */
+static zs_status painter_error(const render_opts *o, const zs_scene *model, int64_t *diff_pixels,
+                               zs_error *err) {
+  zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
+                       o->view.cull_back, 1, 0};
+  zs_frame_opts mine = ref;
+  mine.algo = ZS_ALGO_DEPTHSORT;
+  zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
+  zs_status st;
+  if ((st = zs_frame_render(model, &o->view.cam, &ref, &a, NULL, NULL, err)) == ZS_OK &&
+      (st = zs_frame_render(model, &o->view.cam, &mine, &b, NULL, NULL, err)) == ZS_OK) {
+    *diff_pixels = 0;
+    for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++) *diff_pixels += a.rgb[i] != b.rgb[i];
+  }
+  zs_image_free(&a);
+  zs_image_free(&b);
+  return st;
+}
+
 /* Renders the frame o asks for; keep == NULL: as the command does (the
  * PNG, the depth map, the counters); else the image goes into *keep. */
 static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
@@ -477,22 +485,9 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
     goto done;
   }
   int64_t diff_pixels = -1;
-  if (o->stats && o->algo == ZS_ALGO_DEPTHSORT) {
-    /* the painter's error: pixels whose face differs from the z-buffer's */
-    zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
-                         o->view.cull_back, 1, 0};
-    zs_frame_opts mine = ref;
-    mine.algo = ZS_ALGO_DEPTHSORT;
-    zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
-    if ((st = zs_frame_render(&model, &o->view.cam, &ref, &a, NULL, NULL, err)) == ZS_OK &&
-        (st = zs_frame_render(&model, &o->view.cam, &mine, &b, NULL, NULL, err)) == ZS_OK) {
-      diff_pixels = 0;
-      for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++) diff_pixels += a.rgb[i] != b.rgb[i];
-    }
-    zs_image_free(&a);
-    zs_image_free(&b);
-    if (st) goto done;
-  }
+  if (o->stats && o->algo == ZS_ALGO_DEPTHSORT &&
+      (st = painter_error(o, &model, &diff_pixels, err)))
+    goto done;
   cull_report cr = {o->cull >= 0 ? zs_cull_method_name((zs_cull_method)o->cull) : NULL, &cs,
                     have_tree ? tree.nnodes : 0, have_tree && tree.flat};
   if (o->stats)
@@ -516,21 +511,12 @@ done:
 }
 
 int zs_cmd_render(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage_head, stdout);
-    fputs(zs_view_opts_usage, stdout);
-    fputs(usage_tail, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage_head, zs_view_opts_usage, usage_tail, NULL)) return 0;
   render_opts o;
   zs_error err;
   zs_error_clear(&err);
-  int parsing = 1;
-  if (zs_render_parse(argc, argv, 0, &o, &err) || (parsing = 0) || run(&o, NULL, &err)) {
-    fprintf(stderr, "zscan render: %s\n", err.msg);
-    return zs_cli_exit_status(&err, parsing);
-  }
-  return 0;
+  if (zs_render_parse(argc, argv, 0, &o, &err)) return zs_cli_fail("zscan render", &err, 1);
+  return run(&o, NULL, &err) ? zs_cli_fail("zscan render", &err, 0) : 0;
 }
 
 zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err) {

@@ -120,17 +120,18 @@ static int cmp_row0_edge(const void *a, const void *b) {
   return (p->row0 > q->row0) - (p->row0 < q->row0);
 }
 
+/* The numbers v[0..n-1] into o under names[0..n-1], in turn. */
+static void add_numbers(cJSON *o, const char *const *names, const double *v, int n) {
+  for (int i = 0; i < n; i++) cJSON_AddNumberToObject(o, names[i], v[i]);
+}
+
 static cJSON *json_poly(const zs_trace_poly *p) {
   cJSON *o = cJSON_CreateObject();
-  cJSON_AddNumberToObject(o, "id", p->id);
-  cJSON_AddNumberToObject(o, "row", p->row0);
-  cJSON_AddNumberToObject(o, "dy", p->row1 - p->row0);
-  cJSON_AddNumberToObject(o, "z0", p->z0);
-  cJSON_AddNumberToObject(o, "dzx", p->dzx);
-  cJSON_AddNumberToObject(o, "dzy", p->dzy);
-  cJSON_AddNumberToObject(o, "origin_x", p->ox);
-  cJSON_AddNumberToObject(o, "origin_y", p->oy);
-  cJSON_AddNumberToObject(o, "zshift", p->zshift);
+  static const char *const names[] = {"id",  "row", "dy",       "z0",       "dzx",
+                                      "dzy", "origin_x", "origin_y", "zshift"};
+  const double v[] = {p->id,  p->row0, p->row1 - p->row0, p->z0,     p->dzx,
+                      p->dzy, p->ox,   p->oy,             p->zshift};
+  add_numbers(o, names, v, 9);
   char hex[8];
   snprintf(hex, sizeof hex, "#%06x", p->rgb & 0xFFFFFF);
   cJSON_AddStringToObject(o, "colour", hex);
@@ -263,16 +264,11 @@ static void on_row(void *user, const zs_trace_row *row) {
 static cJSON *json_pair(const zs_trace_pair *p) {
   cJSON *o = cJSON_CreateObject();
   char s[64];
-  cJSON_AddNumberToObject(o, "id", p->id);
-  cJSON_AddNumberToObject(o, "xl", p->xl_real);
-  cJSON_AddNumberToObject(o, "dxl", p->dxl);
-  cJSON_AddNumberToObject(o, "dyl", p->dyl);
-  cJSON_AddNumberToObject(o, "xr", p->xr_real);
-  cJSON_AddNumberToObject(o, "dxr", p->dxr);
-  cJSON_AddNumberToObject(o, "dyr", p->dyr);
-  cJSON_AddNumberToObject(o, "zl", p->zl_real);
-  cJSON_AddNumberToObject(o, "dzx", p->dzx);
-  cJSON_AddNumberToObject(o, "dzy", p->dzy);
+  static const char *const names[] = {"id", "xl", "dxl", "dyl", "xr",
+                                      "dxr", "dyr", "zl", "dzx", "dzy"};
+  const double v[] = {p->id,  p->xl_real, p->dxl,     p->dyl, p->xr_real,
+                      p->dxr, p->dyr,     p->zl_real, p->dzx, p->dzy};
+  add_numbers(o, names, v, 10);
   fraction(s, sizeof s, p->xl, p->reml, p->dl);
   cJSON_AddStringToObject(o, "xl_fraction", s);
   fraction(s, sizeof s, p->xr, p->remr, p->dr);
@@ -282,10 +278,9 @@ static cJSON *json_pair(const zs_trace_pair *p) {
   slope(s, sizeof s, p->dxr_num, p->dr);
   cJSON_AddStringToObject(o, "dxr_fraction", s);
   cJSON *fx = cJSON_AddObjectToObject(o, "fixed");
-  cJSON_AddNumberToObject(fx, "xl", (double)p->xl);
-  cJSON_AddNumberToObject(fx, "xr", (double)p->xr);
-  cJSON_AddNumberToObject(fx, "zl", (double)p->zl);
-  cJSON_AddNumberToObject(fx, "zshift", p->zshift);
+  static const char *const fixed[] = {"xl", "xr", "zl", "zshift"};
+  const double f[] = {(double)p->xl, (double)p->xr, (double)p->zl, p->zshift};
+  add_numbers(fx, fixed, f, 4);
   return o;
 }
 
@@ -642,14 +637,9 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
       o->png_dir = v;
     } else if (strcmp(a, "--scale") == 0) {
-      if (zs_cli_value(argc, argv, &i, &v, err) || zs_cli_int(a, v, 1, 64, &o->scale, err))
-        return err->code;
-    } else if (a[0] == '-' && a[1]) {
-      return zs_error_set(err, ZS_ERR_ARG, "unknown option '%s' (see zscan trace --help)", a);
-    } else if (!o->input) {
-      o->input = a;
-    } else {
-      return zs_error_set(err, ZS_ERR_ARG, "more than one INPUT: '%s' and '%s'", o->input, a);
+      if (zs_cli_int_value(argc, argv, &i, 1, 64, &o->scale, err)) return err->code;
+    } else if (zs_cli_operand(a, "zscan trace", "INPUT", &o->input, err)) {
+      return err->code;
     }
   }
   if (!o->input) return zs_error_set(err, ZS_ERR_ARG, "missing INPUT (see zscan trace --help)");
@@ -664,11 +654,7 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
 }
 
 int zs_cmd_trace(int argc, char **argv) {
-  if (zs_cli_help_asked(argc, argv)) {
-    fputs(usage, stdout);
-    fputs(zs_view_opts_usage, stdout);
-    return 0;
-  }
+  if (zs_cli_help(argc, argv, usage, zs_view_opts_usage, NULL)) return 0;
   trace_opts o;
   zs_error err;
   zs_error_clear(&err);
@@ -680,7 +666,7 @@ int zs_cmd_trace(int argc, char **argv) {
   char *page_data = NULL; /* --html: the JSON trace, gathered */
   size_t page_size = 0;
   FILE *mem = NULL;
-  int have_model = 0;
+  int have_model = 0, rc = 1;
   if (parse(argc, argv, &o, &err)) goto fail;
   parsing = 0;
   if (zs_input_load_scene(o.input, &model, &err)) goto fail;
@@ -748,18 +734,11 @@ int zs_cmd_trace(int argc, char **argv) {
       goto fail;
     }
   }
-  free(page_data);
-  free(t.pairs);
-  free(t.spans);
-  free(t.ids);
-  free(t.depth);
-  free(t.outline);
-  free(t.outline_id);
-  zs_device_destroy(dev);
-  zs_scene_free(&model);
-  return 0;
+  rc = 0;
+  goto done;
 fail:
-  fprintf(stderr, "zscan trace: %s\n", err.msg);
+  rc = zs_cli_fail("zscan trace", &err, parsing);
+done:
   if (mem) fclose(mem);
   free(page_data);
   free(t.pairs);
@@ -770,5 +749,5 @@ fail:
   free(t.outline_id);
   zs_device_destroy(dev);
   if (have_model) zs_scene_free(&model);
-  return zs_cli_exit_status(&err, parsing);
+  return rc;
 }

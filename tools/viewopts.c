@@ -37,23 +37,6 @@ void zs_view_opts_default(zs_view_opts *o, int width, int height) {
   zs_camera_default(&o->cam);
 }
 
-/* "l,r,b,t" */
-static zs_status parse4(const char *opt, const char *s, double out[4], zs_error *err) {
-  const char *p = s;
-  for (int i = 0; i < 4; i++) {
-    char *end;
-    errno = 0;
-    double v = strtod(p, &end);
-    int sep_ok = i < 3 ? *end == ',' : *end == '\0';
-    if (end == p || !sep_ok || !isfinite(v) || errno == ERANGE)
-      return zs_error_set(err, ZS_ERR_ARG, "%s: expected four finite numbers L,R,B,T, got '%s'",
-                          opt, s);
-    out[i] = v;
-    p = end + 1;
-  }
-  return ZS_OK;
-}
-
 int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error *err) {
   const char *a = argv[*i], *v = NULL;
   zs_camera *c = &o->cam;
@@ -86,7 +69,7 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
     st = zs_cli_double(a, v, &c->fovy, err);
     o->fovy_given = 1;
   } else if (strcmp(a, "--ortho") == 0) {
-    st = parse4(a, v, c->extent, err);
+    st = zs_cli_numbers(a, v, 4, "four finite numbers L,R,B,T", c->extent, err);
     c->ortho = 1;
   } else if (strcmp(a, "--up-axis") == 0) {
     if (strcmp(v, "y") != 0 && strcmp(v, "z") != 0)

@@ -75,28 +75,23 @@ def _path_arg(path):
 
 # ---- pixels: 0xRRGGBB words <-> R,G,B bytes ----
 
+def _channel_bytes():
+    """The byte of R, G and B within a native-endian uint32 0xRRGGBB."""
+    return (2, 1, 0) if sys.byteorder == "little" else (1, 2, 3)
+
+
 def _words_to_rgb(raw, npix):
     """raw: 4 * npix bytes, one native-endian uint32 0xRRGGBB per pixel."""
     out = bytearray(3 * npix)
-    if sys.byteorder == "little":
-        r, g, b = 2, 1, 0
-    else:
-        r, g, b = 1, 2, 3
-    out[0::3] = raw[r::4]
-    out[1::3] = raw[g::4]
-    out[2::3] = raw[b::4]
+    for c, at in enumerate(_channel_bytes()):
+        out[c::3] = raw[at::4]
     return bytes(out)
 
 
 def _rgb_to_words(rgb, npix):
     raw = bytearray(4 * npix)
-    if sys.byteorder == "little":
-        r, g, b = 2, 1, 0
-    else:
-        r, g, b = 1, 2, 3
-    raw[r::4] = rgb[0::3]
-    raw[g::4] = rgb[1::3]
-    raw[b::4] = rgb[2::3]
+    for c, at in enumerate(_channel_bytes()):
+        raw[at::4] = rgb[c::3]
     return raw
 
 
