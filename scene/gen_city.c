@@ -41,7 +41,6 @@
 #include <stdlib.h>
 
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 
 #define BLOCK 40.0
@@ -154,7 +153,7 @@ static zs_status car(zs_model *m, uint32_t paint) {
     c[b][1] = lo[1];
     c[b][2] = (b & 4) ? hi[2] : lo[2];
   }
-  if (st == ZS_OK) st = zs_builtin_hexahedron(m, c, GLASS_RGB, 0);
+  if (st == ZS_OK) st = zs_gen_hexahedron(m, c, GLASS_RGB, 0);
   /* Wheels: cylinders turned from +y onto +z. */
   for (int w = 0; w < 4 && st == ZS_OK; w++) {
     double x = (w & 1) ? 1.35 : -1.35, z = (w & 2) ? 0.62 : -0.86;
@@ -318,7 +317,7 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
     int axis = seg[k] / ((n + 1) * n), street = seg[k] / n % (n + 1), i = seg[k] % n;
     int forward = zs_rng_below(&rng, 2) == 0;
     double along = block_start(&c, i) + zs_rng_range(&rng, 4.0, BLOCK - 4.0);
-    uint32_t paint = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
+    uint32_t paint = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
     double speed = zs_rng_range(&rng, 0.2, 0.5);
     /* Driving on the right: heading +x, the right-hand side is +z. */
     double lane = street_centre(&c, street) + (forward ? 3.0 : -3.0);

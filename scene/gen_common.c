@@ -8,7 +8,6 @@
 
 #include "raster/exactmath.h"
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
@@ -67,6 +66,26 @@ void zs_gen_apply(const double m[16], const double p[3], double out[3]) {
   for (int r = 0; r < 3; r++)
     out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
 }
+
+/* ---- colours ----------------------------------------------------------- */
+
+/* Soft, distinct hues that stay apart under flat shading. */
+static const uint32_t palette[ZS_GEN_PALETTE_SIZE] = {
+    0xD1495Bu, /* raspberry */
+    0xEDAE49u, /* saffron */
+    0x00798Cu, /* teal */
+    0x30638Eu, /* steel blue */
+    0x66A182u, /* sage */
+    0xE07A5Fu, /* terracotta */
+    0x9C89B8u, /* lavender */
+    0xF2CC8Fu, /* sand */
+    0x3D405Bu, /* slate */
+    0x81B29Au, /* mint */
+    0xF0A6CAu, /* pink */
+    0xB5838Du  /* dusty rose */
+};
+
+uint32_t zs_gen_palette(int i) { return palette[i]; }
 
 /* ---- scenes ------------------------------------------------------------ */
 
@@ -182,7 +201,7 @@ int32_t zs_gen_ground(zs_scene *s, const double lo[3], const double hi[3], const
   zs_model ground;
   int32_t obj = zs_gen_model(&ground, "ground", err);
   if (obj < 0) return -1;
-  if (zs_gen_box(&ground, lo, hi, NULL, ZS_BUILTIN_GROUND_RGB, obj)) {
+  if (zs_gen_box(&ground, lo, hi, NULL, ZS_GEN_GROUND_RGB, obj)) {
     zs_model_free(&ground);
     ZS_GEN_NOMEM(err, spec);
     return -1;

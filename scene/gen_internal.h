@@ -84,6 +84,16 @@ void zs_gen_frame(double m[16], const double ax[3], const double ay[3],
 /* p' = m p for an affine m. */
 void zs_gen_apply(const double m[16], const double p[3], double out[3]);
 
+/* ---- colours ----------------------------------------------------------- */
+
+#define ZS_GEN_GROUND_RGB 0x9C968Cu /* warm grey */
+
+enum { ZS_GEN_PALETTE_SIZE = 12 };
+
+/* Colour i (0 .. ZS_GEN_PALETTE_SIZE - 1) of a palette of soft, distinct
+ * hues, 0xRRGGBB. */
+uint32_t zs_gen_palette(int i);
+
 /* ---- scene building ---------------------------------------------------- */
 
 /* Adds *m (consumed) to s; returns its index or -1 after setting err. */

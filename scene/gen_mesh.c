@@ -15,7 +15,6 @@
 
 #include "raster/exactmath.h"
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
@@ -31,6 +30,30 @@ static zs_status poly(zs_model *m, const int32_t *idx, int n, uint32_t rgb, int3
   return zs_model_add_polygon(m, idx, n, rgb, obj);
 }
 
+zs_status zs_gen_hexahedron(zs_model *m, const double c[8][3], uint32_t rgb, int32_t obj) {
+  int32_t first = m->mesh.nverts;
+  for (int b = 0; b < 8; b++)
+    if (zs_model_add_vertex(m, c[b][0], c[b][1], c[b][2]) < 0) return ZS_ERR_NOMEM;
+  /* Corner b: bit 0 the +x side, bit 1 +y, bit 2 +z.  Each quad runs
+   * counter-clockwise seen from outside, e.g. -x: 0 -> 4 is +z, 4 -> 6 is
+   * +y, and z x y = -x. */
+  static const int quads[6][4] = {
+      {0, 4, 6, 2}, /* -x */
+      {1, 3, 7, 5}, /* +x */
+      {0, 1, 5, 4}, /* -y */
+      {2, 6, 7, 3}, /* +y */
+      {0, 2, 3, 1}, /* -z */
+      {4, 5, 7, 6}  /* +z */
+  };
+  for (int f = 0; f < 6; f++) {
+    int32_t idx[4];
+    for (int k = 0; k < 4; k++) idx[k] = first + quads[f][k];
+    zs_status st = zs_model_add_polygon(m, idx, 4, rgb, obj);
+    if (st != ZS_OK) return st;
+  }
+  return ZS_OK;
+}
+
 zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
                      const double xform[16], uint32_t rgb, int32_t obj) {
   for (int a = 0; a < 3; a++)
@@ -41,7 +64,7 @@ zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
     if (xform) zs_gen_apply(xform, p, c[b]);
     else memcpy(c[b], p, sizeof p);
   }
-  return zs_builtin_hexahedron(m, c, rgb, obj);
+  return zs_gen_hexahedron(m, c, rgb, obj);
 }
 
 /* Closes a ring of n vertices ring[0 .. n-1] (counter-clockwise about the

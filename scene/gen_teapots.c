@@ -29,7 +29,6 @@
 #include <stdlib.h>
 
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
@@ -120,7 +119,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
       zs_gen_random_rotation(&rng, turn);
       zs_mat_translate(move, cx + jx, RADIUS + GAP + k * PITCH, cz + jz);
       zs_gen_mul3(place, move, turn, to_pivot);
-      uint32_t rgb = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
+      uint32_t rgb = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
       if (zs_gen_add_instance(s, teapot_mesh, place, rgb, err, "teapot_%d", t) < 0) {
         layout_free(&l);
         return err->code;
@@ -136,7 +135,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
     zs_gen_rotate(turn, zs_rng_uniform(&rng), 0.0, 1.0, 0.0);
     zs_mat_translate(move, px + jx, 0.0, pz + jz);
     zs_mat_mul(place, move, turn);
-    uint32_t rgb = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
+    uint32_t rgb = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
     if (zs_gen_add_instance(s, teapot_mesh, place, rgb, err, "teapot_%d", t) < 0) {
       layout_free(&l);
       return err->code;

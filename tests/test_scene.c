@@ -17,7 +17,7 @@
 #include "raster/raster.h"
 #include "raster/rng.h"
 #include "scene/assimp_load.h"
-#include "scene/builtin.h"
+#include "scene/generate.h"
 #include "scene/camera.h"
 #include "scene/obj.h"
 #include "scene/paths.h"
@@ -173,7 +173,7 @@ START_TEST(container_ids_and_bounds) {
   zs_model box, sq;
   zs_model_init(&box);
   const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
-  ck_assert_int_eq(zs_builtin_box(&box, lo, hi, 0xFF0000, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&box, lo, hi, NULL, 0xFF0000, -1), ZS_OK);
   square_model(&sq);
   ck_assert_int_eq(zs_scene_add_mesh(&s, &box), 0);
   ck_assert_int_eq(zs_scene_add_mesh(&s, &sq), 1);
@@ -320,7 +320,7 @@ START_TEST(container_from_model) {
   zs_model box;
   zs_model_init(&box);
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-  ck_assert_int_eq(zs_builtin_box(&box, lo, hi, 0, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&box, lo, hi, NULL, 0, -1), ZS_OK);
   int32_t bm = zs_scene_add_mesh(&s, &box);
   ck_assert_int_eq(zs_scene_add_instance(&s, bm, NULL, ZS_RGB_MESH, "box"), 3);
   ck_assert_int_eq(zs_scene_finish(&s, &err), ZS_OK);
@@ -360,7 +360,7 @@ static void moving_cube(zs_scene *s, const double model[16], double ax, double a
   zs_model box;
   zs_model_init(&box);
   const double lo[3] = {-0.5, -0.5, -0.5}, hi[3] = {0.5, 0.5, 0.5};
-  ck_assert_int_eq(zs_builtin_box(&box, lo, hi, 0x808080, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&box, lo, hi, NULL, 0x808080, -1), ZS_OK);
   ck_assert_int_eq(zs_scene_add_mesh(s, &box), 0);
   ck_assert_int_eq(zs_scene_add_instance(s, 0, model, ZS_RGB_MESH, "cube"), 0);
   s->inst[0].motion = (zs_motion){1, {ax, ay, az}, speed};
