@@ -66,21 +66,14 @@ static const uint32_t FACADES[8] = {0xC9B79Cu, 0xA65E46u, 0xD8D2C4u, 0x8C8C8Cu,
 
 static zs_status box(zs_model *m, double x0, double y0, double z0, double x1, double y1,
                      double z1, uint32_t rgb) {
-  const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
-  return zs_gen_box(m, lo, hi, NULL, rgb, 0);
+  return zs_gen_box_at(m, x0, y0, z0, x1, y1, z1, NULL, rgb);
 }
 
-/* The upright cylinder of radius r from (x, y0, z) up to y1. */
+/* The upright rod of radius r from (x, y0, z) up to y1. */
 static zs_status post(zs_model *m, double x, double z, double y0, double y1, double r,
                       int segments, uint32_t rgb) {
-  double xf[16];
-  zs_mat_identity(xf);
-  xf[0] = xf[10] = r;
-  xf[5] = y1 - y0;
-  xf[3] = x;
-  xf[7] = y0;
-  xf[11] = z;
-  return zs_gen_cylinder(m, 1.0, 1.0, segments, 1, xf, rgb, 0);
+  const double a[3] = {x, y0, z}, b[3] = {x, y1, z};
+  return zs_gen_rod(m, a, b, r, segments, rgb);
 }
 
 /* ---- buildings --------------------------------------------------------- */
@@ -159,7 +152,7 @@ static zs_status car(zs_model *m, uint32_t paint) {
     double x = (w & 1) ? 1.35 : -1.35, z = (w & 2) ? 0.62 : -0.86;
     double size[16], turn[16], move[16], xf[16];
     zs_mat_scale(size, 0.32, 0.24, 0.32);
-    zs_gen_rotate(turn, 0.25, 1.0, 0.0, 0.0);
+    zs_mat_rotate_turns(turn, 0.25, 1.0, 0.0, 0.0);
     zs_mat_translate(move, x, 0.32, z);
     zs_gen_mul3(xf, move, turn, size);
     st = zs_gen_cylinder(m, 1.0, 1.0, 12, 1, xf, TYRE_RGB, 0);
@@ -338,7 +331,7 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
     zs_model_free(&m); /* empty unless car() failed */
     if (mesh >= 0) {
       double turn[16], move[16], place[16];
-      zs_gen_rotate(turn, heading, 0.0, 1.0, 0.0);
+      zs_mat_rotate_turns(turn, heading, 0.0, 1.0, 0.0);
       zs_mat_translate(move, x, 0.0, z);
       zs_mat_mul(place, move, turn);
       in = zs_gen_add_instance(s, mesh, place, ZS_RGB_MESH, err, "car_%d", k);

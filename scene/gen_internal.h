@@ -4,6 +4,7 @@
 #ifndef ZS_SCENE_GEN_INTERNAL_H
 #define ZS_SCENE_GEN_INTERNAL_H
 
+#include <stdarg.h>
 #include <stdint.h>
 
 #include "raster/error.h"
@@ -62,11 +63,7 @@ extern const zs_gen_def zs_gen_teapots_def, zs_gen_spheres_def,
 extern const zs_gen_def zs_gen_mesh_defs[];
 extern const int zs_gen_mesh_ndefs;
 
-/* ---- matrices (raster.h conventions; angles through zs_sincos_turns) ----- */
-
-/* Rotation by turns about the unit axis (x, y, z), right-handed (the
- * matrix of glRotate). */
-void zs_gen_rotate(double m[16], double turns, double x, double y, double z);
+/* ---- placing (gen_matrix.c; raster.h conventions, built on zs_mat_*) -- */
 
 /* A uniformly random rotation (Shoemake's method: a uniform unit
  * quaternion from three uniform numbers). */
@@ -81,8 +78,57 @@ void zs_gen_mul3(double out[16], const double a[16], const double b[16],
 void zs_gen_frame(double m[16], const double ax[3], const double ay[3],
                   const double az[3], const double o[3]);
 
-/* p' = m p for an affine m. */
-void zs_gen_apply(const double m[16], const double p[3], double out[3]);
+/* The unit box [-0.5, 0.5]^3 stretched onto lo .. hi. */
+void zs_gen_box_matrix(double m[16], const double lo[3], const double hi[3]);
+
+/* A part along local y placed from `from`, its y axis along the unit
+ * direction d scaled by len, its x and z axes across d scaled by r. */
+void zs_gen_along(double m[16], const double from[3], const double d[3], double len,
+                  double r);
+
+/* The same from a to b: local y from 0 to 1 runs from a to b. */
+void zs_gen_between(double m[16], const double a[3], const double b[3], double r);
+
+/* ---- the mesh kit (gen_mesh.c; the primitives are in generate.h) -------- */
+
+/* The same with the arguments of fmt in ap. */
+int32_t zs_gen_add_instance_v(zs_scene *s, int32_t mesh, const double model[16],
+                              uint32_t rgb, zs_error *err, const char *fmt, va_list ap);
+
+/* A fresh model with one object named name; -1 (err set) when out of memory,
+ * else the object index 0. */
+int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
+
+/* The box x0 .. x1, y0 .. y1, z0 .. z1 placed by xf (NULL: none), object 0. */
+zs_status zs_gen_box_at(zs_model *m, double x0, double y0, double z0, double x1, double y1,
+                        double z1, const double *xf, uint32_t rgb);
+
+/* A round rod from a to b (any direction), radius r, capped, object 0. */
+zs_status zs_gen_rod(zs_model *m, const double a[3], const double b[3], double r,
+                     int segments, uint32_t rgb);
+
+/* A whole torus lying around the y axis, centred at height y, then placed
+ * by xf (NULL: none), object 0. */
+zs_status zs_gen_ring_y(zs_model *m, double major, double minor, double y, int around,
+                        int sides, const double *xf, uint32_t rgb);
+
+/* A lathe profile under construction: n points (r, y). */
+typedef struct zs_gen_profile {
+  double *pt;
+  int32_t n, cap;
+} zs_gen_profile;
+
+/* Appends (r, y); 0 when out of memory. */
+int zs_gen_pt(zs_gen_profile *pr, double r, double y);
+
+/* From the last point to (r, y) in `steps` equal steps; 0 when out of
+ * memory. */
+int zs_gen_line_to(zs_gen_profile *pr, double r, double y, int steps);
+
+/* Turns the profile into a lathe (zs_gen_lathe, object 0) and empties it
+ * for the next; ZS_ERR_NOMEM when it is empty (a point failed). */
+zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int around, int caps,
+                               const double *xf, uint32_t rgb);
 
 /* ---- colours ----------------------------------------------------------- */
 
@@ -106,10 +152,6 @@ int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
     __attribute__((format(printf, 6, 7)))
 #endif
     ;
-
-/* A fresh model with one object named name; -1 (err set) when out of memory,
- * else the object index 0. */
-int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
 
 /* Adds one teapot mesh (object "teapot", grey, tessellated at level) to
  * s; returns its mesh index, or -1 with err set. */

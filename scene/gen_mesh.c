@@ -8,12 +8,16 @@
  * to the right of the profile, away from the solid.  A cap takes each ring
  * edge in the direction opposite to the side face beside it, so every
  * directed edge is used once.  The torus is the same construction with the
- * arc in place of the profile and the tube's circle in place of the ring. */
+ * arc in place of the profile and the tube's circle in place of the ring.
+ *
+ * Also the generators' mesh kit (gen_internal.h): fresh models, boxes by
+ * their corners, rods, rings and lathe profiles built point by point. */
 #include <math.h>
 #include <string.h>
 #include <stdlib.h>
 
 #include "raster/exactmath.h"
+#include "raster/grow.h"
 #include "raster/raster.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
@@ -21,8 +25,8 @@
 /* Appends the vertex (x, y, z) placed by xf; -1 when out of memory. */
 static int32_t put(zs_model *m, const double *xf, double x, double y, double z) {
   if (!xf) return zs_model_add_vertex(m, x, y, z);
-  double p[3] = {x, y, z}, q[3];
-  zs_gen_apply(xf, p, q);
+  double p[3] = {x, y, z}, q[4];
+  zs_mat_apply(xf, p, q);
   return zs_model_add_vertex(m, q[0], q[1], q[2]);
 }
 
@@ -61,8 +65,9 @@ zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
   double c[8][3];
   for (int b = 0; b < 8; b++) {
     double p[3] = {(b & 1) ? hi[0] : lo[0], (b & 2) ? hi[1] : lo[1], (b & 4) ? hi[2] : lo[2]};
-    if (xform) zs_gen_apply(xform, p, c[b]);
-    else memcpy(c[b], p, sizeof p);
+    double q[4];
+    if (xform) zs_mat_apply(xform, p, q);
+    memcpy(c[b], xform ? q : p, sizeof c[b]);
   }
   return zs_gen_hexahedron(m, c, rgb, obj);
 }
@@ -141,7 +146,8 @@ zs_status zs_gen_lathe(zs_model *m, const double *profile, int n, int segments,
     free(cs);
     return ZS_ERR_NOMEM;
   }
-  for (int j = 0; j < segments; j++) zs_sincos_turns((double)j / segments, &cs[2 * j], &cs[2 * j + 1]);
+  for (int j = 0; j < segments; j++)
+    zs_sincos_turns((double)j / segments, &cs[2 * j], &cs[2 * j + 1]);
 
   zs_status st = ZS_OK;
   for (int i = 0; i < rings && st == ZS_OK; i++) {
@@ -243,6 +249,69 @@ zs_status zs_gen_torus(zs_model *m, double major, double minor, double sweep,
   return ZS_OK;
 }
 
+/* ---- the generators' mesh kit ------------------------------------------ */
+
+int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err) {
+  zs_model_init(m);
+  int32_t obj = zs_model_object(m, name);
+  if (obj < 0) ZS_GEN_NOMEM(err, name);
+  return obj;
+}
+
+zs_status zs_gen_box_at(zs_model *m, double x0, double y0, double z0, double x1, double y1,
+                        double z1, const double *xf, uint32_t rgb) {
+  const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
+  return zs_gen_box(m, lo, hi, xf, rgb, 0);
+}
+
+zs_status zs_gen_rod(zs_model *m, const double a[3], const double b[3], double r,
+                     int segments, uint32_t rgb) {
+  double xf[16];
+  zs_gen_between(xf, a, b, r);
+  return zs_gen_cylinder(m, 1.0, 1.0, segments, 1, xf, rgb, 0);
+}
+
+zs_status zs_gen_ring_y(zs_model *m, double major, double minor, double y, int around,
+                        int sides, const double *xf, uint32_t rgb) {
+  /* The torus primitive's ring lies in the xy plane around (major, 0, 0):
+   * its centre to the origin, its axis (+z) onto +y, up to y. */
+  double move[16], turn[16], up[16], t[16];
+  zs_mat_translate(move, -major, 0.0, 0.0);
+  zs_mat_rotate_turns(turn, -0.25, 1.0, 0.0, 0.0);
+  zs_mat_translate(up, 0.0, y, 0.0);
+  zs_gen_mul3(t, up, turn, move);
+  if (xf) {
+    double u[16];
+    zs_mat_mul(u, xf, t);
+    memcpy(t, u, sizeof t);
+  }
+  return zs_gen_torus(m, major, minor, 1.0, around, sides, 0, t, rgb, 0);
+}
+
+int zs_gen_pt(zs_gen_profile *pr, double r, double y) {
+  if (!zs_grow((void **)&pr->pt, &pr->cap, (int64_t)pr->n + 1, 2 * sizeof *pr->pt)) return 0;
+  pr->pt[2 * pr->n] = r;
+  pr->pt[2 * pr->n + 1] = y;
+  pr->n++;
+  return 1;
+}
+
+int zs_gen_line_to(zs_gen_profile *pr, double r, double y, int steps) {
+  double r0 = pr->pt[2 * pr->n - 2], y0 = pr->pt[2 * pr->n - 1];
+  for (int i = 1; i <= steps; i++)
+    if (!zs_gen_pt(pr, r0 + (r - r0) * i / steps, y0 + (y - y0) * i / steps)) return 0;
+  return 1;
+}
+
+zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int around, int caps,
+                               const double *xf, uint32_t rgb) {
+  zs_status st = pr->n ? zs_gen_lathe(m, pr->pt, pr->n, around, caps, xf, rgb, 0) : ZS_ERR_NOMEM;
+  free(pr->pt);
+  pr->pt = NULL;
+  pr->n = pr->cap = 0;
+  return st;
+}
+
 /* ---- mesh specs -------------------------------------------------------- */
 
 static zs_status done(zs_status st, const zs_gen_args *a, zs_error *err) {
@@ -317,7 +386,7 @@ static zs_status mesh_torus(const zs_gen_args *a, zs_model *m, zs_error *err) {
    * its centre to the origin and turn its axis (+z) onto +y. */
   double move[16], turn[16], xf[16];
   zs_mat_translate(move, -major, 0.0, 0.0);
-  zs_gen_rotate(turn, -0.25, 1.0, 0.0, 0.0);
+  zs_mat_rotate_turns(turn, -0.25, 1.0, 0.0, 0.0);
   zs_mat_mul(xf, turn, move);
   return done(zs_gen_torus(m, major, minor, 1.0, zs_gen_int(a, "segments"),
                            zs_gen_int(a, "sides"), 0, xf, ZS_GREY, obj),

@@ -132,7 +132,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
     double jx = zs_rng_range(&rng, -JITTER, JITTER);
     double jz = zs_rng_range(&rng, -JITTER, JITTER);
     double turn[16], move[16], place[16];
-    zs_gen_rotate(turn, zs_rng_uniform(&rng), 0.0, 1.0, 0.0);
+    zs_mat_rotate_turns(turn, zs_rng_uniform(&rng), 0.0, 1.0, 0.0);
     zs_mat_translate(move, px + jx, 0.0, pz + jz);
     zs_mat_mul(place, move, turn);
     uint32_t rgb = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
