@@ -59,6 +59,14 @@ int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
   return i;
 }
 
+void zs_gen_move_along_x(zs_scene *s, int32_t in, double speed) {
+  zs_motion *mo = &s->inst[in].motion;
+  mo->moving = 1;
+  mo->axis[0] = 1.0;
+  mo->axis[1] = mo->axis[2] = 0.0;
+  mo->speed = speed;
+}
+
 void zs_gen_camera(zs_scene *s, const double eye[3], const double target[3],
                    double znear, double zfar) {
   zs_camera_default(&s->camera);

@@ -91,10 +91,6 @@ void zs_gen_between(double m[16], const double a[3], const double b[3], double r
 
 /* ---- the mesh kit (gen_mesh.c; the primitives are in generate.h) -------- */
 
-/* The same with the arguments of fmt in ap. */
-int32_t zs_gen_add_instance_v(zs_scene *s, int32_t mesh, const double model[16],
-                              uint32_t rgb, zs_error *err, const char *fmt, va_list ap);
-
 /* A fresh model with one object named name; -1 (err set) when out of memory,
  * else the object index 0. */
 int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err);
@@ -130,7 +126,7 @@ int zs_gen_line_to(zs_gen_profile *pr, double r, double y, int steps);
 zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int around, int caps,
                                const double *xf, uint32_t rgb);
 
-/* ---- colours ----------------------------------------------------------- */
+/* ---- colours (gen_common.c) -------------------------------------------- */
 
 #define ZS_GEN_GROUND_RGB 0x9C968Cu /* warm grey */
 
@@ -140,7 +136,7 @@ enum { ZS_GEN_PALETTE_SIZE = 12 };
  * hues, 0xRRGGBB. */
 uint32_t zs_gen_palette(int i);
 
-/* ---- scene building ---------------------------------------------------- */
+/* ---- scene building (gen_common.c) ------------------------------------- */
 
 /* Adds *m (consumed) to s; returns its index or -1 after setting err. */
 int32_t zs_gen_add_mesh(zs_scene *s, zs_model *m, zs_error *err);
@@ -153,6 +149,14 @@ int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
 #endif
     ;
 
+/* The same with the arguments of fmt in ap. */
+int32_t zs_gen_add_instance_v(zs_scene *s, int32_t mesh, const double model[16],
+                              uint32_t rgb, zs_error *err, const char *fmt, va_list ap);
+
+/* Instance in moves along its local x axis at speed (world units a
+ * frame). */
+void zs_gen_move_along_x(zs_scene *s, int32_t in, double speed);
+
 /* Adds one teapot mesh (object "teapot", grey, tessellated at level) to
  * s; returns its mesh index, or -1 with err set. */
 int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err);
@@ -162,7 +166,7 @@ int32_t zs_gen_teapot_mesh(zs_scene *s, int level, zs_error *err);
 zs_status zs_gen_check_moving(const zs_gen_args *a, int moving, int max, const char *what,
                               zs_error *err);
 
-/* Adds the ground: a slab from lo to hi (object "ground", ground green)
+/* Adds the ground: a slab from lo to hi (object "ground", ZS_GEN_GROUND_RGB)
  * as one mesh with one instance named "ground"; its instance index, or -1
  * with err set (spec names the scene in the message). */
 int32_t zs_gen_ground(zs_scene *s, const double lo[3], const double hi[3], const char *spec,

@@ -1132,6 +1132,16 @@ static const double *pick(plant *p, enum pool pool) {
   return p->nozzle[pool][zs_rng_below(&p->rng, (uint64_t)p->nnozzles[pool])];
 }
 
+/* A service run with a valve from a to b (none when they are the same
+ * nozzle): a colour from the first ncolours SERVICES, a radius in rlo ..
+ * rhi, drawn in that order. */
+static zs_status service(plant *p, const double *a, const double *b, int ncolours, double rlo,
+                         double rhi, double ylo, double yhi, double zlo, double zhi) {
+  if (a == b) return ZS_OK;
+  uint32_t rgb = SERVICES[zs_rng_below(&p->rng, (uint64_t)ncolours)];
+  return run(p, a, b, zs_rng_range(&p->rng, rlo, rhi), rgb, ylo, yhi, zlo, zhi, 1);
+}
+
 static zs_status runs(plant *p) {
   /* Main steam: each boiler to one turbine inlet. */
   for (int b = 0; b < 4; b++)
@@ -1145,32 +1155,28 @@ static zs_status runs(plant *p) {
   for (int k = 0; k < 4; k++)
     TRY(run(p, p->nozzle[TOWER][k / 2], p->nozzle[TURBINE_SIDE][k < 2 ? k : k + 1], 0.7,
             COOLING_RGB, 5.0, 7.0, 64.0, 100.0, 0));
-  /* Services within bay A, bay B to bay C, within bay C, out to the tanks. */
+  /* Services within bay A, bay B to bay C, within bay C, out to the tanks
+   * (a and b picked in two statements: a call's arguments are evaluated in
+   * no fixed order). */
   for (int k = 0; k < 12; k++) {
     const double *a = pick(p, BOILER_SIDE);
     const double *b = pick(p, BOILER_SIDE);
-    if (a == b) continue;
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, NSERVICES)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.08, 0.2), rgb, 20.0, 29.0, 2.0, 58.0, 1));
+    TRY(service(p, a, b, NSERVICES, 0.08, 0.2, 20.0, 29.0, 2.0, 58.0));
   }
   for (int k = 0; k < 10; k++) {
     const double *a = pick(p, TURBINE_SIDE);
     const double *b = pick(p, k % 2 ? BAY_C : BAY_C_FLOOR);
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, NSERVICES)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.1, 0.3), rgb, 24.0, 32.0, 2.0, 58.0, 1));
+    TRY(service(p, a, b, NSERVICES, 0.1, 0.3, 24.0, 32.0, 2.0, 58.0));
   }
   for (int k = 0; k < 48; k++) {
     const double *a = pick(p, k % 3 ? BAY_C : BAY_C_FLOOR);
     const double *b = pick(p, BAY_C);
-    if (a == b) continue;
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, NSERVICES)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.06, 0.25), rgb, 8.0, 38.0, 1.0, 59.0, 1));
+    TRY(service(p, a, b, NSERVICES, 0.06, 0.25, 8.0, 38.0, 1.0, 59.0));
   }
   for (int k = 0; k < 8; k++) {
     const double *a = pick(p, BAY_C_FLOOR);
     const double *b = pick(p, OUTSIDE);
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, 2)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.15, 0.35), rgb, 16.6, 19.5, 27.5, 32.5, 1));
+    TRY(service(p, a, b, 2, 0.15, 0.35, 16.6, 19.5, 27.5, 32.5));
   }
   return ZS_OK;
 }

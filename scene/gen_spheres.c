@@ -52,13 +52,7 @@ static zs_status build_spheres(const zs_gen_args *a, zs_scene *s, zs_error *err)
     double speed = zs_rng_range(&rng, SPEED_MIN, SPEED_MAX);
     int32_t in = zs_gen_add_instance(s, mesh, place, rgb, err, "sphere_%d", i);
     if (in < 0) return err->code;
-    if (i < moving) {
-      zs_motion *mo = &s->inst[in].motion;
-      mo->moving = 1;
-      mo->axis[0] = 1.0;
-      mo->axis[1] = mo->axis[2] = 0.0;
-      mo->speed = speed;
-    }
+    if (i < moving) zs_gen_move_along_x(s, in, speed);
   }
 
   const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {SIDE, SIDE, SIDE};

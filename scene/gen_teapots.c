@@ -144,13 +144,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
   layout_free(&l);
 
   /* The first `moving` teapots move along their local x axis. */
-  for (int i = 0; i < moving; i++) {
-    zs_motion *mo = &s->inst[i].motion;
-    mo->moving = 1;
-    mo->axis[0] = 1.0;
-    mo->axis[1] = mo->axis[2] = 0.0;
-    mo->speed = zs_rng_range(&rng, 0.05, 0.2);
-  }
+  for (int i = 0; i < moving; i++) zs_gen_move_along_x(s, i, zs_rng_range(&rng, 0.05, 0.2));
 
   double half = CELL * (g + 1) / 2.0;
   const double lo[3] = {-half, -0.5, -half}, hi[3] = {half, 0.0, half};
