@@ -11,6 +11,7 @@
  * those numbers are replaced by the materials' colours.
  */
 #include "scene/obj.h"
+#include "raster/grow.h"
 #include "scene/load_common.h"
 #include "scene/text.h"
 
@@ -171,7 +172,8 @@ static int scan_index(const char **s, long long *out) {
 typedef struct name_list {
   char **names;
   uint32_t *rgb;
-  size_t n, cap;
+  size_t n;
+  int32_t cap;
 } name_list;
 
 static void names_free(name_list *l) {
@@ -190,16 +192,11 @@ static long names_find(const name_list *l, const char *name) {
 
 /* Appends name with colour rgb; returns its index, -1 when out of memory. */
 static long names_add(name_list *l, const char *name, uint32_t rgb) {
-  if (l->n == l->cap) {
-    size_t cap = l->cap ? 2 * l->cap : 16;
-    char **names = realloc(l->names, cap * sizeof *names);
-    if (!names) return -1;
-    l->names = names;
-    uint32_t *c = realloc(l->rgb, cap * sizeof *c);
-    if (!c) return -1;
-    l->rgb = c;
-    l->cap = cap;
-  }
+  /* names and rgb grow alike from cap; cap is raised with the last. */
+  int32_t names_cap = l->cap;
+  if (!zs_grow((void **)&l->names, &names_cap, (int64_t)l->n + 1, sizeof *l->names) ||
+      !zs_grow((void **)&l->rgb, &l->cap, (int64_t)l->n + 1, sizeof *l->rgb))
+    return -1;
   char *copy = strdup(name);
   if (!copy) return -1;
   l->names[l->n] = copy;
@@ -273,7 +270,7 @@ typedef struct obj_parser {
   name_list mtl;   /* materials defined by the libraries */
   name_list used;  /* material names given to usemtl */
   int32_t *idx;    /* the corners of the face being read */
-  int cap_idx;
+  int32_t cap_idx;
 } obj_parser;
 
 static zs_status out_of_memory(obj_parser *p) {
@@ -344,13 +341,9 @@ static zs_status parse_face_vertex(obj_parser *p, const char *w,
 static zs_status parse_face(obj_parser *p) {
   int n = 0;
   for (char *w; (w = next_word(&p->r)) != NULL; n++) {
-    if (n == p->cap_idx) { /* a face may have any number of corners */
-      int cap = p->cap_idx ? 2 * p->cap_idx : 64;
-      int32_t *bigger = realloc(p->idx, (size_t)cap * sizeof *bigger);
-      if (!bigger) return out_of_memory(p);
-      p->idx = bigger;
-      p->cap_idx = cap;
-    }
+    /* a face may have any number of corners */
+    if (!zs_grow((void **)&p->idx, &p->cap_idx, (int64_t)n + 1, sizeof *p->idx))
+      return out_of_memory(p);
     zs_status st = parse_face_vertex(p, w, &p->idx[n]);
     if (st != ZS_OK) return st;
   }
