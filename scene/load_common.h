@@ -1,5 +1,5 @@
-/* zscan scene — what the file loaders share (obj.c, scenefile.c,
- * assimp_load.c; the generators read no files): reading a file within a
+/* zscan scene — what the file loaders share (load_obj.c, load_scenefile.c,
+ * load_assimp.c; the generators read no files): reading a file within a
  * size limit, the head of one, the directory of a path, and messages with
  * the control characters of names from a file blanked out. */
 #ifndef ZS_SCENE_LOAD_COMMON_H

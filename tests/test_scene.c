@@ -16,13 +16,13 @@
 
 #include "raster/raster.h"
 #include "raster/rng.h"
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
 #include "scene/generate.h"
 #include "scene/camera.h"
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "scene/paths.h"
 #include "scene/scene.h"
-#include "scene/scenefile.h"
+#include "scene/load_scenefile.h"
 #include "tests/testutil.h"
 
 #define ASSIMP_MODELS "/usr/share/assimp/models"
@@ -808,9 +808,9 @@ START_TEST(examples_load_and_render) {
 END_TEST
 
 START_TEST(example_in_header_is_a_file) {
-  /* scenefile.h's example is scene/examples/table.json, line for line */
+  /* load_scenefile.h's example is scene/examples/table.json, line for line */
   size_t hlen, flen;
-  char *h = slurp_src("scene/scenefile.h", &hlen);
+  char *h = slurp_src("scene/load_scenefile.h", &hlen);
   char *f = slurp_src("scene/examples/table.json", &flen);
   char *body = malloc(hlen + 1), *at = strstr(h, "EXAMPLE (scene/examples/table.json)\n");
   ck_assert_ptr_nonnull(at);

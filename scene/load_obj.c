@@ -1,4 +1,4 @@
-/* zscan scene — the Wavefront OBJ reader (see obj.h for what is read).
+/* zscan scene — the Wavefront OBJ reader (see load_obj.h for what is read).
  *
  * The text is read line by line: each line is checked (length, NUL bytes),
  * copied into a NUL-terminated buffer with its comment cut off, and split
@@ -10,7 +10,7 @@
  * number of its usemtl name (0: none), and once every library is loaded
  * those numbers are replaced by the materials' colours.
  */
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "raster/grow.h"
 #include "scene/load_common.h"
 #include "scene/text.h"

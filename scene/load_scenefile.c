@@ -1,4 +1,4 @@
-/* zscan scene — scene files (see scenefile.h for the format).
+/* zscan scene — scene files (see load_scenefile.h for the format).
  *
  * The text is parsed whole by cJSON, then walked with a "reader" that
  * knows the JSON path of the value in hand (instances[3].transform.scale)
@@ -7,7 +7,7 @@
  * values are read, so a misspelt key is reported as such rather than as
  * a missing one.
  */
-#include "scene/scenefile.h"
+#include "scene/load_scenefile.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -20,10 +20,10 @@
 #include <sys/stat.h>
 
 #include "raster/raster.h"
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
 #include "scene/generate.h"
 #include "scene/load_common.h"
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "scene/paths.h"
 
 enum {

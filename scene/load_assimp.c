@@ -1,4 +1,4 @@
-/* zscan scene — models through assimp (see assimp_load.h for what is read
+/* zscan scene — models through assimp (see load_assimp.h for what is read
  * and what is refused).
  *
  * assimp trusts the counts in a file's header: its OFF and ASCII PLY
@@ -9,7 +9,7 @@
  * checked again before it enters a zs_model: finite coordinates, indices in
  * range, sizes within limits.
  */
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
 #include "scene/load_common.h"
 
 #include <errno.h>
