@@ -55,8 +55,9 @@ static zs_status open_checked(const char *path, const char *shown, long long max
   return res;
 }
 
-/* Reads f to its end into *buf (capacity *cap, doubled while there is
- * more, up to max_bytes); 0 on success, else the error's status. */
+/* Reads f into *buf (capacity *cap, room for a NUL beyond it) to its end,
+ * doubling *cap while there is more, up to max_bytes; without grow, once.
+ * File bytes, not elements: the limit is max_bytes, not zs_grow's. */
 static zs_status read_all(FILE *f, const char *shown, long long max_bytes, int grow, char **buf,
                           size_t *cap, size_t *n, zs_error *err) {
   for (;;) {
