@@ -121,10 +121,11 @@ int zs_gen_pt(zs_gen_profile *pr, double r, double y);
  * memory. */
 int zs_gen_line_to(zs_gen_profile *pr, double r, double y, int steps);
 
-/* Turns the profile into a lathe (zs_gen_lathe, object 0) and empties it
- * for the next; ZS_ERR_NOMEM when it is empty (a point failed). */
-zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int around, int caps,
-                               const double *xf, uint32_t rgb);
+/* Turns the profile into a lathe (zs_gen_lathe, object 0) when complete
+ * (every point went in), else ZS_ERR_NOMEM; empties it either way, for the
+ * next. */
+zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int complete, int around,
+                               int caps, const double *xf, uint32_t rgb);
 
 /* ---- colours (gen_common.c) -------------------------------------------- */
 

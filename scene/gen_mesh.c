@@ -303,9 +303,10 @@ int zs_gen_line_to(zs_gen_profile *pr, double r, double y, int steps) {
   return 1;
 }
 
-zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int around, int caps,
-                               const double *xf, uint32_t rgb) {
-  zs_status st = pr->n ? zs_gen_lathe(m, pr->pt, pr->n, around, caps, xf, rgb, 0) : ZS_ERR_NOMEM;
+zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int complete, int around,
+                               int caps, const double *xf, uint32_t rgb) {
+  zs_status st = complete && pr->n ? zs_gen_lathe(m, pr->pt, pr->n, around, caps, xf, rgb, 0)
+                                   : ZS_ERR_NOMEM;
   free(pr->pt);
   pr->pt = NULL;
   pr->n = pr->cap = 0;

@@ -213,11 +213,7 @@ static zs_status mesh_boiler(const plant *p, zs_model *m) {
   }
   ok = ok && zs_gen_line_to(&pr, 1.0, 5.5, shell);
   ok = ok && upper_head(&pr, head, 5.5);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, around, 0, NULL, BOILER_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, BOILER_RGB));
   for (int k = 0; k < 5; k++)
     TRY(zs_gen_ring_y(m, 1.02, 0.035, 1.8 + 0.8 * k, around, seg(p, 16, 4), NULL, BOILER_RGB));
   /* Manways: short nozzles out of the shell at two heights, four sides. */
@@ -284,11 +280,7 @@ static zs_status mesh_turbine(const plant *p, zs_model *m) {
          zs_gen_line_to(&pr, 2.6, y + 9.0, RINGS(2)) && zs_gen_pt(&pr, 0.35, y + 9.0);
   }
   ok = ok && zs_gen_pt(&pr, 0.0, 38.0);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, around, 0, xf, CASING_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, xf, CASING_RGB));
   /* The generator: ribs every so often along its barrel. */
   int ribs = seg(p, 24, 3);
   ok = zs_gen_pt(&pr, 0.0, 38.5) && zs_gen_pt(&pr, 0.35, 38.5) && zs_gen_pt(&pr, 0.35, 39.0) &&
@@ -300,11 +292,7 @@ static zs_status mesh_turbine(const plant *p, zs_model *m) {
   }
   ok = ok && zs_gen_line_to(&pr, 2.3, 46.0, 1) && zs_gen_pt(&pr, 0.35, 46.0) &&
        zs_gen_pt(&pr, 0.35, 47.0) && zs_gen_pt(&pr, 0.0, 47.0);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, around, 0, xf, GENERATOR_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, xf, GENERATOR_RGB));
 #undef RINGS
   static const double bearings[] = {0.9, 10.5, 18.5, 28.5, 38.2, 46.5};
   for (int k = 0; k < 6; k++)
@@ -328,11 +316,7 @@ static zs_status mesh_tank(const plant *p, zs_model *m) {
            zs_gen_line_to(&pr, 1.0, 1.0, seg(p, 40, 1)) &&
            zs_gen_line_to(&pr, 0.12, 1.15, seg(p, 8, 1)) && zs_gen_pt(&pr, 0.12, 1.22) &&
            zs_gen_pt(&pr, 0.0, 1.22);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, seg(p, 192, 12), 0, NULL, TANK_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 192, 12), 0, NULL, TANK_RGB));
   /* A ring stiffener under the roof and one at mid height. */
   TRY(zs_gen_ring_y(m, 1.01, 0.012, 0.5, seg(p, 192, 12), seg(p, 8, 3), NULL, TANK_RGB));
   return zs_gen_ring_y(m, 1.01, 0.012, 0.98, seg(p, 192, 12), seg(p, 8, 3), NULL, TANK_RGB);
@@ -359,11 +343,7 @@ static zs_status mesh_hx(const plant *p, zs_model *m) {
        zs_gen_line_to(&pr, 1.0, 4.95, shell) && zs_gen_pt(&pr, 1.12, 4.95) &&
        zs_gen_pt(&pr, 1.12, 5.1) && zs_gen_pt(&pr, 1.0, 5.1) && zs_gen_line_to(&pr, 1.0, 5.5, 1);
   ok = ok && upper_head(&pr, head, 5.5);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, around, 0, xf, HX_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, xf, HX_RGB));
   for (int k = -1; k <= 1; k += 2) {
     TRY(zs_gen_box_at(m, -0.9, 0.0, 1.8 * k - 0.2, 0.9, 1.0, 1.8 * k + 0.2, NULL, STEEL_RGB));
     const double a[3] = {0.0, 2.4, 2.0 * k}, b[3] = {0.0, 2.9, 2.0 * k};
@@ -389,11 +369,7 @@ static zs_status mesh_pump(const plant *p, zs_model *m) {
          zs_gen_pt(&pr, 0.55, y + w) && zs_gen_pt(&pr, 0.45, y + w);
   }
   ok = ok && zs_gen_line_to(&pr, 0.45, 1.4, 1) && zs_gen_pt(&pr, 0.0, 1.4);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, seg(p, 64, 8), 0, xf, MOTOR_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 64, 8), 0, xf, MOTOR_RGB));
   TRY(zs_gen_box_at(m, -0.5, 0.25, -1.45, 0.5, 0.35, -0.15, NULL, MOTOR_RGB));
   const double c0[3] = {0.0, 0.75, -0.15}, c1[3] = {0.0, 0.75, 0.3};
   TRY(zs_gen_rod(m, c0, c1, 0.15, seg(p, 32, 6), SHAFT_RGB));
@@ -417,11 +393,7 @@ static zs_status mesh_flange(const plant *p, zs_model *m) {
   int ok = zs_gen_pt(&pr, 0.0, -0.35) && zs_gen_pt(&pr, 1.15, -0.35) &&
            zs_gen_pt(&pr, 1.15, -0.2) && zs_gen_pt(&pr, 1.8, -0.2) && zs_gen_pt(&pr, 1.8, 0.2) &&
            zs_gen_pt(&pr, 1.15, 0.2) && zs_gen_pt(&pr, 1.15, 0.35) && zs_gen_pt(&pr, 0.0, 0.35);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, seg(p, 48, 8), 0, NULL, 0x808080u));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 48, 8), 0, NULL, 0x808080u));
   for (int k = 0; k < 8; k++) {
     double s, c;
     zs_sincos_turns((k + 0.5) / 8.0, &s, &c);
@@ -445,11 +417,7 @@ static zs_status mesh_valve(const plant *p, zs_model *m) {
            zs_gen_line_to(&pr, 1.7, -0.5, 1) && zs_gen_line_to(&pr, 1.7, 0.5, seg(p, 4, 1)) &&
            zs_gen_line_to(&pr, 1.3, 1.2, 1) && zs_gen_line_to(&pr, 1.05, 1.9, 1) &&
            zs_gen_pt(&pr, 1.6, 1.9) && zs_gen_pt(&pr, 1.6, 2.2) && zs_gen_pt(&pr, 0.0, 2.2);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, seg(p, 48, 8), 0, NULL, VALVE_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 48, 8), 0, NULL, VALVE_RGB));
   const double b0[3] = {1.2, 0.0, 0.0}, b1[3] = {3.5, 0.0, 0.0};
   TRY(zs_gen_rod(m, b0, b1, 0.9, seg(p, 48, 8), VALVE_RGB));
   const double f0[3] = {3.3, 0.0, 0.0}, f1[3] = {3.6, 0.0, 0.0};
@@ -503,11 +471,7 @@ static zs_status mesh_stack(const plant *p, zs_model *m) {
   zs_gen_profile pr = {0};
   int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, 6.0, 0.0) &&
            zs_gen_line_to(&pr, 3.8, 105.0, rings) && zs_gen_pt(&pr, 0.0, 105.0);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, around, 0, NULL, STACK_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, STACK_RGB));
   /* 105 .. 120 in three bands, red, white, red; the bore from the top. */
   static const uint32_t bands[3] = {BAND_RGB, STACK_RGB, BAND_RGB};
   for (int b = 0; b < 3; b++) {
@@ -521,11 +485,7 @@ static zs_status mesh_stack(const plant *p, zs_model *m) {
       ok = ok && zs_gen_pt(&pr, r1 + 0.4, y1) && zs_gen_pt(&pr, r1 + 0.4, y1 + 2.0) &&
            zs_gen_pt(&pr, r1 - 0.6, y1 + 2.0) && zs_gen_pt(&pr, r1 - 0.6, y1 - 10.0) &&
            zs_gen_pt(&pr, 0.0, y1 - 10.0);
-    if (!ok) {
-      free(pr.pt);
-      return ZS_ERR_NOMEM;
-    }
-    TRY(zs_gen_profile_lathe(m, &pr, around, 0, NULL, bands[b]));
+    TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, bands[b]));
   }
   return ZS_OK;
 }
@@ -547,11 +507,7 @@ static zs_status mesh_tower(const plant *p, zs_model *m) {
     ok = zs_gen_pt(&pr, a * sqrt(1.0 + q * q) - 0.6, y);
   }
   ok = ok && zs_gen_pt(&pr, pr.pt[0], pr.pt[1]); /* close the loop */
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(zs_gen_profile_lathe(m, &pr, around, 0, NULL, TOWER_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, TOWER_RGB));
   for (int k = 0; k < 72; k++) {
     double s0, c0, s1, c1;
     zs_sincos_turns(k / 72.0, &s0, &c0);
@@ -600,11 +556,7 @@ static zs_status mesh_transformer(const plant *p, zs_model *m) {
            zs_gen_pt(&pr, 0.18, y + 0.08);
     }
     ok = ok && zs_gen_line_to(&pr, 0.18, 1.8, 1) && zs_gen_pt(&pr, 0.0, 1.8);
-    if (!ok) {
-      free(pr.pt);
-      return ZS_ERR_NOMEM;
-    }
-    TRY(zs_gen_profile_lathe(m, &pr, seg(p, 32, 6), 0, up, INSULATOR_RGB));
+    TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 32, 6), 0, up, INSULATOR_RGB));
   }
   return ZS_OK;
 }
