@@ -381,16 +381,9 @@ static zs_status mesh_torus(const zs_gen_args *a, zs_model *m, zs_error *err) {
   double major = zs_gen_real(a, "major"), minor = zs_gen_real(a, "minor");
   if (!(minor < major))
     return zs_error_set(err, ZS_ERR_ARG, "%s: minor must be less than major", a->spec);
-  int32_t obj = zs_gen_model(m, "torus", err);
-  if (obj < 0) return err->code;
-  /* The primitive's ring lies in the xy plane around (major, 0, 0): move
-   * its centre to the origin and turn its axis (+z) onto +y. */
-  double move[16], turn[16], xf[16];
-  zs_mat_translate(move, -major, 0.0, 0.0);
-  zs_mat_rotate_turns(turn, -0.25, 1.0, 0.0, 0.0);
-  zs_mat_mul(xf, turn, move);
-  return done(zs_gen_torus(m, major, minor, 1.0, zs_gen_int(a, "segments"),
-                           zs_gen_int(a, "sides"), 0, xf, ZS_GREY, obj),
+  if (zs_gen_model(m, "torus", err) < 0) return err->code;
+  return done(zs_gen_ring_y(m, major, minor, 0.0, zs_gen_int(a, "segments"),
+                            zs_gen_int(a, "sides"), NULL, ZS_GREY),
               a, err);
 }
 
