@@ -2,10 +2,10 @@
 
 #include <string.h>
 
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
 #include "scene/generate.h"
-#include "scene/obj.h"
-#include "scene/scenefile.h"
+#include "scene/load_obj.h"
+#include "scene/load_scenefile.h"
 
 static int has_suffix(const char *s, const char *suffix) {
   size_t n = strlen(s), k = strlen(suffix);

@@ -8,7 +8,7 @@
 
 /* INPUT as a scene (scene/scene.h), finished and ready to draw:
  *   (none)                 the default generated scene
- *   FILE.json              a scene file (scene/scenefile.h)
+ *   FILE.json              a scene file (scene/load_scenefile.h)
  *   FILE.obj               one instance per object (o/g) of the file
  *   FILE.ply, .stl, ...    through assimp, likewise
  *   builtin:NAME[,k=v,..]  a generated scene (scene/generate.h): default,

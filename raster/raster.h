@@ -190,6 +190,10 @@ void zs_device_keep_line_runs(zs_device *d, int keep);
  * is -1 when one could not be kept for want of memory). */
 const zs_line_run *zs_device_line_runs(const zs_device *d, int32_t *n);
 
+/* zs_mat_rotate with the angle in turns (1 turn = 360 degrees): for an
+ * angle drawn in turns, which would not survive * 360 / 360 bit for bit. */
+void zs_mat_rotate_turns(double m[16], double turns, double x, double y, double z);
+
 /* out = m (p, 1): inline, as set-up calls it once or twice per vertex. */
 static inline void zs_mat_apply(const double m[16], const double p[3], double out[4]) {
   for (int i = 0; i < 4; i++)

@@ -37,7 +37,7 @@ void zs_mat_scale(double m[16], double x, double y, double z) {
   m[10] = z;
 }
 
-void zs_mat_rotate(double m[16], double deg, double x, double y, double z) {
+void zs_mat_rotate_turns(double m[16], double turns, double x, double y, double z) {
   zs_mat_identity(m);
   double len = sqrt(x * x + y * y + z * z);
   if (len == 0.0) return;
@@ -47,11 +47,16 @@ void zs_mat_rotate(double m[16], double deg, double x, double y, double z) {
   /* Exact at quarter turns: exact zeros and ones, so a cube rotated by 90
    * degrees lands on the same grid points as before. */
   double c, s;
-  zs_sincos_deg(deg, &s, &c);
+  zs_sincos_turns(turns, &s, &c);
   double t = 1.0 - c;
   m[0] = t * x * x + c;     m[1] = t * x * y - s * z; m[2] = t * x * z + s * y;
   m[4] = t * x * y + s * z; m[5] = t * y * y + c;     m[6] = t * y * z - s * x;
   m[8] = t * x * z - s * y; m[9] = t * y * z + s * x; m[10] = t * z * z + c;
+}
+
+/* zs_sincos_deg is zs_sincos_turns of deg / 360: the same bits. */
+void zs_mat_rotate(double m[16], double deg, double x, double y, double z) {
+  zs_mat_rotate_turns(m, deg / 360.0, x, y, z);
 }
 
 int zs_mat_look_at(double m[16], const double eye[3], const double target[3],

@@ -41,7 +41,6 @@
 #include <stdlib.h>
 
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 
 #define BLOCK 40.0
@@ -67,21 +66,14 @@ static const uint32_t FACADES[8] = {0xC9B79Cu, 0xA65E46u, 0xD8D2C4u, 0x8C8C8Cu,
 
 static zs_status box(zs_model *m, double x0, double y0, double z0, double x1, double y1,
                      double z1, uint32_t rgb) {
-  const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
-  return zs_gen_box(m, lo, hi, NULL, rgb, 0);
+  return zs_gen_box_at(m, x0, y0, z0, x1, y1, z1, NULL, rgb);
 }
 
-/* The upright cylinder of radius r from (x, y0, z) up to y1. */
+/* The upright rod of radius r from (x, y0, z) up to y1. */
 static zs_status post(zs_model *m, double x, double z, double y0, double y1, double r,
                       int segments, uint32_t rgb) {
-  double xf[16];
-  zs_mat_identity(xf);
-  xf[0] = xf[10] = r;
-  xf[5] = y1 - y0;
-  xf[3] = x;
-  xf[7] = y0;
-  xf[11] = z;
-  return zs_gen_cylinder(m, 1.0, 1.0, segments, 1, xf, rgb, 0);
+  const double a[3] = {x, y0, z}, b[3] = {x, y1, z};
+  return zs_gen_rod(m, a, b, r, segments, rgb);
 }
 
 /* ---- buildings --------------------------------------------------------- */
@@ -154,13 +146,13 @@ static zs_status car(zs_model *m, uint32_t paint) {
     c[b][1] = lo[1];
     c[b][2] = (b & 4) ? hi[2] : lo[2];
   }
-  if (st == ZS_OK) st = zs_builtin_hexahedron(m, c, GLASS_RGB, 0);
+  if (st == ZS_OK) st = zs_gen_hexahedron(m, c, GLASS_RGB, 0);
   /* Wheels: cylinders turned from +y onto +z. */
   for (int w = 0; w < 4 && st == ZS_OK; w++) {
     double x = (w & 1) ? 1.35 : -1.35, z = (w & 2) ? 0.62 : -0.86;
     double size[16], turn[16], move[16], xf[16];
     zs_mat_scale(size, 0.32, 0.24, 0.32);
-    zs_gen_rotate(turn, 0.25, 1.0, 0.0, 0.0);
+    zs_mat_rotate_turns(turn, 0.25, 1.0, 0.0, 0.0);
     zs_mat_translate(move, x, 0.32, z);
     zs_gen_mul3(xf, move, turn, size);
     st = zs_gen_cylinder(m, 1.0, 1.0, 12, 1, xf, TYRE_RGB, 0);
@@ -264,17 +256,10 @@ static int walk(const double (*p)[2], int n, zs_gen_key *keys) {
 
 /* ---- the scene --------------------------------------------------------- */
 
-/* ---- the scene --------------------------------------------------------- */
-
-static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
-  int n = zs_gen_int(a, "blocks"), ncars = 2 * n * n;
-  int moving = zs_gen_int(a, "moving");
-  if (zs_gen_check_moving(a, moving, ncars, "the cars", err)) return err->code;
-  city c = {n, 0.5 * (n * BLOCK + (n + 1) * STREET)};
-  zs_rng rng;
-  zs_rng_seed(&rng, a->seed);
-  zs_model m;
-
+/* Four buildings on every block, each its own mesh. */
+static zs_status add_buildings(const zs_gen_args *a, const city *c, zs_rng *rng, zs_scene *s,
+                               zs_error *err) {
+  int n = c->n;
   /* The heights: MIN_FLOORS .. MAX_FLOORS spread evenly over the
    * buildings, in a shuffled order, so the city always has as many tall
    * as low ones (and about the same number of triangles). */
@@ -283,17 +268,18 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
   if (!floors) return ZS_GEN_NOMEM(err, a->spec);
   for (int k = 0; k < nb; k++)
     floors[k] = MIN_FLOORS + (MAX_FLOORS - MIN_FLOORS + 1) * k / nb;
-  zs_rng_shuffle(&rng, floors, (size_t)nb, sizeof *floors);
+  zs_rng_shuffle(rng, floors, (size_t)nb, sizeof *floors);
 
   double lot = 0.5 * (BLOCK - 2.0 * PAVEMENT);
+  zs_model m;
   for (int i = 0; i < n; i++)
     for (int j = 0; j < n; j++)
       for (int l = 0; l < 4; l++) {
-        double x0 = block_start(&c, i) + PAVEMENT + (l & 1) * lot;
-        double z0 = block_start(&c, j) + PAVEMENT + (l >> 1) * lot;
+        double x0 = block_start(c, i) + PAVEMENT + (l & 1) * lot;
+        double z0 = block_start(c, j) + PAVEMENT + (l >> 1) * lot;
         int32_t mesh = -1;
         if (zs_gen_model(&m, "building", err) >= 0) {
-          if (building(&rng, &m, x0, z0, lot, floors[b++]) == ZS_OK)
+          if (building(rng, &m, x0, z0, lot, floors[b++]) == ZS_OK)
             mesh = zs_gen_add_mesh(s, &m, err);
           else
             ZS_GEN_NOMEM(err, a->spec);
@@ -306,29 +292,36 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
         }
       }
   free(floors);
+  return ZS_OK;
+}
 
+/* ncars cars on distinct street segments, the first `moving` driving. */
+static zs_status add_cars(const zs_gen_args *a, const city *c, zs_rng *rng, int ncars,
+                          int moving, zs_scene *s, zs_error *err) {
+  int n = c->n;
   /* Street segments: along x (axis 0) or z, on street k, between crossings
    * i and i+1; numbered (axis (n+1) + k) n + i. */
   int nseg = 2 * (n + 1) * n;
   int *seg = malloc((size_t)nseg * sizeof *seg);
   if (!seg) return ZS_GEN_NOMEM(err, a->spec);
   for (int i = 0; i < nseg; i++) seg[i] = i;
-  zs_rng_shuffle(&rng, seg, (size_t)nseg, sizeof *seg);
+  zs_rng_shuffle(rng, seg, (size_t)nseg, sizeof *seg);
+  zs_model m;
   for (int k = 0; k < ncars; k++) {
     int axis = seg[k] / ((n + 1) * n), street = seg[k] / n % (n + 1), i = seg[k] % n;
-    int forward = zs_rng_below(&rng, 2) == 0;
-    double along = block_start(&c, i) + zs_rng_range(&rng, 4.0, BLOCK - 4.0);
-    uint32_t paint = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
-    double speed = zs_rng_range(&rng, 0.2, 0.5);
+    int forward = zs_rng_below(rng, 2) == 0;
+    double along = block_start(c, i) + zs_rng_range(rng, 4.0, BLOCK - 4.0);
+    uint32_t paint = zs_gen_palette((int)zs_rng_below(rng, ZS_GEN_PALETTE_SIZE));
+    double speed = zs_rng_range(rng, 0.2, 0.5);
     /* Driving on the right: heading +x, the right-hand side is +z. */
-    double lane = street_centre(&c, street) + (forward ? 3.0 : -3.0);
+    double lane = street_centre(c, street) + (forward ? 3.0 : -3.0);
     double heading = forward ? 0.0 : 0.5;
     double x = along, z = lane;
     if (axis == 1) {
       /* Along z: heading +z is a quarter turn clockwise seen from above,
        * and its right-hand side is -x. */
       heading = forward ? -0.25 : 0.25;
-      x = street_centre(&c, street) + (forward ? -3.0 : 3.0);
+      x = street_centre(c, street) + (forward ? -3.0 : 3.0);
       z = along;
     }
     int32_t mesh = -1, in = -1;
@@ -339,7 +332,7 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
     zs_model_free(&m); /* empty unless car() failed */
     if (mesh >= 0) {
       double turn[16], move[16], place[16];
-      zs_gen_rotate(turn, heading, 0.0, 1.0, 0.0);
+      zs_mat_rotate_turns(turn, heading, 0.0, 1.0, 0.0);
       zs_mat_translate(move, x, 0.0, z);
       zs_mat_mul(place, move, turn);
       in = zs_gen_add_instance(s, mesh, place, ZS_RGB_MESH, err, "car_%d", k);
@@ -348,31 +341,19 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
       free(seg);
       return err->code;
     }
-    if (k < moving) {
-      zs_motion *mo = &s->inst[in].motion;
-      mo->moving = 1;
-      mo->axis[0] = 1.0;
-      mo->axis[1] = mo->axis[2] = 0.0;
-      mo->speed = speed;
-    }
+    if (k < moving) zs_gen_move_along_x(s, in, speed);
   }
   free(seg);
+  return ZS_OK;
+}
 
-  if (zs_gen_model(&m, "streets", err) < 0) return err->code;
-  if (streets(&c, &m)) {
-    zs_model_free(&m);
-    return ZS_GEN_NOMEM(err, a->spec);
-  }
-  int32_t mesh = zs_gen_add_mesh(s, &m, err);
-  if (mesh < 0 || zs_gen_add_instance(s, mesh, NULL, ZS_RGB_MESH, err, "streets") < 0)
-    return err->code;
-
-  /* The walk: from outside the city down a middle street (mid) to the
-   * middle crossing, then round the outer streets and back towards the
-   * start.  The walker keeps 2 m right of the centre line; before each
-   * crossing it looks into the street it turns into. */
-  int mid = (n + 1) / 2;
-  double w = street_centre(&c, 0), e = street_centre(&c, n), mm = street_centre(&c, mid);
+/* The camera and the walk: from outside the city down a middle street
+ * (mid) to the middle crossing, then round the outer streets and back
+ * towards the start.  The walker keeps 2 m right of the centre line;
+ * before each crossing it looks into the street it turns into. */
+static zs_status city_walk(const zs_gen_args *a, const city *c, zs_scene *s, zs_error *err) {
+  int n = c->n, mid = (n + 1) / 2;
+  double w = street_centre(c, 0), e = street_centre(c, n), mm = street_centre(c, mid);
   const double route[][2] = {{w - 25.0, mm}, {mm, mm}, {mm, e}, {e, e},
                              {e, w},         {w, w},   {w, mm - 10.0}};
   enum { NROUTE = sizeof route / sizeof route[0] };
@@ -393,13 +374,35 @@ static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
   const zs_gen_key over[3] = {
       {{w + 2.0, 4.0, mm + 8.0}, {w + 2.0, 4.0, mm + 8.0 + LOOK}},
       {{w - 10.0, 30.0, mm + 40.0}, {0.0, 0.0, 0.0}},
-      {{0.5 * e, 40.0 + c.half, 1.5 * c.half + 30.0}, {0.0, 0.0, 0.0}}};
+      {{0.5 * e, 40.0 + c->half, 1.5 * c->half + 30.0}, {0.0, 0.0, 0.0}}};
   for (int i = 0; i < 3; i++) keys[nkeys++] = over[i];
 
   const double eye[3] = {w - 25.0, 6.0, mm + 2.0};
   const double target[3] = {w + 15.0, 8.0, mm + 2.0};
-  zs_gen_camera(s, eye, target, 0.1, 6.0 * c.half + 200.0);
+  zs_gen_camera(s, eye, target, 0.1, 6.0 * c->half + 200.0);
   return zs_gen_path(s, keys, nkeys, zs_gen_int(a, "frames"), err);
+}
+
+static zs_status build_city(const zs_gen_args *a, zs_scene *s, zs_error *err) {
+  int n = zs_gen_int(a, "blocks"), ncars = 2 * n * n;
+  int moving = zs_gen_int(a, "moving");
+  if (zs_gen_check_moving(a, moving, ncars, "the cars", err)) return err->code;
+  city c = {n, 0.5 * (n * BLOCK + (n + 1) * STREET)};
+  zs_rng rng;
+  zs_rng_seed(&rng, a->seed);
+  if (add_buildings(a, &c, &rng, s, err) || add_cars(a, &c, &rng, ncars, moving, s, err))
+    return err->code;
+
+  zs_model m;
+  if (zs_gen_model(&m, "streets", err) < 0) return err->code;
+  if (streets(&c, &m)) {
+    zs_model_free(&m);
+    return ZS_GEN_NOMEM(err, a->spec);
+  }
+  int32_t mesh = zs_gen_add_mesh(s, &m, err);
+  if (mesh < 0 || zs_gen_add_instance(s, mesh, NULL, ZS_RGB_MESH, err, "streets") < 0)
+    return err->code;
+  return city_walk(a, &c, s, err);
 }
 
 static const zs_gen_param city_params[] = {

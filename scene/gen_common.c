@@ -1,72 +1,34 @@
-/* What the generators share: exact-to-the-bit trigonometry, matrices,
- * adding meshes and instances, cameras and paths.  See gen_internal.h. */
+/* What the generators share in building a scene: colours, adding meshes
+ * and instances, the ground, cameras and paths.  See gen_internal.h. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
-/* ---- matrices ---------------------------------------------------------- */
+/* ---- colours ----------------------------------------------------------- */
 
-void zs_gen_rotate(double m[16], double turns, double x, double y, double z) {
-  double s, c;
-  zs_sincos_turns(turns, &s, &c);
-  double k = 1.0 - c;
-  zs_mat_identity(m);
-  m[0] = x * x * k + c;     m[1] = x * y * k - z * s; m[2] = x * z * k + y * s;
-  m[4] = y * x * k + z * s; m[5] = y * y * k + c;     m[6] = y * z * k - x * s;
-  m[8] = x * z * k - y * s; m[9] = y * z * k + x * s; m[10] = z * z * k + c;
-}
+/* Soft, distinct hues that stay apart under flat shading. */
+static const uint32_t palette[ZS_GEN_PALETTE_SIZE] = {
+    0xD1495Bu, /* raspberry */
+    0xEDAE49u, /* saffron */
+    0x00798Cu, /* teal */
+    0x30638Eu, /* steel blue */
+    0x66A182u, /* sage */
+    0xE07A5Fu, /* terracotta */
+    0x9C89B8u, /* lavender */
+    0xF2CC8Fu, /* sand */
+    0x3D405Bu, /* slate */
+    0x81B29Au, /* mint */
+    0xF0A6CAu, /* pink */
+    0xB5838Du  /* dusty rose */
+};
 
-void zs_gen_random_rotation(zs_rng *rng, double m[16]) {
-  double u1 = zs_rng_uniform(rng);
-  double u2 = zs_rng_uniform(rng);
-  double u3 = zs_rng_uniform(rng);
-  double a = sqrt(1.0 - u1), b = sqrt(u1);
-  double s2, c2, s3, c3;
-  zs_sincos_turns(u2, &s2, &c2);
-  zs_sincos_turns(u3, &s3, &c3);
-  double x = a * s2, y = a * c2, z = b * s3, w = b * c3;
-  zs_mat_identity(m);
-  m[0] = 1.0 - 2.0 * (y * y + z * z);
-  m[1] = 2.0 * (x * y - z * w);
-  m[2] = 2.0 * (x * z + y * w);
-  m[4] = 2.0 * (x * y + z * w);
-  m[5] = 1.0 - 2.0 * (x * x + z * z);
-  m[6] = 2.0 * (y * z - x * w);
-  m[8] = 2.0 * (x * z - y * w);
-  m[9] = 2.0 * (y * z + x * w);
-  m[10] = 1.0 - 2.0 * (x * x + y * y);
-}
-
-void zs_gen_mul3(double out[16], const double a[16], const double b[16],
-                 const double c[16]) {
-  double bc[16];
-  zs_mat_mul(bc, b, c);
-  zs_mat_mul(out, a, bc);
-}
-
-void zs_gen_frame(double m[16], const double ax[3], const double ay[3],
-                  const double az[3], const double o[3]) {
-  zs_mat_identity(m);
-  for (int r = 0; r < 3; r++) {
-    m[4 * r + 0] = ax[r];
-    m[4 * r + 1] = ay[r];
-    m[4 * r + 2] = az[r];
-    m[4 * r + 3] = o[r];
-  }
-}
-
-void zs_gen_apply(const double m[16], const double p[3], double out[3]) {
-  for (int r = 0; r < 3; r++)
-    out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-}
+uint32_t zs_gen_palette(int i) { return palette[i]; }
 
 /* ---- scenes ------------------------------------------------------------ */
 
@@ -79,23 +41,30 @@ int32_t zs_gen_add_mesh(zs_scene *s, zs_model *m, zs_error *err) {
   return i;
 }
 
-int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
-                            uint32_t rgb, zs_error *err, const char *fmt, ...) {
+int32_t zs_gen_add_instance_v(zs_scene *s, int32_t mesh, const double model[16],
+                              uint32_t rgb, zs_error *err, const char *fmt, va_list ap) {
   char name[96];
-  va_list ap;
-  va_start(ap, fmt);
   vsnprintf(name, sizeof name, fmt, ap);
-  va_end(ap);
   int32_t i = zs_scene_add_instance(s, mesh, model, rgb, name);
   if (i < 0) ZS_GEN_NOMEM(err, name);
   return i;
 }
 
-int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err) {
-  zs_model_init(m);
-  int32_t obj = zs_model_object(m, name);
-  if (obj < 0) ZS_GEN_NOMEM(err, name);
-  return obj;
+int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
+                            uint32_t rgb, zs_error *err, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int32_t i = zs_gen_add_instance_v(s, mesh, model, rgb, err, fmt, ap);
+  va_end(ap);
+  return i;
+}
+
+void zs_gen_move_along_x(zs_scene *s, int32_t in, double speed) {
+  zs_motion *mo = &s->inst[in].motion;
+  mo->moving = 1;
+  mo->axis[0] = 1.0;
+  mo->axis[1] = mo->axis[2] = 0.0;
+  mo->speed = speed;
 }
 
 void zs_gen_camera(zs_scene *s, const double eye[3], const double target[3],
@@ -182,7 +151,7 @@ int32_t zs_gen_ground(zs_scene *s, const double lo[3], const double hi[3], const
   zs_model ground;
   int32_t obj = zs_gen_model(&ground, "ground", err);
   if (obj < 0) return -1;
-  if (zs_gen_box(&ground, lo, hi, NULL, ZS_BUILTIN_GROUND_RGB, obj)) {
+  if (zs_gen_box(&ground, lo, hi, NULL, ZS_GEN_GROUND_RGB, obj)) {
     zs_model_free(&ground);
     ZS_GEN_NOMEM(err, spec);
     return -1;

@@ -1,10 +1,12 @@
-/* n x n x n cubes as a generated scene: the layout of zs_builtin_cubes
- * (centres 2 apart, the block centred on the origin, palette colour
- * (i n + j) n + k mod 12) from one unit cube mesh instanced n^3 times, in
- * the builtin's order, so ids match it too. */
+/* n x n x n unit cubes: one cube mesh (side 1) instanced n^3 times.  Cube
+ * (i, j, k), 0 <= i, j, k < n, is instance number (i n + j) n + k, named
+ * "cube_i_j_k", centred at (2i - (n-1), 2j - (n-1), 2k - (n-1)) (centres 2
+ * apart, the block centred on the origin), with palette colour number mod
+ * ZS_GEN_PALETTE_SIZE. */
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
+
+enum { CUBES_MAX = 64 }; /* n: 1 .. 64 */
 
 static zs_status build_cubes(const zs_gen_args *a, zs_scene *s, zs_error *err) {
   int n = zs_gen_int(a, "n");
@@ -25,12 +27,12 @@ static zs_status build_cubes(const zs_gen_args *a, zs_scene *s, zs_error *err) {
         double place[16];
         zs_mat_translate(place, 2.0 * i - (n - 1), 2.0 * j - (n - 1), 2.0 * k - (n - 1));
         int number = (i * n + j) * n + k;
-        uint32_t rgb = zs_builtin_palette(number % ZS_BUILTIN_PALETTE_SIZE);
+        uint32_t rgb = zs_gen_palette(number % ZS_GEN_PALETTE_SIZE);
         if (zs_gen_add_instance(s, mesh, place, rgb, err, "cube_%d_%d_%d", i, j, k) < 0)
           return err->code;
       }
 
-  /* The camera of the builtin: completed later from the bounds. */
+  /* The camera: completed later from the bounds. */
   zs_camera_default(&s->camera);
   s->width = 1024;
   s->height = 768;
@@ -53,6 +55,6 @@ static zs_status build_cubes(const zs_gen_args *a, zs_scene *s, zs_error *err) {
 }
 
 static const zs_gen_param cubes_params[] = {
-    {"n", ZS_GEN_INT, 1, ZS_BUILTIN_CUBES_MAX, 4}, {"frames", ZS_GEN_INT, 16, 100000, 200}};
+    {"n", ZS_GEN_INT, 1, CUBES_MAX, 4}, {"frames", ZS_GEN_INT, 16, 100000, 200}};
 
 const zs_gen_def zs_gen_cubes_def = {"cubes", cubes_params, 2, build_cubes, NULL};

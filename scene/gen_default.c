@@ -1,15 +1,48 @@
-/* The default scene of `zscan render` as a generated scene: the teapot
- * field of zs_builtin_default, built from instances of one teapot mesh and
- * one ground box.  The layout comes from zs_builtin_teapot_field_layout, so
- * positions, turns and colours are those of the builtin; the ids are too
- * (teapot t's faces start at t * 32 level^2, the ground's after the nine).
- * The camera is left to be completed from the bounds, as for the builtin. */
+/* The default scene of `zscan render`: a 3 x 3 field of teapots (level 6,
+ * native size) on a ground slab, from instances of one teapot mesh and one
+ * ground box.
+ *
+ * LAYOUT
+ *   Teapot t = 3 r + c stands at x = 8 (c - 1), z = 8 (r - 1), on the
+ *   ground's top (y = 0), turned about +y by a whole number of degrees in
+ *   [0, 360), with its own palette colour.  The rng, seeded with
+ *   DEFAULT_SEED (not the spec's seed: the default scene is one picture),
+ *   first shuffles the palette (Fisher-Yates; teapot t takes entry t), then
+ *   draws the nine yaw angles in teapot order.  The ground is the slab x,
+ *   z in [-12, 12], y in [-0.25, 0], the last object.  Ids: teapot t's
+ *   faces start at t * 32 level^2, the ground's after the nine.  The camera
+ *   is left to be completed from the bounds. */
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
-enum { FIELD = ZS_BUILTIN_TEAPOTS_SIDE * ZS_BUILTIN_TEAPOTS_SIDE };
+#define DEFAULT_SEED 0x7EA907u
+
+enum { SIDE = 3, FIELD = SIDE * SIDE, DEFAULT_LEVEL = 6 };
+
+/* Every teapot has its own palette entry. */
+_Static_assert((int)FIELD <= (int)ZS_GEN_PALETTE_SIZE, "more teapots than colours");
+
+/* Teapot t's model matrix (the turn about +y, then the move) and colour. */
+static void field_layout(double place[FIELD][16], uint32_t rgb[FIELD]) {
+  const double spacing = 8.0;
+  zs_rng rng;
+  zs_rng_seed(&rng, DEFAULT_SEED);
+  uint32_t colours[ZS_GEN_PALETTE_SIZE];
+  for (int i = 0; i < ZS_GEN_PALETTE_SIZE; i++) colours[i] = zs_gen_palette(i);
+  zs_rng_shuffle(&rng, colours, ZS_GEN_PALETTE_SIZE, sizeof colours[0]);
+  for (int t = 0; t < FIELD; t++) {
+    int row = t / SIDE, col = t % SIDE;
+    /* Whole degrees: a short, exact record of the angle. */
+    double yaw = (double)zs_rng_below(&rng, 360);
+    double rot[16], move[16];
+    zs_mat_rotate(rot, yaw, 0.0, 1.0, 0.0);
+    zs_mat_translate(move, spacing * (col - (SIDE - 1) / 2.0), 0.0,
+                     spacing * (row - (SIDE - 1) / 2.0));
+    zs_mat_mul(place[t], move, rot); /* turn first, then move */
+    rgb[t] = colours[t];
+  }
+}
 
 static zs_status build_default(const zs_gen_args *a, zs_scene *s, zs_error *err) {
   int32_t teapot_mesh = zs_gen_teapot_mesh(s, zs_gen_int(a, "level"), err);
@@ -17,15 +50,14 @@ static zs_status build_default(const zs_gen_args *a, zs_scene *s, zs_error *err)
 
   double place[FIELD][16];
   uint32_t rgb[FIELD];
-  zs_builtin_teapot_field_layout(place, rgb);
+  field_layout(place, rgb);
   for (int t = 0; t < FIELD; t++)
     if (zs_gen_add_instance(s, teapot_mesh, place[t], rgb[t], err, "teapot_%d", t) < 0)
       return err->code;
-  double lo[3], hi[3];
-  zs_builtin_ground(lo, hi);
+  const double lo[3] = {-12.0, -0.25, -12.0}, hi[3] = {12.0, 0.0, 12.0};
   if (zs_gen_ground(s, lo, hi, a->spec, err) < 0) return err->code;
 
-  /* The camera of the builtin: completed later from the bounds. */
+  /* The camera: completed later from the bounds. */
   zs_camera_default(&s->camera);
   s->width = 1024;
   s->height = 768;
@@ -43,7 +75,7 @@ static zs_status build_default(const zs_gen_args *a, zs_scene *s, zs_error *err)
 }
 
 static const zs_gen_param default_params[] = {
-    {"level", ZS_GEN_INT, 1, ZS_TEAPOT_MAX_LEVEL, ZS_BUILTIN_TEAPOT_LEVEL},
+    {"level", ZS_GEN_INT, 1, ZS_TEAPOT_MAX_LEVEL, DEFAULT_LEVEL},
     {"frames", ZS_GEN_INT, 16, 100000, 200}};
 
 const zs_gen_def zs_gen_default_def = {"default", default_params, 2, build_default, NULL};

@@ -8,27 +8,54 @@
  * to the right of the profile, away from the solid.  A cap takes each ring
  * edge in the direction opposite to the side face beside it, so every
  * directed edge is used once.  The torus is the same construction with the
- * arc in place of the profile and the tube's circle in place of the ring. */
+ * arc in place of the profile and the tube's circle in place of the ring.
+ *
+ * Also the generators' mesh kit (gen_internal.h): fresh models, boxes by
+ * their corners, rods, rings and lathe profiles built point by point. */
 #include <math.h>
 #include <string.h>
 #include <stdlib.h>
 
 #include "raster/exactmath.h"
+#include "raster/grow.h"
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
 /* Appends the vertex (x, y, z) placed by xf; -1 when out of memory. */
 static int32_t put(zs_model *m, const double *xf, double x, double y, double z) {
   if (!xf) return zs_model_add_vertex(m, x, y, z);
-  double p[3] = {x, y, z}, q[3];
-  zs_gen_apply(xf, p, q);
+  double p[3] = {x, y, z}, q[4];
+  zs_mat_apply(xf, p, q);
   return zs_model_add_vertex(m, q[0], q[1], q[2]);
 }
 
 static zs_status poly(zs_model *m, const int32_t *idx, int n, uint32_t rgb, int32_t obj) {
   return zs_model_add_polygon(m, idx, n, rgb, obj);
+}
+
+zs_status zs_gen_hexahedron(zs_model *m, const double c[8][3], uint32_t rgb, int32_t obj) {
+  int32_t first = m->mesh.nverts;
+  for (int b = 0; b < 8; b++)
+    if (zs_model_add_vertex(m, c[b][0], c[b][1], c[b][2]) < 0) return ZS_ERR_NOMEM;
+  /* Corner b: bit 0 the +x side, bit 1 +y, bit 2 +z.  Each quad runs
+   * counter-clockwise seen from outside, e.g. -x: 0 -> 4 is +z, 4 -> 6 is
+   * +y, and z x y = -x. */
+  static const int quads[6][4] = {
+      {0, 4, 6, 2}, /* -x */
+      {1, 3, 7, 5}, /* +x */
+      {0, 1, 5, 4}, /* -y */
+      {2, 6, 7, 3}, /* +y */
+      {0, 2, 3, 1}, /* -z */
+      {4, 5, 7, 6}  /* +z */
+  };
+  for (int f = 0; f < 6; f++) {
+    int32_t idx[4];
+    for (int k = 0; k < 4; k++) idx[k] = first + quads[f][k];
+    zs_status st = zs_model_add_polygon(m, idx, 4, rgb, obj);
+    if (st != ZS_OK) return st;
+  }
+  return ZS_OK;
 }
 
 zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
@@ -38,10 +65,11 @@ zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
   double c[8][3];
   for (int b = 0; b < 8; b++) {
     double p[3] = {(b & 1) ? hi[0] : lo[0], (b & 2) ? hi[1] : lo[1], (b & 4) ? hi[2] : lo[2]};
-    if (xform) zs_gen_apply(xform, p, c[b]);
-    else memcpy(c[b], p, sizeof p);
+    double q[4];
+    if (xform) zs_mat_apply(xform, p, q);
+    memcpy(c[b], xform ? q : p, sizeof c[b]);
   }
-  return zs_builtin_hexahedron(m, c, rgb, obj);
+  return zs_gen_hexahedron(m, c, rgb, obj);
 }
 
 /* Closes a ring of n vertices ring[0 .. n-1] (counter-clockwise about the
@@ -118,7 +146,8 @@ zs_status zs_gen_lathe(zs_model *m, const double *profile, int n, int segments,
     free(cs);
     return ZS_ERR_NOMEM;
   }
-  for (int j = 0; j < segments; j++) zs_sincos_turns((double)j / segments, &cs[2 * j], &cs[2 * j + 1]);
+  for (int j = 0; j < segments; j++)
+    zs_sincos_turns((double)j / segments, &cs[2 * j], &cs[2 * j + 1]);
 
   zs_status st = ZS_OK;
   for (int i = 0; i < rings && st == ZS_OK; i++) {
@@ -220,6 +249,70 @@ zs_status zs_gen_torus(zs_model *m, double major, double minor, double sweep,
   return ZS_OK;
 }
 
+/* ---- the generators' mesh kit ------------------------------------------ */
+
+int32_t zs_gen_model(zs_model *m, const char *name, zs_error *err) {
+  zs_model_init(m);
+  int32_t obj = zs_model_object(m, name);
+  if (obj < 0) ZS_GEN_NOMEM(err, name);
+  return obj;
+}
+
+zs_status zs_gen_box_at(zs_model *m, double x0, double y0, double z0, double x1, double y1,
+                        double z1, const double *xf, uint32_t rgb) {
+  const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
+  return zs_gen_box(m, lo, hi, xf, rgb, 0);
+}
+
+zs_status zs_gen_rod(zs_model *m, const double a[3], const double b[3], double r,
+                     int segments, uint32_t rgb) {
+  double xf[16];
+  zs_gen_between(xf, a, b, r);
+  return zs_gen_cylinder(m, 1.0, 1.0, segments, 1, xf, rgb, 0);
+}
+
+zs_status zs_gen_ring_y(zs_model *m, double major, double minor, double y, int around,
+                        int sides, const double *xf, uint32_t rgb) {
+  /* The torus primitive's ring lies in the xy plane around (major, 0, 0):
+   * its centre to the origin, its axis (+z) onto +y, up to y. */
+  double move[16], turn[16], up[16], t[16];
+  zs_mat_translate(move, -major, 0.0, 0.0);
+  zs_mat_rotate_turns(turn, -0.25, 1.0, 0.0, 0.0);
+  zs_mat_translate(up, 0.0, y, 0.0);
+  zs_gen_mul3(t, up, turn, move);
+  if (xf) {
+    double u[16];
+    zs_mat_mul(u, xf, t);
+    memcpy(t, u, sizeof t);
+  }
+  return zs_gen_torus(m, major, minor, 1.0, around, sides, 0, t, rgb, 0);
+}
+
+int zs_gen_pt(zs_gen_profile *pr, double r, double y) {
+  if (!zs_grow((void **)&pr->pt, &pr->cap, (int64_t)pr->n + 1, 2 * sizeof *pr->pt)) return 0;
+  pr->pt[2 * pr->n] = r;
+  pr->pt[2 * pr->n + 1] = y;
+  pr->n++;
+  return 1;
+}
+
+int zs_gen_line_to(zs_gen_profile *pr, double r, double y, int steps) {
+  double r0 = pr->pt[2 * pr->n - 2], y0 = pr->pt[2 * pr->n - 1];
+  for (int i = 1; i <= steps; i++)
+    if (!zs_gen_pt(pr, r0 + (r - r0) * i / steps, y0 + (y - y0) * i / steps)) return 0;
+  return 1;
+}
+
+zs_status zs_gen_profile_lathe(zs_model *m, zs_gen_profile *pr, int complete, int around,
+                               int caps, const double *xf, uint32_t rgb) {
+  zs_status st = complete && pr->n ? zs_gen_lathe(m, pr->pt, pr->n, around, caps, xf, rgb, 0)
+                                   : ZS_ERR_NOMEM;
+  free(pr->pt);
+  pr->pt = NULL;
+  pr->n = pr->cap = 0;
+  return st;
+}
+
 /* ---- mesh specs -------------------------------------------------------- */
 
 static zs_status done(zs_status st, const zs_gen_args *a, zs_error *err) {
@@ -288,16 +381,9 @@ static zs_status mesh_torus(const zs_gen_args *a, zs_model *m, zs_error *err) {
   double major = zs_gen_real(a, "major"), minor = zs_gen_real(a, "minor");
   if (!(minor < major))
     return zs_error_set(err, ZS_ERR_ARG, "%s: minor must be less than major", a->spec);
-  int32_t obj = zs_gen_model(m, "torus", err);
-  if (obj < 0) return err->code;
-  /* The primitive's ring lies in the xy plane around (major, 0, 0): move
-   * its centre to the origin and turn its axis (+z) onto +y. */
-  double move[16], turn[16], xf[16];
-  zs_mat_translate(move, -major, 0.0, 0.0);
-  zs_gen_rotate(turn, -0.25, 1.0, 0.0, 0.0);
-  zs_mat_mul(xf, turn, move);
-  return done(zs_gen_torus(m, major, minor, 1.0, zs_gen_int(a, "segments"),
-                           zs_gen_int(a, "sides"), 0, xf, ZS_GREY, obj),
+  if (zs_gen_model(m, "torus", err) < 0) return err->code;
+  return done(zs_gen_ring_y(m, major, minor, 0.0, zs_gen_int(a, "segments"),
+                            zs_gen_int(a, "sides"), NULL, ZS_GREY),
               a, err);
 }
 

@@ -141,13 +141,11 @@ static zs_status add(plant *p, int32_t mesh, const double m[16], uint32_t rgb,
 
 static zs_status add(plant *p, int32_t mesh, const double m[16], uint32_t rgb,
                      const char *fmt, ...) {
-  char name[96];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(name, sizeof name, fmt, ap);
+  int32_t i = zs_gen_add_instance_v(p->s, mesh, m, rgb, p->err, fmt, ap);
   va_end(ap);
-  if (zs_scene_add_instance(p->s, mesh, m, rgb, name) < 0) return nomem(p);
-  return ZS_OK;
+  return i < 0 ? p->err->code : ZS_OK;
 }
 
 static void add_nozzle(plant *p, enum pool pool, const double at[3]) {
@@ -167,65 +165,20 @@ static int seg(const plant *p, double full, int min) {
 
 /* ---- placing ------------------------------------------------------------ */
 
-/* The unit box [-0.5, 0.5]^3 stretched onto lo .. hi. */
-static void box_matrix(double m[16], const double lo[3], const double hi[3]) {
-  zs_mat_identity(m);
-  for (int k = 0; k < 3; k++) {
-    m[5 * k] = hi[k] - lo[k];
-    m[4 * k + 3] = 0.5 * (lo[k] + hi[k]);
-  }
-}
-
 static zs_status add_box(plant *p, double x0, double y0, double z0, double x1, double y1,
                          double z1, uint32_t rgb, const char *name) {
   const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
   double m[16];
-  box_matrix(m, lo, hi);
+  zs_gen_box_matrix(m, lo, hi);
   return add(p, p->mesh[M_BOX], m, rgb, "%s", name);
-}
-
-/* A right-handed frame whose y axis is the unit direction d: local x -> a,
- * y -> d, z -> b = a x d, with a the part of +y (or +x when d is along y)
- * across d.  Axis-parallel d gives exact 0 and +-1 entries. */
-static void frame_of(const double d[3], double a[3], double b[3]) {
-  double h[3] = {0.0, 1.0, 0.0};
-  if (fabs(d[1]) > 0.9) {
-    h[0] = 1.0;
-    h[1] = 0.0;
-  }
-  double hd = h[0] * d[0] + h[1] * d[1] + h[2] * d[2];
-  for (int k = 0; k < 3; k++) a[k] = h[k] - hd * d[k];
-  double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  for (int k = 0; k < 3; k++) a[k] /= la;
-  b[0] = a[1] * d[2] - a[2] * d[1];
-  b[1] = a[2] * d[0] - a[0] * d[2];
-  b[2] = a[0] * d[1] - a[1] * d[0];
-}
-
-/* A mesh along local y placed from `from`, its y axis along d scaled by
- * len, its x and z axes scaled by r. */
-static void along(double m[16], const double from[3], const double d[3], double len,
-                  double r) {
-  double a[3], b[3], ax[3], ay[3], az[3];
-  frame_of(d, a, b);
-  for (int k = 0; k < 3; k++) {
-    ax[k] = r * a[k];
-    ay[k] = len * d[k];
-    az[k] = r * b[k];
-  }
-  zs_gen_frame(m, ax, ay, az, from);
 }
 
 /* The I-beam mesh (local y from 0 to 1, flanges across x) between two
  * points, its section w x w. */
 static zs_status add_beam(plant *p, const double from[3], const double to[3], double w,
                           const char *fmt, int i) {
-  double d[3], len = 0.0;
-  for (int k = 0; k < 3; k++) len += (to[k] - from[k]) * (to[k] - from[k]);
-  len = sqrt(len);
-  for (int k = 0; k < 3; k++) d[k] = (to[k] - from[k]) / len;
   double m[16];
-  along(m, from, d, len, w);
+  zs_gen_between(m, from, to, w);
   return add(p, p->mesh[M_BEAM], m, STEEL_RGB, fmt, i);
 }
 
@@ -233,85 +186,15 @@ static zs_status add_beam(plant *p, const double from[3], const double to[3], do
  * Each builds into a fresh model; colours are the mesh's own where its
  * instances keep them (ZS_RGB_MESH), grey where instances give one. */
 
-static zs_status box_into(zs_model *m, double x0, double y0, double z0, double x1, double y1,
-                          double z1, const double *xf, uint32_t rgb) {
-  const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
-  return zs_gen_box(m, lo, hi, xf, rgb, 0);
-}
-
-/* A profile under construction: points (r, y). */
-typedef struct profile {
-  double *pt;
-  int n, cap;
-} profile;
-
-static int pt(profile *pr, double r, double y) {
-  if (pr->n == pr->cap) {
-    int cap = pr->cap ? 2 * pr->cap : 64;
-    double *q = realloc(pr->pt, (size_t)cap * 2 * sizeof *q);
-    if (!q) return 0;
-    pr->pt = q;
-    pr->cap = cap;
-  }
-  pr->pt[2 * pr->n] = r;
-  pr->pt[2 * pr->n + 1] = y;
-  pr->n++;
-  return 1;
-}
-
-/* From the last point to (r, y) in steps equal steps. */
-static int line_to(profile *pr, double r, double y, int steps) {
-  double r0 = pr->pt[2 * pr->n - 2], y0 = pr->pt[2 * pr->n - 1];
-  for (int i = 1; i <= steps; i++)
-    if (!pt(pr, r0 + (r - r0) * i / steps, y0 + (y - y0) * i / steps)) return 0;
-  return 1;
-}
-
 /* The upper dished head of a vessel of radius 1: a quarter ellipse in head
  * steps from the shell's top at y to the axis at y + 0.5. */
-static int upper_head(profile *pr, int head, double y) {
+static int upper_head(zs_gen_profile *pr, int head, double y) {
   for (int i = 1; i <= head; i++) {
     double s, c;
     zs_sincos_turns(0.25 * (1.0 - (double)i / head), &s, &c);
-    if (!pt(pr, i == head ? 0.0 : s, y + 0.5 * c)) return 0;
+    if (!zs_gen_pt(pr, i == head ? 0.0 : s, y + 0.5 * c)) return 0;
   }
   return 1;
-}
-
-static zs_status lathe(zs_model *m, profile *pr, int around, int caps, const double *xf,
-                       uint32_t rgb) {
-  zs_status st = pr->n ? zs_gen_lathe(m, pr->pt, pr->n, around, caps, xf, rgb, 0) : ZS_ERR_NOMEM;
-  free(pr->pt);
-  pr->pt = NULL;
-  pr->n = pr->cap = 0;
-  return st;
-}
-
-/* A straight round rod from a to b (any direction), radius r. */
-static zs_status rod(zs_model *m, const double a[3], const double b[3], double r, int segments,
-                     uint32_t rgb) {
-  double d[3], len = 0.0, xf[16];
-  for (int k = 0; k < 3; k++) len += (b[k] - a[k]) * (b[k] - a[k]);
-  len = sqrt(len);
-  for (int k = 0; k < 3; k++) d[k] = (b[k] - a[k]) / len;
-  along(xf, a, d, len, r);
-  return zs_gen_cylinder(m, 1.0, 1.0, segments, 1, xf, rgb, 0);
-}
-
-/* A whole torus lying around the y axis, centred at height y. */
-static zs_status ring_y(zs_model *m, double major, double minor, double y, int around,
-                        int sides, const double *xf, uint32_t rgb) {
-  double move[16], turn[16], down[16], t[16];
-  zs_mat_translate(move, -major, 0.0, 0.0);
-  zs_gen_rotate(turn, -0.25, 1.0, 0.0, 0.0);
-  zs_mat_translate(down, 0.0, y, 0.0);
-  zs_gen_mul3(t, down, turn, move);
-  if (xf) {
-    double u[16];
-    zs_mat_mul(u, xf, t);
-    memcpy(t, u, sizeof t);
-  }
-  return zs_gen_torus(m, major, minor, 1.0, around, sides, 0, t, rgb, 0);
 }
 
 /* The boiler: radius 1, 6 high (scaled by BOILER_R): a skirt, a 2:1
@@ -321,56 +204,52 @@ static zs_status mesh_boiler(const plant *p, zs_model *m) {
   int around = seg(p, 384, 12), head = seg(p, 48, 3), shell = seg(p, 160, 2);
   double s0, c0;
   zs_sincos_turns(0.15, &s0, &c0);
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, 0.0) && pt(&pr, s0, 0.0);
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, s0, 0.0);
   for (int i = 0; i <= head && ok; i++) {
     double s, c;
     zs_sincos_turns(0.15 + 0.1 * i / head, &s, &c);
-    ok = pt(&pr, s, 1.0 - 0.5 * c);
+    ok = zs_gen_pt(&pr, s, 1.0 - 0.5 * c);
   }
-  ok = ok && line_to(&pr, 1.0, 5.5, shell);
+  ok = ok && zs_gen_line_to(&pr, 1.0, 5.5, shell);
   ok = ok && upper_head(&pr, head, 5.5);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, around, 0, NULL, BOILER_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, BOILER_RGB));
   for (int k = 0; k < 5; k++)
-    TRY(ring_y(m, 1.02, 0.035, 1.8 + 0.8 * k, around, seg(p, 16, 4), NULL, BOILER_RGB));
+    TRY(zs_gen_ring_y(m, 1.02, 0.035, 1.8 + 0.8 * k, around, seg(p, 16, 4), NULL, BOILER_RGB));
   /* Manways: short nozzles out of the shell at two heights, four sides. */
   for (int k = 0; k < 8; k++) {
     double sa, ca;
     zs_sincos_turns(0.125 * k + (k >= 4 ? 0.0625 : 0.0), &sa, &ca);
     double y = k < 4 ? 1.6 : 4.4;
     const double a[3] = {0.95 * ca, y, -0.95 * sa}, b[3] = {1.2 * ca, y, -1.2 * sa};
-    TRY(rod(m, a, b, 0.12, seg(p, 48, 6), BOILER_RGB));
+    TRY(zs_gen_rod(m, a, b, 0.12, seg(p, 48, 6), BOILER_RGB));
   }
   const double a[3] = {0.0, 5.9, 0.0}, b[3] = {0.0, 6.25, 0.0};
-  return rod(m, a, b, 0.09, seg(p, 48, 6), BOILER_RGB);
+  return zs_gen_rod(m, a, b, 0.09, seg(p, 48, 6), BOILER_RGB);
 }
 
 /* A square platform 16 x 16 around a hole of 12 x 12, 0.3 thick, top at
  * y = 0, railed along its outer edge (posts every 2 m, two rails). */
 static zs_status mesh_platform(const plant *p, zs_model *m) {
-  TRY(box_into(m, -8, -0.3, -8, 8, 0, -6, NULL, PLATFORM_RGB));
-  TRY(box_into(m, -8, -0.3, 6, 8, 0, 8, NULL, PLATFORM_RGB));
-  TRY(box_into(m, -8, -0.3, -6, -6, 0, 6, NULL, PLATFORM_RGB));
-  TRY(box_into(m, 6, -0.3, -6, 8, 0, 6, NULL, PLATFORM_RGB));
+  TRY(zs_gen_box_at(m, -8, -0.3, -8, 8, 0, -6, NULL, PLATFORM_RGB));
+  TRY(zs_gen_box_at(m, -8, -0.3, 6, 8, 0, 8, NULL, PLATFORM_RGB));
+  TRY(zs_gen_box_at(m, -8, -0.3, -6, -6, 0, 6, NULL, PLATFORM_RGB));
+  TRY(zs_gen_box_at(m, 6, -0.3, -6, 8, 0, 6, NULL, PLATFORM_RGB));
   for (int side = 0; side < 4; side++) {
     for (int k = 0; k < 8; k++) {
       double u = -7.8 + 2.0 * k, x = side < 2 ? u : (side == 2 ? -7.85 : 7.85);
       double z = side < 2 ? (side == 0 ? -7.85 : 7.85) : -u;
       const double a[3] = {x, 0.0, z}, b[3] = {x, 1.1, z};
-      TRY(rod(m, a, b, 0.03, seg(p, 12, 4), RAILING_RGB));
+      TRY(zs_gen_rod(m, a, b, 0.03, seg(p, 12, 4), RAILING_RGB));
     }
     for (int r = 0; r < 2; r++) {
       double y = r ? 1.1 : 0.55;
       if (side < 2) {
         double z = side == 0 ? -7.85 : 7.85;
-        TRY(box_into(m, -7.9, y - 0.03, z - 0.03, 7.9, y + 0.03, z + 0.03, NULL, RAILING_RGB));
+        TRY(zs_gen_box_at(m, -7.9, y - 0.03, z - 0.03, 7.9, y + 0.03, z + 0.03, NULL, RAILING_RGB));
       } else {
         double x = side == 2 ? -7.85 : 7.85;
-        TRY(box_into(m, x - 0.03, y - 0.03, -7.9, x + 0.03, y + 0.03, 7.9, NULL, RAILING_RGB));
+        TRY(zs_gen_box_at(m, x - 0.03, y - 0.03, -7.9, x + 0.03, y + 0.03, 7.9, NULL, RAILING_RGB));
       }
     }
   }
@@ -384,50 +263,46 @@ static zs_status mesh_turbine(const plant *p, zs_model *m) {
   int around = seg(p, 256, 12);
   double up[16], turn[16], xf[16];
   zs_mat_translate(up, 0.0, 2.5, 0.0);
-  zs_gen_rotate(turn, 0.25, 1.0, 0.0, 0.0); /* +y onto +z */
+  zs_mat_rotate_turns(turn, 0.25, 1.0, 0.0, 0.0); /* +y onto +z */
   zs_mat_mul(xf, up, turn);
 #define RINGS(len) seg(p, 4.0 * (len), 1)
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, 0.0) && pt(&pr, 0.35, 0.0) && pt(&pr, 0.35, 2.0) &&
-           pt(&pr, 1.3, 2.0) && line_to(&pr, 1.7, 2.8, 1) && line_to(&pr, 1.7, 9.2, RINGS(6.4)) &&
-           line_to(&pr, 1.3, 10.0, 1) && pt(&pr, 0.35, 10.0) && pt(&pr, 0.35, 11.0) &&
-           pt(&pr, 2.1, 11.0) && line_to(&pr, 2.1, 18.0, RINGS(7)) && pt(&pr, 0.35, 18.0);
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, 0.35, 0.0) && zs_gen_pt(&pr, 0.35, 2.0) &&
+           zs_gen_pt(&pr, 1.3, 2.0) && zs_gen_line_to(&pr, 1.7, 2.8, 1) &&
+           zs_gen_line_to(&pr, 1.7, 9.2, RINGS(6.4)) && zs_gen_line_to(&pr, 1.3, 10.0, 1) &&
+           zs_gen_pt(&pr, 0.35, 10.0) && zs_gen_pt(&pr, 0.35, 11.0) && zs_gen_pt(&pr, 2.1, 11.0) &&
+           zs_gen_line_to(&pr, 2.1, 18.0, RINGS(7)) && zs_gen_pt(&pr, 0.35, 18.0);
   for (int lp = 0; lp < 2 && ok; lp++) {
     double y = 19.0 + 10.0 * lp;
-    ok = pt(&pr, 0.35, y) && pt(&pr, 2.6, y) && line_to(&pr, 3.3, y + 2.0, RINGS(2)) &&
-         line_to(&pr, 3.3, y + 7.0, RINGS(5)) && line_to(&pr, 2.6, y + 9.0, RINGS(2)) &&
-         pt(&pr, 0.35, y + 9.0);
+    ok = zs_gen_pt(&pr, 0.35, y) && zs_gen_pt(&pr, 2.6, y) &&
+         zs_gen_line_to(&pr, 3.3, y + 2.0, RINGS(2)) &&
+         zs_gen_line_to(&pr, 3.3, y + 7.0, RINGS(5)) &&
+         zs_gen_line_to(&pr, 2.6, y + 9.0, RINGS(2)) && zs_gen_pt(&pr, 0.35, y + 9.0);
   }
-  ok = ok && pt(&pr, 0.0, 38.0);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, around, 0, xf, CASING_RGB));
+  ok = ok && zs_gen_pt(&pr, 0.0, 38.0);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, xf, CASING_RGB));
   /* The generator: ribs every so often along its barrel. */
   int ribs = seg(p, 24, 3);
-  ok = pt(&pr, 0.0, 38.5) && pt(&pr, 0.35, 38.5) && pt(&pr, 0.35, 39.0) && pt(&pr, 2.3, 39.0);
+  ok = zs_gen_pt(&pr, 0.0, 38.5) && zs_gen_pt(&pr, 0.35, 38.5) && zs_gen_pt(&pr, 0.35, 39.0) &&
+       zs_gen_pt(&pr, 2.3, 39.0);
   for (int k = 0; k < ribs && ok; k++) {
     double y = 39.0 + 7.0 * (k + 0.5) / ribs;
-    ok = line_to(&pr, 2.3, y - 0.1, 1) && pt(&pr, 2.45, y - 0.1) && pt(&pr, 2.45, y + 0.1) &&
-         pt(&pr, 2.3, y + 0.1);
+    ok = zs_gen_line_to(&pr, 2.3, y - 0.1, 1) && zs_gen_pt(&pr, 2.45, y - 0.1) &&
+         zs_gen_pt(&pr, 2.45, y + 0.1) && zs_gen_pt(&pr, 2.3, y + 0.1);
   }
-  ok = ok && line_to(&pr, 2.3, 46.0, 1) && pt(&pr, 0.35, 46.0) && pt(&pr, 0.35, 47.0) &&
-       pt(&pr, 0.0, 47.0);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, around, 0, xf, GENERATOR_RGB));
+  ok = ok && zs_gen_line_to(&pr, 2.3, 46.0, 1) && zs_gen_pt(&pr, 0.35, 46.0) &&
+       zs_gen_pt(&pr, 0.35, 47.0) && zs_gen_pt(&pr, 0.0, 47.0);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, xf, GENERATOR_RGB));
 #undef RINGS
   static const double bearings[] = {0.9, 10.5, 18.5, 28.5, 38.2, 46.5};
   for (int k = 0; k < 6; k++)
-    TRY(box_into(m, -1.0, 0.0, bearings[k] - 0.4, 1.0, 2.5, bearings[k] + 0.4, NULL, SHAFT_RGB));
+    TRY(zs_gen_box_at(m, -1.0, 0.0, bearings[k] - 0.4, 1.0, 2.5, bearings[k] + 0.4, NULL,
+                      SHAFT_RGB));
   static const double inlets[2][2] = {{6.0, 1.6}, {14.5, 2.0}};
   for (int k = 0; k < 2; k++) {
     const double a[3] = {0.0, 2.5 + inlets[k][1] - 0.2, inlets[k][0]};
     const double b[3] = {0.0, 5.5, inlets[k][0]};
-    TRY(rod(m, a, b, 0.45, seg(p, 48, 8), CASING_RGB));
+    TRY(zs_gen_rod(m, a, b, 0.45, seg(p, 48, 8), CASING_RGB));
   }
   return ZS_OK;
 }
@@ -436,17 +311,15 @@ static zs_status mesh_turbine(const plant *p, zs_model *m) {
  * nozzle to 1.22 (instances scale x and z by the radius, y by the
  * height). */
 static zs_status mesh_tank(const plant *p, zs_model *m) {
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, 0.0) && pt(&pr, 1.0, 0.0) && line_to(&pr, 1.0, 1.0, seg(p, 40, 1)) &&
-           line_to(&pr, 0.12, 1.15, seg(p, 8, 1)) && pt(&pr, 0.12, 1.22) && pt(&pr, 0.0, 1.22);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, seg(p, 192, 12), 0, NULL, TANK_RGB));
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, 1.0, 0.0) &&
+           zs_gen_line_to(&pr, 1.0, 1.0, seg(p, 40, 1)) &&
+           zs_gen_line_to(&pr, 0.12, 1.15, seg(p, 8, 1)) && zs_gen_pt(&pr, 0.12, 1.22) &&
+           zs_gen_pt(&pr, 0.0, 1.22);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 192, 12), 0, NULL, TANK_RGB));
   /* A ring stiffener under the roof and one at mid height. */
-  TRY(ring_y(m, 1.01, 0.012, 0.5, seg(p, 192, 12), seg(p, 8, 3), NULL, TANK_RGB));
-  return ring_y(m, 1.01, 0.012, 0.98, seg(p, 192, 12), seg(p, 8, 3), NULL, TANK_RGB);
+  TRY(zs_gen_ring_y(m, 1.01, 0.012, 0.5, seg(p, 192, 12), seg(p, 8, 3), NULL, TANK_RGB));
+  return zs_gen_ring_y(m, 1.01, 0.012, 0.98, seg(p, 192, 12), seg(p, 8, 3), NULL, TANK_RGB);
 }
 
 /* A horizontal heat exchanger, radius 1, along z from -3 to 3, its axis 1.6
@@ -456,28 +329,25 @@ static zs_status mesh_hx(const plant *p, zs_model *m) {
   int around = seg(p, 256, 12), head = seg(p, 24, 2), shell = seg(p, 80, 1);
   double up[16], turn[16], xf[16];
   zs_mat_translate(up, 0.0, 1.6, -3.0);
-  zs_gen_rotate(turn, 0.25, 1.0, 0.0, 0.0);
+  zs_mat_rotate_turns(turn, 0.25, 1.0, 0.0, 0.0);
   zs_mat_mul(xf, up, turn);
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, 0.0);
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, 0.0);
   for (int i = 1; i <= head && ok; i++) {
     double s, c;
     zs_sincos_turns(0.25 * i / head, &s, &c);
-    ok = pt(&pr, s, 0.5 - 0.5 * c);
+    ok = zs_gen_pt(&pr, s, 0.5 - 0.5 * c);
   }
-  ok = ok && line_to(&pr, 1.0, 0.9, 1) && pt(&pr, 1.12, 0.9) && pt(&pr, 1.12, 1.05) &&
-       pt(&pr, 1.0, 1.05) && line_to(&pr, 1.0, 4.95, shell) && pt(&pr, 1.12, 4.95) &&
-       pt(&pr, 1.12, 5.1) && pt(&pr, 1.0, 5.1) && line_to(&pr, 1.0, 5.5, 1);
+  ok = ok && zs_gen_line_to(&pr, 1.0, 0.9, 1) && zs_gen_pt(&pr, 1.12, 0.9) &&
+       zs_gen_pt(&pr, 1.12, 1.05) && zs_gen_pt(&pr, 1.0, 1.05) &&
+       zs_gen_line_to(&pr, 1.0, 4.95, shell) && zs_gen_pt(&pr, 1.12, 4.95) &&
+       zs_gen_pt(&pr, 1.12, 5.1) && zs_gen_pt(&pr, 1.0, 5.1) && zs_gen_line_to(&pr, 1.0, 5.5, 1);
   ok = ok && upper_head(&pr, head, 5.5);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, around, 0, xf, HX_RGB));
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, xf, HX_RGB));
   for (int k = -1; k <= 1; k += 2) {
-    TRY(box_into(m, -0.9, 0.0, 1.8 * k - 0.2, 0.9, 1.0, 1.8 * k + 0.2, NULL, STEEL_RGB));
+    TRY(zs_gen_box_at(m, -0.9, 0.0, 1.8 * k - 0.2, 0.9, 1.0, 1.8 * k + 0.2, NULL, STEEL_RGB));
     const double a[3] = {0.0, 2.4, 2.0 * k}, b[3] = {0.0, 2.9, 2.0 * k};
-    TRY(rod(m, a, b, 0.15, seg(p, 32, 6), HX_RGB));
+    TRY(zs_gen_rod(m, a, b, 0.15, seg(p, 32, 6), HX_RGB));
   }
   return ZS_OK;
 }
@@ -485,62 +355,54 @@ static zs_status mesh_hx(const plant *p, zs_model *m) {
 /* A pump set along z: base plate, finned motor, coupling, volute casing,
  * suction and discharge (to (0.5, 1.8, 0.55)). */
 static zs_status mesh_pump(const plant *p, zs_model *m) {
-  TRY(box_into(m, -0.6, 0.0, -1.6, 0.6, 0.25, 1.6, NULL, PUMP_RGB));
+  TRY(zs_gen_box_at(m, -0.6, 0.0, -1.6, 0.6, 0.25, 1.6, NULL, PUMP_RGB));
   double up[16], turn[16], xf[16];
   zs_mat_translate(up, 0.0, 0.75, -1.5);
-  zs_gen_rotate(turn, 0.25, 1.0, 0.0, 0.0);
+  zs_mat_rotate_turns(turn, 0.25, 1.0, 0.0, 0.0);
   zs_mat_mul(xf, up, turn);
   int fins = seg(p, 20, 3);
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, 0.0) && pt(&pr, 0.45, 0.0);
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, 0.45, 0.0);
   for (int k = 0; k < fins && ok; k++) {
     double y = 0.1 + 1.2 * k / fins, w = 0.6 / fins;
-    ok = line_to(&pr, 0.45, y, 1) && pt(&pr, 0.55, y) && pt(&pr, 0.55, y + w) &&
-         pt(&pr, 0.45, y + w);
+    ok = zs_gen_line_to(&pr, 0.45, y, 1) && zs_gen_pt(&pr, 0.55, y) &&
+         zs_gen_pt(&pr, 0.55, y + w) && zs_gen_pt(&pr, 0.45, y + w);
   }
-  ok = ok && line_to(&pr, 0.45, 1.4, 1) && pt(&pr, 0.0, 1.4);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, seg(p, 64, 8), 0, xf, MOTOR_RGB));
-  TRY(box_into(m, -0.5, 0.25, -1.45, 0.5, 0.35, -0.15, NULL, MOTOR_RGB));
+  ok = ok && zs_gen_line_to(&pr, 0.45, 1.4, 1) && zs_gen_pt(&pr, 0.0, 1.4);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 64, 8), 0, xf, MOTOR_RGB));
+  TRY(zs_gen_box_at(m, -0.5, 0.25, -1.45, 0.5, 0.35, -0.15, NULL, MOTOR_RGB));
   const double c0[3] = {0.0, 0.75, -0.15}, c1[3] = {0.0, 0.75, 0.3};
-  TRY(rod(m, c0, c1, 0.15, seg(p, 32, 6), SHAFT_RGB));
+  TRY(zs_gen_rod(m, c0, c1, 0.15, seg(p, 32, 6), SHAFT_RGB));
   /* The volute: a torus around the shaft (its axis z). */
   double move[16], at[16];
   zs_mat_translate(move, -0.35, 0.0, 0.0);
   zs_mat_translate(at, 0.0, 0.75, 0.55);
   zs_mat_mul(xf, at, move);
   TRY(zs_gen_torus(m, 0.35, 0.22, 1.0, seg(p, 48, 8), seg(p, 24, 6), 0, xf, PUMP_RGB, 0));
-  TRY(box_into(m, -0.3, 0.25, 0.35, 0.3, 0.5, 0.75, NULL, PUMP_RGB));
+  TRY(zs_gen_box_at(m, -0.3, 0.25, 0.35, 0.3, 0.5, 0.75, NULL, PUMP_RGB));
   const double s0[3] = {0.0, 0.75, 0.55}, s1[3] = {0.0, 0.75, 1.3};
-  TRY(rod(m, s0, s1, 0.14, seg(p, 32, 6), PUMP_RGB));
+  TRY(zs_gen_rod(m, s0, s1, 0.14, seg(p, 32, 6), PUMP_RGB));
   const double d0[3] = {0.5, 0.75, 0.55}, d1[3] = {0.5, 1.8, 0.55};
-  return rod(m, d0, d1, 0.12, seg(p, 32, 6), PUMP_RGB);
+  return zs_gen_rod(m, d0, d1, 0.12, seg(p, 32, 6), PUMP_RGB);
 }
 
 /* A flange with its bolts, for a pipe of radius 1 along y: a disc to
  * radius 1.8, hubs, and 8 studs with a hexagonal nut on either face. */
 static zs_status mesh_flange(const plant *p, zs_model *m) {
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, -0.35) && pt(&pr, 1.15, -0.35) && pt(&pr, 1.15, -0.2) &&
-           pt(&pr, 1.8, -0.2) && pt(&pr, 1.8, 0.2) && pt(&pr, 1.15, 0.2) &&
-           pt(&pr, 1.15, 0.35) && pt(&pr, 0.0, 0.35);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, seg(p, 48, 8), 0, NULL, 0x808080u));
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, -0.35) && zs_gen_pt(&pr, 1.15, -0.35) &&
+           zs_gen_pt(&pr, 1.15, -0.2) && zs_gen_pt(&pr, 1.8, -0.2) && zs_gen_pt(&pr, 1.8, 0.2) &&
+           zs_gen_pt(&pr, 1.15, 0.2) && zs_gen_pt(&pr, 1.15, 0.35) && zs_gen_pt(&pr, 0.0, 0.35);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 48, 8), 0, NULL, 0x808080u));
   for (int k = 0; k < 8; k++) {
     double s, c;
     zs_sincos_turns((k + 0.5) / 8.0, &s, &c);
     double x = 1.5 * c, z = -1.5 * s;
     const double a[3] = {x, -0.5, z}, b[3] = {x, 0.5, z};
-    TRY(rod(m, a, b, 0.09, 6, BOLT_RGB));
+    TRY(zs_gen_rod(m, a, b, 0.09, 6, BOLT_RGB));
     for (int side = -1; side <= 1; side += 2) {
       const double n0[3] = {x, side * 0.2, z}, n1[3] = {x, side * 0.38, z};
-      TRY(rod(m, side < 0 ? n1 : n0, side < 0 ? n0 : n1, 0.17, 6, BOLT_RGB));
+      TRY(zs_gen_rod(m, side < 0 ? n1 : n0, side < 0 ? n0 : n1, 0.17, 6, BOLT_RGB));
     }
   }
   return ZS_OK;
@@ -549,31 +411,27 @@ static zs_status mesh_flange(const plant *p, zs_model *m) {
 /* A gate valve for a pipe of radius 1 along y, centred on the origin: the
  * body with flanged ends, a bonnet along +x, the stem, the handwheel. */
 static zs_status mesh_valve(const plant *p, zs_model *m) {
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, -2.2) && pt(&pr, 1.6, -2.2) && pt(&pr, 1.6, -1.9) &&
-           pt(&pr, 1.05, -1.9) && line_to(&pr, 1.3, -1.2, 1) && line_to(&pr, 1.7, -0.5, 1) &&
-           line_to(&pr, 1.7, 0.5, seg(p, 4, 1)) && line_to(&pr, 1.3, 1.2, 1) &&
-           line_to(&pr, 1.05, 1.9, 1) && pt(&pr, 1.6, 1.9) && pt(&pr, 1.6, 2.2) &&
-           pt(&pr, 0.0, 2.2);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, seg(p, 48, 8), 0, NULL, VALVE_RGB));
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, -2.2) && zs_gen_pt(&pr, 1.6, -2.2) && zs_gen_pt(&pr, 1.6, -1.9) &&
+           zs_gen_pt(&pr, 1.05, -1.9) && zs_gen_line_to(&pr, 1.3, -1.2, 1) &&
+           zs_gen_line_to(&pr, 1.7, -0.5, 1) && zs_gen_line_to(&pr, 1.7, 0.5, seg(p, 4, 1)) &&
+           zs_gen_line_to(&pr, 1.3, 1.2, 1) && zs_gen_line_to(&pr, 1.05, 1.9, 1) &&
+           zs_gen_pt(&pr, 1.6, 1.9) && zs_gen_pt(&pr, 1.6, 2.2) && zs_gen_pt(&pr, 0.0, 2.2);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 48, 8), 0, NULL, VALVE_RGB));
   const double b0[3] = {1.2, 0.0, 0.0}, b1[3] = {3.5, 0.0, 0.0};
-  TRY(rod(m, b0, b1, 0.9, seg(p, 48, 8), VALVE_RGB));
+  TRY(zs_gen_rod(m, b0, b1, 0.9, seg(p, 48, 8), VALVE_RGB));
   const double f0[3] = {3.3, 0.0, 0.0}, f1[3] = {3.6, 0.0, 0.0};
-  TRY(rod(m, f0, f1, 1.2, seg(p, 48, 8), VALVE_RGB));
+  TRY(zs_gen_rod(m, f0, f1, 1.2, seg(p, 48, 8), VALVE_RGB));
   const double s1[3] = {5.6, 0.0, 0.0};
-  TRY(rod(m, f1, s1, 0.15, seg(p, 16, 4), SHAFT_RGB));
+  TRY(zs_gen_rod(m, f1, s1, 0.15, seg(p, 16, 4), SHAFT_RGB));
   double move[16], turn[16], at[16], xf[16];
   zs_mat_translate(move, -1.6, 0.0, 0.0);
-  zs_gen_rotate(turn, 0.25, 0.0, 1.0, 0.0); /* the ring's axis +z onto +x */
+  zs_mat_rotate_turns(turn, 0.25, 0.0, 1.0, 0.0); /* the ring's axis +z onto +x */
   zs_mat_translate(at, 5.2, 0.0, 0.0);
   zs_gen_mul3(xf, at, turn, move);
   TRY(zs_gen_torus(m, 1.6, 0.12, 1.0, seg(p, 48, 8), seg(p, 12, 4), 0, xf, WHEEL_RGB, 0));
-  TRY(box_into(m, 5.12, -1.6, -0.08, 5.28, 1.6, 0.08, NULL, WHEEL_RGB));
-  return box_into(m, 5.12, -0.08, -1.6, 5.28, 0.08, 1.6, NULL, WHEEL_RGB);
+  TRY(zs_gen_box_at(m, 5.12, -1.6, -0.08, 5.28, 1.6, 0.08, NULL, WHEEL_RGB));
+  return zs_gen_box_at(m, 5.12, -0.08, -1.6, 5.28, 0.08, 1.6, NULL, WHEEL_RGB);
 }
 
 /* A railing section 4 m long along +x: posts at 0.5, 2 and 3.5, top and
@@ -581,13 +439,13 @@ static zs_status mesh_valve(const plant *p, zs_model *m) {
 static zs_status mesh_railing(const plant *p, zs_model *m) {
   for (int k = 0; k < 3; k++) {
     const double a[3] = {0.5 + 1.5 * k, 0.0, 0.0}, b[3] = {0.5 + 1.5 * k, 1.1, 0.0};
-    TRY(rod(m, a, b, 0.025, seg(p, 12, 4), 0x808080u));
+    TRY(zs_gen_rod(m, a, b, 0.025, seg(p, 12, 4), 0x808080u));
   }
   for (int r = 0; r < 2; r++) {
     const double a[3] = {0.0, r ? 1.1 : 0.55, 0.0}, b[3] = {4.0, r ? 1.1 : 0.55, 0.0};
-    TRY(rod(m, a, b, 0.03, seg(p, 12, 4), 0x808080u));
+    TRY(zs_gen_rod(m, a, b, 0.03, seg(p, 12, 4), 0x808080u));
   }
-  return box_into(m, 0.0, 0.0, -0.01, 4.0, 0.12, 0.01, NULL, 0x808080u);
+  return zs_gen_box_at(m, 0.0, 0.0, -0.01, 4.0, 0.12, 0.01, NULL, 0x808080u);
 }
 
 /* A stair flight along +x from (0, 0) to (14, 10.4), 1.2 wide (z 0 ..
@@ -596,43 +454,38 @@ static zs_status mesh_stair(zs_model *m) {
   const int steps = 40;
   const double run = 14.0, rise = 10.4, t = run / steps, h = rise / steps;
   for (int k = 0; k < steps; k++)
-    TRY(box_into(m, k * t, (k + 1) * h - 0.05, 0.05, (k + 1) * t + 0.05, (k + 1) * h, 1.15,
+    TRY(zs_gen_box_at(m, k * t, (k + 1) * h - 0.05, 0.05, (k + 1) * t + 0.05, (k + 1) * h, 1.15,
                  NULL, 0x808080u));
   /* Stringers: boxes sheared so their top follows the slope. */
   double shear[16];
   zs_mat_identity(shear);
   shear[4] = rise / run;
-  TRY(box_into(m, 0.0, -0.35, 0.0, run, 0.05, 0.05, shear, 0x808080u));
-  return box_into(m, 0.0, -0.35, 1.15, run, 0.05, 1.2, shear, 0x808080u);
+  TRY(zs_gen_box_at(m, 0.0, -0.35, 0.0, run, 0.05, 0.05, shear, 0x808080u));
+  return zs_gen_box_at(m, 0.0, -0.35, 1.15, run, 0.05, 1.2, shear, 0x808080u);
 }
 
 /* The stack: 120 m, radius 6 tapering to 3.5, red bands near the top, a
  * lip, and a bore 13 m deep. */
 static zs_status mesh_stack(const plant *p, zs_model *m) {
   int around = seg(p, 256, 12), rings = seg(p, 64, 2);
-  profile pr = {0};
-  int ok = pt(&pr, 0.0, 0.0) && pt(&pr, 6.0, 0.0) && line_to(&pr, 3.8, 105.0, rings) &&
-           pt(&pr, 0.0, 105.0);
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, around, 0, NULL, STACK_RGB));
+  zs_gen_profile pr = {0};
+  int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, 6.0, 0.0) &&
+           zs_gen_line_to(&pr, 3.8, 105.0, rings) && zs_gen_pt(&pr, 0.0, 105.0);
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, STACK_RGB));
   /* 105 .. 120 in three bands, red, white, red; the bore from the top. */
   static const uint32_t bands[3] = {BAND_RGB, STACK_RGB, BAND_RGB};
   for (int b = 0; b < 3; b++) {
     double y0 = 105.0 + 5.0 * b, y1 = y0 + 5.0;
     double r0 = 3.8 - 0.3 * (y0 - 105.0) / 15.0, r1 = 3.8 - 0.3 * (y1 - 105.0) / 15.0;
-    ok = pt(&pr, 0.0, y0) && pt(&pr, r0, y0) && line_to(&pr, r1, y1, seg(p, 4, 1));
-    if (b < 2) ok = ok && pt(&pr, 0.0, y1);
+    ok = zs_gen_pt(&pr, 0.0, y0) && zs_gen_pt(&pr, r0, y0) &&
+         zs_gen_line_to(&pr, r1, y1, seg(p, 4, 1));
+    if (b < 2)
+      ok = ok && zs_gen_pt(&pr, 0.0, y1);
     else
-      ok = ok && pt(&pr, r1 + 0.4, y1) && pt(&pr, r1 + 0.4, y1 + 2.0) &&
-           pt(&pr, r1 - 0.6, y1 + 2.0) && pt(&pr, r1 - 0.6, y1 - 10.0) && pt(&pr, 0.0, y1 - 10.0);
-    if (!ok) {
-      free(pr.pt);
-      return ZS_ERR_NOMEM;
-    }
-    TRY(lathe(m, &pr, around, 0, NULL, bands[b]));
+      ok = ok && zs_gen_pt(&pr, r1 + 0.4, y1) && zs_gen_pt(&pr, r1 + 0.4, y1 + 2.0) &&
+           zs_gen_pt(&pr, r1 - 0.6, y1 + 2.0) && zs_gen_pt(&pr, r1 - 0.6, y1 - 10.0) &&
+           zs_gen_pt(&pr, 0.0, y1 - 10.0);
+    TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, bands[b]));
   }
   return ZS_OK;
 }
@@ -643,28 +496,24 @@ static zs_status mesh_stack(const plant *p, zs_model *m) {
 static zs_status mesh_tower(const plant *p, zs_model *m) {
   int around = seg(p, 512, 16), rings = seg(p, 96, 6);
   const double a = 24.0, b = 48.75, throat = 75.0;
-  profile pr = {0};
+  zs_gen_profile pr = {0};
   int ok = 1;
   for (int i = 0; i <= rings && ok; i++) {
     double y = 10.0 + 90.0 * i / rings, q = (y - throat) / b;
-    ok = pt(&pr, a * sqrt(1.0 + q * q), y);
+    ok = zs_gen_pt(&pr, a * sqrt(1.0 + q * q), y);
   }
   for (int i = rings; i >= 0 && ok; i--) {
     double y = 10.0 + 90.0 * i / rings, q = (y - throat) / b;
-    ok = pt(&pr, a * sqrt(1.0 + q * q) - 0.6, y);
+    ok = zs_gen_pt(&pr, a * sqrt(1.0 + q * q) - 0.6, y);
   }
-  ok = ok && pt(&pr, pr.pt[0], pr.pt[1]); /* close the loop */
-  if (!ok) {
-    free(pr.pt);
-    return ZS_ERR_NOMEM;
-  }
-  TRY(lathe(m, &pr, around, 0, NULL, TOWER_RGB));
+  ok = ok && zs_gen_pt(&pr, pr.pt[0], pr.pt[1]); /* close the loop */
+  TRY(zs_gen_profile_lathe(m, &pr, ok, around, 0, NULL, TOWER_RGB));
   for (int k = 0; k < 72; k++) {
     double s0, c0, s1, c1;
     zs_sincos_turns(k / 72.0, &s0, &c0);
     zs_sincos_turns((k + (k % 2 ? -1.0 : 1.0)) / 72.0, &s1, &c1);
     const double foot[3] = {40.0 * c0, 0.0, -40.0 * s0}, top[3] = {39.7 * c1, 10.0, -39.7 * s1};
-    TRY(rod(m, foot, top, 0.35, seg(p, 12, 4), TOWER_RGB));
+    TRY(zs_gen_rod(m, foot, top, 0.35, seg(p, 12, 4), TOWER_RGB));
   }
   return ZS_OK;
 }
@@ -672,14 +521,14 @@ static zs_status mesh_tower(const plant *p, zs_model *m) {
 /* The overhead crane: a bridge spanning x 0.5 .. 49.5 (two box girders,
  * end trucks), a trolley, the rope and hook block. */
 static zs_status mesh_crane(const plant *p, zs_model *m) {
-  TRY(box_into(m, 0.5, 0.0, -1.8, 49.5, 2.2, -1.2, NULL, CRANE_RGB));
-  TRY(box_into(m, 0.5, 0.0, 1.2, 49.5, 2.2, 1.8, NULL, CRANE_RGB));
-  TRY(box_into(m, 0.5, 0.0, -3.0, 2.0, 1.2, 3.0, NULL, CRANE_RGB));
-  TRY(box_into(m, 48.0, 0.0, -3.0, 49.5, 1.2, 3.0, NULL, CRANE_RGB));
-  TRY(box_into(m, 20.0, 2.2, -2.0, 24.0, 3.4, 2.0, NULL, CRANE_RGB));
+  TRY(zs_gen_box_at(m, 0.5, 0.0, -1.8, 49.5, 2.2, -1.2, NULL, CRANE_RGB));
+  TRY(zs_gen_box_at(m, 0.5, 0.0, 1.2, 49.5, 2.2, 1.8, NULL, CRANE_RGB));
+  TRY(zs_gen_box_at(m, 0.5, 0.0, -3.0, 2.0, 1.2, 3.0, NULL, CRANE_RGB));
+  TRY(zs_gen_box_at(m, 48.0, 0.0, -3.0, 49.5, 1.2, 3.0, NULL, CRANE_RGB));
+  TRY(zs_gen_box_at(m, 20.0, 2.2, -2.0, 24.0, 3.4, 2.0, NULL, CRANE_RGB));
   const double r0[3] = {22.0, -12.0, 0.0}, r1[3] = {22.0, 2.2, 0.0};
-  TRY(rod(m, r0, r1, 0.05, seg(p, 8, 4), SHAFT_RGB));
-  TRY(box_into(m, 21.5, -13.2, -0.4, 22.5, -12.0, 0.4, NULL, CRANE_RGB));
+  TRY(zs_gen_rod(m, r0, r1, 0.05, seg(p, 8, 4), SHAFT_RGB));
+  TRY(zs_gen_box_at(m, 21.5, -13.2, -0.4, 22.5, -12.0, 0.4, NULL, CRANE_RGB));
   /* The hook: three quarters of a ring under the block. */
   double xf[16];
   zs_mat_translate(xf, 22.0 - 0.3, -13.6, 0.0);
@@ -689,37 +538,34 @@ static zs_status mesh_crane(const plant *p, zs_model *m) {
 /* A transformer: tank, cooling fins either side, three bushings with
  * sheds. */
 static zs_status mesh_transformer(const plant *p, zs_model *m) {
-  TRY(box_into(m, -2.0, 0.0, -1.5, 2.0, 3.2, 1.5, NULL, TRANSFORMER_RGB));
+  TRY(zs_gen_box_at(m, -2.0, 0.0, -1.5, 2.0, 3.2, 1.5, NULL, TRANSFORMER_RGB));
   for (int k = 0; k < 12; k++) {
     double x = -1.8 + 0.33 * k;
-    TRY(box_into(m, x, 0.4, -2.4, x + 0.08, 2.8, -1.5, NULL, TRANSFORMER_RGB));
-    TRY(box_into(m, x, 0.4, 1.5, x + 0.08, 2.8, 2.4, NULL, TRANSFORMER_RGB));
+    TRY(zs_gen_box_at(m, x, 0.4, -2.4, x + 0.08, 2.8, -1.5, NULL, TRANSFORMER_RGB));
+    TRY(zs_gen_box_at(m, x, 0.4, 1.5, x + 0.08, 2.8, 2.4, NULL, TRANSFORMER_RGB));
   }
   int sheds = seg(p, 10, 3);
   for (int k = 0; k < 3; k++) {
     double up[16];
     zs_mat_translate(up, -1.2 + 1.2 * k, 3.2, 0.0);
-    profile pr = {0};
-    int ok = pt(&pr, 0.0, 0.0) && pt(&pr, 0.18, 0.0);
+    zs_gen_profile pr = {0};
+    int ok = zs_gen_pt(&pr, 0.0, 0.0) && zs_gen_pt(&pr, 0.18, 0.0);
     for (int s = 0; s < sheds && ok; s++) {
       double y = 0.2 + 1.4 * s / sheds;
-      ok = line_to(&pr, 0.18, y, 1) && pt(&pr, 0.32, y + 0.03) && pt(&pr, 0.18, y + 0.08);
+      ok = zs_gen_line_to(&pr, 0.18, y, 1) && zs_gen_pt(&pr, 0.32, y + 0.03) &&
+           zs_gen_pt(&pr, 0.18, y + 0.08);
     }
-    ok = ok && line_to(&pr, 0.18, 1.8, 1) && pt(&pr, 0.0, 1.8);
-    if (!ok) {
-      free(pr.pt);
-      return ZS_ERR_NOMEM;
-    }
-    TRY(lathe(m, &pr, seg(p, 32, 6), 0, up, INSULATOR_RGB));
+    ok = ok && zs_gen_line_to(&pr, 0.18, 1.8, 1) && zs_gen_pt(&pr, 0.0, 1.8);
+    TRY(zs_gen_profile_lathe(m, &pr, ok, seg(p, 32, 6), 0, up, INSULATOR_RGB));
   }
   return ZS_OK;
 }
 
 /* The I-beam along y, 0 .. 1, in a section 1 x 1: two flanges and a web. */
 static zs_status mesh_beam(zs_model *m) {
-  TRY(box_into(m, -0.5, 0.0, -0.5, 0.5, 1.0, -0.38, NULL, STEEL_RGB));
-  TRY(box_into(m, -0.5, 0.0, 0.38, 0.5, 1.0, 0.5, NULL, STEEL_RGB));
-  return box_into(m, -0.05, 0.0, -0.38, 0.05, 1.0, 0.38, NULL, STEEL_RGB);
+  TRY(zs_gen_box_at(m, -0.5, 0.0, -0.5, 0.5, 1.0, -0.38, NULL, STEEL_RGB));
+  TRY(zs_gen_box_at(m, -0.5, 0.0, 0.38, 0.5, 1.0, 0.5, NULL, STEEL_RGB));
+  return zs_gen_box_at(m, -0.05, 0.0, -0.38, 0.05, 1.0, 0.38, NULL, STEEL_RGB);
 }
 
 static zs_status build_meshes(plant *p) {
@@ -950,14 +796,14 @@ static zs_status bay_b(plant *p) {
 static zs_status pump(plant *p, double x, double y, double z, int quarter, double s,
                       enum pool pool, int i) {
   double turn[16], size[16], move[16], m[16];
-  zs_gen_rotate(turn, 0.25 * quarter, 0.0, 1.0, 0.0);
+  zs_mat_rotate_turns(turn, 0.25 * quarter, 0.0, 1.0, 0.0);
   zs_mat_scale(size, s, s, s);
   zs_mat_translate(move, x, y, z);
   zs_gen_mul3(m, move, turn, size);
   TRY(add(p, p->mesh[M_PUMP], m, ZS_RGB_MESH, "pump_%d", i));
   const double out[3] = {0.5, 1.8, 0.55};
-  double at[3];
-  zs_gen_apply(m, out, at);
+  double at[4];
+  zs_mat_apply(m, out, at);
   add_nozzle(p, pool, at);
   return ZS_OK;
 }
@@ -996,7 +842,7 @@ static zs_status railing_run(plant *p, double x, double y, double z, int quarter
                              int *count) {
   for (int k = 0; k < sections; k++) {
     double turn[16], move[16], m[16], d[2];
-    zs_gen_rotate(turn, 0.25 * quarter, 0.0, 1.0, 0.0);
+    zs_mat_rotate_turns(turn, 0.25 * quarter, 0.0, 1.0, 0.0);
     d[0] = turn[0]; /* where the section's +x goes: (x, z) */
     d[1] = turn[8];
     zs_mat_translate(move, x + 4.0 * k * d[0], y, z + 4.0 * k * d[1]);
@@ -1047,7 +893,7 @@ static zs_status bay_c(plant *p) {
   double m[16], turn[16], move[16];
   zs_mat_translate(m, 128.0, 0.0, 40.3);
   TRY(add(p, p->mesh[M_STAIR], m, STEEL_RGB, "stair_%d", 0));
-  zs_gen_rotate(turn, 0.5, 0.0, 1.0, 0.0);
+  zs_mat_rotate_turns(turn, 0.5, 0.0, 1.0, 0.0);
   zs_mat_translate(move, 142.0, DECK1 + DECK_T, 45.7);
   zs_mat_mul(m, move, turn);
   TRY(add(p, p->mesh[M_STAIR], m, STEEL_RGB, "stair_%d", 1));
@@ -1078,7 +924,8 @@ static zs_status bay_c(plant *p) {
   for (int i = 0; i < 4; i++) TRY(pump(p, rows_x[i], y1, 6.0, 0, 1.0, BAY_C, np++));
   TRY(exchanger(p, 105.0, y2, 30.0, 1.0, nx++));
   TRY(exchanger(p, 136.0, y2, 22.0, 1.0, nx++));
-  for (int i = 0; i < 4; i++) TRY(pump(p, rows_x[i] + (i == 3 ? 2.0 : 0.0), y2, 53.0, 2, 1.0, BAY_C, np++));
+  for (int i = 0; i < 4; i++)
+    TRY(pump(p, rows_x[i] + (i == 3 ? 2.0 : 0.0), y2, 53.0, 2, 1.0, BAY_C, np++));
   TRY(tank(p, 118.0, y2, 22.0, 1.8, 6.0, BAY_C, TANK_RGB, "tank_%d", nt++));
   TRY(tank(p, 143.0, y2, 8.0, 1.5, 5.0, BAY_C, TANK_RGB, "tank_%d", nt++));
   return ZS_OK;
@@ -1190,7 +1037,7 @@ static zs_status run(plant *p, const double a[3], const double b[3], double r, u
     axis_dir(pts[i], pts[i + 1], d);
     double len = dist(pts[i], pts[i + 1]) - (i > 0 ? e : 0.0) - (i + 2 < n ? e : 0.0);
     for (int k = 0; k < 3; k++) from[k] = pts[i][k] + (i > 0 ? e : 0.0) * d[k];
-    along(m, from, d, len, r);
+    zs_gen_along(m, from, d, len, r);
     TRY(add(p, p->mesh[M_PIPE], m, rgb, "pipe_%d_%d", id, i));
     if (d[1] != 0.0 && len > best) {
       best = len;
@@ -1220,14 +1067,14 @@ static zs_status run(plant *p, const double a[3], const double b[3], double r, u
     double d[3], c[3], m[16];
     axis_dir(at, next, d);
     for (int k = 0; k < 3; k++) c[k] = at[k] + 0.4 * d[k];
-    along(m, c, d, r, r);
+    zs_gen_along(m, c, d, r, r);
     TRY(add(p, p->mesh[M_FLANGE], m, 0x9A9A9Au, "flange_%d_%d", id, end));
   }
   if (with_valve && longest >= 0 && best > 5.0 * r + 2.0 * e) {
     double d[3], c[3], m[16];
     axis_dir(pts[longest], pts[longest + 1], d);
     for (int k = 0; k < 3; k++) c[k] = 0.5 * (pts[longest][k] + pts[longest + 1][k]);
-    along(m, c, d, r, r);
+    zs_gen_along(m, c, d, r, r);
     TRY(add(p, p->mesh[M_VALVE], m, ZS_RGB_MESH, "valve_%d", id));
   }
   return ZS_OK;
@@ -1235,6 +1082,16 @@ static zs_status run(plant *p, const double a[3], const double b[3], double r, u
 
 static const double *pick(plant *p, enum pool pool) {
   return p->nozzle[pool][zs_rng_below(&p->rng, (uint64_t)p->nnozzles[pool])];
+}
+
+/* A service run with a valve from a to b (none when they are the same
+ * nozzle): a colour from the first ncolours SERVICES, a radius in rlo ..
+ * rhi, drawn in that order. */
+static zs_status service(plant *p, const double *a, const double *b, int ncolours, double rlo,
+                         double rhi, double ylo, double yhi, double zlo, double zhi) {
+  if (a == b) return ZS_OK;
+  uint32_t rgb = SERVICES[zs_rng_below(&p->rng, (uint64_t)ncolours)];
+  return run(p, a, b, zs_rng_range(&p->rng, rlo, rhi), rgb, ylo, yhi, zlo, zhi, 1);
 }
 
 static zs_status runs(plant *p) {
@@ -1250,32 +1107,28 @@ static zs_status runs(plant *p) {
   for (int k = 0; k < 4; k++)
     TRY(run(p, p->nozzle[TOWER][k / 2], p->nozzle[TURBINE_SIDE][k < 2 ? k : k + 1], 0.7,
             COOLING_RGB, 5.0, 7.0, 64.0, 100.0, 0));
-  /* Services within bay A, bay B to bay C, within bay C, out to the tanks. */
+  /* Services within bay A, bay B to bay C, within bay C, out to the tanks
+   * (a and b picked in two statements: a call's arguments are evaluated in
+   * no fixed order). */
   for (int k = 0; k < 12; k++) {
     const double *a = pick(p, BOILER_SIDE);
     const double *b = pick(p, BOILER_SIDE);
-    if (a == b) continue;
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, NSERVICES)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.08, 0.2), rgb, 20.0, 29.0, 2.0, 58.0, 1));
+    TRY(service(p, a, b, NSERVICES, 0.08, 0.2, 20.0, 29.0, 2.0, 58.0));
   }
   for (int k = 0; k < 10; k++) {
     const double *a = pick(p, TURBINE_SIDE);
     const double *b = pick(p, k % 2 ? BAY_C : BAY_C_FLOOR);
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, NSERVICES)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.1, 0.3), rgb, 24.0, 32.0, 2.0, 58.0, 1));
+    TRY(service(p, a, b, NSERVICES, 0.1, 0.3, 24.0, 32.0, 2.0, 58.0));
   }
   for (int k = 0; k < 48; k++) {
     const double *a = pick(p, k % 3 ? BAY_C : BAY_C_FLOOR);
     const double *b = pick(p, BAY_C);
-    if (a == b) continue;
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, NSERVICES)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.06, 0.25), rgb, 8.0, 38.0, 1.0, 59.0, 1));
+    TRY(service(p, a, b, NSERVICES, 0.06, 0.25, 8.0, 38.0, 1.0, 59.0));
   }
   for (int k = 0; k < 8; k++) {
     const double *a = pick(p, BAY_C_FLOOR);
     const double *b = pick(p, OUTSIDE);
-    uint32_t rgb = SERVICES[zs_rng_below(&p->rng, 2)];
-    TRY(run(p, a, b, zs_rng_range(&p->rng, 0.15, 0.35), rgb, 16.6, 19.5, 27.5, 32.5, 1));
+    TRY(service(p, a, b, 2, 0.15, 0.35, 16.6, 19.5, 27.5, 32.5));
   }
   return ZS_OK;
 }

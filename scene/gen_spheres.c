@@ -13,7 +13,6 @@
  *   move along their local x axis and bounce off the cube's walls.
  */
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 
 #define SIDE 1000.0
@@ -49,17 +48,11 @@ static zs_status build_spheres(const zs_gen_args *a, zs_scene *s, zs_error *err)
     zs_gen_random_rotation(&rng, turn);
     zs_mat_scale(size, r, r, r);
     zs_gen_mul3(place, move, turn, size);
-    uint32_t rgb = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
+    uint32_t rgb = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
     double speed = zs_rng_range(&rng, SPEED_MIN, SPEED_MAX);
     int32_t in = zs_gen_add_instance(s, mesh, place, rgb, err, "sphere_%d", i);
     if (in < 0) return err->code;
-    if (i < moving) {
-      zs_motion *mo = &s->inst[in].motion;
-      mo->moving = 1;
-      mo->axis[0] = 1.0;
-      mo->axis[1] = mo->axis[2] = 0.0;
-      mo->speed = speed;
-    }
+    if (i < moving) zs_gen_move_along_x(s, in, speed);
   }
 
   const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {SIDE, SIDE, SIDE};

@@ -29,7 +29,6 @@
 #include <stdlib.h>
 
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 
@@ -120,7 +119,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
       zs_gen_random_rotation(&rng, turn);
       zs_mat_translate(move, cx + jx, RADIUS + GAP + k * PITCH, cz + jz);
       zs_gen_mul3(place, move, turn, to_pivot);
-      uint32_t rgb = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
+      uint32_t rgb = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
       if (zs_gen_add_instance(s, teapot_mesh, place, rgb, err, "teapot_%d", t) < 0) {
         layout_free(&l);
         return err->code;
@@ -133,10 +132,10 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
     double jx = zs_rng_range(&rng, -JITTER, JITTER);
     double jz = zs_rng_range(&rng, -JITTER, JITTER);
     double turn[16], move[16], place[16];
-    zs_gen_rotate(turn, zs_rng_uniform(&rng), 0.0, 1.0, 0.0);
+    zs_mat_rotate_turns(turn, zs_rng_uniform(&rng), 0.0, 1.0, 0.0);
     zs_mat_translate(move, px + jx, 0.0, pz + jz);
     zs_mat_mul(place, move, turn);
-    uint32_t rgb = zs_builtin_palette((int)zs_rng_below(&rng, ZS_BUILTIN_PALETTE_SIZE));
+    uint32_t rgb = zs_gen_palette((int)zs_rng_below(&rng, ZS_GEN_PALETTE_SIZE));
     if (zs_gen_add_instance(s, teapot_mesh, place, rgb, err, "teapot_%d", t) < 0) {
       layout_free(&l);
       return err->code;
@@ -145,13 +144,7 @@ static zs_status build_teapots(const zs_gen_args *a, zs_scene *s, zs_error *err)
   layout_free(&l);
 
   /* The first `moving` teapots move along their local x axis. */
-  for (int i = 0; i < moving; i++) {
-    zs_motion *mo = &s->inst[i].motion;
-    mo->moving = 1;
-    mo->axis[0] = 1.0;
-    mo->axis[1] = mo->axis[2] = 0.0;
-    mo->speed = zs_rng_range(&rng, 0.05, 0.2);
-  }
+  for (int i = 0; i < moving; i++) zs_gen_move_along_x(s, i, zs_rng_range(&rng, 0.05, 0.2));
 
   double half = CELL * (g + 1) / 2.0;
   const double lo[3] = {-half, -0.5, -half}, hi[3] = {half, 0.0, half};

@@ -174,34 +174,37 @@ static zs_status pass_on(zs_status st, const zs_error *mine, const char *spec,
   return zs_error_set(err, st, "%s", mine->msg);
 }
 
+/* Parses spec against defs and builds what it names: the mesh into m, or
+ * (m NULL) the scene into s, finished. */
+static zs_status run_spec(const char *spec, const zs_gen_def *const *defs, int ndefs,
+                          const char *what, zs_model *m, zs_scene *s, zs_error *err) {
+  char buf[ZS_GEN_SPEC_MAX + 1];
+  zs_gen_args a;
+  zs_error mine;
+  zs_error_clear(&mine);
+  zs_status st = parse_spec(spec, defs, ndefs, what, buf, &a, &mine);
+  if (st == ZS_OK) st = m ? a.def->mesh(&a, m, &mine) : a.def->scene(&a, s, &mine);
+  if (st == ZS_OK && !m) st = zs_scene_finish(s, &mine);
+  return pass_on(st, &mine, spec, err);
+}
+
 zs_status zs_gen_mesh(const char *spec, zs_model *out, zs_error *err) {
   zs_model_init(out);
   if (!spec) return zs_error_set(err, ZS_ERR_ARG, "no mesh spec");
   const zs_gen_def *defs[16];
   int n = zs_gen_mesh_ndefs < 16 ? zs_gen_mesh_ndefs : 16;
   for (int i = 0; i < n; i++) defs[i] = &zs_gen_mesh_defs[i];
-  char buf[ZS_GEN_SPEC_MAX + 1];
-  zs_gen_args a;
-  zs_error mine;
-  zs_error_clear(&mine);
-  zs_status st = parse_spec(spec, defs, n, "mesh", buf, &a, &mine);
-  if (st == ZS_OK) st = a.def->mesh(&a, out, &mine);
-  if (st != ZS_OK) zs_model_free(out);
-  return pass_on(st, &mine, spec, err);
+  zs_status st = run_spec(spec, defs, n, "mesh", out, NULL, err);
+  if (st != ZS_OK) zs_model_free(out); /* leaves it empty */
+  return st;
 }
 
 zs_status zs_gen_scene(const char *spec, zs_scene *out, zs_error *err) {
   zs_scene_init(out);
-  if (!spec) spec = "default";
-  char buf[ZS_GEN_SPEC_MAX + 1];
-  zs_gen_args a;
-  zs_error mine;
-  zs_error_clear(&mine);
-  zs_status st = parse_spec(spec, scene_defs, NSCENE_DEFS, "scene", buf, &a, &mine);
-  if (st == ZS_OK) st = a.def->scene(&a, out, &mine);
-  if (st == ZS_OK) st = zs_scene_finish(out, &mine);
+  zs_status st = run_spec(spec ? spec : "default", scene_defs, NSCENE_DEFS, "scene", NULL, out,
+                          err);
   if (st != ZS_OK) zs_scene_free(out); /* leaves it empty */
-  return pass_on(st, &mine, spec, err);
+  return st;
 }
 
 /* ---- counts ------------------------------------------------------------ */

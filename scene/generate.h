@@ -111,16 +111,15 @@
  *       detail 1:    1,223 objects, 1,998,586 faces, 4,072,508 triangles
  *
  *   cubes?n=4&frames=200   (scene/gen_cubes.c)
- *     n x n x n unit cubes (1 .. 64) laid out as zs_builtin_cubes, ids and
- *     colours too: one cube mesh instanced n^3 times.  The path circles the
+ *     n x n x n unit cubes (1 .. 64), centres 2 apart, the block centred on
+ *     the origin: one cube mesh instanced n^3 times.  The path circles the
  *     block and flies through it along a gap.
  *       n 4: 64 objects, 384 faces, 768 triangles
  *
  *   default?level=6&frames=200   (scene/gen_default.c)
- *     The default scene of `zscan render` (zs_builtin_default: nine teapots
- *     and a ground slab, the same places, turns, colours and ids) as
- *     instances of one teapot mesh and one box.  Its camera is left to be
- *     framed from the bounds, as for the builtin.
+ *     The default scene of `zscan render`: nine teapots in a 3 x 3 field
+ *     and a ground slab, as instances of one teapot mesh and one box.  Its
+ *     camera is left to be framed from the bounds.
  *       10 objects, 10,374 faces, 20,748 triangles
  */
 #ifndef ZS_SCENE_GENERATE_H
@@ -165,7 +164,15 @@ void zs_gen_count(const zs_scene *s, zs_gen_counts *out);
  * between faces.  Return ZS_OK, ZS_ERR_ARG (a count or size out of range),
  * ZS_ERR_NOMEM. */
 
-/* The box lo .. hi: 8 vertices and 6 quads, as zs_builtin_box. */
+/* A six-sided solid from its 8 corners: corner b (b = 0 .. 7) is on the
+ * +x side when bit 0 of b is set, +y with bit 1, +z with bit 2; 6 quads in
+ * the order -x, +x, -y, +y, -z, +z, counter-clockwise outward (right for
+ * any convex hexahedron of that shape: a box with a narrower top, say). */
+zs_status zs_gen_hexahedron(zs_model *m, const double c[8][3], uint32_t rgb, int32_t obj);
+
+/* The box lo .. hi: a hexahedron of 8 vertices and 6 quads.  ZS_ERR_ARG,
+ * adding nothing, when lo > hi on some axis (or a bound is NaN); lo == hi
+ * on an axis is allowed (the faces across it have zero area). */
 zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
                      const double xform[16], uint32_t rgb, int32_t obj);
 

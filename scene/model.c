@@ -1,18 +1,17 @@
 /* zscan scene — the model: growable mesh arrays, and the splitting of
  * concave and non-planar polygons into pieces the rasterizer can draw.
  *
- * Every array grows geometrically (doubling), so n appends copy O(n)
+ * Every array grows geometrically (zs_grow: doubling), so n appends copy O(n)
  * elements in all.  A polygon reserves room for its worst case before it
  * writes anything, so an allocation failure leaves the model as it was.
  */
 #include "scene/model.h"
+#include "raster/grow.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-enum { MIN_CAPACITY = 16 };
 
 /* A non-planar polygon is one with a vertex farther than this fraction of
  * its diameter from its Newell plane.  1e-5 keeps whole the quads that are
@@ -41,31 +40,8 @@ void zs_model_free(zs_model *m) {
   zs_model_init(m);
 }
 
-/* The capacity to grow cap to so that need elements fit, or -1 when need
- * cannot be counted in an int32_t (the mesh counts are int32_t). */
-static int32_t grown_capacity(int32_t cap, int64_t need) {
-  if (need > INT32_MAX) return -1;
-  int64_t c = cap < MIN_CAPACITY ? MIN_CAPACITY : cap;
-  while (c < need) c *= 2;
-  return c > INT32_MAX ? INT32_MAX : (int32_t)c;
-}
-
-/* realloc to count elements of elem bytes; NULL (p untouched) on failure,
- * including a size that does not fit in size_t. */
-static void *resize(void *p, size_t count, size_t elem) {
-  if (count > SIZE_MAX / elem) return NULL;
-  return realloc(p, count * elem);
-}
-
 static int reserve_vertices(zs_model *m, int64_t need) {
-  if (need <= m->cap_verts) return 1;
-  int32_t cap = grown_capacity(m->cap_verts, need);
-  if (cap < 0) return 0;
-  double *pos = resize(m->mesh.pos, (size_t)cap, 3 * sizeof *pos);
-  if (!pos) return 0;
-  m->mesh.pos = pos;
-  m->cap_verts = cap;
-  return 1;
+  return zs_grow((void **)&m->mesh.pos, &m->cap_verts, need, 3 * sizeof *m->mesh.pos);
 }
 
 /* Makes room for nfaces faces using nface_verts indices in all.  The
@@ -75,32 +51,22 @@ static int reserve_vertices(zs_model *m, int64_t need) {
 static int reserve_faces(zs_model *m, int64_t nfaces, int64_t nface_verts) {
   zs_mesh *mesh = &m->mesh;
   if (nfaces > m->cap_faces) {
-    int32_t cap = grown_capacity(m->cap_faces, nfaces);
-    if (cap < 0) return 0;
-    int32_t *start = resize(mesh->face_start, (size_t)cap + 1, sizeof *start);
+    /* Each array grows from cap_faces by the same rule to the same
+     * capacity cap; face_start has one entry more, the end of the last
+     * face. */
+    int32_t cap = m->cap_faces, c_id = cap, c_obj = cap;
+    if (!zs_grow((void **)&mesh->face_rgb, &cap, nfaces, sizeof *mesh->face_rgb) ||
+        !zs_grow((void **)&mesh->face_id, &c_id, nfaces, sizeof *mesh->face_id) ||
+        !zs_grow((void **)&m->face_object, &c_obj, nfaces, sizeof *m->face_object))
+      return 0;
+    int32_t *start = realloc(mesh->face_start, ((size_t)cap + 1) * sizeof *start);
     if (!start) return 0;
     if (!mesh->face_start) start[0] = 0;
     mesh->face_start = start;
-    uint32_t *rgb = resize(mesh->face_rgb, (size_t)cap, sizeof *rgb);
-    if (!rgb) return 0;
-    mesh->face_rgb = rgb;
-    int32_t *id = resize(mesh->face_id, (size_t)cap, sizeof *id);
-    if (!id) return 0;
-    mesh->face_id = id;
-    int32_t *obj = resize(m->face_object, (size_t)cap, sizeof *obj);
-    if (!obj) return 0;
-    m->face_object = obj;
     m->cap_faces = cap;
   }
-  if (nface_verts > m->cap_face_verts) {
-    int32_t cap = grown_capacity(m->cap_face_verts, nface_verts);
-    if (cap < 0) return 0;
-    int32_t *fv = resize(mesh->face_vert, (size_t)cap, sizeof *fv);
-    if (!fv) return 0;
-    mesh->face_vert = fv;
-    m->cap_face_verts = cap;
-  }
-  return 1;
+  return zs_grow((void **)&mesh->face_vert, &m->cap_face_verts, nface_verts,
+                 sizeof *mesh->face_vert);
 }
 
 /* The number of vertex indices the faces use so far. */
@@ -139,14 +105,9 @@ int32_t zs_model_object(zs_model *m, const char *name) {
    * one.  The header has no room for an index, so the search is linear. */
   for (int32_t i = m->nobjects - 1; i >= 0; i--)
     if (strcmp(m->object_names[i], name) == 0) return i;
-  if (m->nobjects == m->cap_objects) {
-    int32_t cap = grown_capacity(m->cap_objects, (int64_t)m->nobjects + 1);
-    if (cap < 0) return -1;
-    char **names = resize(m->object_names, (size_t)cap, sizeof *names);
-    if (!names) return -1;
-    m->object_names = names;
-    m->cap_objects = cap;
-  }
+  if (!zs_grow((void **)&m->object_names, &m->cap_objects, (int64_t)m->nobjects + 1,
+               sizeof *m->object_names))
+    return -1;
   char *copy = strdup(name);
   if (!copy) return -1;
   m->object_names[m->nobjects] = copy;
@@ -355,15 +316,13 @@ static int scratch_take(split_scratch *s, void *stack, int n) {
   b += (size_t)n * sizeof(vec3);
   s->q = (vec2 *)b;
   b += (size_t)n * sizeof(vec2);
-  s->dx = (double *)b;
-  b += (size_t)n * sizeof(double);
-  s->dy = (double *)b;
-  b += (size_t)n * sizeof(double);
+  s->dx = (double *)b; /* dx and dy: 2n doubles */
+  s->dy = s->dx + n;
+  b += 2 * (size_t)n * sizeof(double);
   s->v = (int32_t *)b;
   b += (size_t)n * sizeof(int32_t);
-  s->prev = (int *)b;
-  b += (size_t)n * sizeof(int);
-  s->next = (int *)b;
+  s->prev = (int *)b; /* prev and next: 2n ints */
+  s->next = s->prev + n;
   return 1;
 }
 

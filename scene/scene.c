@@ -35,10 +35,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/grow.h"
 #include "raster/raster.h"
 #include "scene/paths.h"
-
-enum { MIN_CAPACITY = 8 };
 
 /* ---- storage ---------------------------------------------------------- */
 
@@ -58,25 +57,9 @@ void zs_scene_free(zs_scene *s) {
   zs_scene_init(s);
 }
 
-/* Grows an array of *cap elements of elem bytes so that one more fits;
- * returns 0 (nothing changed) when out of memory or beyond int32_t. */
-static int grow(void **p, int32_t *cap, int32_t n, size_t elem) {
-  if (n < *cap) return 1;
-  if (n == INT32_MAX) return 0;
-  int64_t c = *cap < MIN_CAPACITY ? MIN_CAPACITY : 2 * (int64_t)*cap;
-  if (c > INT32_MAX) c = INT32_MAX;
-  if ((uint64_t)c > SIZE_MAX / elem) return 0;
-  void *q = realloc(*p, (size_t)c * elem);
-  if (!q) return 0;
-  *p = q;
-  *cap = (int32_t)c;
-  return 1;
-}
-
 int32_t zs_scene_add_mesh(zs_scene *s, zs_model *m) {
-  void *p = s->meshes;
-  if (!grow(&p, &s->cap_meshes, s->nmeshes, sizeof *s->meshes)) return -1;
-  s->meshes = p;
+  if (!zs_grow((void **)&s->meshes, &s->cap_meshes, (int64_t)s->nmeshes + 1, sizeof *s->meshes))
+    return -1;
   s->meshes[s->nmeshes] = *m;
   zs_model_init(m);
   return s->nmeshes++;
@@ -84,9 +67,8 @@ int32_t zs_scene_add_mesh(zs_scene *s, zs_model *m) {
 
 int32_t zs_scene_add_instance(zs_scene *s, int32_t mesh, const double model[16], uint32_t rgb,
                               const char *name) {
-  void *p = s->inst;
-  if (!grow(&p, &s->cap_inst, s->ninst, sizeof *s->inst)) return -1;
-  s->inst = p;
+  if (!zs_grow((void **)&s->inst, &s->cap_inst, (int64_t)s->ninst + 1, sizeof *s->inst))
+    return -1;
   char *copy = strdup(name ? name : "");
   if (!copy) return -1;
   zs_instance *in = &s->inst[s->ninst];

@@ -14,9 +14,9 @@
 #include "cull/parts.h"
 #include "raster/rng.h"
 #include "scene/generate.h"
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "scene/scene.h"
-#include "scene/scenefile.h"
+#include "scene/load_scenefile.h"
 #include "tests/testutil.h"
 
 enum { W = 160, H = 120 };

@@ -3,8 +3,7 @@
  * (the same bytes twice, and a recorded hash of them, so any change of the
  * geometry is noticed); closed, outward-facing meshes; instances inside the
  * bounds; moving spheres staying inside the cube; the camera paths; the
- * parameter errors; the instanced default and cubes scenes against the
- * builtin models.  (How long the big scenes take to load: zscan bench
+ * parameter errors.  (How long the big scenes take to load: zscan bench
  * tradeoff.)
  *
  * When a generator changes on purpose, the recorded counts and hashes
@@ -18,7 +17,6 @@
 
 #include "raster/exactmath.h"
 #include "raster/raster.h"
-#include "scene/builtin.h"
 #include "scene/camera.h"
 #include "scene/generate.h"
 #include "scene/model.h"
@@ -531,72 +529,6 @@ START_TEST(paths) {
 }
 END_TEST
 
-/* ---- the builtin layouts ----------------------------------------------- */
-
-START_TEST(default_matches_builtin) {
-  zs_scene s;
-  load("default", &s);
-  zs_model m;
-  zs_model_init(&m);
-  zs_error err;
-  zs_error_clear(&err);
-  ck_assert_int_eq(zs_builtin_default(&m, &err), ZS_OK);
-  ck_assert_int_eq(s.ninst, m.nobjects);
-  ck_assert_uint_eq(zs_scene_faces(&s), (uint64_t)m.nsource_faces);
-  /* The builtin appends each object's vertices in turn: instance i's
-   * vertices, placed by its matrix, are the builtin's, in order. */
-  int32_t v = 0;
-  for (int32_t i = 0; i < s.ninst; i++) {
-    const zs_instance *in = &s.inst[i];
-    const zs_mesh *me = &s.meshes[in->mesh].mesh;
-    ck_assert_str_eq(in->name, m.object_names[i]);
-    ck_assert_uint_eq(in->id_base, (uint32_t)(i < 9 ? i * 1152 : 9 * 1152));
-    for (int32_t k = 0; k < me->nverts; k++, v++) {
-      const double *p = me->pos + 3 * k, *q = m.mesh.pos + 3 * v;
-      for (int a = 0; a < 3; a++) {
-        double w = in->model[4 * a] * p[0] + in->model[4 * a + 1] * p[1] +
-                   in->model[4 * a + 2] * p[2] + in->model[4 * a + 3];
-        ck_assert_msg(fabs(w - q[a]) <= 1e-12, "%s vertex %d: %.17g, builtin %.17g", in->name,
-                      (int)k, w, q[a]);
-      }
-    }
-    /* Its colour is the builtin's colour for the object's faces. */
-    for (int32_t f = 0; f < m.mesh.nfaces; f++)
-      if (m.face_object[f] == i) {
-        uint32_t rgb = in->rgb == ZS_RGB_MESH ? ZS_BUILTIN_GROUND_RGB : in->rgb;
-        ck_assert_uint_eq(rgb, m.mesh.face_rgb[f]);
-        break;
-      }
-  }
-  ck_assert_int_eq(v, m.mesh.nverts);
-  zs_model_free(&m);
-  zs_scene_free(&s);
-}
-END_TEST
-
-START_TEST(cubes_match_builtin) {
-  zs_scene s;
-  load("cubes?n=3", &s);
-  zs_model m;
-  zs_model_init(&m);
-  ck_assert_int_eq(zs_builtin_cubes(&m, 3, NULL), ZS_OK);
-  ck_assert_int_eq(s.ninst, 27);
-  const zs_mesh *cube = &s.meshes[0].mesh;
-  for (int32_t i = 0; i < s.ninst; i++) {
-    ck_assert_str_eq(s.inst[i].name, m.object_names[i]);
-    ck_assert_uint_eq(s.inst[i].id_base, (uint32_t)(6 * i));
-    ck_assert_uint_eq(s.inst[i].rgb, m.mesh.face_rgb[6 * i]);
-    for (int32_t k = 0; k < 8; k++)
-      for (int a = 0; a < 3; a++) {
-        double w = cube->pos[3 * k + a] + s.inst[i].model[4 * a + 3];
-        ck_assert(w == m.mesh.pos[3 * (8 * i + k) + a]);
-      }
-  }
-  zs_model_free(&m);
-  zs_scene_free(&s);
-}
-END_TEST
-
 /* ---- errors ------------------------------------------------------------ */
 
 static void expect_scene_error(const char *spec, const char *msg) {
@@ -744,8 +676,6 @@ int main(void) {
   tcase_add_test(tc, instances_inside_bounds);
   tcase_add_test(tc, spheres_move_inside_the_cube);
   tcase_add_test(tc, paths);
-  tcase_add_test(tc, default_matches_builtin);
-  tcase_add_test(tc, cubes_match_builtin);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("errors");

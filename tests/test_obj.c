@@ -1,4 +1,4 @@
-/* Tests of scene/model.c (polygon splitting, numbering) and scene/obj.c
+/* Tests of scene/model.c (polygon splitting, numbering) and scene/load_obj.c
  * (the OBJ reader and its error messages). */
 #include <math.h>
 #include <stdio.h>
@@ -8,7 +8,7 @@
 #include "raster/exactmath.h"
 #include "raster/rng.h"
 #include "scene/model.h"
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "tests/testutil.h"
 
 /* ---- helpers ---------------------------------------------------------- */

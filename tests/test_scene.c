@@ -16,13 +16,13 @@
 
 #include "raster/raster.h"
 #include "raster/rng.h"
-#include "scene/assimp_load.h"
-#include "scene/builtin.h"
+#include "scene/load_assimp.h"
+#include "scene/generate.h"
 #include "scene/camera.h"
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "scene/paths.h"
 #include "scene/scene.h"
-#include "scene/scenefile.h"
+#include "scene/load_scenefile.h"
 #include "tests/testutil.h"
 
 #define ASSIMP_MODELS "/usr/share/assimp/models"
@@ -173,7 +173,7 @@ START_TEST(container_ids_and_bounds) {
   zs_model box, sq;
   zs_model_init(&box);
   const double lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
-  ck_assert_int_eq(zs_builtin_box(&box, lo, hi, 0xFF0000, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&box, lo, hi, NULL, 0xFF0000, -1), ZS_OK);
   square_model(&sq);
   ck_assert_int_eq(zs_scene_add_mesh(&s, &box), 0);
   ck_assert_int_eq(zs_scene_add_mesh(&s, &sq), 1);
@@ -320,7 +320,7 @@ START_TEST(container_from_model) {
   zs_model box;
   zs_model_init(&box);
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-  ck_assert_int_eq(zs_builtin_box(&box, lo, hi, 0, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&box, lo, hi, NULL, 0, -1), ZS_OK);
   int32_t bm = zs_scene_add_mesh(&s, &box);
   ck_assert_int_eq(zs_scene_add_instance(&s, bm, NULL, ZS_RGB_MESH, "box"), 3);
   ck_assert_int_eq(zs_scene_finish(&s, &err), ZS_OK);
@@ -360,7 +360,7 @@ static void moving_cube(zs_scene *s, const double model[16], double ax, double a
   zs_model box;
   zs_model_init(&box);
   const double lo[3] = {-0.5, -0.5, -0.5}, hi[3] = {0.5, 0.5, 0.5};
-  ck_assert_int_eq(zs_builtin_box(&box, lo, hi, 0x808080, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&box, lo, hi, NULL, 0x808080, -1), ZS_OK);
   ck_assert_int_eq(zs_scene_add_mesh(s, &box), 0);
   ck_assert_int_eq(zs_scene_add_instance(s, 0, model, ZS_RGB_MESH, "cube"), 0);
   s->inst[0].motion = (zs_motion){1, {ax, ay, az}, speed};
@@ -808,9 +808,9 @@ START_TEST(examples_load_and_render) {
 END_TEST
 
 START_TEST(example_in_header_is_a_file) {
-  /* scenefile.h's example is scene/examples/table.json, line for line */
+  /* load_scenefile.h's example is scene/examples/table.json, line for line */
   size_t hlen, flen;
-  char *h = slurp_src("scene/scenefile.h", &hlen);
+  char *h = slurp_src("scene/load_scenefile.h", &hlen);
   char *f = slurp_src("scene/examples/table.json", &flen);
   char *body = malloc(hlen + 1), *at = strstr(h, "EXAMPLE (scene/examples/table.json)\n");
   ck_assert_ptr_nonnull(at);

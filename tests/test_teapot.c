@@ -1,13 +1,16 @@
-/* Checks of scene/teapot.c and scene/builtin.c: the teapot's data, counts,
- * bounds, orientation and seams; the default scene; the cubes and boxes. */
+/* Checks of scene/teapot.c and the scenes built on it: the teapot's data,
+ * counts, bounds, orientation and seams; the generated default scene and
+ * cubes (scene/gen_default.c, gen_cubes.c); the box primitive. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "raster/raster.h"
-#include "scene/builtin.h"
+#include "scene/gen_internal.h"
+#include "scene/generate.h"
 #include "scene/model.h"
+#include "scene/scene.h"
 #include "scene/teapot.h"
 #include "tests/testutil.h"
 
@@ -396,142 +399,117 @@ START_TEST(test_orientation_closed) {
 }
 END_TEST
 
-/* ---- the default scene ---- */
+/* ---- the generated default scene and cubes ---- */
 
-static void build_default(zs_model *m) {
+static void generate(const char *spec, zs_scene *s) {
   zs_error err;
   zs_error_clear(&err);
-  zs_model_init(m);
-  zs_status st = zs_builtin_default(m, &err);
-  ck_assert_msg(st == ZS_OK, "zs_builtin_default: %s", err.msg);
+  zs_status st = zs_gen_scene(spec, s, &err);
+  ck_assert_msg(st == ZS_OK, "%s: %s", spec, err.msg);
 }
 
 START_TEST(test_default_scene) {
-  zs_model m;
-  build_default(&m);
-  ck_assert_int_eq(m.nobjects, ZS_BUILTIN_DEFAULT_OBJECTS);
-  ck_assert_int_eq(m.nobjects, 10);
+  zs_scene s;
+  generate("default", &s);
+  /* Nine teapots and the ground, instances of one teapot mesh (level 6)
+   * and one box. */
+  ck_assert_int_eq(s.ninst, 10);
+  ck_assert_int_eq(s.nmeshes, 2);
   for (int t = 0; t < 9; t++) {
     char name[32];
     snprintf(name, sizeof name, "teapot_%d", t);
-    ck_assert_str_eq(m.object_names[t], name);
+    ck_assert_str_eq(s.inst[t].name, name);
+    ck_assert_int_eq(s.inst[t].mesh, s.inst[0].mesh);
+    ck_assert_uint_eq(s.inst[t].id_base, (uint32_t)(t * 1152));
   }
-  ck_assert_str_eq(m.object_names[9], "ground");
-  ck_assert_int_eq(m.mesh.nverts, ZS_BUILTIN_DEFAULT_VERTICES);
-  ck_assert_int_eq(m.mesh.nverts, 9 * 1568 + 8);
-  ck_assert_int_eq(m.nsource_faces, ZS_BUILTIN_DEFAULT_FACES);
-  ck_assert_int_eq(m.nsource_faces, 9 * 1152 + 6);
+  const zs_instance *ground = &s.inst[9];
+  ck_assert_str_eq(ground->name, "ground");
+  ck_assert_uint_eq(ground->id_base, 9 * 1152);
+  const zs_model *teapot = &s.meshes[s.inst[0].mesh], *slab = &s.meshes[ground->mesh];
+  ck_assert_int_eq(teapot->mesh.nverts, 1568);
+  ck_assert_int_eq(teapot->nsource_faces, 1152);
+  ck_assert_int_eq(slab->mesh.nverts, 8);
+  ck_assert_int_eq(slab->nsource_faces, 6);
+  ck_assert_uint_eq(zs_scene_faces(&s), 9 * 1152 + 6);
 
-  /* Source faces per object (the pieces of a split face are consecutive
-   * and share its id), and one colour per object, all different. */
-  int faces[10] = {0};
-  uint32_t colour[10] = {0};
-  int32_t last_id = -1;
-  for (int32_t f = 0; f < m.mesh.nfaces; f++) {
-    int32_t o = m.face_object[f];
-    ck_assert(o >= 0 && o < 10);
-    if (faces[o] == 0) colour[o] = m.mesh.face_rgb[f];
-    if (m.mesh.face_id[f] != last_id) faces[o]++;
-    last_id = m.mesh.face_id[f];
-    ck_assert_uint_eq(m.mesh.face_rgb[f], colour[o]);
-  }
-  for (int o = 0; o < 9; o++) ck_assert_int_eq(faces[o], 1152);
-  ck_assert_int_eq(faces[9], 6);
-  ck_assert_uint_eq(colour[9], ZS_BUILTIN_GROUND_RGB);
+  /* One colour per object, all different; the ground keeps its mesh's. */
+  uint32_t colour[10];
+  for (int t = 0; t < 9; t++) colour[t] = s.inst[t].rgb;
+  ck_assert_uint_eq(ground->rgb, ZS_RGB_MESH);
+  colour[9] = slab->mesh.face_rgb[0];
+  ck_assert_uint_eq(colour[9], ZS_GEN_GROUND_RGB);
   for (int a = 0; a < 10; a++)
     for (int b = a + 1; b < 10; b++) ck_assert_uint_ne(colour[a], colour[b]);
 
-  double lo[3], hi[3];
-  ck_assert(zs_model_bounds(&m, lo, hi));
-  ck_assert(lo[0] == -12.0 && hi[0] == 12.0);
-  ck_assert(lo[2] == -12.0 && hi[2] == 12.0);
-  ck_assert(lo[1] == -0.25);
-  ck_assert_double_eq_tol(hi[1], 3.15, 1e-12);
-  zs_model_free(&m);
+  /* The field on the ground: teapot 3 r + c turned about +y and standing
+   * at (8 (c - 1), 0, 8 (r - 1)). */
+  for (int t = 0; t < 9; t++) {
+    const double *m = s.inst[t].model;
+    ck_assert(m[3] == 8.0 * (t % 3 - 1) && m[7] == 0.0 && m[11] == 8.0 * (t / 3 - 1));
+    ck_assert(m[1] == 0.0 && m[4] == 0.0 && m[6] == 0.0 && m[9] == 0.0);
+    ck_assert_double_eq_tol(m[5], 1.0, 1e-15);
+  }
+  ck_assert(s.lo[0] == -12.0 && s.hi[0] == 12.0);
+  ck_assert(s.lo[2] == -12.0 && s.hi[2] == 12.0);
+  ck_assert(s.lo[1] == -0.25);
+  ck_assert_double_eq_tol(s.hi[1], 3.15, 1e-12);
+  zs_scene_free(&s);
 }
 END_TEST
-
-START_TEST(test_default_deterministic) {
-  zs_model a, b;
-  build_default(&a);
-  build_default(&b);
-  const zs_mesh *x = &a.mesh, *y = &b.mesh;
-  ck_assert_int_eq(x->nverts, y->nverts);
-  ck_assert_int_eq(x->nfaces, y->nfaces);
-  size_t npos = sizeof(double) * 3 * (size_t)x->nverts;
-  size_t nfv = sizeof(int32_t) * (size_t)x->face_start[x->nfaces];
-  size_t nf = (size_t)x->nfaces;
-  ck_assert_int_eq(memcmp(x->pos, y->pos, npos), 0);
-  ck_assert_int_eq(memcmp(x->face_start, y->face_start,
-                          sizeof(int32_t) * (nf + 1)), 0);
-  ck_assert_int_eq(memcmp(x->face_vert, y->face_vert, nfv), 0);
-  ck_assert_int_eq(memcmp(x->face_rgb, y->face_rgb, sizeof(uint32_t) * nf), 0);
-  ck_assert_int_eq(memcmp(x->face_id, y->face_id, sizeof(int32_t) * nf), 0);
-  ck_assert_int_eq(memcmp(a.face_object, b.face_object, sizeof(int32_t) * nf),
-                   0);
-  ck_assert_uint_eq(zs_test_fnv1a(x->pos, npos), zs_test_fnv1a(y->pos, npos));
-  ck_assert_uint_eq(zs_test_fnv1a(x->face_vert, nfv),
-                    zs_test_fnv1a(y->face_vert, nfv));
-  zs_model_free(&a);
-  zs_model_free(&b);
-}
-END_TEST
-
-/* ---- cubes and boxes ---- */
 
 START_TEST(test_cubes) {
   const int n = 3;
-  zs_model m;
-  zs_model_init(&m);
-  zs_error err;
-  zs_error_clear(&err);
-  ck_assert_int_eq(zs_builtin_cubes(&m, n, &err), ZS_OK);
-  ck_assert_int_eq(m.nobjects, 27);
-  ck_assert_int_eq(m.nsource_faces, 162);
-  ck_assert_int_eq(m.mesh.nfaces, 162); /* planar convex quads stay whole */
-  ck_assert_int_eq(m.mesh.nverts, 216);
-  for (int i = 0; i < n; i++)
-    for (int j = 0; j < n; j++)
-      for (int k = 0; k < n; k++) {
-        char name[64];
-        snprintf(name, sizeof name, "cube_%d_%d_%d", i, j, k);
-        ck_assert_str_eq(m.object_names[(i * n + j) * n + k], name);
-      }
-  for (int32_t f = 0; f < m.mesh.nfaces; f++) {
-    int32_t o = m.face_object[f];
-    int i = o / (n * n), j = (o / n) % n, k = o % n;
-    double centre[3] = {2.0 * i - (n - 1), 2.0 * j - (n - 1),
-                        2.0 * k - (n - 1)};
+  zs_scene s;
+  generate("cubes?n=3", &s);
+  ck_assert_int_eq(s.ninst, 27);
+  ck_assert_int_eq(s.nmeshes, 1);
+  ck_assert_uint_eq(zs_scene_faces(&s), 162);
+  /* The unit cube: 8 vertices, 6 quads (planar convex quads stay whole),
+   * closed and facing out. */
+  const zs_model *cube = &s.meshes[0];
+  ck_assert_int_eq(cube->mesh.nverts, 8);
+  ck_assert_int_eq(cube->mesh.nfaces, 6);
+  for (int32_t f = 0; f < cube->mesh.nfaces; f++) {
     double nrm[3], c[3];
-    face_normal(&m.mesh, f, nrm, c);
-    double out[3] = {c[0] - centre[0], c[1] - centre[1], c[2] - centre[2]};
-    ck_assert_msg(dot3(nrm, out) > 0.0, "cube face %d faces inward", (int)f);
+    face_normal(&cube->mesh, f, nrm, c);
+    ck_assert_msg(dot3(nrm, c) > 0.0, "cube face %d faces inward", (int)f);
     /* A unit square: Newell's normal has length twice the area. */
     ck_assert_double_eq_tol(sqrt(dot3(nrm, nrm)), 2.0, 1e-12);
-    ck_assert_double_eq_tol(sqrt(dot3(out, out)), 0.5, 1e-12);
+    ck_assert_double_eq_tol(sqrt(dot3(c, c)), 0.5, 1e-12);
   }
-  /* Each cube is closed and consistently oriented. */
-  edge_stats st = weld_edges(&m);
+  edge_stats st = weld_edges(cube);
   ck_assert_int_eq(st.boundary, 0);
   ck_assert_int_eq(st.inconsistent, 0);
   ck_assert_int_eq(st.nonmanifold, 0);
-  ck_assert_int_eq(st.interior, 27 * 12);
-
-  double lo[3], hi[3];
-  ck_assert(zs_model_bounds(&m, lo, hi));
+  ck_assert_int_eq(st.interior, 12);
+  /* Cube (i, j, k): its name, its centre 2 apart from its neighbours',
+   * its id range, a palette colour unlike the next cube's. */
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++)
+      for (int k = 0; k < n; k++) {
+        int o = (i * n + j) * n + k;
+        const zs_instance *in = &s.inst[o];
+        char name[64];
+        snprintf(name, sizeof name, "cube_%d_%d_%d", i, j, k);
+        ck_assert_str_eq(in->name, name);
+        ck_assert(in->model[3] == 2.0 * i - (n - 1) && in->model[7] == 2.0 * j - (n - 1) &&
+                  in->model[11] == 2.0 * k - (n - 1));
+        ck_assert_uint_eq(in->id_base, (uint32_t)(6 * o));
+        ck_assert_uint_eq(in->rgb, zs_gen_palette(o % ZS_GEN_PALETTE_SIZE));
+      }
   for (int a = 0; a < 3; a++) {
-    ck_assert(lo[a] == -2.5);
-    ck_assert(hi[a] == 2.5);
+    ck_assert(s.lo[a] == -2.5);
+    ck_assert(s.hi[a] == 2.5);
   }
-  zs_model_free(&m);
+  zs_scene_free(&s);
 
-  zs_model_init(&m);
-  ck_assert_int_eq(zs_builtin_cubes(&m, 0, &err), ZS_ERR_ARG);
+  zs_error err;
   zs_error_clear(&err);
-  ck_assert_int_eq(zs_builtin_cubes(&m, ZS_BUILTIN_CUBES_MAX + 1, &err),
-                   ZS_ERR_ARG);
-  ck_assert_int_eq(m.nobjects, 0);
-  zs_model_free(&m);
+  ck_assert_int_eq(zs_gen_scene("cubes?n=0", &s, &err), ZS_ERR_ARG);
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_gen_scene("cubes?n=65", &s, &err), ZS_ERR_ARG);
+  ck_assert_int_eq(s.ninst, 0);
+  zs_scene_free(&s);
 }
 END_TEST
 
@@ -539,7 +517,7 @@ START_TEST(test_box) {
   zs_model m;
   zs_model_init(&m);
   const double lo[3] = {-1.0, 2.0, 3.0}, hi[3] = {4.0, 5.0, 3.5};
-  ck_assert_int_eq(zs_builtin_box(&m, lo, hi, 0xABCDEFu, -1), ZS_OK);
+  ck_assert_int_eq(zs_gen_box(&m, lo, hi, NULL, 0xABCDEFu, -1), ZS_OK);
   ck_assert_int_eq(m.mesh.nverts, 8);
   ck_assert_int_eq(m.nsource_faces, 6);
   ck_assert_int_eq(m.mesh.nfaces, 6);
@@ -559,9 +537,9 @@ START_TEST(test_box) {
     for (int a = 0; a < 3; a++)
       ck_assert(m.mesh.pos[3 * b + a] == ((b >> a) & 1 ? hi[a] : lo[a]));
   const double bad[3] = {-1.0, 6.0, 3.0};
-  ck_assert_int_eq(zs_builtin_box(&m, bad, hi, 0, -1), ZS_ERR_ARG);
+  ck_assert_int_eq(zs_gen_box(&m, bad, hi, NULL, 0, -1), ZS_ERR_ARG);
   const double nan_lo[3] = {NAN, 0.0, 0.0};
-  ck_assert_int_eq(zs_builtin_box(&m, nan_lo, hi, 0, -1), ZS_ERR_ARG);
+  ck_assert_int_eq(zs_gen_box(&m, nan_lo, hi, NULL, 0, -1), ZS_ERR_ARG);
   ck_assert_int_eq(m.mesh.nverts, 8);
   zs_model_free(&m);
 }
@@ -578,9 +556,8 @@ static Suite *suite(void) {
   tcase_add_test(tc, test_orientation_body);
   tcase_add_test(tc, test_orientation_closed);
   suite_add_tcase(s, tc);
-  TCase *tb = tcase_create("builtin");
+  TCase *tb = tcase_create("generated");
   tcase_add_test(tb, test_default_scene);
-  tcase_add_test(tb, test_default_deterministic);
   tcase_add_test(tb, test_cubes);
   tcase_add_test(tb, test_box);
   suite_add_tcase(s, tb);

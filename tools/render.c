@@ -12,7 +12,7 @@
 #include "cull/octree.h"
 #include "raster/raster.h"
 #include "raster/exactmath.h"
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
 #include "scene/camera.h"
 #include "scene/model.h"
 #include "tools/cli.h"

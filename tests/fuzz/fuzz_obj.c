@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   zs_model m;

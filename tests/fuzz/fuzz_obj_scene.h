@@ -5,7 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "scene/obj.h"
+#include "scene/load_obj.h"
 #include "scene/scene.h"
 
 /* The scene of the OBJ text data[0 .. size - 1], its objects and groups as

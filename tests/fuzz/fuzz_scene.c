@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scenefile.h"
+#include "scene/load_scenefile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   zs_scene s;

@@ -34,8 +34,8 @@
  * A build without assimp (ZS_HAVE_ASSIMP undefined) refuses every file
  * with "FILE: this build reads only .obj (built without assimp)".
  */
-#ifndef ZS_SCENE_ASSIMP_LOAD_H
-#define ZS_SCENE_ASSIMP_LOAD_H
+#ifndef ZS_SCENE_LOAD_ASSIMP_H
+#define ZS_SCENE_LOAD_ASSIMP_H
 
 #include "raster/error.h"
 #include "scene/model.h"

@@ -33,8 +33,8 @@
  * line for errors in a library) or "FILE: cannot open: reason".  Lines
  * longer than ZS_OBJ_LINE_MAX bytes and NUL bytes are refused.
  */
-#ifndef ZS_SCENE_OBJ_H
-#define ZS_SCENE_OBJ_H
+#ifndef ZS_SCENE_LOAD_OBJ_H
+#define ZS_SCENE_LOAD_OBJ_H
 
 #include <stddef.h>
 

@@ -1,4 +1,4 @@
-/* zscan scene — the Wavefront OBJ reader (see obj.h for what is read).
+/* zscan scene — the Wavefront OBJ reader (see load_obj.h for what is read).
  *
  * The text is read line by line: each line is checked (length, NUL bytes),
  * copied into a NUL-terminated buffer with its comment cut off, and split
@@ -10,7 +10,9 @@
  * number of its usemtl name (0: none), and once every library is loaded
  * those numbers are replaced by the materials' colours.
  */
-#include "scene/obj.h"
+#include "scene/load_obj.h"
+#include "raster/grow.h"
+#include "scene/load_common.h"
 #include "scene/text.h"
 
 #include <errno.h>
@@ -170,7 +172,8 @@ static int scan_index(const char **s, long long *out) {
 typedef struct name_list {
   char **names;
   uint32_t *rgb;
-  size_t n, cap;
+  size_t n;
+  int32_t cap;
 } name_list;
 
 static void names_free(name_list *l) {
@@ -189,16 +192,11 @@ static long names_find(const name_list *l, const char *name) {
 
 /* Appends name with colour rgb; returns its index, -1 when out of memory. */
 static long names_add(name_list *l, const char *name, uint32_t rgb) {
-  if (l->n == l->cap) {
-    size_t cap = l->cap ? 2 * l->cap : 16;
-    char **names = realloc(l->names, cap * sizeof *names);
-    if (!names) return -1;
-    l->names = names;
-    uint32_t *c = realloc(l->rgb, cap * sizeof *c);
-    if (!c) return -1;
-    l->rgb = c;
-    l->cap = cap;
-  }
+  /* names and rgb grow alike from cap; cap is raised with the last. */
+  int32_t names_cap = l->cap;
+  if (!zs_grow((void **)&l->names, &names_cap, (int64_t)l->n + 1, sizeof *l->names) ||
+      !zs_grow((void **)&l->rgb, &l->cap, (int64_t)l->n + 1, sizeof *l->rgb))
+    return -1;
   char *copy = strdup(name);
   if (!copy) return -1;
   l->names[l->n] = copy;
@@ -258,62 +256,6 @@ static zs_status parse_mtl(const char *text, size_t len, const char *name,
   return st;
 }
 
-typedef enum read_result {
-  READ_OK, READ_NO_OPEN, READ_FAILED, READ_NOMEM, READ_TOO_LARGE
-} read_result;
-
-/* Reads the whole file at path into a malloc'd buffer (*errnum: errno). */
-static read_result read_file(const char *path, char **data, size_t *len,
-                             int *errnum) {
-  *data = NULL;
-  *len = 0;
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    *errnum = errno;
-    return READ_NO_OPEN;
-  }
-  /* a regular file says its size: refuse it before allocating anything */
-  struct stat st;
-  if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) &&
-      (uint64_t)st.st_size > (uint64_t)ZS_OBJ_MAX_BYTES) {
-    fclose(f);
-    return READ_TOO_LARGE;
-  }
-  size_t cap = 1 << 16, n = 0;
-  char *buf = malloc(cap);
-  read_result res = buf ? READ_OK : READ_NOMEM;
-  while (res == READ_OK) {
-    if (n == cap) {
-      if (cap >= ZS_OBJ_MAX_BYTES) { /* a pipe that goes on and on */
-        res = READ_TOO_LARGE;
-        break;
-      }
-      char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, 2 * cap) : NULL;
-      if (!bigger) {
-        res = READ_NOMEM;
-        break;
-      }
-      buf = bigger;
-      cap *= 2;
-    }
-    n += fread(buf + n, 1, cap - n, f);
-    if (ferror(f)) {
-      *errnum = errno;
-      res = READ_FAILED;
-    } else if (feof(f)) {
-      break;
-    }
-  }
-  fclose(f);
-  if (res != READ_OK) {
-    free(buf);
-    return res;
-  }
-  *data = buf;
-  *len = n;
-  return READ_OK;
-}
-
 /* ---- the OBJ file ----------------------------------------------------- */
 
 typedef struct obj_parser {
@@ -328,7 +270,7 @@ typedef struct obj_parser {
   name_list mtl;   /* materials defined by the libraries */
   name_list used;  /* material names given to usemtl */
   int32_t *idx;    /* the corners of the face being read */
-  int cap_idx;
+  int32_t cap_idx;
 } obj_parser;
 
 static zs_status out_of_memory(obj_parser *p) {
@@ -399,13 +341,9 @@ static zs_status parse_face_vertex(obj_parser *p, const char *w,
 static zs_status parse_face(obj_parser *p) {
   int n = 0;
   for (char *w; (w = next_word(&p->r)) != NULL; n++) {
-    if (n == p->cap_idx) { /* a face may have any number of corners */
-      int cap = p->cap_idx ? 2 * p->cap_idx : 64;
-      int32_t *bigger = realloc(p->idx, (size_t)cap * sizeof *bigger);
-      if (!bigger) return out_of_memory(p);
-      p->idx = bigger;
-      p->cap_idx = cap;
-    }
+    /* a face may have any number of corners */
+    if (!zs_grow((void **)&p->idx, &p->cap_idx, (int64_t)n + 1, sizeof *p->idx))
+      return out_of_memory(p);
     zs_status st = parse_face_vertex(p, w, &p->idx[n]);
     if (st != ZS_OK) return st;
   }
@@ -441,29 +379,13 @@ static zs_status load_mtl(obj_parser *p, const char *file) {
   if (slash) path[dlen] = '/';
   memcpy(path + dlen + slash, file, flen + 1);
 
+  /* A missing library is not an error: its faces stay grey. */
   char *text;
   size_t len;
-  int errnum = 0;
-  zs_status st = ZS_OK;
-  switch (read_file(path, &text, &len, &errnum)) {
-  case READ_OK:
-    st = parse_mtl(text, len, path, &p->mtl, p->r.err);
-    free(text);
-    break;
-  case READ_NO_OPEN:
-    break; /* a missing library is not an error: its faces stay grey */
-  case READ_FAILED:
-    st = zs_error_set(p->r.err, ZS_ERR_IO, "%s: read error: %s", path,
-                      strerror(errnum));
-    break;
-  case READ_NOMEM:
-    st = out_of_memory(p);
-    break;
-  case READ_TOO_LARGE:
-    st = zs_error_set(p->r.err, ZS_ERR_LIMIT, "%s: larger than %zu MiB", path,
-                      ZS_OBJ_MAX_BYTES >> 20);
-    break;
-  }
+  zs_status st = zs_load_file(path, path, (long long)ZS_OBJ_MAX_BYTES, ZS_LOAD_MISSING_OK, &text,
+                              &len, p->r.err);
+  if (st == ZS_OK && text) st = parse_mtl(text, len, path, &p->mtl, p->r.err);
+  free(text);
   free(path);
   return st;
 }
@@ -573,40 +495,13 @@ zs_status zs_obj_parse(const char *text, size_t len, const char *name,
   return st;
 }
 
+static zs_status parse_obj(const char *text, size_t len, const char *name, const char *dir,
+                           void *out, zs_error *err) {
+  return zs_obj_parse(text, len, name, dir, out, err);
+}
+
 zs_status zs_obj_load(const char *path, zs_model *out, zs_error *err) {
   zs_model_init(out);
-  char *text;
-  size_t len;
-  int errnum = 0;
-  switch (read_file(path, &text, &len, &errnum)) {
-  case READ_OK:
-    break;
-  case READ_NO_OPEN:
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", path,
-                        strerror(errnum));
-  case READ_FAILED:
-    return zs_error_set(err, ZS_ERR_IO, "%s: read error: %s", path,
-                        strerror(errnum));
-  case READ_NOMEM:
-    return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  case READ_TOO_LARGE:
-    return zs_error_set(err, ZS_ERR_LIMIT, "%s: larger than %zu MiB", path,
-                        ZS_OBJ_MAX_BYTES >> 20);
-  }
-  /* Material libraries live next to the file: dir is path up to its last
-   * '/' ("/" for a file in the root, "" for a bare file name). */
-  const char *slash = strrchr(path, '/');
-  size_t dlen = slash ? (size_t)(slash - path) + (slash == path) : 0;
-  char *dir = malloc(dlen + 1);
-  zs_status st;
-  if (!dir) {
-    st = zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  } else {
-    memcpy(dir, path, dlen);
-    dir[dlen] = '\0';
-    st = zs_obj_parse(text, len, path, dir, out, err);
-  }
-  free(dir);
-  free(text);
-  return st;
+  /* Material libraries live next to the file. */
+  return zs_load_parsed(path, (long long)ZS_OBJ_MAX_BYTES, 0, parse_obj, out, err);
 }

@@ -1,4 +1,4 @@
-/* zscan scene — scene files (see scenefile.h for the format).
+/* zscan scene — scene files (see load_scenefile.h for the format).
  *
  * The text is parsed whole by cJSON, then walked with a "reader" that
  * knows the JSON path of the value in hand (instances[3].transform.scale)
@@ -7,7 +7,7 @@
  * values are read, so a misspelt key is reported as such rather than as
  * a missing one.
  */
-#include "scene/scenefile.h"
+#include "scene/load_scenefile.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -20,16 +20,11 @@
 #include <sys/stat.h>
 
 #include "raster/raster.h"
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
 #include "scene/generate.h"
-#include "scene/obj.h"
+#include "scene/load_common.h"
+#include "scene/load_obj.h"
 #include "scene/paths.h"
-
-#if defined(__GNUC__)
-#define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define PRINTF_LIKE(f, a)
-#endif
 
 enum {
   PATH_MAX_CHARS = 256, /* of a JSON path in messages */
@@ -38,19 +33,8 @@ enum {
 
 /* ---- the reader: file name, JSON path, errors ------------------------- */
 
-/* Sets err to the message with every control character written as a
- * space, so that a newline inside a JSON string or key, echoed back,
- * cannot break the message into two lines. */
-static zs_status PRINTF_LIKE(3, 4) set_error(zs_error *err, zs_status code, const char *fmt, ...) {
-  char msg[ZS_ERROR_MSG_MAX];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
-  va_end(ap);
-  for (char *c = msg; *c; c++)
-    if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = ' ';
-  return zs_error_set(err, code, "%s", msg);
-}
+/* Messages go through zs_load_error and zs_load_verror: a newline inside
+ * a JSON string or key, echoed back, cannot break one into two lines. */
 
 typedef struct reader {
   const char *name; /* the scene file, for messages */
@@ -61,14 +45,15 @@ typedef struct reader {
 } reader;
 
 /* Sets err to "NAME: PATH: reason" ("NAME: reason" at the top level). */
-static zs_status PRINTF_LIKE(3, 4) fail(reader *r, zs_status code, const char *fmt, ...) {
-  char why[ZS_ERROR_MSG_MAX];
+static zs_status ZS_PRINTF_LIKE(3, 4) fail(reader *r, zs_status code, const char *fmt, ...) {
+  char prefix[ZS_ERROR_MSG_MAX];
+  if (r->plen == 0) snprintf(prefix, sizeof prefix, "%s: ", r->name);
+  else snprintf(prefix, sizeof prefix, "%s: %s: ", r->name, r->path);
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(why, sizeof why, fmt, ap);
+  zs_status st = zs_load_verror(r->err, code, 0, prefix, fmt, ap);
   va_end(ap);
-  if (r->plen == 0) return set_error(r->err, code, "%s: %s", r->name, why);
-  return set_error(r->err, code, "%s: %s: %s", r->name, r->path, why);
+  return st;
 }
 
 /* Appends ".key" (or "key" at the top) to the path; returns the length to
@@ -174,28 +159,27 @@ static zs_status get_member(reader *r, const cJSON *obj, const char *key, int re
 
 /* The get_ functions read the member key of obj with the path set to it;
  * *given (when not NULL) says whether it was there. */
-static zs_status get_number(reader *r, const cJSON *obj, const char *key, int required, double *out,
-                            int *given) {
+/* n = 0: one number; else an array of n numbers. */
+static zs_status get_numbers(reader *r, const cJSON *obj, const char *key, int required, int n,
+                             double *out, int *given) {
   const cJSON *v;
   zs_status st = get_member(r, obj, key, required, &v);
   if (given) *given = v != NULL;
   if (st != ZS_OK || !v) return st;
   size_t mark = push_key(r, key);
-  st = read_number(r, v, out);
+  st = n == 0 ? read_number(r, v, out) : read_numbers(r, v, n, out);
   if (st == ZS_OK) pop(r, mark);
   return st;
 }
 
+static zs_status get_number(reader *r, const cJSON *obj, const char *key, int required, double *out,
+                            int *given) {
+  return get_numbers(r, obj, key, required, 0, out, given);
+}
+
 static zs_status get_vec3(reader *r, const cJSON *obj, const char *key, int required, double out[3],
                           int *given) {
-  const cJSON *v;
-  zs_status st = get_member(r, obj, key, required, &v);
-  if (given) *given = v != NULL;
-  if (st != ZS_OK || !v) return st;
-  size_t mark = push_key(r, key);
-  st = read_numbers(r, v, 3, out);
-  if (st == ZS_OK) pop(r, mark);
-  return st;
+  return get_numbers(r, obj, key, required, 3, out, given);
 }
 
 static zs_status get_int(reader *r, const cJSON *obj, const char *key, int required, double lo,
@@ -222,7 +206,7 @@ static zs_status get_string(reader *r, const cJSON *obj, const char *key, int re
 }
 
 /* Fails with the path set to member key of the object at the path. */
-static zs_status PRINTF_LIKE(4, 5)
+static zs_status ZS_PRINTF_LIKE(4, 5)
     fail_at(reader *r, const char *key, zs_status code, const char *fmt, ...) {
   char why[ZS_ERROR_MSG_MAX];
   va_list ap;
@@ -287,45 +271,6 @@ static int table_add(name_table *t, const char *name, int32_t index) {
 }
 
 /* ---- files ------------------------------------------------------------ */
-
-/* Reads a whole file of at most ZS_SCENEFILE_MAX_BYTES; on failure err is
- * set to "SHOWN: reason" (SHOWN is prefix and path as to be printed). */
-static zs_status read_whole_file(const char *path, const char *shown, char **data, size_t *len,
-                                 zs_error *err) {
-  *data = NULL;
-  *len = 0;
-  FILE *f = fopen(path, "rb");
-  if (!f) return set_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(errno));
-  struct stat st;
-  zs_status res = ZS_OK;
-  if (fstat(fileno(f), &st) != 0)
-    res = set_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(errno));
-  else if (!S_ISREG(st.st_mode)) res = set_error(err, ZS_ERR_IO, "%s: not a regular file", shown);
-  else if ((long long)st.st_size > ZS_SCENEFILE_MAX_BYTES)
-    res = set_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", shown,
-                    ZS_SCENEFILE_MAX_BYTES >> 20);
-  char *buf = NULL;
-  size_t n = 0;
-  if (res == ZS_OK) {
-    /* read one byte more than the size, so a file that grew is noticed */
-    size_t cap = (size_t)st.st_size + 1;
-    buf = malloc(cap + 1);
-    if (!buf) res = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", shown);
-    else n = fread(buf, 1, cap, f);
-    if (res == ZS_OK && ferror(f))
-      res = set_error(err, ZS_ERR_IO, "%s: read error: %s", shown, strerror(errno));
-    else if (res == ZS_OK && n > (size_t)st.st_size)
-      res = set_error(err, ZS_ERR_IO, "%s: changed while being read", shown);
-  }
-  fclose(f);
-  if (res != ZS_OK) {
-    free(buf);
-    return res;
-  }
-  *data = buf;
-  *len = n;
-  return ZS_OK;
-}
 
 /* The size of the file at path, or -1 when it cannot be found out (the
  * loader then says why it cannot open it). */
@@ -929,20 +874,22 @@ static void line_col(const char *text, size_t pos, long *line, long *col) {
   *col = (long)(pos - start) + 1;
 }
 
-zs_status zs_scenefile_parse(const char *text, size_t len, const char *name, const char *dir,
-                             zs_scene *out, zs_error *err) {
+/* zs_scenefile_parse, in the form of zs_load_parser. */
+static zs_status parse_scene(const char *text, size_t len, const char *name, const char *dir,
+                             void *scene, zs_error *err) {
+  zs_scene *out = scene;
   zs_scene_init(out);
   if ((unsigned long long)len > (unsigned long long)ZS_SCENEFILE_MAX_BYTES)
-    return set_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", name,
-                     ZS_SCENEFILE_MAX_BYTES >> 20);
+    return zs_load_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", name,
+                         ZS_SCENEFILE_MAX_BYTES >> 20);
   long line, col;
   const char *nul = memchr(text, '\0', len);
   if (nul) {
     line_col(text, (size_t)(nul - text), &line, &col);
-    return set_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: NUL byte", name, line, col);
+    return zs_load_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: NUL byte", name, line, col);
   }
   char *buf = malloc(len + 1);
-  if (!buf) return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", name);
+  if (!buf) return zs_load_error(err, ZS_ERR_NOMEM, "%s: out of memory", name);
   memcpy(buf, text, len);
   buf[len] = '\0';
   const char *end = NULL;
@@ -951,7 +898,7 @@ zs_status zs_scenefile_parse(const char *text, size_t len, const char *name, con
   if (!root) {
     size_t pos = end && end >= buf && end <= buf + len ? (size_t)(end - buf) : len;
     line_col(buf, pos, &line, &col);
-    st = set_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: invalid JSON", name, line, col);
+    st = zs_load_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: invalid JSON", name, line, col);
   } else {
     reader r = {name, dir, "", 0, err};
     st = read_scene(&r, root, out);
@@ -962,25 +909,13 @@ zs_status zs_scenefile_parse(const char *text, size_t len, const char *name, con
   return st;
 }
 
+zs_status zs_scenefile_parse(const char *text, size_t len, const char *name, const char *dir,
+                             zs_scene *out, zs_error *err) {
+  return parse_scene(text, len, name, dir, out, err);
+}
+
 zs_status zs_scenefile_load(const char *path, zs_scene *out, zs_error *err) {
   zs_scene_init(out);
-  char *text;
-  size_t len;
-  zs_status st = read_whole_file(path, path, &text, &len, err);
-  if (st != ZS_OK) return st;
-  /* mesh files live next to the scene file: dir is path up to its last
-   * '/' ("/" for a file in the root, "" for a bare file name) */
-  const char *slash = strrchr(path, '/');
-  size_t dlen = slash ? (size_t)(slash - path) + (slash == path) : 0;
-  char *dir = malloc(dlen + 1);
-  if (!dir) {
-    st = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  } else {
-    memcpy(dir, path, dlen);
-    dir[dlen] = '\0';
-    st = zs_scenefile_parse(text, len, path, dir, out, err);
-  }
-  free(dir);
-  free(text);
-  return st;
+  /* mesh files live next to the scene file */
+  return zs_load_parsed(path, ZS_SCENEFILE_MAX_BYTES, ZS_LOAD_REGULAR_ONLY, parse_scene, out, err);
 }

@@ -1,4 +1,4 @@
-/* zscan scene — models through assimp (see assimp_load.h for what is read
+/* zscan scene — models through assimp (see load_assimp.h for what is read
  * and what is refused).
  *
  * assimp trusts the counts in a file's header: its OFF and ASCII PLY
@@ -9,7 +9,8 @@
  * checked again before it enters a zs_model: finite coordinates, indices in
  * range, sizes within limits.
  */
-#include "scene/assimp_load.h"
+#include "scene/load_assimp.h"
+#include "scene/load_common.h"
 
 #include <errno.h>
 #include <math.h>
@@ -62,16 +63,11 @@ static zs_status
     __attribute__((format(printf, 3, 4)))
 #endif
     set_error(zs_error *err, zs_status code, const char *fmt, ...) {
-  char msg[ZS_ERROR_MSG_MAX];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  zs_status st = zs_load_verror(err, code, 1, NULL, fmt, ap);
   va_end(ap);
-  size_t n = strlen(msg);
-  for (size_t i = 0; i < n; i++)
-    if ((unsigned char)msg[i] < 0x20 || msg[i] == 0x7f) msg[i] = ' ';
-  while (n > 0 && msg[n - 1] == ' ') msg[--n] = '\0';
-  return zs_error_set(err, code, "%s", msg);
+  return st;
 }
 
 /* ---- header checks ---------------------------------------------------- */
@@ -229,28 +225,6 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
   return ZS_OK;
 }
 
-/* Opens path, checks that it is a regular file within the size limit, and
- * reads its first bytes. */
-static zs_status read_head(const char *path, file_head *h, zs_error *err) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return set_error(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-  struct stat st;
-  zs_status res = ZS_OK;
-  if (fstat(fileno(f), &st) != 0)
-    res = set_error(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-  else if (!S_ISREG(st.st_mode)) res = set_error(err, ZS_ERR_IO, "%s: not a regular file", path);
-  else if ((long long)st.st_size > ZS_ASSIMP_MAX_BYTES)
-    res = set_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", path, ZS_ASSIMP_MAX_BYTES >> 20);
-  if (res == ZS_OK) {
-    h->size = (uint64_t)st.st_size;
-    h->len = fread(h->text, 1, HEADER_BYTES, f);
-    h->text[h->len] = '\0';
-    if (ferror(f)) res = set_error(err, ZS_ERR_IO, "%s: read error: %s", path, strerror(errno));
-  }
-  fclose(f);
-  return res;
-}
-
 /* ---- the scene -------------------------------------------------------- */
 
 typedef struct loader {
@@ -392,7 +366,8 @@ static zs_status import_checked(const char *path, unsigned flags, const struct a
   *sc = NULL;
   file_head *h = malloc(sizeof *h);
   if (!h) return set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-  zs_status st = read_head(path, h, err);
+  zs_status st =
+      zs_load_head(path, ZS_ASSIMP_MAX_BYTES, h->text, HEADER_BYTES, &h->len, &h->size, err);
   if (st == ZS_OK) st = check_header(path, h, err);
   free(h);
   if (st != ZS_OK) return st;

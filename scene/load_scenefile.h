@@ -34,8 +34,8 @@
  *                non-empty "name" and exactly one of
  *                  "file": a path, relative to the scene file's directory
  *                          (absolute paths are taken as they are): .obj
- *                          through scene/obj.h, any other extension through
- *                          assimp (scene/assimp_load.h); at most
+ *                          through scene/load_obj.h, any other extension
+ *                          through assimp (scene/load_assimp.h); at most
  *                          ZS_SCENEFILE_MAX_BYTES; the file must have faces.
  *                  "generator": a mesh of scene/generate.h; the object's
  *                          other keys are its parameters, numbers or strings,
@@ -103,8 +103,8 @@
  * Syntax errors give the line and column (in bytes, from 1) where cJSON
  * stopped.
  */
-#ifndef ZS_SCENE_SCENEFILE_H
-#define ZS_SCENE_SCENEFILE_H
+#ifndef ZS_SCENE_LOAD_SCENEFILE_H
+#define ZS_SCENE_LOAD_SCENEFILE_H
 
 #include <stddef.h>
 
