@@ -8,8 +8,15 @@
  *              tested and written; enough layers that a frame fills at
  *              least 8 M pixels and draws at least 200,000 triangles (or
  *              64 layers);
+ *   random     triangles of one size (right isosceles, legs of S pixels, S
+ *              = 4, 10, 25, 100) at seeded random places and turns, each at
+ *              its own depth, drawn back to front (every one written) and
+ *              front to back (most of them hidden), as Masked Occlusion
+ *              Culling's fill-rate test draws them: 200,000 a frame, or
+ *              fewer for 16 M pixels;
  *   scenes     whole scenes from their own cameras: teapots, city, plant,
- *              and a teapot field of about a million triangles.
+ *              a teapot field of about a million triangles, and small
+ *              models of a few thousand triangles at full size.
  * It reports ms per frame, million triangles per second and million pixels
  * tested per second, and writes a CSV, a Markdown table and a plot. */
 #define _GNU_SOURCE /* pthread_setaffinity_np, sched_getaffinity: the ceiling of --speedup */
@@ -22,7 +29,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/exactmath.h"
 #include "raster/raster.h"
+#include "raster/rng.h"
 #include "scene/scene.h"
 #include "tools/callgrind.h"
 #include "tools/cli.h"
@@ -58,7 +67,10 @@ static const char usage[] =
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
 static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
-                                     "builtin:default?level=42"};
+                                     "builtin:default?level=42", "builtin:teapots?count=4",
+                                     "builtin:spheres?count=4"};
+static const int random_sides[] = {4, 10, 25, 100};
+enum { NRANDOM = 2 * sizeof random_sides / sizeof random_sides[0] };
 enum { NSCENES = sizeof scenes / sizeof scenes[0] };
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
@@ -142,6 +154,58 @@ static zs_status tiling_make(int side, int w, int h, tiling *t, zs_error *err) {
   }
   zs_mat_identity(t->view);
   zs_mat_ortho(t->proj, 0.0, w, 0.0, h, 0.5, layers + 1.0);
+  return ZS_OK;
+}
+
+/* Random triangles: n right isosceles triangles with legs of `side`
+ * pixels, each turned about its centroid by a random angle and placed at
+ * a random point of the window (seeded: the same every run), triangle k
+ * at depth k from the far plane (back to front) or from the near one
+ * (front to back), all in one mesh drawn in order: the sorted tables are
+ * walked across memory, not in the order the triangles lie. */
+static zs_status random_make(int side, int front_to_back, int w, int h, tiling *t,
+                             zs_error *err) {
+  zs_scene_init(&t->scene);
+  const double area = 0.5 * side * side;
+  int n = (int)(16e6 / area);
+  n = n > 200000 ? 200000 : n < 2000 ? 2000 : n;
+  zs_rng rng;
+  zs_rng_seed(&rng, 0x7A11u + (uint64_t)side);
+  zs_model m;
+  zs_model_init(&m);
+  zs_status st = ZS_OK;
+  /* the corners about the centroid, before the turn */
+  const double corner[3][2] = {{-side / 3.0, -side / 3.0},
+                               {2.0 * side / 3.0, -side / 3.0},
+                               {-side / 3.0, 2.0 * side / 3.0}};
+  for (int k = 0; k < n && !st; k++) {
+    const double cx = zs_rng_range(&rng, 0.0, w), cy = zs_rng_range(&rng, 0.0, h);
+    double s, c;
+    zs_sincos_turns(zs_rng_uniform(&rng), &s, &c);
+    const double z = front_to_back ? -(double)(k + 1) : -(double)(n - k);
+    int32_t v[3];
+    for (int i = 0; i < 3; i++) {
+      const double x = corner[i][0] * c - corner[i][1] * s, y = corner[i][0] * s + corner[i][1] * c;
+      if ((v[i] = zs_model_add_vertex(&m, cx + x, cy + y, z)) < 0) st = ZS_ERR_NOMEM;
+    }
+    if (!st && zs_model_add_polygon(&m, v, 3, 0x808080, -1)) st = ZS_ERR_NOMEM;
+  }
+  int32_t mesh = st ? -1 : zs_scene_add_mesh(&t->scene, &m);
+  zs_model_free(&m);
+  double model[16];
+  zs_mat_identity(model);
+  if (!st && (mesh < 0 || zs_scene_add_instance(&t->scene, mesh, model, 0x808080, "random") < 0))
+    st = ZS_ERR_NOMEM;
+  if (st) {
+    zs_scene_free(&t->scene);
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  if ((st = zs_scene_finish(&t->scene, err))) {
+    zs_scene_free(&t->scene);
+    return st;
+  }
+  zs_mat_identity(t->view);
+  zs_mat_ortho(t->proj, 0.0, w, 0.0, h, 0.5, n + 1.0);
   return ZS_OK;
 }
 
@@ -255,6 +319,7 @@ static void write_mesa_table(FILE *f, const mesa_row *rows, int n, const bench_o
  * included.  A speed-up near its ceiling leaves nothing to the code. */
 typedef struct speedup_row {
   const char *name;
+  const char *algo;
   double one_ms, many_ms;     /* medians */
   double ratio[3];            /* the pairs' ratios: lower quartile, median, upper quartile */
   int same;                   /* the same faces and depths in every pixel */
@@ -327,9 +392,30 @@ static zs_status render_on_each_cpu(pinned_frame *pf, int n, int *pinned, zs_err
   return ZS_OK;
 }
 
-static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const char *name,
-                                 const double view[16], const double proj[16], double *ms,
-                                 speedup_row *r, zs_error *err) {
+/* Whether the devices' last frames (rendered once more, into images with
+ * depth) are the same to the byte. */
+static zs_status same_frames(zs_device *dev[2], const zs_scene *s, const double view[16],
+                             const double proj[16], int *same, zs_error *err) {
+  const zs_device_config *cfg = zs_device_config_of(dev[0]);
+  const size_t px = (size_t)cfg->width * (size_t)cfg->height;
+  zs_image im[2] = {{0, 0, NULL}, {0, 0, NULL}};
+  float *depth[2] = {malloc(px * sizeof(float)), malloc(px * sizeof(float))};
+  zs_status st = depth[0] && depth[1] ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  for (int d = 0; d < 2 && !st; d++)
+    if (!(st = zs_image_alloc(&im[d], cfg->width, cfg->height, err)))
+      st = zs_frame_render_on(dev[d], s, view, proj, 0, &im[d], depth[d], err);
+  *same = !st && memcmp(im[0].rgb, im[1].rgb, px * sizeof *im[0].rgb) == 0 &&
+          memcmp(depth[0], depth[1], px * sizeof(float)) == 0;
+  for (int d = 0; d < 2; d++) {
+    zs_image_free(&im[d]);
+    free(depth[d]);
+  }
+  return st;
+}
+
+static zs_status compare_threads(const bench_opts *o, zs_algo algo, const zs_scene *s,
+                                 const char *name, const double view[16], const double proj[16],
+                                 double *ms, speedup_row *r, zs_error *err) {
   const int w = o->width, h = o->height, n = o->threads;
   double *many = malloc((size_t)o->repeat * sizeof *many);
   double *ratio = malloc((size_t)o->repeat * sizeof *ratio);
@@ -345,11 +431,11 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
                      ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory")
                      : ZS_OK;
   for (int d = 0; d < 2 && !st; d++) {
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, d ? n : 1, 0, spans_of(o)};
+    zs_device_config cfg = {w, h, algo, ZS_SHADE_FLAT, 0, d ? n : 1, 0, spans_of(o)};
     st = zs_device_create(&cfg, &dev[d], err);
   }
   for (int i = 0; i < n && pinned && !st; i++) {
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0, spans_of(o)};
+    zs_device_config cfg = {w, h, algo, ZS_SHADE_FLAT, 0, 1, 0, spans_of(o)};
     st = zs_device_create(&cfg, &pf[i].dev, err);
     pf[i] = (pinned_frame){pf[i].dev, s, view, proj, cpus[i], 0, 0.0, ZS_OK, {0}};
   }
@@ -373,11 +459,10 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
     ceiling[k] = ms[k] * rate;
     share[k] = ratio[k] / ceiling[k];
   }
+  if (!st) st = same_frames(dev, s, view, proj, &r->same, err);
   if (!st) {
-    size_t px = (size_t)w * (size_t)h * sizeof(uint32_t);
     r->name = name;
-    r->same = memcmp(zs_device_id_buffer(dev[0]), zs_device_id_buffer(dev[1]), px) == 0 &&
-              memcmp(zs_device_depth_buffer(dev[0]), zs_device_depth_buffer(dev[1]), px) == 0;
+    r->algo = zs_algo_name(algo);
     r->one_ms = zs_median(ms, o->repeat);
     r->many_ms = zs_median(many, o->repeat);
     r->ratio[1] = zs_median(ratio, o->repeat); /* sorts ratio */
@@ -409,17 +494,18 @@ static zs_status compare_threads(const bench_opts *o, const zs_scene *s, const c
 static void write_speedup_table(FILE *f, const speedup_row *rows, int n, const bench_opts *o,
                                 int md) {
   if (md) {
-    fprintf(f, "\n| scene | 1 thread ms | %d threads ms | speed-up, median of the pairs | "
+    fprintf(f, "\n| scene | algo | 1 thread ms | %d threads ms | speed-up, median of the pairs | "
                "lower and upper quartile | one thread on each CPU at once, ms: fastest, "
                "slowest | ceiling | speed-up / ceiling | the same image |\n",
             o->threads);
-    fprintf(f, "|---|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|\n");
   } else {
-    fprintf(f, "\nzscan (zbuffer) on 1 thread and on %d, frames in turn, %d pairs; then one\n"
+    fprintf(f, "\nzscan on 1 thread and on %d, frames in turn, %d pairs; then one\n"
                "thread on each of %d CPUs at once: the ceiling of the speed-up\n",
             o->threads, o->repeat, o->threads);
-    fprintf(f, "%-28s %10s %10s %8s %8s %8s %9s %9s %8s %8s %5s\n", "scene", "one_ms", "many_ms",
-            "speedup", "q1", "q3", "cpu_fast", "cpu_slow", "ceiling", "share", "same");
+    fprintf(f, "%-28s %-9s %10s %10s %8s %8s %8s %9s %9s %8s %8s %5s\n", "scene", "algo",
+            "one_ms", "many_ms", "speedup", "q1", "q3", "cpu_fast", "cpu_slow", "ceiling", "share",
+            "same");
   }
   for (int i = 0; i < n; i++) {
     const speedup_row *r = &rows[i];
@@ -431,12 +517,12 @@ static void write_speedup_table(FILE *f, const speedup_row *rows, int n, const b
       snprintf(share, sizeof share, md ? "%.0f %%" : "%.3f", md ? 100.0 * r->share : r->share);
     }
     if (md)
-      fprintf(f, "| `%s` | %.2f | %.2f | %.2fx | %.2fx, %.2fx | %s, %s | %s | %s | %s |\n",
-              r->name, r->one_ms, r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], fast, slow,
+      fprintf(f, "| `%s` | %s | %.2f | %.2f | %.2fx | %.2fx, %.2fx | %s, %s | %s | %s | %s |\n",
+              r->name, r->algo, r->one_ms, r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], fast, slow,
               ceil, share, r->same ? "yes" : "no");
     else
-      fprintf(f, "%-28s %10.3f %10.3f %8.3f %8.3f %8.3f %9s %9s %8s %8s %5s\n", r->name,
-              r->one_ms, r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], fast, slow, ceil,
+      fprintf(f, "%-28s %-9s %10.3f %10.3f %8.3f %8.3f %8.3f %9s %9s %8s %8s %5s\n", r->name,
+              r->algo, r->one_ms, r->many_ms, r->ratio[1], r->ratio[0], r->ratio[2], fast, slow, ceil,
               share, r->same ? "yes" : "no");
   }
 }
@@ -632,9 +718,9 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   bench_opts o;
   zs_error err;
   zs_error_clear(&err);
-  bench_row rows[2 * (NSIDES + NSCENES)];
-  mesa_row mrows[NSIDES + NSCENES];
-  speedup_row srows[NSCENES];
+  bench_row rows[2 * (NSIDES + NRANDOM + NSCENES)];
+  mesa_row mrows[NSIDES + NRANDOM + NSCENES];
+  speedup_row srows[2 * NSCENES];
   int n = 0, nm = 0, ns = 0;
   double *ms = NULL;
   zs_status st = parse(argc, argv, &o, &err);
@@ -654,6 +740,20 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     if (!st && o.mesa) st = compare_mesa(&o, &t.scene, name, t.view, t.proj, ms, &mrows[nm++], &err);
     zs_scene_free(&t.scene);
   }
+  for (int i = 0; i < NRANDOM && !st; i++) {
+    char name[64];
+    const int side = random_sides[i / 2], front = i % 2;
+    snprintf(name, sizeof name, "random %dx%d %s", side, side,
+             front ? "front to back" : "back to front");
+    if (o.only_case && strcmp(o.only_case, name) != 0) continue;
+    tiling t;
+    if ((st = random_make(side, front, o.width, o.height, &t, &err))) break;
+    for (int a = 0; a < 2 && !st; a++)
+      if (o.algo < 0 || (int)algos[a] == o.algo)
+        st = run_case(&o, a, name, &t.scene, t.view, t.proj, ms, &rows[n++], &err);
+    if (!st && o.mesa) st = compare_mesa(&o, &t.scene, name, t.view, t.proj, ms, &mrows[nm++], &err);
+    zs_scene_free(&t.scene);
+  }
   for (int i = 0; i < NSCENES && o.scenes && !st; i++) {
     if (o.only_case && strcmp(o.only_case, scenes[i]) != 0) continue;
     zs_scene s;
@@ -664,14 +764,19 @@ int zs_cmd_bench_raster(int argc, char **argv) {
       if (o.algo < 0 || (int)algos[a] == o.algo)
         st = run_case(&o, a, scenes[i], &s, view, proj, ms, &rows[n++], &err);
     if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], view, proj, ms, &mrows[nm++], &err);
-    if (!st && o.speedup) st = compare_threads(&o, &s, scenes[i], view, proj, ms, &srows[ns++], &err);
+    for (int a = 0; a < 2 && o.speedup && !st; a++)
+      if (o.algo < 0 || (int)algos[a] == o.algo)
+        st = compare_threads(&o, algos[a], &s, scenes[i], view, proj, ms, &srows[ns++], &err);
     zs_scene_free(&s);
   }
   free(ms);
   if (!st && n == 0)
     st = zs_error_set(&err, ZS_ERR_ARG,
                       "--case '%s': no such case (triangles SxS for S = 4, 10, 25, 100, 500; "
-                      "builtin:teapots, builtin:city, builtin:plant, builtin:default?level=42)",
+                      "random SxS back to front, random SxS front to back for S = 4, 10, 25, "
+                      "100; builtin:teapots, builtin:city, builtin:plant, "
+                      "builtin:default?level=42, builtin:teapots?count=4, "
+                      "builtin:spheres?count=4)",
                       o.only_case ? o.only_case : "");
   FILE *report = stdout;
   const char *outs[] = {o.csv, o.md, o.plot};
