@@ -45,7 +45,7 @@
 static const char usage[] =
     "usage: zscan bench raster [options]\n"
     "  --repeat K        frames timed per case; the median is reported (default 11)\n"
-    "  --threads N       render threads in zbuffer mode (default 1)\n"
+    "  --threads N       render threads (default 1)\n"
     "  --size WxH        image size (default 1024x768)\n"
     "  --csv FILE        one row per case and mode\n"
     "  --md FILE         the table in Markdown\n"

@@ -37,7 +37,7 @@ static const char usage_tail[] =
     "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
     "  --style solid|hidden-line   faces (default), or the visible edges of front faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
-    "  --threads N         render threads, 1 to 64 (zbuffer mode; default 1)\n"
+    "  --threads N         render threads, 1 to 64 (default 1; depthsort: its walk only)\n"
     "  --repeat K          render K times; ms_per_frame is the median (default 1)\n"
     "  --stats             print the frame's counters as one JSON line, with the\n"
     "                      camera used (\"camera\": eye, target, up, fovy or ortho,\n"

@@ -31,7 +31,7 @@
  *   zs_device_config.algo             0: ZS_ALGO_ZBUFFER
  *   zs_device_config.shade            0: ZS_SHADE_FLAT
  *   zs_device_config.cull_back        0: back faces drawn
- *   zs_device_config.threads          0: 1; else 1 .. 64 (zbuffer mode)
+ *   zs_device_config.threads          0: 1; else 1 .. 64 (depthsort: its walk only)
  *   zs_device_config.background       0: black (0xRRGGBB)
  *   zs_device_config.spans            0: the widest span fill the CPU has
  *   zs_render_opts.width, .height     0: the scene's own size, else 1024 x 768
@@ -149,7 +149,7 @@ typedef struct zs_device_config {
   zs_algo algo;            /* 0: zbuffer */
   zs_shade shade;          /* 0: flat */
   int cull_back;           /* drop faces clockwise in window coordinates */
-  int threads;             /* 0: 1; up to 64, zbuffer mode */
+  int threads;             /* 0: 1; up to 64 (depthsort: its walk only) */
   uint32_t background;     /* 0xRRGGBB for flat shading; 0: black */
   zs_span_fill spans;      /* 0: the widest the CPU has */
 } zs_device_config;

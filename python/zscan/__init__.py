@@ -428,7 +428,7 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     algo       'zbuffer', 'scanline' or 'depthsort'
     shade      'flat', 'id', 'depth' or 'overdraw'
     style      'solid' or 'hidden-line' (zbuffer and flat only)
-    threads    1 .. 64 (zbuffer mode)
+    threads    1 .. 64 (depthsort: its walk only)
     cull_back  drop faces turned away from the camera (--cull-back)
     allow_empty   render a model without faces (--allow-empty)
 
