@@ -2,8 +2,6 @@
  * elements and their state, drawing, the traversal queue (a binary heap on
  * the distance from the eye to an element's box: front to back, ties by
  * element), and what is done to an element visited. */
-#include <math.h>
-#include <string.h>
 
 #include "cull/internal.h"
 #include "raster/grow.h"

@@ -5,7 +5,6 @@
  * their own, which the clock does not see. */
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "cull/internal.h"
 #include "raster/grow.h"

@@ -42,12 +42,13 @@ typedef struct elem_state {
   uint32_t next_query;     /* chcpp: the frame a visible object is asked again
                             * (batch.c); nohc: the frame its draw is measured
                             * again, which a visible answer sets as chcpp's */
-  uint32_t hidden_frames;  /* chcpp: frames found hidden in a row */
+  uint32_t hidden_frames;  /* frames found hidden in a row (chcpp's p(i), nohc) */
   uint32_t samples;        /* nohc: pixels its last draw wrote */
   int32_t asked_class;     /* nohc: history class its query was decided on, or -1 */
 } elem_state;
 
-/* chcpp: an element waiting for its query to be issued. */
+/* An element whose query is held back (batch.c), or a member of a
+ * multiquery. */
 typedef struct pending {
   elem e;
   unsigned mask;
@@ -80,7 +81,7 @@ typedef struct query_entry {
   zs_query q;
   unsigned mask;           /* frustum planes its content still tests */
   uint8_t was_visible;     /* its state before this frame (auto's learning) */
-  int32_t group, ngroup;   /* chcpp multiquery: members gm[group ..], 0: single */
+  int32_t group, ngroup;   /* a multiquery: members gm[group ..]; 0: single */
 } query_entry;
 
 typedef struct frame_ctx frame_ctx;
