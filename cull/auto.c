@@ -7,10 +7,11 @@
 static void begin(frame_ctx *f) {
   const zs_culler *c = f->c;
   f->st->chosen = c->use_queries ? ZS_CULL_CHC_PROB : ZS_CULL_VFC;
-  f->hooks = c->use_queries ? &cull_chc_prob_hooks : &cull_vfc_hooks;
+  f->hooks = !c->use_queries           ? &cull_vfc_hooks
+             : c->cost.measure != 0.0 ? &cull_chc_prob_measured_hooks
+                                      : &cull_chc_prob_hooks;
   if (!cull_cost_begin(f) || !c->use_queries) return;
   cull_learn_weights(f, 0.5, 0.5, 2.0); /* from one outcome each way */
-  f->measure_draws = c->cost.measure != 0.0;
 }
 
 /* Queries pay when the draws show hidden objects (vfc frames), or when the

@@ -47,14 +47,18 @@ static void chc_prob_visit(frame_ctx *f, elem e, unsigned mask) {
   else cull_draw_unasked(f, e, mask, pv);
 }
 
+static const cull_hooks chc_hooks = {.visit = chc_visit, .draw_visible = cull_draw_visible};
+const cull_hooks cull_chc_prob_hooks = {.visit = chc_prob_visit, .draw_visible = cull_draw_visible};
+const cull_hooks cull_chc_prob_measured_hooks = {.visit = chc_prob_visit,
+                                                 .draw_visible = cull_draw_visible_measured,
+                                                 .measure_due = cull_measure_every_draw,
+                                                 .drawn = cull_measured_drawn};
+
 static void chc_prob_begin(frame_ctx *f) {
   if (!cull_cost_begin(f)) return;
   cull_cost_weights(f);
-  f->measure_draws = f->c->cost.measure != 0.0;
+  if (f->c->cost.measure != 0.0) f->hooks = &cull_chc_prob_measured_hooks;
 }
-
-static const cull_hooks chc_hooks = {.visit = chc_visit};
-const cull_hooks cull_chc_prob_hooks = {.visit = chc_prob_visit};
 
 const cull_ops cull_chc = {.frame = cull_walk, .hooks = &chc_hooks};
 const cull_ops cull_chc_prob = {.frame = cull_walk, .begin = chc_prob_begin, .hooks = &cull_chc_prob_hooks};

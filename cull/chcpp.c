@@ -107,19 +107,27 @@ static void answered(frame_ctx *f, const query_entry *q, int visible) {
   if (visible && is_object(q->e)) cull_ask_again_later(f, q->e, q->was_visible);
 }
 
-/* chcpp-prob: (11)'s weights, and every object drawn inside a query. */
-static void begin_prob(frame_ctx *f) {
-  if (!cull_cost_begin(f)) return;
-  cull_cost_weights(f);
-  f->measure_draws = f->c->cost.measure != 0.0;
-}
-
-#define CHCPP_HOOKS(visit_fn, idle_fn) {.visit = visit_fn, .idle = idle_fn, .answered = answered}
+#define CHCPP_HOOKS(visit_fn, idle_fn) \
+  {.visit = visit_fn, .idle = idle_fn, .answered = answered, .draw_visible = cull_draw_visible}
 static const cull_hooks chcpp = CHCPP_HOOKS(visit_chcpp, idle_grouped);
 static const cull_hooks nobatch = CHCPP_HOOKS(visit_nobatch, idle_grouped);
 static const cull_hooks nodefer = CHCPP_HOOKS(visit_nodefer, idle_grouped);
 static const cull_hooks nomulti = CHCPP_HOOKS(visit_nomulti, idle_single);
 static const cull_hooks prob = CHCPP_HOOKS(visit_prob, idle_grouped);
+static const cull_hooks prob_measured = {.visit = visit_prob,
+                                         .idle = idle_grouped,
+                                         .answered = answered,
+                                         .draw_visible = cull_draw_visible_measured,
+                                         .measure_due = cull_measure_every_draw,
+                                         .drawn = cull_measured_drawn};
+
+/* chcpp-prob: (11)'s weights; with measured draws, every object drawn
+ * inside a query. */
+static void begin_prob(frame_ctx *f) {
+  if (!cull_cost_begin(f)) return;
+  cull_cost_weights(f);
+  if (f->c->cost.measure != 0.0) f->hooks = &prob_measured;
+}
 
 const cull_ops cull_chcpp = {.frame = cull_walk, .hooks = &chcpp};
 const cull_ops cull_chcpp_nobatch = {.frame = cull_walk, .hooks = &nobatch};

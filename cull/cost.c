@@ -101,3 +101,25 @@ int cull_query_pays(frame_ctx *f, elem e, double pv) {
   double cq = f->tquery + s * f->c->cost.rho * f->tq;                                /* (10) */
   return cr > pv * cr + cq;                                                          /* (2), (3) */
 }
+
+int cull_measure_every_draw(const frame_ctx *f, int32_t i) {
+  (void)f, (void)i;
+  return 1;
+}
+
+/* P_{t-1}(V) of (11) for the next frame: whether the draw wrote a pixel
+ * (the query's count, long there when the next frame reads it), not the
+ * prediction it was drawn on; and only a draw that wrote a pixel pulls
+ * visibility up. */
+void cull_measured_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written) {
+  (void)measured;
+  f->c->os[i].pv = written > 0 ? 1.0 : 0.0;
+  if (written > 0) cull_pull_up_visibility(f, object_elem(i));
+}
+
+/* An object's visibility is what its draw writes (cull_measured_drawn);
+ * a node's goes up the tree as without measured draws. */
+void cull_draw_visible_measured(frame_ctx *f, elem e, unsigned mask) {
+  if (!is_object(e)) cull_pull_up_visibility(f, e);
+  cull_traverse(f, e, mask);
+}

@@ -52,8 +52,7 @@ void cull_draw_instance(frame_ctx *f, int32_t i) {
   const zs_mesh *m = &f->s->meshes[in->mesh].mesh;
   /* chc-prob and chcpp-prob draw every object inside a query, to learn
    * what it writes; nohc some */
-  const int measure =
-      f->measure_draws || (f->hooks->measure_due && f->hooks->measure_due(f, i));
+  const int measure = f->hooks->measure_due && f->hooks->measure_due(f, i);
   uint64_t before = zs_device_stats(f->dev)->pixels_written;
   zs_query q;
   if (measure && (f->status = zs_device_query_begin(f->dev, &q, f->err))) return;
@@ -65,13 +64,6 @@ void cull_draw_instance(frame_ctx *f, int32_t i) {
   uint64_t written = zs_device_stats(f->dev)->pixels_written - before;
   if (written == 0) f->hidden_objects++;
   if (f->hooks->drawn) f->hooks->drawn(f, i, measure, written);
-  /* P_{t-1}(V) of (11) for the next frame: whether the draw wrote a pixel
-   * (the query's count, long there when the next frame reads it), not
-   * the prediction it was drawn on */
-  if (f->measure_draws) {
-    f->c->os[i].pv = written > 0 ? 1.0 : 0.0;
-    if (written > 0) cull_pull_up_visibility(f, object_elem(i));
-  }
 }
 
 /* ---- the traversal queue: a min-heap on (distance, element) ---- */
@@ -172,11 +164,10 @@ void cull_pull_up_visibility(frame_ctx *f, elem e) {
   }
 }
 
-/* An element found visible or drawn unasked is visible up the tree; a
- * measured object's visibility is what its draw writes
- * (cull_draw_instance pulls it up only if it wrote a pixel). */
-void cull_pull_up_before_draw(frame_ctx *f, elem e) {
-  if (!(is_object(e) && f->measure_draws)) cull_pull_up_visibility(f, e);
+/* An element found visible, or drawn unasked, is visible up the tree. */
+void cull_draw_visible(frame_ctx *f, elem e, unsigned mask) {
+  cull_pull_up_visibility(f, e);
+  cull_traverse(f, e, mask);
 }
 
 /* A box that the near plane could cut, or that holds the eye, once grown
@@ -209,10 +200,8 @@ int cull_enter(frame_ctx *f, elem e, unsigned mask, int *was_visible, int *seen_
 
 /* Draws e as if visible without asking (when the query does not pay);
  * its P(V) carries the prediction to the next frame, unless e is an
- * object whose draw is measured (then the draw sets P(V) and, if it wrote
- * a pixel, pulls visibility up). */
+ * object whose draw is measured (then the draw sets P(V)). */
 void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv) {
   cull_state(f, e)->pv = pv;
-  cull_pull_up_before_draw(f, e);
-  cull_traverse(f, e, mask);
+  f->hooks->draw_visible(f, e, mask);
 }

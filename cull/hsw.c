@@ -12,5 +12,5 @@ static void visit(frame_ctx *f, elem e, unsigned mask) {
   if (f->status == ZS_OK) cull_take_result(f); /* stop and wait */
 }
 
-static const cull_hooks hooks = {.visit = visit};
+static const cull_hooks hooks = {.visit = visit, .draw_visible = cull_draw_visible};
 const cull_ops cull_hsw = {.frame = cull_walk, .hooks = &hooks};

@@ -96,10 +96,14 @@ typedef struct cull_hooks {
   /* Nothing to traverse and no answer ready (waiting: some query is out):
    * issues a query held back rather than wait; 1 when it did. */
   int (*idle)(frame_ctx *f, int waiting);
+  /* An element found visible by its query, or drawn unasked: visibility
+   * up the tree, then drawn or opened (cull_draw_visible; with measured
+   * draws, cull_draw_visible_measured).  Not NULL for a method that asks. */
+  void (*draw_visible)(frame_ctx *f, elem e, unsigned mask);
   /* The answer to a query about one element (q->e). */
   void (*answered)(frame_ctx *f, const query_entry *q, int visible);
-  /* Whether instance i's draw goes inside a query (besides
-   * f->measure_draws); after the draw, what it wrote. */
+  /* Whether instance i's draw goes inside a query; after the draw, what
+   * it wrote. */
   int (*measure_due)(const frame_ctx *f, int32_t i);
   void (*drawn)(frame_ctx *f, int32_t i, int measured, uint64_t written);
 } cull_hooks;
@@ -174,9 +178,6 @@ struct frame_ctx {
   double w1, w2;           /* (11)'s weights, this frame */
   zs_cull_stats *st;
   uint64_t hidden_objects; /* objects drawn that wrote no pixel (auto) */
-  int measure_draws;       /* chc-prob's and chcpp-prob's frames: every
-                            * object drawn inside a query, whose count is
-                            * its P(V) and its visibility of this frame */
   zs_error *err;
   zs_status status;
 };
@@ -186,7 +187,7 @@ extern const cull_ops cull_none, cull_vfc, cull_vfc_box, cull_hsw, cull_chc, cul
     cull_ideal, cull_auto, cull_chcpp, cull_chcpp_nobatch, cull_chcpp_nodefer,
     cull_chcpp_nomulti, cull_chcpp_prob, cull_nohc, cull_ideal_box;
 /* The hooks of vfc and chc-prob, for auto's frames. */
-extern const cull_hooks cull_vfc_hooks, cull_chc_prob_hooks;
+extern const cull_hooks cull_vfc_hooks, cull_chc_prob_hooks, cull_chc_prob_measured_hooks;
 
 /* Sets f->status to out of memory. */
 void cull_out_of_memory(frame_ctx *f);
@@ -214,9 +215,8 @@ int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);
 /* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
 void cull_traverse(frame_ctx *f, elem e, unsigned mask);
 void cull_pull_up_visibility(frame_ctx *f, elem e);
-/* The same for an element about to be drawn or opened, but a measured
- * object's draw decides its visibility. */
-void cull_pull_up_before_draw(frame_ctx *f, elem e);
+/* An element found visible: visible up the tree, then traversed. */
+void cull_draw_visible(frame_ctx *f, elem e, unsigned mask);
 /* Whether the near plane could cut e's box (a query would miss pixels). */
 int cull_too_close(const frame_ctx *f, elem e);
 /* Marks e visited this frame and says what it was in the last; 0 when it
@@ -263,5 +263,11 @@ void cull_learn_weights(frame_ctx *f, double w1, double w2, double weight);
 double cull_render_cost(const frame_ctx *f, elem e);
 int cull_query_pays(frame_ctx *f, elem e, double pv);
 double cull_predict(const frame_ctx *f, const elem_state *es);
+/* Measured draws (cost.measure != 0; chc-prob, chcpp-prob): every object
+ * drawn inside a query, whose count is its P(V) for the next frame and its
+ * visibility of this one; the hooks of a method that measures them. */
+int cull_measure_every_draw(const frame_ctx *f, int32_t i);
+void cull_measured_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written);
+void cull_draw_visible_measured(frame_ctx *f, elem e, unsigned mask);
 
 #endif

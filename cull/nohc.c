@@ -126,6 +126,7 @@ static void begin(frame_ctx *f) {
 
 static const cull_hooks hooks = {.visit = visit,
                                  .empty = empty,
+                                 .draw_visible = cull_draw_visible,
                                  .answered = answered,
                                  .measure_due = measure_due,
                                  .drawn = drawn};

@@ -93,6 +93,5 @@ void cull_take_result(frame_ctx *f) {
     return;
   }
   es->hidden_frames = 0;
-  cull_pull_up_before_draw(f, q.e);
-  cull_traverse(f, q.e, q.mask);
+  f->hooks->draw_visible(f, q.e, q.mask);
 }
