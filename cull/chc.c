@@ -54,11 +54,7 @@ const cull_hooks cull_chc_prob_measured_hooks = {.visit = chc_prob_visit,
                                                  .measure_due = cull_measure_every_draw,
                                                  .drawn = cull_measured_drawn};
 
-static void chc_prob_begin(frame_ctx *f) {
-  if (!cull_cost_begin(f)) return;
-  cull_cost_weights(f);
-  if (f->c->cost.measure != 0.0) f->hooks = &cull_chc_prob_measured_hooks;
-}
+static void chc_prob_begin(frame_ctx *f) { cull_cost_frame(f, &cull_chc_prob_measured_hooks); }
 
 const cull_ops cull_chc = {.frame = cull_walk, .hooks = &chc_hooks};
 const cull_ops cull_chc_prob = {.frame = cull_walk, .begin = chc_prob_begin, .hooks = &cull_chc_prob_hooks};

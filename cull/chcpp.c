@@ -121,13 +121,7 @@ static const cull_hooks prob_measured = {.visit = visit_prob,
                                          .measure_due = cull_measure_every_draw,
                                          .drawn = cull_measured_drawn};
 
-/* chcpp-prob: (11)'s weights; with measured draws, every object drawn
- * inside a query. */
-static void begin_prob(frame_ctx *f) {
-  if (!cull_cost_begin(f)) return;
-  cull_cost_weights(f);
-  if (f->c->cost.measure != 0.0) f->hooks = &prob_measured;
-}
+static void begin_prob(frame_ctx *f) { cull_cost_frame(f, &prob_measured); }
 
 const cull_ops cull_chcpp = {.frame = cull_walk, .hooks = &chcpp};
 const cull_ops cull_chcpp_nobatch = {.frame = cull_walk, .hooks = &nobatch};

@@ -67,6 +67,12 @@ void cull_cost_weights(frame_ctx *f) {
   }
 }
 
+void cull_cost_frame(frame_ctx *f, const cull_hooks *measured) {
+  if (!cull_cost_begin(f)) return;
+  cull_cost_weights(f);
+  if (f->c->cost.measure != 0.0) f->hooks = measured;
+}
+
 /* (11): the chance that an element is visible this frame, from its state. */
 double cull_predict(const frame_ctx *f, const elem_state *es) {
   return f->w1 * es->pv + (1.0 - f->w2) * (1.0 - es->pv);

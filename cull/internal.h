@@ -258,6 +258,10 @@ int cull_cost_begin(frame_ctx *f);
  * learnt from the queries' outcomes, starting from w1 and w2 as if weight
  * outcomes had borne each out. */
 void cull_cost_weights(frame_ctx *f);
+/* The frame of a method that decides by the cost model (chc-prob,
+ * chcpp-prob): its constants and weights, and its hooks with measured
+ * draws (below) when cost.measure is on. */
+void cull_cost_frame(frame_ctx *f, const cull_hooks *measured);
 void cull_learn_weights(frame_ctx *f, double w1, double w2, double weight);
 /* Cr (6), whether a query pays (2, 3, 6, 9, 10), P(V) (11). */
 double cull_render_cost(const frame_ctx *f, elem e);
