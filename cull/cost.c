@@ -2,8 +2,9 @@
  * stated in cull.h): what drawing an element costs (6), what asking about
  * it costs (9, 10), whether asking pays (2, 3), and the chance that it is
  * visible (11), with the weights given or learnt from the queries'
- * outcomes.  chc-prob, auto, chcpp-prob and nohc (its own P(V) and S)
- * decide by it. */
+ * outcomes; and measured draws, which tell P(V) what an object's draw
+ * wrote.  chc-prob, auto, chcpp-prob and nohc (its own P(V) and S) decide
+ * by it. */
 #include <math.h>
 
 #include "cull/internal.h"
