@@ -1,8 +1,17 @@
 /* zscan cull — what the culling methods share: the elements they walk,
- * the culler's state, the frame's context and the steps every method
- * takes (hierarchy.c).  The methods themselves: cull.c (vfc, hsw, chc,
- * chc-prob, auto, nohc's walk, none, vfc-box), chcpp.c, nohc.c, ideal.c.
- * Not for use outside cull/. */
+ * the culler's state, the frame's context, the hooks a method gives the
+ * shared code, and the steps every method takes.  Not for use outside
+ * cull/.
+ *
+ * A culler's method is a table of hooks (cull_ops), picked once, when the
+ * culler is created (cull.c).  The methods that walk the octree share one
+ * walk (walk.c), which calls the hooks; the shared steps
+ * (hierarchy.c: elements, drawing, the traversal queue; query.c: queries
+ * and their answers; batch.c: queries held back and issued together;
+ * cost.c: the cost-model paper's formulas) name no method.  Each method is
+ * in its own file: none.c, vfc_box.c, vfc.c, hsw.c, chc.c (chc, chc-prob),
+ * auto.c, chcpp.c (chcpp and its variants), nohc.c, ideal.c (ideal,
+ * ideal-box). */
 #ifndef ZS_CULL_INTERNAL_H
 #define ZS_CULL_INTERNAL_H
 
@@ -27,16 +36,19 @@ typedef struct elem_state {
   uint32_t last_visited;   /* frame (frames count from 1) */
   uint32_t done;           /* frame it was rendered (object) or opened (node) */
   uint8_t visible;
-  uint8_t hidden_before;   /* hidden in the frame before: found so, or under a node found so */
+  uint8_t hidden_before;   /* chc-prob: hidden in the frame before: found so,
+                            * or under a node found so */
   double pv;               /* P(V) for the next frame */
-  uint32_t next_query;     /* chcpp: the frame a visible object is asked again;
-                            * nohc: the frame its draw is measured again */
-  uint32_t hidden_frames;  /* chcpp: frames found hidden in a row */
+  uint32_t next_query;     /* chcpp: the frame a visible object is asked again
+                            * (batch.c); nohc: the frame its draw is measured
+                            * again, which a visible answer sets as chcpp's */
+  uint32_t hidden_frames;  /* frames found hidden in a row (chcpp's p(i), nohc) */
   uint32_t samples;        /* nohc: pixels its last draw wrote */
   int32_t asked_class;     /* nohc: history class its query was decided on, or -1 */
 } elem_state;
 
-/* chcpp: an element waiting for its query to be issued. */
+/* An element whose query is held back (batch.c), or a member of a
+ * multiquery. */
 typedef struct pending {
   elem e;
   unsigned mask;
@@ -69,11 +81,47 @@ typedef struct query_entry {
   zs_query q;
   unsigned mask;           /* frustum planes its content still tests */
   uint8_t was_visible;     /* its state before this frame (auto's learning) */
-  int32_t group, ngroup;   /* chcpp multiquery: members gm[group ..], 0: single */
+  int32_t group, ngroup;   /* a multiquery: members gm[group ..]; 0: single */
 } query_entry;
+
+typedef struct frame_ctx frame_ctx;
+
+/* What the walk (walk.c) and the shared steps call during a frame: per
+ * element, per draw, per answer.  A NULL hook does nothing. */
+typedef struct cull_hooks {
+  /* An element taken from the traversal queue, inside the frustum. */
+  void (*visit)(frame_ctx *f, elem e, unsigned mask);
+  /* The traversal queue is empty, before any answer is taken. */
+  void (*empty)(frame_ctx *f);
+  /* Nothing to traverse and no answer ready (waiting: some query is out):
+   * issues a query held back rather than wait; 1 when it did. */
+  int (*idle)(frame_ctx *f, int waiting);
+  /* An element found visible by its query, or drawn unasked: visibility
+   * up the tree, then drawn or opened (cull_draw_visible; with measured
+   * draws, cull_draw_visible_measured).  Not NULL for a method that asks. */
+  void (*draw_visible)(frame_ctx *f, elem e, unsigned mask);
+  /* The answer to a query about one element (q->e). */
+  void (*answered)(frame_ctx *f, const query_entry *q, int visible);
+  /* Whether instance i's draw goes inside a query; after the draw, what
+   * it wrote. */
+  int (*measure_due)(const frame_ctx *f, int32_t i);
+  void (*drawn)(frame_ctx *f, int32_t i, int measured, uint64_t written);
+} cull_hooks;
+
+/* A culling method. */
+typedef struct cull_ops {
+  /* Draws a frame: cull_walk for the methods that walk the octree. */
+  void (*frame)(frame_ctx *f);
+  /* The walk's: the method's own set-up of a frame (it may choose the
+   * frame's hooks: auto), and what it learns after the frame. */
+  void (*begin)(frame_ctx *f);
+  void (*end)(frame_ctx *f);
+  const cull_hooks *hooks;
+} cull_ops;
 
 struct zs_culler {
   zs_cull_method method;
+  const cull_ops *ops;
   zs_cost_params cost;
   uint32_t frame;
   elem_state *ns, *os;     /* nodes, objects */
@@ -98,11 +146,11 @@ struct zs_culler {
    * auto's mode of the next frame */
   uint64_t vv, vh, hv, hh;
   int use_queries;
-  /* chcpp: the queue of invisible elements to batch, of visible objects
-   * whose query is due; the rng of the first visible intervals */
-  pending *iq, *vq, *gm;   /* gm: the members of this frame's multiqueries */
+  /* the queries held back (batch.c): the batch of invisible elements, the
+   * visible objects whose query is due (chcpp); the members of this
+   * frame's multiqueries; the rng of the first visible intervals */
+  pending *iq, *vq, *gm;
   int32_t ni, nv, ngm, cap_iq, cap_vq, cap_gm;
-  int multi;               /* multiqueries on */
   zs_rng rng;
   /* nohc: the coverage grid of this frame; per history class, how often an
    * object asked about was found visible and hidden */
@@ -115,28 +163,41 @@ struct zs_culler {
 };
 
 /* The frame's context. */
-typedef struct frame_ctx {
+struct frame_ctx {
   zs_culler *c;
+  const cull_hooks *hooks; /* the culler's, or those its method chose for the frame */
   zs_device *dev;
   const zs_scene *s;
   const zs_octree *t;
+  const double *view, *proj;
   zs_frustum frustum;
   double eye[3];
   double near_reach;       /* farthest a near-plane corner lies from the eye */
   double tan_half_fovy, height;
   double ttri, tcall, tq, tquery; /* cost model constants, ns */
+  double w1, w2;           /* (11)'s weights, this frame */
   zs_cull_stats *st;
-  uint64_t hidden_objects; /* auto: objects drawn that wrote no pixel */
-  int measure_draws;       /* chc-prob's and chcpp-prob's frames: every
-                            * object drawn inside a query, whose count is
-                            * its P(V) and its visibility of this frame */
+  uint64_t hidden_objects; /* objects drawn that wrote no pixel (auto) */
   zs_error *err;
   zs_status status;
-} frame_ctx;
+};
 
+/* The methods (cull.c picks one by zs_cull_method). */
+extern const cull_ops cull_none, cull_vfc, cull_vfc_box, cull_hsw, cull_chc, cull_chc_prob,
+    cull_ideal, cull_auto, cull_chcpp, cull_chcpp_nobatch, cull_chcpp_nodefer,
+    cull_chcpp_nomulti, cull_chcpp_prob, cull_nohc, cull_ideal_box;
+/* The hooks of vfc and chc-prob, for auto's frames. */
+extern const cull_hooks cull_vfc_hooks, cull_chc_prob_hooks, cull_chc_prob_measured_hooks;
 
+/* Sets f->status to out of memory. */
+void cull_out_of_memory(frame_ctx *f);
 
-/* ---- hierarchy.c: elements, drawing, the traversal, queries ---- */
+/* ---- walk.c: the walk of the octree, front to back ---- */
+
+/* The frame of every method that walks the octree. */
+void cull_walk(frame_ctx *f);
+
+/* ---- hierarchy.c: elements, drawing, the traversal queue ---- */
 
 elem_state *cull_state(frame_ctx *f, elem e);
 elem cull_parent_of(const frame_ctx *f, elem e);
@@ -149,20 +210,23 @@ void cull_draw_instance(frame_ctx *f, int32_t i);
 /* Pushes e on the traversal queue (0 when out of memory). */
 int cull_heap_push(frame_ctx *f, elem e, unsigned mask);
 void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw);
+/* Pops the nearest element and tests it against the frustum; 0: outside. */
+int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);
 /* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
 void cull_traverse(frame_ctx *f, elem e, unsigned mask);
 void cull_pull_up_visibility(frame_ctx *f, elem e);
-/* The same for an element about to be drawn or opened, but a measured
- * object's draw decides its visibility. */
-void cull_pull_up_before_draw(frame_ctx *f, elem e);
+/* An element found visible: visible up the tree, then traversed. */
+void cull_draw_visible(frame_ctx *f, elem e, unsigned mask);
 /* Whether the near plane could cut e's box (a query would miss pixels). */
 int cull_too_close(const frame_ctx *f, elem e);
-/* The cost model: Cr (6), whether a query pays (2, 3, 6, 9, 10), P(V) (11). */
-double cull_render_cost(const frame_ctx *f, elem e);
-int cull_query_pays(frame_ctx *f, elem e, double pv);
-double cull_predict(const elem_state *es, double w1, double w2);
-/* The w1 and w2 of (11) method m predicts with this frame. */
-void cull_weights(const zs_culler *c, zs_cull_method m, double *w1, double *w2);
+/* Marks e visited this frame and says what it was in the last; 0 when it
+ * is too close to ask about, and so taken as visible and traversed. */
+int cull_enter(frame_ctx *f, elem e, unsigned mask, int *was_visible, int *seen_last);
+/* Draws e as if visible without asking; its P(V) goes to the next frame. */
+void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv);
+
+/* ---- query.c: occlusion queries and their answers ---- */
+
 /* Appends the boxes a query over e draws to the culler's query boxes. */
 int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n);
 /* One query over the boxes of members[0 .. n-1], queued as qe. */
@@ -170,29 +234,44 @@ void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_
 void cull_issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible);
 /* Takes the answer at the head of the query queue and acts on it. */
 void cull_take_result(frame_ctx *f);
-/* Pops the nearest element and tests it against the frustum; 0: outside. */
-int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);
+
+/* ---- batch.c: queries held back, issued together ---- */
+
 int cull_push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem e, unsigned mask,
                       uint8_t was_visible);
+/* Holds e's query back in the batch of invisible elements. */
+int cull_hold(frame_ctx *f, elem e, unsigned mask, uint8_t was_visible);
+/* Issues the batch: each query on its own; in multiqueries. */
+void cull_issue_held(frame_ctx *f);
+void cull_issue_held_grouped(frame_ctx *f);
 /* The chance that an element hidden i frames in a row stays hidden. */
 double cull_keep_hidden(uint32_t i);
-/* Issues the queue of invisible elements (chcpp's batch, nohc's). */
-void cull_flush_invisible(frame_ctx *f);
-/* Draws e as if visible without asking; its P(V) goes to the next frame. */
-void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv);
-/* Polygons under every node, this frame (0 when out of memory). */
-int cull_count_polygons(frame_ctx *f);
+/* An object found visible: the frame it is asked about again. */
+void cull_ask_again_later(frame_ctx *f, elem e, int was_visible);
 
-/* ---- the methods' own modules ---- */
+/* ---- cost.c: the cost model of the cost-model paper ---- */
 
-/* chcpp.c: CHC++ and its ablations; prob: chcpp-prob. */
-void cull_walk_chcpp(frame_ctx *f, int batch, int defer, int prob);
-/* nohc.c: whether instance i's draw is measured this frame; after the
- * draw, its history and the coverage it adds; a termination element. */
-int cull_nohc_measure_due(const frame_ctx *f, int32_t i);
-void cull_nohc_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written);
-void cull_nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int seen_last);
-/* ideal.c: ideal and ideal-box (boxes). */
-void cull_ideal_frame(frame_ctx *f, const double view[16], const double proj[16], int boxes);
+/* The frame's constants and the polygons under every node (0 when out of
+ * memory). */
+int cull_cost_begin(frame_ctx *f);
+/* (11)'s w1 and w2 of this frame: as given, or learnt (cost.learn > 0);
+ * learnt from the queries' outcomes, starting from w1 and w2 as if weight
+ * outcomes had borne each out. */
+void cull_cost_weights(frame_ctx *f);
+/* The frame of a method that decides by the cost model (chc-prob,
+ * chcpp-prob): its constants and weights, and its hooks with measured
+ * draws (below) when cost.measure is on. */
+void cull_cost_frame(frame_ctx *f, const cull_hooks *measured);
+void cull_learn_weights(frame_ctx *f, double w1, double w2, double weight);
+/* Cr (6), whether a query pays (2, 3, 6, 9, 10), P(V) (11). */
+double cull_render_cost(const frame_ctx *f, elem e);
+int cull_query_pays(frame_ctx *f, elem e, double pv);
+double cull_predict(const frame_ctx *f, const elem_state *es);
+/* Measured draws (cost.measure != 0; chc-prob, chcpp-prob): every object
+ * drawn inside a query, whose count is its P(V) for the next frame and its
+ * visibility of this one; the hooks of a method that measures them. */
+int cull_measure_every_draw(const frame_ctx *f, int32_t i);
+void cull_measured_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written);
+void cull_draw_visible_measured(frame_ctx *f, elem e, unsigned mask);
 
 #endif

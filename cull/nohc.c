@@ -17,7 +17,7 @@ static void add_coverage(frame_ctx *f, int32_t i) {
   zs_coverage_add(&f->c->cov, r, nohc_fill);
 }
 
-int cull_nohc_measure_due(const frame_ctx *f, int32_t i) {
+static int measure_due(const frame_ctx *f, int32_t i) {
   return f->c->frame >= f->c->os[i].next_query;
 }
 
@@ -26,7 +26,7 @@ int cull_nohc_measure_due(const frame_ctx *f, int32_t i) {
  * draws it inside a query, whose count of written pixels is its history
  * from the next frame on, when a GPU's answer would long be there (the
  * device's count is the query's). */
-void cull_nohc_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written) {
+static void drawn(frame_ctx *f, int32_t i, int measured, uint64_t written) {
   elem_state *es = &f->c->os[i];
   if (measured) {
     es->samples = written > UINT32_MAX ? UINT32_MAX : (uint32_t)written;
@@ -53,9 +53,9 @@ static int32_t history_of(const elem_state *es, int was_visible, int seen_last, 
   return 0;
 }
 
-/* A termination element of nohc: P(V) from its history and this frame's
- * coverage, then query-and-wait or draw (open, for a node). */
-void cull_nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int seen_last) {
+/* A termination element: P(V) from its history and this frame's coverage,
+ * then query-and-wait or draw (open, for a node). */
+static void decide(frame_ctx *f, elem e, unsigned mask, int was_visible, int seen_last) {
   zs_culler *c = f->c;
   elem_state *es = cull_state(f, e);
   const double *lo, *hi;
@@ -77,9 +77,57 @@ void cull_nohc_visit(frame_ctx *f, elem e, unsigned mask, int was_visible, int s
   double cq = f->tquery + area * f->tq;                       /* (10), S measured */
   if (cr > pv * cr + cq) {                                    /* (2), (3) */
     es->asked_class = k;
-    cull_push_pending(f, &c->iq, &c->ni, &c->cap_iq, e, mask, (uint8_t)was_visible);
+    /* its batch: issued when full or when nothing else is left to do */
+    if (cull_hold(f, e, mask, (uint8_t)was_visible) && c->ni >= NOHC_BATCH) cull_issue_held(f);
     return;
   }
   cull_pull_up_visibility(f, e);
   cull_traverse(f, e, mask);
 }
+
+/* Every termination element (an object, visible or not, or a node that
+ * was hidden) is decided on; a node that was visible is opened. */
+static void visit(frame_ctx *f, elem e, unsigned mask) {
+  int was_visible, seen_last;
+  if (!cull_enter(f, e, mask, &was_visible, &seen_last)) return;
+  if (is_object(e) || !was_visible) decide(f, e, mask, was_visible, seen_last);
+  else cull_traverse(f, e, mask);
+}
+
+/* Nothing left to traverse: the batch goes out, part-full. */
+static void empty(frame_ctx *f) {
+  if (f->c->ni > 0) cull_issue_held(f);
+}
+
+/* How the element's history class turned out; a visible object's next
+ * measured draw falls when chcpp would ask about it again (batch.c). */
+static void answered(frame_ctx *f, const query_entry *q, int visible) {
+  zs_culler *c = f->c;
+  elem_state *es = cull_state(f, q->e);
+  int32_t k = es->asked_class;
+  if (k >= 0) {
+    visible ? c->class_visible[k]++ : c->class_hidden[k]++;
+    es->asked_class = -1;
+  }
+  if (visible && is_object(q->e)) cull_ask_again_later(f, q->e, q->was_visible);
+}
+
+/* The cost model's constants, with T counting 2/32 of a switch (a batch
+ * pays its two switches once), and an empty coverage grid. */
+static void begin(frame_ctx *f) {
+  if (!cull_cost_begin(f)) return;
+  const zs_clock_params *k = zs_device_clock_params(f->dev);
+  if (f->c->cost.t_ns < 0)
+    f->tquery = k->per_call_ns + 2.0 * k->cpu_per_query_ns + 2.0 * k->switch_ns / NOHC_BATCH;
+  const zs_device_config *cfg = zs_device_config_of(f->dev);
+  if (!zs_coverage_reset(&f->c->cov, cfg->width, cfg->height, f->view, f->proj))
+    cull_out_of_memory(f);
+}
+
+static const cull_hooks hooks = {.visit = visit,
+                                 .empty = empty,
+                                 .draw_visible = cull_draw_visible,
+                                 .answered = answered,
+                                 .measure_due = measure_due,
+                                 .drawn = drawn};
+const cull_ops cull_nohc = {.frame = cull_walk, .begin = begin, .hooks = &hooks};

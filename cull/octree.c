@@ -1,6 +1,6 @@
-/* zscan cull — the octree core (nodes, object lists, hash table, tight
- * bounds, split policy) and the loose tree's placement; see octree.h.
- * The plain tree's descent is in octree_plain.c.
+/* zscan cull — the octree (octree.h): nodes, object lists, hash table,
+ * tight bounds, split policy, build and update.  Where an object goes (its
+ * target cell, loose or plain) is octree_target.c's.
  */
 #include "cull/octree.h"
 
@@ -8,76 +8,28 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cull/octree_internal.h"
+#include "cull/box.h"
 
-/* ---- small box helpers -------------------------------------------------- */
-
-typedef struct box3 {
-  double lo[3], hi[3];
-  int empty;
-} box3;
-
-static box3 box_empty(void) {
-  box3 b;
-  memset(&b, 0, sizeof b);
-  b.empty = 1;
-  return b;
-}
-
-static box3 box_of(const double lo[3], const double hi[3]) {
-  box3 b;
-  for (int k = 0; k < 3; k++) {
-    b.lo[k] = lo[k];
-    b.hi[k] = hi[k];
-  }
-  b.empty = 0;
-  return b;
-}
-
-static void box_union(box3 *b, const double lo[3], const double hi[3]) {
-  if (b->empty) {
-    *b = box_of(lo, hi);
-    return;
-  }
-  for (int k = 0; k < 3; k++) {
-    if (lo[k] < b->lo[k]) b->lo[k] = lo[k];
-    if (hi[k] > b->hi[k]) b->hi[k] = hi[k];
-  }
-}
-
-static int box_eq(const box3 *a, const box3 *b) {
-  if (a->empty || b->empty) return a->empty == b->empty;
-  for (int k = 0; k < 3; k++)
-    if (a->lo[k] != b->lo[k] || a->hi[k] != b->hi[k]) return 0;
-  return 1;
-}
+/* ---- tight boxes -------------------------------------------------------- */
 
 /* Whether p (a part of the content of old) reaches one of old's faces, so
- * that old without p may be smaller. */
-static int box_touches(const box3 *p, const box3 *old) {
-  if (old->empty) return 1;
+ * that old without p may be smaller.  (Always, for an empty old.) */
+static int box_touches(const zs_box *p, const zs_box *old) {
   for (int k = 0; k < 3; k++)
     if (p->lo[k] <= old->lo[k] || p->hi[k] >= old->hi[k]) return 1;
   return 0;
 }
 
-int zs_oct_inside(const double lo[3], const double hi[3], const double blo[3],
-                  const double bhi[3]) {
-  for (int k = 0; k < 3; k++)
-    if (!(lo[k] >= blo[k] && hi[k] <= bhi[k])) return 0;
-  return 1;
+static zs_box tight_of(const zs_octnode *n) {
+  return n->empty ? zs_box_empty() : zs_box_of(n->tlo, n->thi);
 }
 
-static box3 tight_of(const zs_octnode *n) {
-  if (n->empty) return box_empty();
-  return box_of(n->tlo, n->thi);
-}
-
-static void set_tight(zs_octnode *n, const box3 *b) {
-  n->empty = b->empty;
+/* A node stores an empty tight box as all zero, with its empty flag. */
+static void set_tight(zs_octnode *n, const zs_box *b) {
+  n->empty = zs_box_is_empty(b);
   for (int k = 0; k < 3; k++) {
-    n->tlo[k] = b->empty ? 0.0 : b->lo[k];
-    n->thi[k] = b->empty ? 0.0 : b->hi[k];
+    n->tlo[k] = n->empty ? 0.0 : b->lo[k];
+    n->thi[k] = n->empty ? 0.0 : b->hi[k];
   }
 }
 
@@ -89,16 +41,6 @@ void zs_octree_params_default(zs_octree_params *p, zs_octree_kind kind) {
   p->looseness = ZS_OCTREE_DEFAULT_LOOSENESS;
   p->split = 0;
   p->flat = ZS_OCTREE_DEFAULT_FLAT;
-}
-
-void zs_octree_cell_box(const zs_octree *t, int level, const int32_t cell[3], double factor,
-                        double lo[3], double hi[3]) {
-  double s = ldexp(t->side, -level);
-  double margin = 0.5 * (factor - 1.0) * s;
-  for (int k = 0; k < 3; k++) {
-    lo[k] = t->origin[k] + (double)cell[k] * s - margin;
-    hi[k] = t->origin[k] + (double)(cell[k] + 1) * s + margin;
-  }
 }
 
 /* The factor by which the tree enlarges its cells into node boxes. */
@@ -242,7 +184,8 @@ static void add_count(zs_octree *t, int32_t n, int32_t delta) {
   for (; n >= 0; n = t->node[n].parent) t->node[n].count += delta;
 }
 
-void zs_oct_store(zs_octree *t, int32_t i, const double lo[3], const double hi[3],
+/* Stores box lo .. hi and target (level, cell) as object i's. */
+static void store_object(zs_octree *t, int32_t i, const double lo[3], const double hi[3],
                   int32_t level, const int32_t cell[3]) {
   for (int k = 0; k < 3; k++) {
     t->olo[i][k] = lo[k];
@@ -257,16 +200,16 @@ void zs_oct_store(zs_octree *t, int32_t i, const double lo[3], const double hi[3
 /* Node n's tight box from its content: its objects and its children. */
 static void recompute(zs_octree *t, int32_t n, zs_octree_work *w) {
   zs_octnode *nd = &t->node[n];
-  box3 b = box_empty();
+  zs_box b = zs_box_empty();
   for (int32_t i = nd->first; i >= 0; i = t->next[i]) {
-    box_union(&b, t->olo[i], t->ohi[i]);
+    zs_box_add(&b, t->olo[i], t->ohi[i]);
     w->scanned++;
   }
   for (int o = 0; o < 8; o++) {
     int32_t c = nd->child[o];
     if (c < 0) continue;
     w->scanned++;
-    if (!t->node[c].empty) box_union(&b, t->node[c].tlo, t->node[c].thi);
+    if (!t->node[c].empty) zs_box_add(&b, t->node[c].tlo, t->node[c].thi);
   }
   set_tight(nd, &b);
   w->rebounds++;
@@ -274,22 +217,22 @@ static void recompute(zs_octree *t, int32_t n, zs_octree_work *w) {
 
 /* Box p left node n's content and box q entered it (either may be empty);
  * brings the tight boxes of n and its ancestors up to date. */
-static void refresh(zs_octree *t, int32_t n, box3 p, box3 q, zs_octree_work *w) {
+static void refresh(zs_octree *t, int32_t n, zs_box p, zs_box q, zs_octree_work *w) {
   while (n >= 0) {
     zs_octnode *nd = &t->node[n];
-    box3 old = tight_of(nd);
-    if (!p.empty && box_touches(&p, &old)) {
+    zs_box old = tight_of(nd);
+    if (!zs_box_is_empty(&p) && box_touches(&p, &old)) {
       recompute(t, n, w);
-    } else if (!q.empty) {
-      box3 b = old;
-      box_union(&b, q.lo, q.hi);
+    } else if (!zs_box_is_empty(&q)) {
+      zs_box b = old;
+      zs_box_add(&b, q.lo, q.hi);
       set_tight(nd, &b);
       w->grows++;
     } else {
       return;
     }
-    box3 now = tight_of(nd);
-    if (box_eq(&old, &now)) return;
+    zs_box now = tight_of(nd);
+    if (zs_box_eq(&old, &now)) return;
     p = old;
     q = now;
     n = nd->parent;
@@ -315,8 +258,8 @@ static void split_node(zs_octree *t, int32_t n, zs_octree_work *w) {
     unlink_obj(t, i);
     link_obj(t, c, i);
     t->node[c].count++;
-    box3 b = tight_of(&t->node[c]);
-    box_union(&b, t->olo[i], t->ohi[i]);
+    zs_box b = tight_of(&t->node[c]);
+    zs_box_add(&b, t->olo[i], t->ohi[i]);
     set_tight(&t->node[c], &b);
     w->grows++;
     w->relinks++;
@@ -392,73 +335,29 @@ static int32_t deepest_on_path(const zs_octree *t, int32_t level, const int32_t 
   return ZS_OCTREE_ROOT;
 }
 
-void zs_oct_place(zs_octree *t, int32_t i, zs_octree_work *w) {
+/* Links object i (not in the tree; box and target already stored) into
+ * the node its target and the split policy give, growing tight bounds and
+ * splitting the node if it now holds too many. */
+static void place_object(zs_octree *t, int32_t i, zs_octree_work *w) {
   int32_t n = deepest_on_path(t, t->tlevel[i], t->tcell[i], w);
   if (t->node[n].level < t->tlevel[i] && t->node[n].split)
     n = node_new(t, n, octant_toward(t->node[n].level, t->tlevel[i], t->tcell[i]), w);
   link_obj(t, n, i);
   add_count(t, n, 1);
   w->inserts++;
-  refresh(t, n, box_empty(), box_of(t->olo[i], t->ohi[i]), w);
+  refresh(t, n, zs_box_empty(), zs_box_of(t->olo[i], t->ohi[i]), w);
   maybe_split(t, n, w);
 }
 
-int32_t zs_oct_remove(zs_octree *t, int32_t i, zs_octree_work *w) {
+/* Unlinks object i from its node: counts and tight bounds (its held box
+ * olo/ohi[i] leaves).  Returns the node it left, for tidy. */
+static int32_t remove_object(zs_octree *t, int32_t i, zs_octree_work *w) {
   int32_t n = t->home[i];
   unlink_obj(t, i);
   add_count(t, n, -1);
   w->deletes++;
-  refresh(t, n, box_of(t->olo[i], t->ohi[i]), box_empty(), w);
+  refresh(t, n, zs_box_of(t->olo[i], t->ohi[i]), zs_box_empty(), w);
   return n;
-}
-
-void zs_oct_tidy(zs_octree *t, int32_t n, zs_octree_work *w) { tidy(t, n, w); }
-
-/* The loose tree's target: level from the radius, cell from the centre. */
-static int loose_target(const zs_octree *t, const double lo[3], const double hi[3],
-                        int32_t *level, int32_t cell[3]) {
-  const int max = t->params.max_depth;
-  double r = 0.0;
-  for (int k = 0; k < 3; k++)
-    if (0.5 * (hi[k] - lo[k]) > r) r = 0.5 * (hi[k] - lo[k]);
-  /* fit(L) = (k - 1) s_L: the largest radius that level L takes */
-  const double fit0 = (t->params.looseness - 1.0) * 0.5 * t->side;
-  int L;
-  double ratio = fit0 / r;
-  if (!(r > 0.0) || !(ratio < 131072.0)) {
-    L = max; /* a point, or smaller than any level's limit */
-  } else {
-    int e;
-    frexp(ratio, &e); /* ratio in [2^(e-1), 2^e): floor(log2(ratio)) = e - 1 */
-    L = e - 1;
-  }
-  if (L < 0) L = 0;
-  if (L > max) L = max;
-  /* settle rounding of the ratio with the exact test r <= fit(L) */
-  if (L > 0 && !(r <= ldexp(fit0, -L))) L--;
-  else if (L < max && r <= ldexp(fit0, -(L + 1))) L++;
-
-  int steps = 1;
-  for (;; L--) {
-    double s = ldexp(t->side, -L);
-    int32_t n = (int32_t)1 << L;
-    for (int k = 0; k < 3; k++) {
-      double x = floor((0.5 * (lo[k] + hi[k]) - t->origin[k]) / s);
-      cell[k] = !(x >= 0.0) ? 0 : x >= (double)n ? n - 1 : (int32_t)x;
-    }
-    double blo[3], bhi[3];
-    zs_octree_cell_box(t, L, cell, t->params.looseness, blo, bhi);
-    if (L == 0 || zs_oct_inside(lo, hi, blo, bhi)) break;
-    steps++; /* rounding (or a box outside the bounds): one level up */
-  }
-  *level = L;
-  return steps;
-}
-
-int zs_octree_target(const zs_octree *t, const double lo[3], const double hi[3], int32_t *level,
-                     int32_t cell[3]) {
-  if (t->params.kind == ZS_OCTREE_PLAIN) return zs_oct_plain_target(t, lo, hi, level, cell);
-  return loose_target(t, lo, hi, level, cell);
 }
 
 /* ---- build, update ----------------------------------------------------- */
@@ -561,9 +460,9 @@ zs_status zs_octree_build(zs_octree *t, const zs_scene *s, const zs_octree_param
   for (int32_t i = 0; i < t->nobjects; i++) {
     int32_t level, cell[3];
     w->visits += zs_octree_target(t, s->inst[i].lo, s->inst[i].hi, &level, cell);
-    zs_oct_store(t, i, s->inst[i].lo, s->inst[i].hi, level, cell);
+    store_object(t, i, s->inst[i].lo, s->inst[i].hi, level, cell);
     t->next[i] = t->prev[i] = t->home[i] = ZS_OCTREE_NONE;
-    zs_oct_place(t, i, w);
+    place_object(t, i, w);
   }
   return ZS_OK;
 }
@@ -578,7 +477,7 @@ static int same_box(const zs_octree *t, int32_t i, const double lo[3], const dou
 static void move_one(zs_octree *t, int32_t i, const double lo[3], const double hi[3],
                      zs_octree_work *w) {
   w->moved++;
-  box3 old = box_of(t->olo[i], t->ohi[i]);
+  zs_box old = zs_box_of(t->olo[i], t->ohi[i]);
   int32_t level, cell[3];
   w->visits += zs_octree_target(t, lo, hi, &level, cell);
   if (t->params.kind == ZS_OCTREE_LOOSE) {
@@ -596,8 +495,8 @@ static void move_one(zs_octree *t, int32_t i, const double lo[3], const double h
       w->same_cell++;
     }
     if (same) {
-      zs_oct_store(t, i, lo, hi, level, cell);
-      refresh(t, n, old, box_of(lo, hi), w);
+      store_object(t, i, lo, hi, level, cell);
+      refresh(t, n, old, zs_box_of(lo, hi), w);
       return;
     }
   }
@@ -605,10 +504,10 @@ static void move_one(zs_octree *t, int32_t i, const double lo[3], const double h
    * deleted when the split policy says so) only after the insertion, so
    * ancestors shared by the old and the new node are never deleted and
    * created again */
-  int32_t from = zs_oct_remove(t, i, w);
-  zs_oct_store(t, i, lo, hi, level, cell);
-  zs_oct_place(t, i, w);
-  zs_oct_tidy(t, from, w);
+  int32_t from = remove_object(t, i, w);
+  store_object(t, i, lo, hi, level, cell);
+  place_object(t, i, w);
+  tidy(t, from, w);
 }
 
 void zs_octree_move(zs_octree *t, int32_t i, const double lo[3], const double hi[3],
@@ -676,7 +575,7 @@ void zs_octree_stats_get(const zs_octree *t, zs_octree_stats *st) {
   }
   const zs_octnode *root = &t->node[ZS_OCTREE_ROOT];
   for (int32_t i = 0; i < t->nobjects; i++)
-    if (!zs_oct_inside(t->olo[i], t->ohi[i], root->lo, root->hi)) st->outside++;
+    if (!zs_box_inside(t->olo[i], t->ohi[i], root->lo, root->hi)) st->outside++;
 }
 
 static uint64_t fnv(uint64_t h, const void *data, size_t n) {
@@ -769,13 +668,13 @@ zs_status zs_octree_check(const zs_octree *t, zs_error *err) {
       CHECK(lo[k] == nd->lo[k] && hi[k] == nd->hi[k], "octree: node %d has a wrong box", (int)n);
     /* objects, counts, tight box */
     int32_t count = 0, prev = ZS_OCTREE_NONE;
-    box3 b = box_empty();
+    zs_box b = zs_box_empty();
     for (int32_t i = nd->first; i >= 0; i = t->next[i]) {
       CHECK(i < t->nobjects && count < t->nobjects, "octree: node %d: bad list", (int)n);
       CHECK(t->home[i] == n && t->prev[i] == prev, "octree: object %d: bad list links", (int)i);
       prev = i;
       count++;
-      box_union(&b, t->olo[i], t->ohi[i]);
+      zs_box_add(&b, t->olo[i], t->ohi[i]);
       CHECK(t->tlevel[i] >= nd->level, "octree: object %d above its target", (int)i);
       for (int k = 0; k < 3; k++)
         CHECK(t->tcell[i][k] >> (t->tlevel[i] - nd->level) == nd->cell[k],
@@ -783,7 +682,7 @@ zs_status zs_octree_check(const zs_octree *t, zs_error *err) {
       if (t->tlevel[i] > nd->level)
         CHECK(!nd->split, "octree: object %d waits in split node %d", (int)i, (int)n);
       /* only the root keeps objects that leave its box */
-      CHECK(n == ZS_OCTREE_ROOT || zs_oct_inside(t->olo[i], t->ohi[i], nd->lo, nd->hi),
+      CHECK(n == ZS_OCTREE_ROOT || zs_box_inside(t->olo[i], t->ohi[i], nd->lo, nd->hi),
             "octree: object %d is outside node %d's box", (int)i, (int)n);
     }
     CHECK(count == nd->nobj, "octree: node %d holds %d objects, says %d", (int)n, (int)count,
@@ -794,12 +693,12 @@ zs_status zs_octree_check(const zs_octree *t, zs_error *err) {
       CHECK(c < t->nslots && t->node[c].level == nd->level + 1 && t->node[c].parent == n,
             "octree: node %d: bad child %d", (int)n, o);
       count += t->node[c].count;
-      if (!t->node[c].empty) box_union(&b, t->node[c].tlo, t->node[c].thi);
+      if (!t->node[c].empty) zs_box_add(&b, t->node[c].tlo, t->node[c].thi);
     }
     CHECK(count == nd->count, "octree: node %d counts %d, has %d", (int)n, (int)nd->count,
           (int)count);
-    box3 tb = tight_of(nd);
-    CHECK(box_eq(&b, &tb) && nd->empty == (count == 0),
+    zs_box tb = tight_of(nd);
+    CHECK(zs_box_eq(&b, &tb) && nd->empty == (count == 0),
           "octree: node %d's tight box is not the union of its content", (int)n);
     if (nd->empty)
       for (int k = 0; k < 3; k++)

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cull/box.h"
 #include "raster/grow.h"
 
 /* A mesh's parts: the vertices of each (a vertex of faces in two parts is
@@ -43,27 +44,10 @@ void zs_parts_destroy(zs_parts *p) {
   free(p);
 }
 
-typedef struct box3 {
-  double lo[3], hi[3];
-} box3;
-
-static const box3 empty_box = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-
-static void box_add(box3 *b, const box3 *o) {
-  for (int k = 0; k < 3; k++) {
-    b->lo[k] = fmin(b->lo[k], o->lo[k]);
-    b->hi[k] = fmax(b->hi[k], o->hi[k]);
-  }
-}
-
-static double box_volume(const box3 *b) {
-  return b->hi[0] < b->lo[0] ? 0.0 : (b->hi[0] - b->lo[0]) * (b->hi[1] - b->lo[1]) * (b->hi[2] - b->lo[2]);
-}
-
 /* A group of faces: face[first .. first + count - 1] of the split order. */
 typedef struct group {
   int32_t first, count;
-  box3 box;
+  zs_box box;
   /* its best split: faces whose centroid bin along axis is <= bin go
    * first; gain is the volume it saves */
   int axis, bin;
@@ -72,47 +56,46 @@ typedef struct group {
 
 enum { BINS = 16 };
 
-static int bin_of(const double *centroid, const box3 *cb, int axis) {
+static int bin_of(const double *centroid, const zs_box *cb, int axis) {
   double w = cb->hi[axis] - cb->lo[axis];
   int b = w > 0.0 ? (int)((centroid[axis] - cb->lo[axis]) / w * BINS) : 0;
   return b < 0 ? 0 : b >= BINS ? BINS - 1 : b;
 }
 
 /* The bounds of the centroids of g's faces. */
-static box3 centroid_bounds(const group *g, const int32_t *face, const double *centroid) {
-  box3 cb = empty_box;
+static zs_box centroid_bounds(const group *g, const int32_t *face, const double *centroid) {
+  zs_box cb = zs_box_empty();
   for (int32_t j = 0; j < g->count; j++) {
     const double *c = centroid + 3 * face[g->first + j];
-    box3 p = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
-    box_add(&cb, &p);
+    zs_box_add(&cb, c, c);
   }
   return cb;
 }
 
 /* The split of g that leaves the least volume, binned along each axis. */
-static void best_split(group *g, const int32_t *face, const double *centroid, const box3 *fbox) {
+static void best_split(group *g, const int32_t *face, const double *centroid, const zs_box *fbox) {
   g->gain = 0.0;
   if (g->count < 2) return;
-  box3 cb = centroid_bounds(g, face, centroid);
+  zs_box cb = centroid_bounds(g, face, centroid);
   for (int a = 0; a < 3; a++) {
-    box3 bin[BINS], left[BINS];
+    zs_box bin[BINS], left[BINS];
     int32_t n[BINS] = {0};
-    for (int b = 0; b < BINS; b++) bin[b] = empty_box;
+    for (int b = 0; b < BINS; b++) bin[b] = zs_box_empty();
     for (int32_t j = 0; j < g->count; j++) {
       int32_t f = face[g->first + j];
       int b = bin_of(centroid + 3 * f, &cb, a);
-      box_add(&bin[b], &fbox[f]);
+      zs_box_add_box(&bin[b], &fbox[f]);
       n[b]++;
     }
     left[0] = bin[0];
-    for (int b = 1; b < BINS; b++) left[b] = left[b - 1], box_add(&left[b], &bin[b]);
-    box3 right = empty_box;
+    for (int b = 1; b < BINS; b++) left[b] = left[b - 1], zs_box_add_box(&left[b], &bin[b]);
+    zs_box right = zs_box_empty();
     int32_t nright = 0;
     for (int b = BINS - 1; b > 0; b--) { /* split after bin b - 1 */
-      box_add(&right, &bin[b]);
+      zs_box_add_box(&right, &bin[b]);
       nright += n[b];
       if (nright == 0 || nright == g->count) continue;
-      double gain = box_volume(&g->box) - box_volume(&left[b - 1]) - box_volume(&right);
+      double gain = zs_box_volume(&g->box) - zs_box_volume(&left[b - 1]) - zs_box_volume(&right);
       if (gain > g->gain) g->gain = gain, g->axis = a, g->bin = b - 1;
     }
   }
@@ -126,7 +109,7 @@ static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
   int32_t nf = m->nfaces > 0 ? m->nfaces : 1;
   int32_t *face = malloc((size_t)nf * sizeof *face);
   double *centroid = malloc((size_t)nf * 3 * sizeof *centroid);
-  box3 *fbox = malloc((size_t)nf * sizeof *fbox);
+  zs_box *fbox = malloc((size_t)nf * sizeof *fbox);
   int32_t *seen = malloc((size_t)(m->nverts > 0 ? m->nverts : 1) * sizeof *seen);
   int32_t total = m->face_start[m->nfaces];
   mp->vert = malloc((size_t)(total > 0 ? total : 1) * sizeof *mp->vert);
@@ -135,22 +118,21 @@ static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
     return 0;
   }
   group g[ZS_PARTS_MAX];
-  g[0] = (group){0, m->nfaces, empty_box, 0, 0, 0.0};
+  g[0] = (group){0, m->nfaces, zs_box_empty(), 0, 0, 0.0};
   for (int32_t f = 0; f < m->nfaces; f++) {
     face[f] = f;
-    fbox[f] = empty_box;
+    fbox[f] = zs_box_empty();
     int32_t a = m->face_start[f], b = m->face_start[f + 1];
     for (int k = 0; k < 3; k++) centroid[3 * f + k] = 0.0;
     for (int32_t j = a; j < b; j++) {
       const double *p = m->pos + 3 * m->face_vert[j];
-      box3 pb = {{p[0], p[1], p[2]}, {p[0], p[1], p[2]}};
-      box_add(&fbox[f], &pb);
+      zs_box_add(&fbox[f], p, p);
       for (int k = 0; k < 3; k++) centroid[3 * f + k] += p[k] / (b - a);
     }
-    box_add(&g[0].box, &fbox[f]);
+    zs_box_add_box(&g[0].box, &fbox[f]);
   }
   int ng = 1;
-  const double worth = 0.002 * box_volume(&g[0].box);
+  const double worth = 0.002 * zs_box_volume(&g[0].box);
   const int most = m->nfaces / ZS_FACES_PER_PART < ZS_PARTS_MAX ? m->nfaces / ZS_FACES_PER_PART
                                                                   : ZS_PARTS_MAX;
   if (most > 1) best_split(&g[0], face, centroid, fbox);
@@ -161,7 +143,7 @@ static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
     if (!(g[best].gain > worth)) break;
     /* partition: the faces of the low bins first */
     group *s = &g[best];
-    box3 cb = centroid_bounds(s, face, centroid);
+    zs_box cb = centroid_bounds(s, face, centroid);
     int32_t lo = s->first, hi = s->first + s->count - 1;
     while (lo <= hi) {
       if (bin_of(centroid + 3 * face[lo], &cb, s->axis) <= s->bin) lo++;
@@ -170,10 +152,10 @@ static int make_mesh_parts(mesh_parts *mp, const zs_mesh *m) {
         face[lo] = face[hi], face[hi--] = t;
       }
     }
-    group a = {s->first, lo - s->first, empty_box, 0, 0, 0.0};
-    group b = {lo, s->first + s->count - lo, empty_box, 0, 0, 0.0};
-    for (int32_t j = 0; j < a.count; j++) box_add(&a.box, &fbox[face[a.first + j]]);
-    for (int32_t j = 0; j < b.count; j++) box_add(&b.box, &fbox[face[b.first + j]]);
+    group a = {s->first, lo - s->first, zs_box_empty(), 0, 0, 0.0};
+    group b = {lo, s->first + s->count - lo, zs_box_empty(), 0, 0, 0.0};
+    for (int32_t j = 0; j < a.count; j++) zs_box_add_box(&a.box, &fbox[face[a.first + j]]);
+    for (int32_t j = 0; j < b.count; j++) zs_box_add_box(&b.box, &fbox[face[b.first + j]]);
     best_split(&a, face, centroid, fbox);
     best_split(&b, face, centroid, fbox);
     g[best] = a;

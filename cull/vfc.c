@@ -1,0 +1,14 @@
+/* vfc: hierarchical view-frustum culling.  The walk tests the nodes'
+ * tight boxes against the frustum (plane masking, p/n-vertex tests) and
+ * drops what lies outside; every element inside is opened or drawn. */
+#include "cull/internal.h"
+
+static void visit(frame_ctx *f, elem e, unsigned mask) {
+  elem_state *es = cull_state(f, e);
+  es->visible = 1;
+  es->last_visited = f->c->frame;
+  cull_traverse(f, e, mask);
+}
+
+const cull_hooks cull_vfc_hooks = {.visit = visit};
+const cull_ops cull_vfc = {.frame = cull_walk, .hooks = &cull_vfc_hooks};
