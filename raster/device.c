@@ -201,21 +201,6 @@ void zs_device_set_camera(zs_device *d, const double view[16],
  * the rows it covers (zscan bench raster --case models measures it). */
 static void mark_rows_fresh(zs_device *d) { memset(d->fresh, 1, (size_t)d->cfg.height); }
 
-void zs_frame_clear_fresh(const zs_device *d) {
-  if (!d->fresh) return;
-  const zs_target t = zs_draw_frame_target((zs_device *)d);
-  const size_t w = (size_t)d->cfg.width;
-  for (int y = 0; y < d->cfg.height; y++)
-    if (d->fresh[y]) {
-      const size_t off = (size_t)y * w;
-      zs_fill_u32(t.depth + off, w, ZS_DEPTH_FAR);
-      zs_fill_u32(t.id + off, w, ZS_ID_NONE);
-      zs_fill_u32(t.rgb + off, w, d->cfg.background);
-      if (t.count) memset(t.count + off, 0, w * sizeof *t.count);
-      d->fresh[y] = 0;
-    }
-}
-
 /* scanline and depthsort modes clear their one-row buffers row by row */
 static void clear_rows_later(zs_device *d) { (void)d; }
 

@@ -40,6 +40,22 @@ zs_target zs_draw_frame_target(zs_device *d) {
   return t;
 }
 
+/* device.c marks the rows fresh at a clear (internal.h). */
+void zs_frame_clear_fresh(const zs_device *d) {
+  if (!d->fresh) return;
+  const zs_target t = zs_draw_frame_target((zs_device *)d);
+  const size_t w = (size_t)d->cfg.width;
+  for (int y = 0; y < d->cfg.height; y++)
+    if (d->fresh[y]) {
+      const size_t off = (size_t)y * w;
+      zs_fill_u32(t.depth + off, w, ZS_DEPTH_FAR);
+      zs_fill_u32(t.id + off, w, ZS_ID_NONE);
+      zs_fill_u32(t.rgb + off, w, d->cfg.background);
+      if (t.count) memset(t.count + off, 0, w * sizeof *t.count);
+      d->fresh[y] = 0;
+    }
+}
+
 void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c) {
   s->spans += c->spans;
   s->pixels_tested += c->tested;

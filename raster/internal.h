@@ -538,7 +538,7 @@ zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[
                           uint32_t id_base, uint32_t rgb, zs_kernel k, zs_walk_counts *out,
                           zs_error *err);
 
-/* device.c: clears the rows of the full frame not cleared yet, for a
+/* draw.c: clears the rows of the full frame not cleared yet, for a
  * reader of the whole frame (the buffers' getters, the pyramid, the
  * hidden lines). */
 void zs_frame_clear_fresh(const zs_device *d);
