@@ -177,7 +177,7 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
      * set whole, so the faces that turn into the window are in the old
      * order already.  A face drawn outside it (its box met a pixel centre,
      * the face does not) covers no pixel and is painted farthest. */
-    if (ds && r != ZS_SETUP_NOMEM) {
+    if (__builtin_expect(ds != NULL, 0) && r != ZS_SETUP_NOMEM) { /* the painter only */
       if (zs_depthsort_selects(d, &sp, r, v, fv, or_code ? clipped : NULL, n, in)) {
         /* the sort key: distance along the view axis of the centroid of
          * the face's vertices */

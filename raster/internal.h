@@ -268,6 +268,7 @@ static inline int64_t zs_plane_at(uint64_t zrow, int64_t dzdx, int64_t x) {
 /* Per-walk scratch, kept by the device so walks do not allocate. */
 typedef struct zs_walk_scratch {
   int32_t *bucket_head, *next;  /* the sorted polygon table */
+  int32_t *bucket_count;        /* polygons in each row's bucket */
   int32_t cap_rows, cap_polys;
   zs_active *active;            /* the active polygon / edge-pair list */
   int32_t cap_active;

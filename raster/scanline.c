@@ -67,9 +67,9 @@ static inline row_ptrs row_of(const zs_target *t, int32_t y) {
   return r;
 }
 
-/* Room for one more active polygon (0: out of memory). */
-static int grow_active(zs_walk_scratch *s, int32_t nact) {
-  return zs_grow((void **)&s->active, &s->cap_active, (int64_t)nact + 1, sizeof *s->active);
+/* Room for n active polygons (0: out of memory). */
+static int grow_active(zs_walk_scratch *s, int32_t n) {
+  return zs_grow((void **)&s->active, &s->cap_active, n, sizeof *s->active);
 }
 
 /* Clears row y of a lazily cleared target, the first time a walk reaches
@@ -152,9 +152,9 @@ static int cmp_int64(const void *a, const void *b) {
 
 static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
   if (rows > s->cap_rows) {
-    void **const arrays[] = {(void **)&s->bucket_head};
-    const size_t sizes[] = {sizeof *s->bucket_head};
-    if (!zs_resize_each(arrays, sizes, 1, (size_t)rows)) return 0;
+    void **const arrays[] = {(void **)&s->bucket_head, (void **)&s->bucket_count};
+    const size_t sizes[] = {sizeof *s->bucket_head, sizeof *s->bucket_count};
+    if (!zs_resize_each(arrays, sizes, 2, (size_t)rows)) return 0;
     s->cap_rows = rows;
   }
   if (polys > s->cap_polys) {
@@ -163,8 +163,9 @@ static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
     if (!zs_resize_each(arrays, sizes, 2, (size_t)polys)) return 0;
     s->cap_polys = polys;
   }
-  /* the active list grows as the walk needs it (grow_active): most
-   * polygons of a large batch are never active at once */
+  /* the active list grows as the walk needs it, checked once a row
+   * (bucket_count): most polygons of a large batch are never active at
+   * once */
   if (s->cap_active == 0 && !zs_grow((void **)&s->active, &s->cap_active, 64, sizeof *s->active))
     return 0;
   return 1;
@@ -172,6 +173,7 @@ static int reserve_scratch(zs_walk_scratch *s, int32_t rows, int32_t polys) {
 
 void zs_walk_scratch_free(zs_walk_scratch *s) {
   free(s->bucket_head);
+  free(s->bucket_count);
   free(s->next);
   free(s->active);
   free(s->trace_pairs);
@@ -186,9 +188,9 @@ void zs_walk_scratch_free(zs_walk_scratch *s) {
  * from the top would hold them: by first row, then batch order.  Returns
  * the first bucket in use (nrows when none). */
 static int32_t bucket_polys(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch *s) {
-  int32_t *head = s->bucket_head, *next = s->next;
+  int32_t *head = s->bucket_head, *next = s->next, *count = s->bucket_count;
   int32_t nrows = row_end - row_begin;
-  for (int32_t i = 0; i < nrows; i++) head[i] = -1;
+  for (int32_t i = 0; i < nrows; i++) head[i] = -1, count[i] = 0;
   int32_t first_bucket = nrows, ncross = 0;
   /* backwards, so that each list comes out in batch order */
   for (int32_t i = b->npolys - 1; i >= 0; i--) {
@@ -201,6 +203,7 @@ static int32_t bucket_polys(const zs_batch *b, int row_begin, int row_end, zs_wa
     int32_t r = p->row0 - row_begin;
     next[i] = head[r];
     head[r] = i;
+    count[r]++;
     if (r < first_bucket) first_bucket = r;
   }
   if (ncross > 0) {
@@ -215,6 +218,7 @@ static int32_t bucket_polys(const zs_batch *b, int row_begin, int row_end, zs_wa
       next[i] = head[0];
       head[0] = i;
     }
+    count[0] += ncross;
     first_bucket = 0;
   }
   return first_bucket;
@@ -264,7 +268,7 @@ static inline void row_span(zs_kernel k, const row_ptrs *row, int width, const z
 
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; the plane at column 0 moves by dzdy. */
-static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
+__attribute__((always_inline)) static inline void step_down(zs_active *a, const zs_edge *edges, int32_t y) {
   if (y < a->l.last) zs_edge_dda_step(&a->l);
   else zs_edge_dda_start(&a->l, &edges[++a->left], y + 1);
   if (y < a->r.last) zs_edge_dda_step(&a->r);
@@ -300,13 +304,12 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
     if (hooks && hooks->begin_row) hooks->begin_row(hooks->user, y);
 
     /* New polygons join the active lists with their edge pair. */
-    for (int32_t i = head[y - row_begin]; i >= 0; i = next[i]) {
-      if (nact == s->cap_active) {
-        if (!grow_active(s, nact)) return 0;
-        act = s->active;
-      }
-      activate(&act[nact++], i, &polys[i], edges, y);
+    if (nact + s->bucket_count[y - row_begin] > s->cap_active) {
+      if (!grow_active(s, nact + s->bucket_count[y - row_begin])) return 0;
+      act = s->active;
     }
+    for (int32_t i = head[y - row_begin]; i >= 0; i = next[i])
+      activate(&act[nact++], i, &polys[i], edges, y);
 
     if (t->fresh && t->fresh[y]) clear_row(t, y);
     const row_ptrs row = row_of(t, y);
