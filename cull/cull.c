@@ -9,7 +9,7 @@
 static const char *const method_names[ZS_CULL_METHODS] = {
     "none", "vfc", "vfc-box", "hsw", "chc", "chc-prob", "ideal", "auto",
     "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti", "chcpp-prob", "nohc",
-    "ideal-box"};
+    "ideal-box", "hzb"};
 
 const char *zs_cull_method_name(zs_cull_method m) {
   return (unsigned)m < ZS_CULL_METHODS ? method_names[m] : "?";
@@ -31,7 +31,8 @@ static const cull_ops *const method_ops[ZS_CULL_METHODS] = {
     [ZS_CULL_CHCPP_NOMULTI] = &cull_chcpp_nomulti,
     [ZS_CULL_CHCPP_PROB] = &cull_chcpp_prob,
     [ZS_CULL_NOHC] = &cull_nohc,
-    [ZS_CULL_IDEAL_BOX] = &cull_ideal_box};
+    [ZS_CULL_IDEAL_BOX] = &cull_ideal_box,
+    [ZS_CULL_HZB] = &cull_hzb};
 
 int zs_cull_method_parse(const char *name) {
   for (int i = 0; i < ZS_CULL_METHODS; i++)
@@ -89,6 +90,7 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->qq);
   free(c->polys);
   free(c->decision);
+  free(c->hzb_draw);
   free(c->iq);
   free(c->vq);
   free(c->gm);

@@ -141,6 +141,7 @@ typedef enum zs_cull_method {
   ZS_CULL_CHCPP_PROB,     /* CHC++ with chc-prob's test before each query */
   ZS_CULL_NOHC,           /* near-optimal hierarchical culling's cost model */
   ZS_CULL_IDEAL_BOX,      /* oracle: the instances whose box has a sample */
+  ZS_CULL_HZB,            /* two-phase culling against a hierarchical depth buffer */
   ZS_CULL_METHODS
 } zs_cull_method;
 
@@ -150,7 +151,7 @@ enum { ZS_CHCPP_BATCH = 50, ZS_CHCPP_VISIBLE_FRAMES = 5 };
  * (test_cull checks them against zs_cull_method_name). */
 #define ZS_CULL_METHOD_LIST                                                                   \
   "none vfc vfc-box hsw chc chc-prob ideal auto chcpp chcpp-nobatch chcpp-nodefer chcpp-nomulti " \
-  "chcpp-prob nohc ideal-box"
+  "chcpp-prob nohc ideal-box hzb"
 
 /* "none", "vfc", ...; and back (-1 for an unknown name). */
 const char *zs_cull_method_name(zs_cull_method m);
@@ -202,6 +203,10 @@ typedef struct zs_cull_stats {
    * last frame pays over ideal-box for that change */
   uint64_t set_entered, set_entered_outside, set_left, set_left_outside;
   int64_t churn_known_ps, churn_ranked_ps;
+  /* hzb only: objects drawn in phase 1 (last frame's set) and in phase 2
+   * (found by the pyramid), and of phase 1's the ones the final pyramid
+   * hides (drawn though hidden: the set's staleness) */
+  uint64_t hzb_phase1, hzb_phase2, hzb_stale;
 } zs_cull_stats;
 
 typedef struct zs_culler zs_culler;

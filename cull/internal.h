@@ -160,6 +160,9 @@ struct zs_culler {
   int32_t cap_qlo, cap_qhi;
   zs_parts *parts;
   uint32_t class_visible[NOHC_CLASSES], class_hidden[NOHC_CLASSES];
+  /* hzb: the objects drawn in its two phases, this frame */
+  uint8_t *hzb_draw;
+  int32_t cap_hzb_draw;
 };
 
 /* The frame's context. */
@@ -185,7 +188,7 @@ struct frame_ctx {
 /* The methods (cull.c picks one by zs_cull_method). */
 extern const cull_ops cull_none, cull_vfc, cull_vfc_box, cull_hsw, cull_chc, cull_chc_prob,
     cull_ideal, cull_auto, cull_chcpp, cull_chcpp_nobatch, cull_chcpp_nodefer,
-    cull_chcpp_nomulti, cull_chcpp_prob, cull_nohc, cull_ideal_box;
+    cull_chcpp_nomulti, cull_chcpp_prob, cull_nohc, cull_ideal_box, cull_hzb;
 /* The hooks of vfc and chc-prob, for auto's frames. */
 extern const cull_hooks cull_vfc_hooks, cull_chc_prob_hooks, cull_chc_prob_measured_hooks;
 
@@ -196,6 +199,10 @@ void cull_out_of_memory(frame_ctx *f);
 
 /* The frame of every method that walks the octree. */
 void cull_walk(frame_ctx *f);
+/* Its set-up, for a method with a frame of its own over the tree (hzb):
+ * the per-element state for the frame's tree and scene; 0 when out of
+ * memory. */
+int cull_walk_begin(frame_ctx *f);
 
 /* ---- hierarchy.c: elements, drawing, the traversal queue ---- */
 

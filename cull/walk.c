@@ -15,7 +15,7 @@
 
 /* The culler's state for the frame's tree and scene, the near plane's
  * reach and the decisions' overlay; 0 when out of memory. */
-static int begin_frame(frame_ctx *f) {
+int cull_walk_begin(frame_ctx *f) {
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
   if (!zs_grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns) ||
@@ -76,7 +76,7 @@ static void walk(frame_ctx *f) {
 
 void cull_walk(frame_ctx *f) {
   const cull_ops *ops = f->c->ops;
-  if (!begin_frame(f)) return;
+  if (!cull_walk_begin(f)) return;
   if (ops->begin) ops->begin(f);
   if (f->status != ZS_OK) return;
   walk(f);

@@ -162,7 +162,7 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
   /* the level at which the rectangle spans at most 2x2 texels */
   const int span = (x1 - x0 > y1 - y0 ? x1 - x0 : y1 - y0) + 1;
   int k = 0;
-  while ((1 << k) < span && k + 1 < d->hzb.levels) k++;
+  while ((1 << k) < span >> 1 && k + 1 < d->hzb.levels) k++;
   const uint32_t far = farthest_over(d, k, x0, y0, x1, y1);
   return !((double)far < near);
 }

@@ -507,13 +507,14 @@ START_TEST(walk_compares_hidden_surface_modes) {
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
   ck_assert_str_eq(line, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
                          "faces_drawn,objects_drawn,nodes_visited,diff_pixels,gpu_draw_ms,"
-                         "gpu_query_ms,gpu_switch_ms,gpu_idle_ms\n");
+                         "gpu_query_ms,gpu_switch_ms,gpu_idle_ms,hzb_phase1,hzb_phase2,"
+                         "hzb_stale,hzb_boxes,hzb_texels\n");
   while (fgets(line, sizeof line, f)) {
-    double col[16];
+    double col[21];
     int ncol = 0;
-    for (const char *p = line; p && ncol < 16; p = strchr(p, ','), p = p ? p + 1 : NULL)
+    for (const char *p = line; p && ncol < 21; p = strchr(p, ','), p = p ? p + 1 : NULL)
       col[ncol++] = strtod(p, NULL);
-    ck_assert_int_eq(ncol, 16);
+    ck_assert_int_eq(ncol, 21);
     unsigned long long wrong = (unsigned long long)col[11];
     double sum = col[12] + col[13] + col[14] + col[15];
     ck_assert_msg(fabs(sum - col[3]) < 5e-6, "split %.6f, modelled %.6f: %s", sum, col[3], line);

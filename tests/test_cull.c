@@ -111,7 +111,7 @@ static const zs_cull_method exact[] = {ZS_CULL_NONE,  ZS_CULL_VFC,           ZS_
                                        ZS_CULL_CHC,   ZS_CULL_CHC_PROB,      ZS_CULL_IDEAL,
                                        ZS_CULL_AUTO,  ZS_CULL_CHCPP,         ZS_CULL_CHCPP_NOBATCH,
                                        ZS_CULL_CHCPP_NODEFER, ZS_CULL_CHCPP_NOMULTI, ZS_CULL_CHCPP_PROB,
-                                       ZS_CULL_NOHC,  ZS_CULL_IDEAL_BOX};
+                                       ZS_CULL_NOHC,  ZS_CULL_IDEAL_BOX,     ZS_CULL_HZB};
 enum { NEXACT = sizeof exact / sizeof exact[0] };
 
 /* The generated scenes, small, with their own walks and moving objects. */

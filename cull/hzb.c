@@ -1,0 +1,218 @@
+/* hzb: two-phase occlusion culling against a hierarchical depth buffer,
+ * as GPU-driven pipelines cull (Haar and Aaltonen, SIGGRAPH 2015; Karis
+ * et al., Nanite, SIGGRAPH 2021; the pyramid: Greene, Kass and Miller
+ * 1993).  No occlusion query is asked; the pyramid's answers stay on the
+ * GPU and drive the next draws, so nothing waits for a latency.
+ *
+ *   1. the objects visible last frame that lie in the frustum are drawn;
+ *   2. the pyramid of that depth is built (raster/hzb.c);
+ *   3. the octree is walked a level at a time from the root, each level's
+ *      elements in the frustum tested against the pyramid in one pass; a
+ *      node that fails is skipped whole, one that may be visible opens,
+ *      and an object that may be visible and was not drawn in 1 is drawn;
+ *   4. the pyramid of the final depth is built and every object drawn
+ *      this frame tested against it: those that may be visible are next
+ *      frame's set.
+ *
+ * Exact: an object is left out only when its boxes are hidden behind the
+ * depth of phase 1, which the rest of the frame only brings nearer
+ * (zs_device_hzb_test never hides a box its query would see). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cull/internal.h"
+#include "raster/grow.h"
+
+/* The elements of one level, and where each one's boxes start. */
+typedef struct level {
+  elem *e;
+  unsigned *mask;
+  int32_t *box0;
+  int32_t n, cap;
+} level;
+
+static int level_push(level *l, elem e, unsigned mask) {
+  if (l->n == l->cap) {
+    const int32_t cap = l->cap ? 2 * l->cap : 256;
+    void **const arrays[] = {(void **)&l->e, (void **)&l->mask, (void **)&l->box0};
+    const size_t sizes[] = {sizeof *l->e, sizeof *l->mask, sizeof *l->box0};
+    if (!zs_resize_each(arrays, sizes, 3, (size_t)cap + 1)) return 0; /* box0: one more */
+    l->cap = cap;
+  }
+  l->e[l->n] = e;
+  l->mask[l->n++] = mask;
+  return 1;
+}
+
+static void level_free(level *l) {
+  free(l->e);
+  free(l->mask);
+  free(l->box0);
+}
+
+/* Tests the boxes of elements [0, n) of l (their parts' boxes for
+ * objects) against the pyramid in one pass; maybe[k]: any may be
+ * visible.  0 when out of memory. */
+static int test_level(frame_ctx *f, level *l, uint8_t **maybe, int32_t *cap_maybe) {
+  zs_culler *c = f->c;
+  if (l->n == 0) return 1;
+  int32_t nbox = 0;
+  for (int32_t k = 0; k < l->n; k++) {
+    l->box0[k] = nbox;
+    if (!cull_add_query_boxes(f, l->e[k], &nbox)) return 0;
+  }
+  l->box0[l->n] = nbox;
+  if (!zs_grow((void **)maybe, cap_maybe, nbox > 0 ? nbox : 1, 1)) return 0;
+  if (nbox > 0) {
+    zs_status st = zs_device_hzb_test(f->dev, (const double(*)[3])c->qlo,
+                                      (const double(*)[3])c->qhi, nbox, *maybe, f->err);
+    if (st != ZS_OK) {
+      f->status = st;
+      return 0;
+    }
+  }
+  /* element k may be visible when any of its boxes may be */
+  for (int32_t k = 0; k < l->n; k++) {
+    uint8_t any = 0;
+    for (int32_t b = l->box0[k]; b < l->box0[k + 1]; b++) any |= (*maybe)[b];
+    (*maybe)[k] = any; /* k <= box0[k]: read before written */
+  }
+  return 1;
+}
+
+/* Phase 1: last frame's set, where in the frustum. */
+static void phase_one(frame_ctx *f, uint8_t *draw1) {
+  for (int32_t i = 0; i < f->s->ninst; i++) {
+    draw1[i] = 0;
+    if (!f->c->os[i].visible) continue;
+    const double *lo, *hi;
+    cull_elem_box(f, object_elem(i), &lo, &hi);
+    unsigned mask = ZS_FRUSTUM_ALL_PLANES;
+    uint64_t tests = f->st->frustum_tests;
+    zs_frustum_result fr = zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests);
+    zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
+    draw1[i] = fr != ZS_FRUSTUM_OUTSIDE;
+  }
+  cull_draw_front_to_back(f, draw1);
+  f->st->hzb_phase1 = f->st->objects_drawn;
+}
+
+/* Phase 3: the octree a level at a time; draw2 the objects to draw. */
+static void phase_two(frame_ctx *f, const uint8_t *draw1, uint8_t *draw2, level *cur, level *next,
+                      uint8_t **maybe, int32_t *cap_maybe) {
+  const zs_octree *t = f->t;
+  cur->n = next->n = 0;
+  if (!t->node[ZS_OCTREE_ROOT].empty && !level_push(cur, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES)) {
+    cull_out_of_memory(f);
+    return;
+  }
+  while (cur->n > 0 && f->status == ZS_OK) {
+    /* the frustum first, on the CPU as the other methods do */
+    int32_t kept = 0;
+    for (int32_t k = 0; k < cur->n; k++) {
+      const elem e = cur->e[k];
+      if (is_object(e) && draw1[object_of(e)]) continue; /* drawn in phase 1 */
+      f->st->nodes_visited++;
+      zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
+      const double *lo, *hi;
+      cull_elem_box(f, e, &lo, &hi);
+      unsigned mask = cur->mask[k];
+      uint64_t tests = f->st->frustum_tests;
+      zs_frustum_result fr = mask ? zs_frustum_test_box(&f->frustum, lo, hi, &mask,
+                                                        &f->st->frustum_tests)
+                                  : ZS_FRUSTUM_INSIDE;
+      zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
+      if (fr == ZS_FRUSTUM_OUTSIDE) {
+        cull_decide(f, e, ZS_NODE_OUTSIDE);
+        continue;
+      }
+      cur->e[kept] = e;
+      cur->mask[kept++] = mask;
+    }
+    cur->n = kept;
+    if (!test_level(f, cur, maybe, cap_maybe)) {
+      if (f->status == ZS_OK) cull_out_of_memory(f);
+      return;
+    }
+    next->n = 0;
+    for (int32_t k = 0; k < cur->n; k++) {
+      const elem e = cur->e[k];
+      cull_decide(f, e, (*maybe)[k] ? ZS_NODE_QUERIED_VISIBLE : ZS_NODE_QUERIED_HIDDEN);
+      if (!(*maybe)[k]) continue;
+      if (is_object(e)) {
+        draw2[object_of(e)] = 1;
+        continue;
+      }
+      const zs_octnode *nd = &t->node[e];
+      int ok = 1;
+      for (int o = 0; o < 8 && ok; o++)
+        if (nd->child[o] != ZS_OCTREE_NONE && !t->node[nd->child[o]].empty)
+          ok = level_push(next, nd->child[o], cur->mask[k]);
+      for (int32_t i = nd->first; i != ZS_OCTREE_NONE && ok; i = t->next[i])
+        ok = level_push(next, object_elem(i), cur->mask[k]);
+      if (!ok) {
+        cull_out_of_memory(f);
+        return;
+      }
+    }
+    level swap = *cur;
+    *cur = *next;
+    *next = swap;
+  }
+}
+
+/* Phase 4: next frame's set, from the final depth. */
+static void next_set(frame_ctx *f, const uint8_t *draw1, const uint8_t *draw2, level *l,
+                     uint8_t **maybe, int32_t *cap_maybe) {
+  zs_status st = zs_device_hzb_build(f->dev, f->err);
+  if (st != ZS_OK) {
+    f->status = st;
+    return;
+  }
+  l->n = 0;
+  for (int32_t i = 0; i < f->s->ninst; i++) {
+    f->c->os[i].visible = 0;
+    if ((draw1[i] || draw2[i]) && !level_push(l, object_elem(i), 0)) {
+      cull_out_of_memory(f);
+      return;
+    }
+  }
+  if (!test_level(f, l, maybe, cap_maybe)) {
+    if (f->status == ZS_OK) cull_out_of_memory(f);
+    return;
+  }
+  for (int32_t k = 0; k < l->n; k++) {
+    const int32_t i = object_of(l->e[k]);
+    f->c->os[i].visible = (*maybe)[k];
+    f->st->hzb_stale += draw1[i] && !(*maybe)[k];
+  }
+}
+
+static void frame(frame_ctx *f) {
+  zs_culler *c = f->c;
+  if (!cull_walk_begin(f)) return;
+  const int32_t n = f->s->ninst;
+  if (!zs_grow((void **)&c->hzb_draw, &c->cap_hzb_draw, 2 * (int64_t)n + 1, 1)) {
+    cull_out_of_memory(f);
+    return;
+  }
+  uint8_t *draw1 = c->hzb_draw, *draw2 = c->hzb_draw + n;
+  memset(draw2, 0, (size_t)n);
+  level cur = {0}, next = {0};
+  uint8_t *maybe = NULL;
+  int32_t cap_maybe = 0;
+  phase_one(f, draw1);
+  zs_status st = f->status == ZS_OK ? zs_device_hzb_build(f->dev, f->err) : f->status;
+  if (st != ZS_OK) f->status = st;
+  if (f->status == ZS_OK) phase_two(f, draw1, draw2, &cur, &next, &maybe, &cap_maybe);
+  if (f->status == ZS_OK) {
+    cull_draw_front_to_back(f, draw2);
+    f->st->hzb_phase2 = f->st->objects_drawn - f->st->hzb_phase1;
+  }
+  if (f->status == ZS_OK) next_set(f, draw1, draw2, &cur, &maybe, &cap_maybe);
+  level_free(&cur);
+  level_free(&next);
+  free(maybe);
+}
+
+const cull_ops cull_hzb = {.frame = frame};
