@@ -7,20 +7,30 @@
  * inside it at the odd edges), so it is the farthest depth of the pixels
  * it covers, exactly, in the buffer's 32-bit units.
  *
- * A box is "maybe visible" unless every texel over the pixels its query
- * box could reach is nearer than any depth that query could test.  The
- * pixels: the window rectangle of the box's corners, grown by the query
- * margin (zs_device_query_margin) and one more pixel on every side
- * (snapping moves a corner by at most 1/512 pixel).  The depth: the
- * nearest corner's window depth, less what a query box is brought nearer
- * by (ZS_QUERY_DEPTH_BIAS units and 1/16 pixel of its face's depth slope),
- * less as much again for snapping (the plane of a snapped face strays
- * from its corners by at most the same 1/16 pixel of slope, the bound the
- * query boxes rest on) and 64 units for the fixed-point plane's rounding.
+ * A box is "maybe visible" unless every sample its query box could count
+ * lies behind the pyramid.  The pixels: the window rectangle of the box's
+ * corners, grown by the query margin (zs_device_query_margin) and one
+ * more pixel on every side (snapping moves a corner by at most 1/512
+ * pixel).  The depth: what a query box is brought nearer by
+ * (ZS_QUERY_DEPTH_BIAS units and 1/16 pixel of its face's depth slope),
+ * as much again for snapping (the plane of a snapped face strays from its
+ * corners by at most the same 1/16 pixel of slope, the bound the query
+ * boxes rest on), and 64 units for the fixed-point plane's rounding.  Two
+ * stages:
+ *   coarse  the nearest corner's depth against the farthest texels over
+ *           the rectangle, at the level where it spans at most three
+ *           texels a side (the classic test);
+ *   fine    at the level where it spans at most 17, each texel against
+ *           the faces of the box turned to the eye that reach its pixels'
+ *           centres, each face's plane at its nearest over those pixels:
+ *           the texels around the box's outline and the far parts of a
+ *           long box no longer count against it.
  * A box that the near plane cuts, or that holds the eye, is maybe
- * visible.  The level read is the first at which the rectangle spans at
- * most 2x2 texels.  tests/test_hzb.c holds this against exact box queries
- * on thousands of random boxes, scenes and cameras. */
+ * visible.  tests/test_hzb.c holds this against exact box queries on
+ * thousands of random boxes, scenes and cameras.  The fine stage decided
+ * the method hzb: on the first 40 frames of the plant at 512x384 it
+ * draws 291 objects a frame, against 541 with the coarse test alone
+ * (zscan walk builtin:plant --cull hzb --frames 40 --size 512x384). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,15 +112,85 @@ static uint32_t farthest_over(const zs_device *d, int k, int x0, int y0, int x1,
 
 /* ---- one box ---- */
 
-/* The largest depth change per pixel (|dz/dx| + |dz/dy|, window depth
- * units) of the face through window points a, b, c; infinite when the
- * face is seen edge-on. */
-static double face_slope(const double *a, const double *b, const double *c) {
-  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+/* A face of a box in the window: its corners (x right, y down, pixels),
+ * its plane z = a x + b y + c (window depth), and what a query brings it
+ * nearer by, in the buffer's units (the bias and slope of a query box,
+ * as much again for snapping, 64 for the plane's rounding). */
+typedef struct face_plane {
+  double x[4], y[4];
+  double a, b, c;
+  double slack;
+  double orient; /* the sign of the corners' winding */
+} face_plane;
+
+/* The plane through corners q[0], q[1], q[3] of win; 0 when the face is
+ * seen edge-on. */
+static int face_plane_of(const double (*win)[3], const int q[4], face_plane *f) {
+  const double *p0 = win[q[0]], *p1 = win[q[1]], *p3 = win[q[3]];
+  const double ux = p1[0] - p0[0], uy = p1[1] - p0[1], uz = p1[2] - p0[2];
+  const double vx = p3[0] - p0[0], vy = p3[1] - p0[1], vz = p3[2] - p0[2];
   const double det = ux * vy - vx * uy;
-  if (det == 0.0) return INFINITY;
-  return fabs((uz * vy - vz * uy) / det) + fabs((ux * vz - vx * uz) / det);
+  if (!(det != 0.0)) return 0;
+  f->a = (uz * vy - vz * uy) / det;
+  f->b = (ux * vz - vx * uz) / det;
+  f->c = p0[2] - f->a * p0[0] - f->b * p0[1];
+  f->slack = ZS_QUERY_DEPTH_BIAS + (fabs(f->a) + fabs(f->b)) * 4294967296.0 / 8.0 + 64.0;
+  f->orient = det > 0.0 ? 1.0 : -1.0;
+  for (int i = 0; i < 4; i++) {
+    f->x[i] = win[q[i]][0];
+    f->y[i] = win[q[i]][1];
+  }
+  return 1;
+}
+
+/* Whether the rectangle [X0, X1] x [Y0, Y1] meets the face's quadrilateral
+ * (convex: a parallelogram seen in perspective): no edge of the quad has
+ * the whole rectangle outside it, and the boxes overlap. */
+static int rect_meets_face(const face_plane *f, double X0, double Y0, double X1, double Y1) {
+  if (fmax(fmax(f->x[0], f->x[1]), fmax(f->x[2], f->x[3])) < X0 ||
+      fmin(fmin(f->x[0], f->x[1]), fmin(f->x[2], f->x[3])) > X1 ||
+      fmax(fmax(f->y[0], f->y[1]), fmax(f->y[2], f->y[3])) < Y0 ||
+      fmin(fmin(f->y[0], f->y[1]), fmin(f->y[2], f->y[3])) > Y1)
+    return 0;
+  for (int i = 0, j = 3; i < 4; j = i++) {
+    const double ex = f->x[i] - f->x[j], ey = f->y[i] - f->y[j];
+    const double cx[4] = {X0, X1, X0, X1}, cy[4] = {Y0, Y0, Y1, Y1};
+    int outside = 0;
+    for (int c = 0; c < 4; c++)
+      outside += f->orient * (ex * (cy[c] - f->y[j]) - ey * (cx[c] - f->x[j])) < 0.0;
+    if (outside == 4) return 0;
+  }
+  return 1;
+}
+
+/* Whether any texel of level k over pixels [x0, x1] x [y0, y1] is as far
+ * as the nearest depth a query of the faces fp[0 .. nf - 1] could test in
+ * it: each texel against the faces that reach its pixels' centres (with
+ * 1/64 pixel to spare for snapping), each face's plane at its nearest
+ * over them. */
+static int texels_maybe_visible(const zs_device *d, int k, int x0, int y0, int x1, int y1,
+                                const face_plane *fp, int nf) {
+  const zs_hzb *h = &d->hzb;
+  const uint32_t *lv = k == 0 ? d->depth : h->texel + h->offset[k];
+  const double e = 1.0 / 64.0;
+  for (int ty = y0 >> k; ty <= y1 >> k; ty++) {
+    const int r0 = ty << k > y0 ? ty << k : y0, r1 = ((ty + 1) << k) - 1 < y1 ? ((ty + 1) << k) - 1 : y1;
+    const double Y0 = r0 + 0.5 - e, Y1 = r1 + 0.5 + e;
+    for (int tx = x0 >> k; tx <= x1 >> k; tx++) {
+      const int c0 = tx << k > x0 ? tx << k : x0, c1 = ((tx + 1) << k) - 1 < x1 ? ((tx + 1) << k) - 1 : x1;
+      const double X0 = c0 + 0.5 - e, X1 = c1 + 0.5 + e;
+      const double far = lv[(size_t)ty * (size_t)h->w[k] + (size_t)tx];
+      for (int i = 0; i < nf; i++) {
+        const face_plane *f = &fp[i];
+        if (!rect_meets_face(f, X0, Y0, X1, Y1)) continue;
+        const double z = fmin(fmin(f->a * X0 + f->b * Y0, f->a * X1 + f->b * Y0),
+                              fmin(f->a * X0 + f->b * Y1, f->a * X1 + f->b * Y1)) + f->c;
+        const double bound = z * 4294967296.0 - f->slack;
+        if (!(far < bound)) return 1; /* NaN too */
+      }
+    }
+  }
+  return 0;
 }
 
 /* Whether the box lo..hi may show a sample to a query (1) or is hidden
@@ -149,22 +229,32 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
   int x0 = (int)fmax(floor(xmin) - 1.0, 0.0), x1 = (int)fmin(floor(xmax) + 1.0, d->cfg.width - 1.0);
   int y0 = (int)fmax(floor(ymin) - 1.0, 0.0), y1 = (int)fmin(floor(ymax) + 1.0, d->cfg.height - 1.0);
   if (x0 > x1 || y0 > y1) return 0;
-  /* the steepest face the query would draw: those turned to the eye */
-  static const int quad[6][3] = {{0, 4, 2}, {1, 3, 5}, {0, 1, 4}, {2, 6, 3}, {0, 2, 1}, {4, 5, 6}};
+  /* the faces the query would draw: those turned to the eye */
+  static const int quad[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                 {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  face_plane fp[3];
+  int nf = 0;
   double slope = 0.0;
   for (int f = 0; f < 6; f++) {
     const int a = f / 2;
     if (!((f % 2) ? d->eye[a] > bhi[a] : d->eye[a] < blo[a])) continue;
-    slope = fmax(slope, face_slope(win[quad[f][0]], win[quad[f][1]], win[quad[f][2]]));
+    if (!face_plane_of(win, quad[f], &fp[nf])) return 1; /* seen edge-on: no bound */
+    slope = fmax(slope, fabs(fp[nf].a) + fabs(fp[nf].b));
+    nf++;
   }
+  /* First, coarsely: the rectangle's farthest texels (at most 3x3) against
+   * the nearest depth of the whole box. */
   const double near = zmin * 4294967296.0 - ZS_QUERY_DEPTH_BIAS - slope * 4294967296.0 / 8.0 - 64.0;
   if (!(near > 0.0)) return 1; /* NaN too */
-  /* the level at which the rectangle spans at most 2x2 texels */
   const int span = (x1 - x0 > y1 - y0 ? x1 - x0 : y1 - y0) + 1;
   int k = 0;
   while ((1 << k) < span >> 1 && k + 1 < d->hzb.levels) k++;
-  const uint32_t far = farthest_over(d, k, x0, y0, x1, y1);
-  return !((double)far < near);
+  if ((double)farthest_over(d, k, x0, y0, x1, y1) < near) return 0;
+  /* Then finely: at most 17x17 texels, each against the nearest depth of
+   * the faces that reach it, over its own pixels. */
+  k = 0;
+  while ((span >> k) > 16 && k + 1 < d->hzb.levels) k++;
+  return texels_maybe_visible(d, k, x0, y0, x1, y1, fp, nf);
 }
 
 zs_status zs_device_hzb_test(zs_device *d, const double (*lo)[3], const double (*hi)[3], int n,
