@@ -108,13 +108,22 @@
  *             queries, and plain vfc for frames after which a whole frame
  *             of queries found nothing hidden (probing again every 8th
  *             frame): a scene without occlusion pays no query cost.
+ *   hzb       two-phase culling against a hierarchical depth buffer
+ *             (Greene et al., SIGGRAPH 93; Haar and Aaltonen, SIGGRAPH
+ *             2015; Karis et al., Nanite, SIGGRAPH 2021): last frame's set
+ *             in the frustum drawn, its depth pyramid built, the octree
+ *             walked a level at a time against it (a pass a level), what
+ *             may be visible drawn; the final depth's pyramid tests the
+ *             objects drawn for the next frame's set.  No query; the
+ *             results stay on the GPU (cull/hzb.c, raster/hzb.c).
  *
  * Exactness.  Every method but vfc-box gives the image of none: a node is
  * skipped only when its tight box, or an object's parts' boxes (which
  * hold its content), have no sample
  * passing the less-or-equal test against a depth buffer that only gets
- * nearer; boxes that the near plane could cut are never queried but taken
- * as visible.
+ * nearer (for hzb: the pyramid's test never hides a box whose query would
+ * count a sample); boxes that the near plane could cut are never queried
+ * but taken as visible.
  */
 #ifndef ZS_CULL_CULL_H
 #define ZS_CULL_CULL_H

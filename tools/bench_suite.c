@@ -66,8 +66,8 @@ static const char usage[] =
  * (hsw, which waits for every answer, would flatten them). */
 static const char all_methods[] =
     "vfc,vfc-box,hsw,chc,chc-prob,chcpp,chcpp-nobatch,chcpp-nodefer,chcpp-nomulti,chcpp-prob,"
-    "nohc,ideal-box,ideal,auto";
-static const char *const plotted[] = {"vfc", "chc", "chc-prob", "chcpp", "nohc", "ideal-box",
+    "nohc,hzb,ideal-box,ideal,auto";
+static const char *const plotted[] = {"vfc", "chc", "chc-prob", "chcpp", "nohc", "hzb", "ideal-box",
                                       "ideal"};
 enum { NPLOTTED = sizeof plotted / sizeof plotted[0] };
 

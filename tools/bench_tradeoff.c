@@ -30,7 +30,7 @@ static const char usage[] =
     "  --quiet     no progress on stderr (else each walk's name, then its frames\n"
     "              as zscan walk shows them)\n";
 
-static const char methods[] = "vfc,vfc-box,hsw,chc,chc-prob,chcpp,chcpp-prob,nohc,ideal-box,ideal,auto";
+static const char methods[] = "vfc,vfc-box,hsw,chc,chc-prob,chcpp,chcpp-prob,nohc,hzb,ideal-box,ideal,auto";
 static const char modes[] = "scanline,depthsort";
 
 typedef struct walk_case {
