@@ -490,6 +490,7 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     st = zs_walk_outputs(&res, o->md, o->tradeoff, o->plot, err);
   }
   walk_free(wk);
+  free(wk);
   return st;
 }
 
