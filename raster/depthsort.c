@@ -236,7 +236,8 @@ static void keep_noted(zs_depthsort *ds) {
 
 /* The painter's depth of every polygon: its face's rank, back to front.
  * A polygon whose face was not ordered (outside the circle the faces are
- * ordered in, device.c) covers no pixel and is painted farthest. */
+ * ordered in: zs_depthsort_selects, below) covers no pixel and is
+ * painted farthest. */
 static void paint_depths(const zs_depthsort *ds, zs_batch *b) {
   const int64_t n = ds->n_prev;
   for (int32_t i = 0; i < b->npolys; i++) {

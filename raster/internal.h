@@ -1,7 +1,9 @@
 /* zscan raster — the device's private structures, shared by its stages:
- *   transform (transform.c) -> clip (clip.c) -> snap and set up (setup.c)
- *   -> sorted tables, active lists, spans (scanline.c) -> rows out (shade.c)
- * device.c holds the context and runs the commands. */
+ *   the draw stage (draw.c: transform.c's matrices, clip.c, setup.c's
+ *   snapping and set-up) -> sorted tables, active lists, spans
+ *   (scanline.c) -> rows out (finish.c, shade.c).
+ * device.c holds the context and the commands and chooses each stage
+ * once; defer.c and immediate.c run the draw stage. */
 #ifndef ZS_RASTER_INTERNAL_H
 #define ZS_RASTER_INTERNAL_H
 
@@ -344,9 +346,9 @@ int zs_depthsort_note(zs_depthsort *ds, uint32_t id, double key);
 int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]);
 void zs_depthsort_free(zs_depthsort *ds);
 
-/* ---- the device (device.c, defer.c, query.c, clock.c) ---- */
+/* ---- the device (device.c, defer.c, immediate.c, draw.c, query.c, clock.c, hzb.c) ---- */
 
-/* A draw's vertices after transformation (device.c): clip coordinates,
+/* A draw's vertices after transformation (draw.c): clip coordinates,
  * eye coordinates (flat shading, the painter's keys), outcodes, and the
  * snapped window position of each vertex inside every plane. */
 typedef struct zs_vert_scratch {

@@ -288,7 +288,7 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
  * for a triangle, whose two corners on one point leave it no area (the
  * area test returns it degenerate).  Inlined three times, so that for a
  * triangle and a quad, m a constant, the loops over the corners unroll;
- * Newell's normal is inlined the same way (device.c).  Both save
+ * Newell's normal is inlined the same way (draw.c).  Both save
  * instructions a face (zscan bench raster --case "triangles 10x10"
  * --callgrind measures it). */
 __attribute__((always_inline)) static inline zs_setup_result
