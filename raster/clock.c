@@ -23,7 +23,8 @@
  *                                 per level, with a barrier between levels
  *   hzb_per_texel       0.1 ns    a pyramid texel: read four, write one
  *   hzb_per_box         1 ns      a box against the pyramid: eight corners
- *                                 projected, at most four texels read
+ *                                 projected, up to 3x3 texels and then up
+ *                                 to 17x17 read (raster/hzb.c)
  */
 #include <math.h>
 #include <string.h>

@@ -93,10 +93,10 @@ static zs_status finish_walk(zs_device *d, zs_row_sink sink, void *user, zs_erro
  * buffers of a band's rows; then the rows are handed out in order.  The
  * counts are summed in band order: the same bytes and counters as one
  * walk.  One band a thread, not more in rounds: each band sorts the whole
- * batch into its rows' buckets, and on the plant eight bands in four
- * rounds gave 1.3x one thread's speed where two gave 1.7x (zscan bench
- * raster --case builtin:plant --algo scanline --threads 2 --speedup).  So
- * on threads the device holds the frame's rows, in bands, not one row. */
+ * batch into its rows' buckets, so more bands scan it more often (zscan
+ * bench raster --case builtin:plant --algo scanline --threads 2 --speedup
+ * measures it; docs/RESULTS.md).  So on threads the device holds the
+ * frame's rows, in bands, not one row. */
 static int band_count(const zs_device *d) {
   const int n = d->cfg.height / 16; /* at least 16 rows a band */
   return d->cfg.threads < n ? d->cfg.threads : n;
