@@ -342,7 +342,7 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
     m.pixel_buffers += 3 * px * sizeof(uint32_t) + 4 * w * sizeof(uint32_t) + (size_t)d->cfg.height;
   if (d->count) m.pixel_buffers += px * sizeof(uint32_t);
   if (d->row_depth) m.pixel_buffers += 4 * w * sizeof(uint32_t);
-  m.pixel_buffers += d->band_cap * sizeof(uint32_t);
+  if (d->band_rows) m.pixel_buffers += zs_finish_bands_bytes(d);
   m.pixel_buffers += w * sizeof(uint32_t); /* the shaded row */
   m.tables = (size_t)d->batch.cap_polys * sizeof(zs_poly) +
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + scratch_bytes(&d->scratch);

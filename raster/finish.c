@@ -102,11 +102,15 @@ static int band_count(const zs_device *d) {
   return d->cfg.threads < n ? d->cfg.threads : n;
 }
 
+size_t zs_finish_bands_bytes(const zs_device *d) {
+  return 4 * (size_t)d->cfg.threads * (size_t)d->band_max_rows * (size_t)d->cfg.width *
+         sizeof *d->band_rows;
+}
+
 int zs_finish_bands_alloc(zs_device *d) {
   const int h = d->cfg.height, nbands = band_count(d);
   d->band_max_rows = nbands > 1 ? (h + nbands - 1) / nbands : h;
-  d->band_cap = 4 * (size_t)d->cfg.threads * (size_t)d->band_max_rows * (size_t)d->cfg.width;
-  d->band_rows = malloc(d->band_cap * sizeof *d->band_rows);
+  d->band_rows = malloc(zs_finish_bands_bytes(d));
   return d->band_rows != NULL;
 }
 

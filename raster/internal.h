@@ -438,7 +438,6 @@ struct zs_device {
   uint32_t *row_out;                   /* one shaded row */
   uint32_t *band_rows;                 /* scanline mode on threads: each thread's
                                         * band of rows, four buffers (finish.c) */
-  size_t band_cap;                     /* its uint32_t */
   int band_max_rows;
 
   zs_batch batch;
@@ -551,6 +550,7 @@ void zs_frame_clear_fresh(const zs_device *d);
  * depthsort modes on threads their bands of rows (0: out of memory). */
 void zs_finish_choose(zs_device *d);
 int zs_finish_bands_alloc(zs_device *d);
+size_t zs_finish_bands_bytes(const zs_device *d);
 
 /* defer.c: draws queued while zs_device_defer_draws is on, and rendered
  * together at the next flush: set up in parallel, walked in bands of rows,
