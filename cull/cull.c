@@ -91,6 +91,7 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->polys);
   free(c->decision);
   free(c->hzb_draw);
+  free(c->order);
   free(c->iq);
   free(c->vq);
   free(c->gm);

@@ -111,11 +111,13 @@
  *   hzb       two-phase culling against a hierarchical depth buffer
  *             (Greene et al., SIGGRAPH 93; Haar and Aaltonen, SIGGRAPH
  *             2015; Karis et al., Nanite, SIGGRAPH 2021): last frame's set
- *             in the frustum drawn, its depth pyramid built, the octree
- *             walked a level at a time against it (a pass a level), what
- *             may be visible drawn; the final depth's pyramid tests the
- *             objects drawn for the next frame's set.  No query; the
- *             results stay on the GPU (cull/hzb.c, raster/hzb.c).
+ *             in the frustum drawn front to back in passes, each pass
+ *             after the first tested against the pyramid of those before;
+ *             its depth pyramid built, the octree walked a level at a
+ *             time against it (a pass a level), what may be visible
+ *             drawn; the final depth's pyramid tests the objects drawn
+ *             for the next frame's set.  No query; the results stay on
+ *             the GPU (cull/hzb.c, raster/hzb.c).
  *
  * Exactness.  Every method but vfc-box gives the image of none: a node is
  * skipped only when its tight box, or an object's parts' boxes (which

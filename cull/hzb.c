@@ -4,7 +4,10 @@
  * 1993).  No occlusion query is asked; the pyramid's answers stay on the
  * GPU and drive the next draws, so nothing waits for a latency.
  *
- *   1. the objects visible last frame that lie in the frustum are drawn;
+ *   1. the objects visible last frame that lie in the frustum are drawn,
+ *      front to back; a large set in passes, each pass after the first
+ *      tested against the pyramid of the passes before it, so that what
+ *      has been hidden since the last frame is left out (phase_one);
  *   2. the pyramid of that depth is built (raster/hzb.c);
  *   3. the octree is walked a level at a time from the root, each level's
  *      elements in the frustum tested against the pyramid in one pass; a
@@ -15,7 +18,7 @@
  *      frame's set.
  *
  * Exact: an object is left out only when its boxes are hidden behind the
- * depth of phase 1, which the rest of the frame only brings nearer
+ * depth drawn so far, which the rest of the frame only brings nearer
  * (zs_device_hzb_test never hides a box its query would see). */
 #include <stdlib.h>
 #include <string.h>
@@ -80,20 +83,70 @@ static int test_level(frame_ctx *f, level *l, uint8_t **maybe, int32_t *cap_mayb
   return 1;
 }
 
-/* Phase 1: last frame's set, where in the frustum. */
-static void phase_one(frame_ctx *f, uint8_t *draw1) {
-  for (int32_t i = 0; i < f->s->ninst; i++) {
-    draw1[i] = 0;
-    if (!f->c->os[i].visible) continue;
-    const double *lo, *hi;
-    cull_elem_box(f, object_elem(i), &lo, &hi);
-    unsigned mask = ZS_FRUSTUM_ALL_PLANES;
-    uint64_t tests = f->st->frustum_tests;
-    zs_frustum_result fr = zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests);
-    zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
-    draw1[i] = fr != ZS_FRUSTUM_OUTSIDE;
+/* Whether object i lies in the frustum (the CPU's test, charged). */
+static int in_frustum(frame_ctx *f, int32_t i) {
+  const double *lo, *hi;
+  cull_elem_box(f, object_elem(i), &lo, &hi);
+  unsigned mask = ZS_FRUSTUM_ALL_PLANES;
+  uint64_t tests = f->st->frustum_tests;
+  zs_frustum_result fr = zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests);
+  zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
+  return fr != ZS_FRUSTUM_OUTSIDE;
+}
+
+/* Phase 1 in passes: a pass for each HZB_PASS_OBJECTS objects of last
+ * frame's set, at most HZB_PASSES.  A later pass's pyramid and test cost
+ * about what two or three small objects cost to draw, and pay where
+ * they leave out more of last frame's set that has been hidden since;
+ * a set of a hundred objects seldom holds enough of those (zscan walk
+ * --cull hzb on the teapots, the plant and scene/examples/open_layer.json;
+ * docs/CULLING.md). */
+enum { HZB_PASS_OBJECTS = 128, HZB_PASSES = 4 };
+
+/* Phase 1: last frame's set where in the frustum, front to back, in
+ * passes: the first pass's objects each tested as it is drawn, so that
+ * the GPU starts at once; each later pass's tested first, then against
+ * the pyramid of what the passes before drew, which leaves out what has
+ * been hidden since. */
+static void phase_one(frame_ctx *f, uint8_t *draw1, level *l, uint8_t **maybe, int32_t *cap_maybe) {
+  zs_culler *c = f->c;
+  for (int32_t i = 0; i < f->s->ninst; i++) draw1[i] = c->os[i].visible;
+  if (!zs_grow((void **)&c->order, &c->cap_order, f->s->ninst + 1, sizeof *c->order)) {
+    cull_out_of_memory(f);
+    return;
   }
-  cull_draw_front_to_back(f, draw1);
+  const int32_t n = cull_order_front_to_back(f, draw1, c->order);
+  const int passes = n / HZB_PASS_OBJECTS < 1 ? 1
+                     : n / HZB_PASS_OBJECTS > HZB_PASSES ? HZB_PASSES : n / HZB_PASS_OBJECTS;
+  for (int p = 0; p < passes && f->status == ZS_OK; p++) {
+    const int32_t a = (int32_t)((int64_t)n * p / passes), b = (int32_t)((int64_t)n * (p + 1) / passes);
+    if (p == 0) {
+      for (int32_t k = a; k < b && f->status == ZS_OK; k++)
+        if ((draw1[c->order[k]] = (uint8_t)in_frustum(f, c->order[k])))
+          cull_draw_instance(f, c->order[k]);
+      continue;
+    }
+    l->n = 0;
+    for (int32_t k = a; k < b; k++)
+      if ((draw1[c->order[k]] = (uint8_t)in_frustum(f, c->order[k])) &&
+          !level_push(l, object_elem(c->order[k]), 0)) {
+        cull_out_of_memory(f);
+        return;
+      }
+    zs_status st = zs_device_hzb_build(f->dev, f->err);
+    if (st != ZS_OK) {
+      f->status = st;
+      return;
+    }
+    if (!test_level(f, l, maybe, cap_maybe)) {
+      if (f->status == ZS_OK) cull_out_of_memory(f);
+      return;
+    }
+    for (int32_t k = 0; k < l->n && f->status == ZS_OK; k++) {
+      const int32_t i = object_of(l->e[k]);
+      if ((draw1[i] = (*maybe)[k])) cull_draw_instance(f, i);
+    }
+  }
   f->st->hzb_phase1 = f->st->objects_drawn;
 }
 
@@ -201,7 +254,7 @@ static void frame(frame_ctx *f) {
   level cur = {0}, next = {0};
   uint8_t *maybe = NULL;
   int32_t cap_maybe = 0;
-  phase_one(f, draw1);
+  phase_one(f, draw1, &cur, &maybe, &cap_maybe);
   zs_status st = f->status == ZS_OK ? zs_device_hzb_build(f->dev, f->err) : f->status;
   if (st != ZS_OK) f->status = st;
   if (f->status == ZS_OK) phase_two(f, draw1, draw2, &cur, &next, &maybe, &cap_maybe);

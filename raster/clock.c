@@ -23,8 +23,10 @@
  *                                 per level, with a barrier between levels
  *   hzb_per_texel       0.1 ns    a pyramid texel: read four, write one
  *   hzb_per_box         1 ns      a box against the pyramid: eight corners
- *                                 projected, up to 3x3 texels and then up
- *                                 to 17x17 read (raster/hzb.c)
+ *                                 projected, its faces' planes set up
+ *   hzb_per_read        0.1 ns    a texel a box's test reads, as many as it
+ *                                 takes (raster/hzb.c), priced as a texel
+ *                                 written
  */
 #include <math.h>
 #include <string.h>
@@ -50,6 +52,7 @@ void zs_clock_params_default(zs_clock_params *p) {
       .hzb_pass_ns = 5000.0,
       .hzb_per_texel_ns = 0.1,
       .hzb_per_box_ns = 1.0,
+      .hzb_per_read_ns = 0.1,
   };
 }
 
@@ -65,7 +68,7 @@ zs_status zs_device_set_clock(zs_device *d, const zs_clock_params *p, zs_error *
                       p->per_query_pixel_ns, p->switch_ns,           p->query_latency_ns,
                       p->cpu_per_call_ns,    p->cpu_per_query_ns,    p->cpu_per_node_ns,
                       p->cpu_per_frustum_ns, p->cpu_per_cost_eval_ns, p->hzb_pass_ns,
-                      p->hzb_per_texel_ns,   p->hzb_per_box_ns};
+                      p->hzb_per_texel_ns,   p->hzb_per_box_ns,      p->hzb_per_read_ns};
   int64_t ps[sizeof v / sizeof v[0]];
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
     if ((ps[i] = to_ps(v[i])) < 0)
@@ -74,7 +77,7 @@ zs_status zs_device_set_clock(zs_device *d, const zs_clock_params *p, zs_error *
   d->clock_params = *p;
   d->costs = (zs_clock_costs){ps[0], ps[1], ps[2],  ps[3],  ps[4],  ps[5],  ps[6],  ps[7],
                               ps[8], ps[9], ps[10], ps[11], ps[12], ps[13], ps[14], ps[15],
-                              ps[16]};
+                              ps[16], ps[17]};
   return ZS_OK;
 }
 

@@ -16,20 +16,24 @@
  * as much again for snapping (the plane of a snapped face strays from its
  * corners by at most the same 1/16 pixel of slope, the bound the query
  * boxes rest on), and 64 units for the fixed-point plane's rounding.  Two
- * stages:
+ * stages, both at first at the level where the rectangle spans at most
+ * three texels a side:
  *   coarse  the nearest corner's depth against the farthest texels over
- *           the rectangle, at the level where it spans at most three
- *           texels a side (the classic test);
- *   fine    at the level where it spans at most 17, each texel against
- *           the faces of the box turned to the eye that reach its pixels'
- *           centres, each face's plane at its nearest over those pixels:
- *           the texels around the box's outline and the far parts of a
- *           long box no longer count against it.
+ *           the rectangle (the classic test);
+ *   fine    each texel against the faces of the box turned to the eye
+ *           that reach its pixels' centres, each face's plane at its
+ *           nearest over those pixels; where a face may show, the
+ *           texel's four children are asked, down to the pixels.  The
+ *           texels round the box's outline and the far parts of a long
+ *           box so no longer count against it, and the test reads texels
+ *           only where the pyramid cannot tell at a coarser level (the
+ *           clock charges each one read).
  * A box that the near plane cuts, or that holds the eye, is maybe
  * visible.  tests/test_hzb.c holds this against exact box queries on
- * thousands of random boxes, scenes and cameras.  Whether the fine stage
- * pays: zscan walk builtin:plant --cull hzb --frames 40 --size 512x384,
- * objects drawn a frame with and without it (docs/RESULTS.md). */
+ * thousands of random boxes, scenes and cameras.  What the descent to
+ * the pixels saves: zscan walk builtin:plant,detail=1 --cull hzb, objects
+ * drawn a frame against a descent that stops at 17x17 texels
+ * (docs/RESULTS.md). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -163,40 +167,59 @@ static int rect_meets_face(const face_plane *f, double X0, double Y0, double X1,
   return 1;
 }
 
-/* Whether any texel of level k over pixels [x0, x1] x [y0, y1] is as far
- * as the nearest depth a query of the faces fp[0 .. nf - 1] could test in
- * it: each texel against the faces that reach its pixels' centres (with
- * 1/64 pixel to spare for snapping), each face's plane at its nearest
- * over them. */
-static int texels_maybe_visible(const zs_device *d, int k, int x0, int y0, int x1, int y1,
-                                const face_plane *fp, int nf) {
+/* The pixels a box's test looks at, and what the faces it would draw
+ * reach there. */
+typedef struct box_test {
+  int x0, y0, x1, y1;     /* the pixels, within the window */
+  const face_plane *fp;   /* the faces turned to the eye */
+  int nf;
+  uint64_t reads;         /* texels read so far */
+} box_test;
+
+/* Whether texel (tx, ty) of level k, over the pixels of the box's test
+ * it covers, may show a query of the faces a sample: the texel's farthest
+ * depth against each face that reaches those pixels' centres (with 1/64
+ * pixel to spare for snapping), the face's plane at its nearest over
+ * them.  Where a face may show, a texel above level 0 cannot tell: its
+ * farthest depth may be one pixel's, so its four children are asked in
+ * turn, down to the depth buffer's own pixels.  A box hidden everywhere
+ * but at its outline's pixels is so found hidden, which a test at one
+ * level is not; a visible box stops at the first pixel that shows it. */
+static int texel_maybe_visible(const zs_device *d, box_test *t, int k, int tx, int ty) {
   const zs_hzb *h = &d->hzb;
   const uint32_t *lv = k == 0 ? d->depth : h->texel + h->offset[k];
   const double e = 1.0 / 64.0;
-  for (int ty = y0 >> k; ty <= y1 >> k; ty++) {
-    const int r0 = ty << k > y0 ? ty << k : y0, r1 = ((ty + 1) << k) - 1 < y1 ? ((ty + 1) << k) - 1 : y1;
-    const double Y0 = r0 + 0.5 - e, Y1 = r1 + 0.5 + e;
-    for (int tx = x0 >> k; tx <= x1 >> k; tx++) {
-      const int c0 = tx << k > x0 ? tx << k : x0, c1 = ((tx + 1) << k) - 1 < x1 ? ((tx + 1) << k) - 1 : x1;
-      const double X0 = c0 + 0.5 - e, X1 = c1 + 0.5 + e;
-      const double far = lv[(size_t)ty * (size_t)h->w[k] + (size_t)tx];
-      for (int i = 0; i < nf; i++) {
-        const face_plane *f = &fp[i];
-        if (!rect_meets_face(f, X0, Y0, X1, Y1)) continue;
-        const double z = fmin(fmin(f->a * X0 + f->b * Y0, f->a * X1 + f->b * Y0),
-                              fmin(f->a * X0 + f->b * Y1, f->a * X1 + f->b * Y1)) + f->c;
-        const double bound = z * 4294967296.0 - f->slack;
-        if (!(far < bound)) return 1; /* NaN too */
-      }
-    }
+  const int r0 = ty << k > t->y0 ? ty << k : t->y0;
+  const int r1 = ((ty + 1) << k) - 1 < t->y1 ? ((ty + 1) << k) - 1 : t->y1;
+  const int c0 = tx << k > t->x0 ? tx << k : t->x0;
+  const int c1 = ((tx + 1) << k) - 1 < t->x1 ? ((tx + 1) << k) - 1 : t->x1;
+  const double Y0 = r0 + 0.5 - e, Y1 = r1 + 0.5 + e, X0 = c0 + 0.5 - e, X1 = c1 + 0.5 + e;
+  const double far = lv[(size_t)ty * (size_t)h->w[k] + (size_t)tx];
+  t->reads++;
+  int shows = 0;
+  for (int i = 0; i < t->nf && !shows; i++) {
+    const face_plane *f = &t->fp[i];
+    if (!rect_meets_face(f, X0, Y0, X1, Y1)) continue;
+    const double z = fmin(fmin(f->a * X0 + f->b * Y0, f->a * X1 + f->b * Y0),
+                          fmin(f->a * X0 + f->b * Y1, f->a * X1 + f->b * Y1)) + f->c;
+    const double bound = z * 4294967296.0 - f->slack;
+    shows = !(far < bound); /* NaN too */
   }
+  if (!shows || k == 0) return shows;
+  /* the children over the test's pixels: the texel's first pixel row and
+   * column lie in them (c0, r0), its last ones may not */
+  for (int cy = 2 * ty; cy <= 2 * ty + 1 && cy << (k - 1) <= r1; cy++)
+    for (int cx = 2 * tx; cx <= 2 * tx + 1 && cx << (k - 1) <= c1; cx++)
+      if (((cx + 1) << (k - 1)) > c0 && ((cy + 1) << (k - 1)) > r0 &&
+          texel_maybe_visible(d, t, k - 1, cx, cy))
+        return 1;
   return 0;
 }
 
 /* Whether the box lo..hi may show a sample to a query (1) or is hidden
- * behind the pyramid (0). */
+ * behind the pyramid (0); adds the texels it read to *reads. */
 static int box_maybe_visible(const zs_device *d, const double mvp[16], const double lo[3],
-                             const double hi[3]) {
+                             const double hi[3], uint64_t *reads) {
   const double m = zs_device_query_margin(d, lo, hi);
   const double blo[3] = {lo[0] - m, lo[1] - m, lo[2] - m};
   const double bhi[3] = {hi[0] + m, hi[1] + m, hi[2] + m};
@@ -226,35 +249,41 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
   /* the pixels whose centres the query box could cover, within the window */
   if (!(xmax >= -1.0 && ymax >= -1.0 && xmin <= d->cfg.width + 1.0 && ymin <= d->cfg.height + 1.0))
     return 0; /* no pixel of the window: the query counts none */
-  int x0 = (int)fmax(floor(xmin) - 1.0, 0.0), x1 = (int)fmin(floor(xmax) + 1.0, d->cfg.width - 1.0);
-  int y0 = (int)fmax(floor(ymin) - 1.0, 0.0), y1 = (int)fmin(floor(ymax) + 1.0, d->cfg.height - 1.0);
-  if (x0 > x1 || y0 > y1) return 0;
+  box_test t = {(int)fmax(floor(xmin) - 1.0, 0.0), (int)fmax(floor(ymin) - 1.0, 0.0),
+                (int)fmin(floor(xmax) + 1.0, d->cfg.width - 1.0),
+                (int)fmin(floor(ymax) + 1.0, d->cfg.height - 1.0), NULL, 0, 0};
+  if (t.x0 > t.x1 || t.y0 > t.y1) return 0;
   /* the faces the query would draw: those turned to the eye */
   static const int quad[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   face_plane fp[3];
-  int nf = 0;
   double slope = 0.0;
   for (int f = 0; f < 6; f++) {
     const int a = f / 2;
     if (!((f % 2) ? d->eye[a] > bhi[a] : d->eye[a] < blo[a])) continue;
-    if (!face_plane_of(win, quad[f], &fp[nf])) return 1; /* seen edge-on: no bound */
-    slope = fmax(slope, fabs(fp[nf].a) + fabs(fp[nf].b));
-    nf++;
+    if (!face_plane_of(win, quad[f], &fp[t.nf])) return 1; /* seen edge-on: no bound */
+    slope = fmax(slope, fabs(fp[t.nf].a) + fabs(fp[t.nf].b));
+    t.nf++;
   }
+  t.fp = fp;
   /* First, coarsely: the rectangle's farthest texels (at most 3x3) against
    * the nearest depth of the whole box. */
   const double near = zmin * 4294967296.0 - ZS_QUERY_DEPTH_BIAS - slope * 4294967296.0 / 8.0 - 64.0;
   if (!(near > 0.0)) return 1; /* NaN too */
-  const int span = (x1 - x0 > y1 - y0 ? x1 - x0 : y1 - y0) + 1;
+  const int span = (t.x1 - t.x0 > t.y1 - t.y0 ? t.x1 - t.x0 : t.y1 - t.y0) + 1;
   int k = 0;
   while ((1 << k) < span >> 1 && k + 1 < d->hzb.levels) k++;
-  if ((double)farthest_over(d, k, x0, y0, x1, y1) < near) return 0;
-  /* Then finely: at most 17x17 texels, each against the nearest depth of
-   * the faces that reach it, over its own pixels. */
-  k = 0;
-  while ((span >> k) > 16 && k + 1 < d->hzb.levels) k++;
-  return texels_maybe_visible(d, k, x0, y0, x1, y1, fp, nf);
+  *reads += (uint64_t)(((t.x1 >> k) - (t.x0 >> k) + 1) * ((t.y1 >> k) - (t.y0 >> k) + 1));
+  if ((double)farthest_over(d, k, t.x0, t.y0, t.x1, t.y1) < near) return 0;
+  /* Then finely: the same texels, each against the nearest depth of the
+   * faces that reach it, over its own pixels, and where that cannot tell,
+   * its children, down to the pixels. */
+  int shows = 0;
+  for (int ty = t.y0 >> k; ty <= t.y1 >> k && !shows; ty++)
+    for (int tx = t.x0 >> k; tx <= t.x1 >> k && !shows; tx++)
+      shows = texel_maybe_visible(d, &t, k, tx, ty);
+  *reads += t.reads;
+  return shows;
 }
 
 zs_status zs_device_hzb_test(zs_device *d, const double (*lo)[3], const double (*hi)[3], int n,
@@ -264,10 +293,14 @@ zs_status zs_device_hzb_test(zs_device *d, const double (*lo)[3], const double (
   if (n < 1) return ZS_OK;
   double mvp[16];
   zs_mat_mul(mvp, d->proj, d->view);
-  for (int i = 0; i < n; i++) maybe_visible[i] = (uint8_t)box_maybe_visible(d, mvp, lo[i], hi[i]);
+  uint64_t reads = 0;
+  for (int i = 0; i < n; i++)
+    maybe_visible[i] = (uint8_t)box_maybe_visible(d, mvp, lo[i], hi[i], &reads);
   zs_clock_cpu(d, d->costs.cpu_per_call);
-  zs_clock_gpu_command(d, d->costs.hzb_pass + d->costs.hzb_per_box * n, 0);
+  zs_clock_gpu_command(d, d->costs.hzb_pass + d->costs.hzb_per_box * n +
+                              d->costs.hzb_per_read * (int64_t)reads, 0);
   d->clock.hzb_boxes += (uint64_t)n;
+  d->clock.hzb_reads += reads;
   return ZS_OK;
 }
 

@@ -398,7 +398,7 @@ typedef struct zs_clock_costs {
   int64_t per_call, per_vertex, per_polygon, per_span, per_pixel, per_write, per_query_pixel;
   int64_t switch_cost, latency;
   int64_t cpu_per_call, cpu_per_query, cpu_per_node, cpu_per_frustum, cpu_per_cost_eval;
-  int64_t hzb_pass, hzb_per_texel, hzb_per_box;
+  int64_t hzb_pass, hzb_per_texel, hzb_per_box, hzb_per_read;
 } zs_clock_costs;
 
 /* hzb.c: the depth pyramid's levels 1 .. levels - 1 (level 0 is the depth

@@ -508,13 +508,13 @@ START_TEST(walk_compares_hidden_surface_modes) {
   ck_assert_str_eq(line, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
                          "faces_drawn,objects_drawn,nodes_visited,diff_pixels,gpu_draw_ms,"
                          "gpu_query_ms,gpu_switch_ms,gpu_idle_ms,hzb_phase1,hzb_phase2,"
-                         "hzb_stale,hzb_boxes,hzb_texels\n");
+                         "hzb_stale,hzb_boxes,hzb_texels,hzb_reads\n");
   while (fgets(line, sizeof line, f)) {
-    double col[21];
+    double col[22];
     int ncol = 0;
-    for (const char *p = line; p && ncol < 21; p = strchr(p, ','), p = p ? p + 1 : NULL)
+    for (const char *p = line; p && ncol < 22; p = strchr(p, ','), p = p ? p + 1 : NULL)
       col[ncol++] = strtod(p, NULL);
-    ck_assert_int_eq(ncol, 21);
+    ck_assert_int_eq(ncol, 22);
     unsigned long long wrong = (unsigned long long)col[11];
     double sum = col[12] + col[13] + col[14] + col[15];
     ck_assert_msg(fabs(sum - col[3]) < 5e-6, "split %.6f, modelled %.6f: %s", sum, col[3], line);
@@ -685,6 +685,11 @@ START_TEST(calibrate_keeps_the_modelled_latency) {
   ck_assert_ptr_nonnull(strstr(text, "\"switch_ns\":1000,"));
   ck_assert_ptr_nonnull(strstr(text, "\"per_pixel_ns\":\"measured\""));
   ck_assert_ptr_nonnull(strstr(text, "\"query_latency_ns\":\"default\""));
+  /* the depth pyramid's costs are this device's own, measured */
+  ck_assert_ptr_nonnull(strstr(text, "\"hzb_per_texel_ns\":\"measured\""));
+  ck_assert_ptr_nonnull(strstr(text, "\"hzb_per_box_ns\":\"measured\""));
+  ck_assert_ptr_nonnull(strstr(text, "\"hzb_per_read_ns\":\"measured\""));
+  ck_assert_ptr_nonnull(strstr(out, "boxes walled 8"));
   zs_clock_params p;
   zs_clock_params_default(&p);
   p.query_latency_ns = 0;

@@ -433,6 +433,37 @@ START_TEST(ideal_box_bounds_every_box_query_method) {
 }
 END_TEST
 
+/* hzb_phase_one_in_passes: the largest set phase 1 drew, and the objects
+ * it left out that last frame's set held */
+static uint64_t hzb_most_phase1, hzb_left_out;
+static void check_hzb(int f, int k, const zs_cull_stats *st) {
+  (void)f;
+  if (k != 1) return;
+  if (st->hzb_phase1 > hzb_most_phase1) hzb_most_phase1 = st->hzb_phase1;
+  hzb_left_out += st->hzb_stale;
+}
+
+START_TEST(hzb_phase_one_in_passes) {
+  /* A set of thousands of objects is drawn in passes (cull/hzb.c), each
+   * after the first tested against the pyramid of those before: every
+   * frame still the image of none, at an image size where thousands of
+   * small teapots stay in the set. */
+  const zs_cull_method m[] = {ZS_CULL_NONE, ZS_CULL_HZB};
+  walk_result r;
+  hzb_most_phase1 = hzb_left_out = 0;
+  walk_stats = check_hzb;
+  walk_w = 640, walk_h = 480;
+  walk("teapots?count=2500&moving=500", 16, 1, m, 2, -1, &r);
+  walk_w = W, walk_h = H;
+  walk_stats = NULL;
+  ck_assert_msg(hzb_most_phase1 >= 1024, "phase 1 drew at most %llu objects: one pass",
+                (unsigned long long)hzb_most_phase1);
+  ck_assert_msg(r.diff[1] == 0, "hzb differs from none in %llu pixels",
+                (unsigned long long)r.diff[1]);
+  ck_assert_uint_lt(r.objects[1], r.objects[0]);
+}
+END_TEST
+
 /* ideal_box_churn_adds_up: the frames' checks, and what they saw */
 static uint64_t churn_last_set, churn_entered, churn_left, churn_outside;
 static int churn_ranked_above_known;
@@ -654,6 +685,7 @@ int main(void) {
   tcase_add_test(tc, counters_identical_every_run);
   tcase_add_test(tc, ideal_box_bounds_every_box_query_method);
   tcase_add_test(tc, ideal_box_churn_adds_up);
+  tcase_add_test(tc, hzb_phase_one_in_passes);
   tcase_add_test(tc, parts_hold_every_face_inside_the_box);
   tcase_add_test(tc, parts_are_exact_and_tighter_than_boxes);
   tcase_add_test(tc, cost_model_learns_w1_w2_when_asked);

@@ -12,8 +12,11 @@
  * front, all written; query boxes), plus whole scenes to check the fit on
  * mixed work.  It times each
  * (median of K runs of the commands, the buffer clear excluded), fits the
- * five constants by least squares on relative error, and prints every
- * workload's measured and predicted time.
+ * seven constants by least squares on relative error, and prints every
+ * workload's measured and predicted time.  The depth pyramid's four
+ * (a pass, a texel written, a box tested, a texel a test reads) are
+ * fitted the same way from builds at four image sizes and box tests of
+ * two kinds (below, "the depth pyramid").
  *
  * What cannot be measured keeps its modelled default: zscan's CPU raster
  * answers a query at once, so it shows no query latency and no switch
@@ -31,6 +34,7 @@
 
 #include "raster/raster.h"
 #include "raster/grow.h"
+#include "raster/rng.h"
 #include "scene/generate.h"
 #include "scene/camera.h"
 #include "tools/clockfile.h"
@@ -246,40 +250,247 @@ static zs_status measure_scene(const zs_scene *m, int repeat, workload *w, zs_er
   return st;
 }
 
+/* ---- the depth pyramid ----
+ * A build costs hzb_pass + texels written * hzb_per_texel; a test of n
+ * boxes hzb_pass + n * hzb_per_box + texels read * hzb_per_read (clock.h).
+ * Builds at four image sizes fix the first two.  The tests: random boxes
+ * of three sizes against the plant's depth, most of them answered in a
+ * few texels; and boxes each just behind a wall that hides it, which the
+ * test proves only at the pixels round the box's outline, tens to
+ * hundreds of texels a box: the two kinds tell a box's cost from a
+ * texel's. */
+enum { NHZB_TERMS = 4, NHZB_BUILDS = 4, NHZB_TESTS = 5, HZB_BOXES = 4000, HZB_BUILDS_RUN = 10 };
+static const char *hzb_term_names[NHZB_TERMS] = {"hzb_pass_ns", "hzb_per_texel_ns",
+                                                 "hzb_per_box_ns", "hzb_per_read_ns"};
+
+typedef struct hzb_run {
+  const double (*lo)[3], (*hi)[3];
+  int n; /* boxes to test; 0: build HZB_BUILDS_RUN times */
+} hzb_run;
+
+static zs_status hzb_fn(zs_device *d, const hzb_run *r, zs_error *err) {
+  if (r->n == 0) {
+    for (int k = 0; k < HZB_BUILDS_RUN; k++)
+      if (zs_device_hzb_build(d, err)) return err->code;
+    return ZS_OK;
+  }
+  uint8_t *maybe = malloc((size_t)r->n);
+  if (!maybe) return zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
+  zs_status st = zs_device_hzb_test(d, r->lo, r->hi, r->n, maybe, err);
+  free(maybe);
+  return st;
+}
+
+/* Times run's pyramid commands after sc drawn from (view, proj) on a
+ * side x side device (the draw and a first build are not timed); the
+ * counts from the clock. */
+static zs_status time_hzb(const zs_scene *sc, const double view[16], const double proj[16],
+                          int side, int repeat, const hzb_run *run, workload *w, zs_error *err) {
+  zs_device_config cfg = {side, side, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device *d = NULL;
+  if (zs_device_create(&cfg, &d, err)) return err->code;
+  double *times = malloc((size_t)repeat * sizeof *times);
+  zs_status st = times ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
+  for (int r = 0; r < repeat && st == ZS_OK; r++) {
+    zs_device_clear(d);
+    zs_device_set_camera(d, view, proj);
+    st = zs_frame_draw_scene(d, sc, err);
+    if (st == ZS_OK) st = zs_device_hzb_build(d, err);
+    const zs_clock_stats before = *zs_device_clock(d);
+    double t0 = zs_wall_ms();
+    if (st == ZS_OK) st = hzb_fn(d, run, err);
+    times[r] = zs_wall_ms() - t0;
+    const zs_clock_stats *after = zs_device_clock(d);
+    w->counts[0] = run->n ? 1 : HZB_BUILDS_RUN;
+    w->counts[1] = (double)(after->hzb_texels - before.hzb_texels);
+    w->counts[2] = (double)(after->hzb_boxes - before.hzb_boxes);
+    w->counts[3] = (double)(after->hzb_reads - before.hzb_reads);
+  }
+  if (st == ZS_OK) w->ms = zs_median(times, repeat);
+  free(times);
+  zs_device_destroy(d);
+  return st;
+}
+
+/* Random boxes of `size` times the scene's extent about random points of
+ * it, n of them into lo, hi. */
+static void random_boxes(const zs_scene *sc, double size, uint64_t seed, int n, double (*lo)[3],
+                         double (*hi)[3]) {
+  zs_rng rng;
+  zs_rng_seed(&rng, seed);
+  for (int i = 0; i < n; i++)
+    for (int a = 0; a < 3; a++) {
+      const double ext = sc->hi[a] - sc->lo[a];
+      const double c = zs_rng_range(&rng, sc->lo[a], sc->hi[a]);
+      const double half = zs_rng_range(&rng, 0.25, 1.0) * size * ext;
+      lo[i][a] = c - half;
+      hi[i][a] = c + half;
+    }
+}
+
+/* A grid of g x g boxes, each behind a wall (in walls) that covers its
+ * picture and a quarter pixel more, seen from the origin down -z on a
+ * side x side device; the boxes repeated into n.  0: out of memory. */
+static int walled_boxes(int g, int side, const double proj[16], zs_scene *walls, int n,
+                        double (*lo)[3], double (*hi)[3]) {
+  zs_model m;
+  zs_model_init(&m);
+  const double f = proj[5]; /* cot(fovy / 2) */
+  int ok = 1;
+  for (int c = 0; c < g * g && ok; c++) {
+    const double cx = ((c % g) + 0.5) * 2.0 / g - 1.0, cy = ((c / g) + 0.5) * 2.0 / g - 1.0;
+    const double h = 0.6 * 12.0 / (g * f); /* the near face 0.6 of the cell */
+    double blo[3] = {cx * 13.0 / f - h, cy * 13.0 / f - h, -14.0};
+    double bhi[3] = {cx * 13.0 / f + h, cy * 13.0 / f + h, -12.0};
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (int k = 0; k < 8; k++) { /* the box's picture, window pixels */
+      const double p[3] = {k & 1 ? bhi[0] : blo[0], k & 2 ? bhi[1] : blo[1],
+                           k & 4 ? bhi[2] : blo[2]};
+      double o[4];
+      zs_mat_apply(proj, p, o);
+      const double xw = (o[0] / o[3] + 1.0) * 0.5 * side, yw = (o[1] / o[3] + 1.0) * 0.5 * side;
+      x0 = fmin(x0, xw), x1 = fmax(x1, xw), y0 = fmin(y0, yw), y1 = fmax(y1, yw);
+    }
+    /* the wall at z = -10 over those pixels, a quarter pixel more */
+    const double u0 = ((x0 - 0.25) * 2.0 / side - 1.0) * 10.0 / f;
+    const double u1 = ((x1 + 0.25) * 2.0 / side - 1.0) * 10.0 / f;
+    const double v0 = ((y0 - 0.25) * 2.0 / side - 1.0) * 10.0 / f;
+    const double v1 = ((y1 + 0.25) * 2.0 / side - 1.0) * 10.0 / f;
+    const int32_t q[4] = {zs_model_add_vertex(&m, u0, v0, -10.0), zs_model_add_vertex(&m, u1, v0, -10.0),
+                          zs_model_add_vertex(&m, u1, v1, -10.0), zs_model_add_vertex(&m, u0, v1, -10.0)};
+    ok = q[0] >= 0 && q[1] >= 0 && q[2] >= 0 && q[3] >= 0 &&
+         zs_model_add_polygon(&m, q, 4, 0x808080, -1) == ZS_OK;
+    for (int i = c; i < n && ok; i += g * g) {
+      memcpy(lo[i], blo, sizeof blo);
+      memcpy(hi[i], bhi, sizeof bhi);
+    }
+  }
+  zs_error err;
+  ok = ok && zs_scene_add_mesh(walls, &m) >= 0 &&
+       zs_scene_add_instance(walls, 0, NULL, 0x808080, "walls") >= 0 &&
+       zs_scene_finish(walls, &err) == ZS_OK;
+  zs_model_free(&m);
+  return ok;
+}
+
+static zs_status measure_hzb(int repeat, workload *w, zs_error *err) {
+  static const int sides[NHZB_BUILDS] = {256, 512, 1024, 2048};
+  static const char *const names[NHZB_BUILDS + NHZB_TESTS] = {
+      "pyramid 256^2", "pyramid 512^2", "pyramid 1024^2", "pyramid 2048^2", "boxes small",
+      "boxes medium",  "boxes large",   "boxes walled 8", "boxes walled 32"};
+  static const double sizes[3] = {0.01, 0.05, 0.25}; /* random, of the scene's extent */
+  static const int grids[2] = {8, 32};               /* walled: g x g boxes */
+  zs_scene plant;
+  zs_scene_init(&plant);
+  double(*lo)[3] = malloc(HZB_BOXES * sizeof *lo), (*hi)[3] = malloc(HZB_BOXES * sizeof *hi);
+  zs_status st = lo && hi ? zs_gen_scene("plant", &plant, err)
+                          : zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
+  for (int k = 0; k < NHZB_BUILDS + NHZB_TESTS && st == ZS_OK; k++) {
+    memset(&w[k], 0, sizeof w[k]);
+    w[k].name = names[k];
+    const int side = k < NHZB_BUILDS ? sides[k] : 512;
+    double view[16], proj[16];
+    if (k < NHZB_BUILDS + 3) { /* the plant from its camera */
+      zs_camera cam;
+      zs_camera_default(&cam);
+      if ((st = zs_frame_camera(&plant, &cam, side, side, view, proj, err))) break;
+      if (k >= NHZB_BUILDS) random_boxes(&plant, sizes[k - NHZB_BUILDS], 0xB0A5u + (uint64_t)k,
+                                         HZB_BOXES, lo, hi);
+      const hzb_run run = {(const double(*)[3])lo, (const double(*)[3])hi,
+                           k < NHZB_BUILDS ? 0 : HZB_BOXES};
+      st = time_hzb(&plant, view, proj, side, repeat, &run, &w[k], err);
+      continue;
+    }
+    zs_mat_identity(view);
+    zs_mat_perspective(proj, 60.0, 1.0, 1.0, 100.0);
+    zs_scene walls;
+    zs_scene_init(&walls);
+    if (!walled_boxes(grids[k - NHZB_BUILDS - 3], side, proj, &walls, HZB_BOXES, lo, hi)) {
+      st = zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
+    } else {
+      const hzb_run run = {(const double(*)[3])lo, (const double(*)[3])hi, HZB_BOXES};
+      st = time_hzb(&walls, view, proj, side, repeat, &run, &w[k], err);
+    }
+    zs_scene_free(&walls);
+  }
+  free(lo);
+  free(hi);
+  zs_scene_free(&plant);
+  return st;
+}
+
 /* Least squares on relative error: minimise sum ((c . x - t) / t)^2 over
- * the terms in `use`, by the normal equations and Gaussian elimination
- * with partial pivoting.  Returns 0 when singular. */
-static int fit(const workload *w, int nw, const int use[NTERMS], double x[NTERMS]) {
+ * the first nt terms, those in `use`, by the normal equations and
+ * Gaussian elimination with partial pivoting.  Returns 0 when singular. */
+static int fit(const workload *w, int nw, int nt, const int *use, double *x) {
   double a[NTERMS][NTERMS + 1];
   memset(a, 0, sizeof a);
   for (int k = 0; k < nw; k++) {
     double wt = 1.0 / (w[k].ms * w[k].ms);
-    for (int i = 0; i < NTERMS; i++) {
+    for (int i = 0; i < nt; i++) {
       double ci = use[i] ? w[k].counts[i] : 0.0;
-      for (int j = 0; j < NTERMS; j++) a[i][j] += wt * ci * (use[j] ? w[k].counts[j] : 0.0);
-      a[i][NTERMS] += wt * ci * w[k].ms;
+      for (int j = 0; j < nt; j++) a[i][j] += wt * ci * (use[j] ? w[k].counts[j] : 0.0);
+      a[i][nt] += wt * ci * w[k].ms;
     }
   }
-  for (int i = 0; i < NTERMS; i++)
-    if (!use[i]) a[i][i] = 1.0, a[i][NTERMS] = 0.0;
-  for (int c = 0; c < NTERMS; c++) {
+  for (int i = 0; i < nt; i++)
+    if (!use[i]) a[i][i] = 1.0, a[i][nt] = 0.0;
+  for (int c = 0; c < nt; c++) {
     int p = c;
-    for (int r = c + 1; r < NTERMS; r++)
+    for (int r = c + 1; r < nt; r++)
       if (fabs(a[r][c]) > fabs(a[p][c])) p = r;
     if (fabs(a[p][c]) < 1e-300) return 0;
-    for (int j = 0; j <= NTERMS; j++) {
+    for (int j = 0; j <= nt; j++) {
       double t = a[c][j];
       a[c][j] = a[p][j];
       a[p][j] = t;
     }
-    for (int r = 0; r < NTERMS; r++) {
+    for (int r = 0; r < nt; r++) {
       if (r == c) continue;
       double f = a[r][c] / a[c][c];
-      for (int j = c; j <= NTERMS; j++) a[r][j] -= f * a[c][j];
+      for (int j = c; j <= nt; j++) a[r][j] -= f * a[c][j];
     }
   }
-  for (int i = 0; i < NTERMS; i++) x[i] = a[i][NTERMS] / a[i][i];
+  for (int i = 0; i < nt; i++) x[i] = a[i][nt] / a[i][i];
   return 1;
+}
+
+/* Fits the first nt terms; a negative constant is no cost: it is dropped
+ * and the rest fitted again.  0 when the workloads do not determine them. */
+static int fit_nonnegative(const workload *w, int nw, int nt, double *x) {
+  int use[NTERMS];
+  for (int i = 0; i < nt; i++) use[i] = 1;
+  for (int round = 0; round < nt; round++) {
+    if (!fit(w, nw, nt, use, x)) return 0;
+    int neg = -1;
+    for (int i = 0; i < nt; i++)
+      if (use[i] && x[i] < 0 && (neg < 0 || x[i] < x[neg])) neg = i;
+    if (neg < 0) break;
+    use[neg] = 0;
+  }
+  return 1;
+}
+
+/* Prints each workload's first nt counts, its measured and modelled
+ * time; returns nothing, the table is the point. */
+static void print_fit(const workload *w, int nw, int nt, const char *const *heads,
+                      const double *x) {
+  printf("%-17s", "workload");
+  for (int i = 0; i < nt; i++) printf(" %9s", heads[i]);
+  printf(" %8s %8s %7s\n", "ms", "model_ms", "error");
+  double worst = 0.0, sum2 = 0.0;
+  for (int k = 0; k < nw; k++) {
+    double pred = 0.0;
+    for (int i = 0; i < nt; i++) pred += x[i] * w[k].counts[i];
+    double e = (pred - w[k].ms) / w[k].ms;
+    if (fabs(e) > worst) worst = fabs(e);
+    sum2 += e * e;
+    printf("%-17s", w[k].name);
+    for (int i = 0; i < nt; i++) printf(" %9.0f", w[k].counts[i]);
+    printf(" %8.3f %8.3f %+6.1f%%\n", w[k].ms, pred, 100.0 * e);
+  }
+  printf("fit error: rms %.1f %%, worst %.1f %% over %d workloads\n", 100.0 * sqrt(sum2 / nw),
+         100.0 * worst, nw);
 }
 
 int zs_cmd_calibrate(int argc, char **argv) {
@@ -324,36 +535,27 @@ int zs_cmd_calibrate(int argc, char **argv) {
   }
   int nw = NSYNTHETIC + 4;
 
-  /* Fit; a negative constant is no cost: drop it and fit the rest. */
-  int use[NTERMS] = {1, 1, 1, 1, 1, 1, 1};
   double x[NTERMS];
-  for (int round = 0; round < NTERMS; round++) {
-    if (!fit(w, nw, use, x)) {
-      zs_error_set(&err, ZS_ERR_ARG, "calibrate: the workloads do not determine the constants");
-      goto fail;
-    }
-    int neg = -1;
-    for (int i = 0; i < NTERMS; i++)
-      if (use[i] && x[i] < 0 && (neg < 0 || x[i] < x[neg])) neg = i;
-    if (neg < 0) break;
-    use[neg] = 0;
+  if (!fit_nonnegative(w, nw, NTERMS, x)) {
+    zs_error_set(&err, ZS_ERR_ARG, "calibrate: the workloads do not determine the constants");
+    goto fail;
   }
+  static const char *const heads[NTERMS] = {"calls",  "vertices", "polygons", "spans",
+                                            "tested", "written",  "query_px"};
+  print_fit(w, nw, NTERMS, heads, x);
 
-  printf("%-17s %6s %8s %8s %8s %9s %9s %9s %8s %8s %7s\n", "workload", "calls", "vertices",
-         "polygons", "spans", "tested", "written", "query_px", "ms", "model_ms", "error");
-  double worst = 0.0, sum2 = 0.0;
-  for (int k = 0; k < nw; k++) {
-    double pred = 0.0;
-    for (int i = 0; i < NTERMS; i++) pred += x[i] * w[k].counts[i];
-    double e = (pred - w[k].ms) / w[k].ms;
-    if (fabs(e) > worst) worst = fabs(e);
-    sum2 += e * e;
-    printf("%-17s %6.0f %8.0f %8.0f %8.0f %9.0f %9.0f %9.0f %8.3f %8.3f %+6.1f%%\n", w[k].name,
-           w[k].counts[0], w[k].counts[1], w[k].counts[2], w[k].counts[3], w[k].counts[4],
-           w[k].counts[5], w[k].counts[6], w[k].ms, pred, 100.0 * e);
+  /* The depth pyramid's own constants, from its builds and box tests. */
+  workload hw[NHZB_BUILDS + NHZB_TESTS];
+  if (measure_hzb(repeat, hw, &err)) goto fail;
+  double hx[NHZB_TERMS];
+  if (!fit_nonnegative(hw, NHZB_BUILDS + NHZB_TESTS, NHZB_TERMS, hx)) {
+    zs_error_set(&err, ZS_ERR_ARG, "calibrate: the pyramid's workloads do not determine its constants");
+    goto fail;
   }
-  printf("fit error: rms %.1f %%, worst %.1f %% over %d workloads\n", 100.0 * sqrt(sum2 / nw),
-         100.0 * worst, nw);
+  static const char *const hheads[NHZB_TERMS] = {"passes", "texels", "boxes", "reads"};
+  printf("\n");
+  print_fit(hw, NHZB_BUILDS + NHZB_TESTS, NHZB_TERMS, hheads, hx);
+  printf("\n");
 
   zs_clock_params p;
   zs_clock_params_default(&p);
@@ -364,10 +566,17 @@ int zs_cmd_calibrate(int argc, char **argv) {
   p.per_pixel_ns = x[4] * 1e6;
   p.per_write_ns = x[5] * 1e6;
   p.per_query_pixel_ns = x[6] * 1e6;
+  p.hzb_pass_ns = hx[0] * 1e6;
+  p.hzb_per_texel_ns = hx[1] * 1e6;
+  p.hzb_per_box_ns = hx[2] * 1e6;
+  p.hzb_per_read_ns = hx[3] * 1e6;
   unsigned char measured[sizeof(zs_clock_params) / sizeof(double)] = {0};
-  for (int f = 0; f < zs_clock_nfields; f++)
+  for (int f = 0; f < zs_clock_nfields; f++) {
     for (int i = 0; i < NTERMS; i++)
       measured[f] |= strcmp(zs_clock_fields[f].name, term_names[i]) == 0;
+    for (int i = 0; i < NHZB_TERMS; i++)
+      measured[f] |= strcmp(zs_clock_fields[f].name, hzb_term_names[i]) == 0;
+  }
   for (int f = 0; f < zs_clock_nfields; f++)
     printf("%-22s %12.4f ns  %s\n", zs_clock_fields[f].name,
            *(const double *)((const char *)&p + zs_clock_fields[f].offset),

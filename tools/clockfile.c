@@ -18,6 +18,7 @@ const zs_clock_field zs_clock_fields[] = {
     FIELD(query_latency_ns), FIELD(cpu_per_call_ns),  FIELD(cpu_per_query_ns),
     FIELD(cpu_per_node_ns),  FIELD(cpu_per_frustum_ns), FIELD(cpu_per_cost_eval_ns),
     FIELD(hzb_pass_ns),      FIELD(hzb_per_texel_ns),   FIELD(hzb_per_box_ns),
+    FIELD(hzb_per_read_ns),
 };
 #undef FIELD
 const int zs_clock_nfields = (int)(sizeof zs_clock_fields / sizeof zs_clock_fields[0]);

@@ -23,7 +23,7 @@ void zs_walk_csv_header(FILE *f) {
   fprintf(f, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
              "faces_drawn,objects_drawn,nodes_visited,diff_pixels,"
              "gpu_draw_ms,gpu_query_ms,gpu_switch_ms,gpu_idle_ms,"
-             "hzb_phase1,hzb_phase2,hzb_stale,hzb_boxes,hzb_texels\n");
+             "hzb_phase1,hzb_phase2,hzb_stale,hzb_boxes,hzb_texels,hzb_reads\n");
 }
 
 void zs_walk_csv_method(FILE *f, int frame, const zs_walk_method *r, const zs_cull_stats *cs,
@@ -34,21 +34,21 @@ void zs_walk_csv_method(FILE *f, int frame, const zs_walk_method *r, const zs_cu
   const zs_clock_stats *clock = zs_device_clock(r->dev);
   fprintf(f,
           "%d,%s,%s,%.6f,%.6f,%.3f,%llu,%llu,%llu,%llu,%llu,%s,%.6f,%.6f,%.6f,%.6f,%llu,%llu,%llu,"
-          "%llu,%llu\n",
+          "%llu,%llu,%llu\n",
           frame, zs_cull_method_name(r->m), zs_cull_method_name(cs->chosen), modelled, stall, wall,
           (unsigned long long)cs->queries, (unsigned long long)cs->queries_hidden,
           (unsigned long long)cs->faces_drawn, (unsigned long long)cs->objects_drawn,
           (unsigned long long)cs->nodes_visited, diff_text, split[0], split[1], split[2],
           split[3], (unsigned long long)cs->hzb_phase1, (unsigned long long)cs->hzb_phase2,
           (unsigned long long)cs->hzb_stale, (unsigned long long)clock->hzb_boxes,
-          (unsigned long long)clock->hzb_texels);
+          (unsigned long long)clock->hzb_texels, (unsigned long long)clock->hzb_reads);
 }
 
 void zs_walk_csv_algo(FILE *f, int frame, const zs_walk_algo *r, double modelled, double wall,
                       uint64_t faces, int objects, uint64_t diff) {
   double split[4];
   zs_walk_gpu_split_ms(r->dev, split);
-  fprintf(f, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu,%.6f,%.6f,%.6f,%.6f,0,0,0,0,0\n", frame,
+  fprintf(f, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu,%.6f,%.6f,%.6f,%.6f,0,0,0,0,0,0\n", frame,
           zs_algo_name(r->a), modelled, wall, (unsigned long long)faces, objects,
           (unsigned long long)diff, split[0], split[1], split[2], split[3]);
 }

@@ -35,7 +35,7 @@ extern "C" {
  *        0 nothing ever stalls.
  *   The depth pyramid (raster.h, hzb.c): a build costs hzb_pass + texels
  *        written * hzb_per_texel, a test of n boxes hzb_pass + n *
- *        hzb_per_box, both GPU commands counted with the drawing commands,
+ *        hzb_per_box + texels read * hzb_per_read, both GPU commands counted with the drawing commands,
  *        each issued for cpu_per_call; their results stay on the GPU
  *        (they drive the next draws), so no latency and no stall.
  *   A frame's modelled time is the later of the two clocks at its end.
@@ -62,6 +62,7 @@ typedef struct zs_clock_params {
   double hzb_pass_ns;         /* GPU: fixed cost of a depth-pyramid pass (build or test) */
   double hzb_per_texel_ns;    /* GPU: per pyramid texel written */
   double hzb_per_box_ns;      /* GPU: per box tested against the pyramid */
+  double hzb_per_read_ns;     /* GPU: per pyramid texel a box test reads */
 } zs_clock_params;
 
 typedef enum zs_cpu_work {
@@ -82,6 +83,7 @@ typedef struct zs_clock_stats {
   int64_t draw_ps, query_ps, switch_ps;
   uint64_t hzb_texels;        /* depth-pyramid texels written */
   uint64_t hzb_boxes;         /* boxes tested against the pyramid */
+  uint64_t hzb_reads;         /* pyramid texels those tests read */
 } zs_clock_stats;
 
 /* The frame so far on the GPU, in picoseconds: draw + query + switch + idle
