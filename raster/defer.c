@@ -238,8 +238,8 @@ static int walk_chunk(flush_job *j, int band, int c) {
     /* the draw's polygons: their edges are indexed in the chunk's batch */
     zs_batch view = {b->polys + e->poly0, e->npolys, e->npolys, b->edges, b->nedges,
                      b->nedges};
-    j->ok[band] &= zs_scan_batch(&view, j->k, &j->t, r0, r1, NULL, NULL,
-                                 &j->d->band_scratch[band], &counts[i]);
+    j->ok[band] &= zs_paint_batch(&view, j->k, &j->t, r0, r1, &j->d->band_scratch[band],
+                                  &counts[i]);
   }
   return 1;
 }

@@ -330,8 +330,8 @@ static void choose_stages(zs_device *d) {
 }
 
 static size_t scratch_bytes(const zs_walk_scratch *s) {
-  return (size_t)s->cap_rows * (sizeof *s->bucket_head + sizeof *s->bucket_count) +
-         (size_t)s->cap_polys * (sizeof *s->next + sizeof *s->cross) +
+  return (size_t)s->cap_rows * sizeof *s->bucket_start +
+         (size_t)s->cap_polys * (sizeof *s->order + sizeof *s->cross) +
          (size_t)s->cap_active * sizeof *s->active;
 }
 

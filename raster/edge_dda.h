@@ -11,26 +11,31 @@ static inline int64_t zs_floor_div(int64_t a, int64_t d) {
 }
 
 /* The edge's DDA on row `row`: x the first column whose centre lies at or
- * right of the edge, rem = x D - num. */
+ * right of the edge, rem = x D - num.  Worked in 64 bits, kept in 32: the
+ * guard band keeps |X|, |Y| below 2^23 subpixels (raster.h), so
+ * D = 256 (Y1 - Y0) < 2^32, rem and rs lie in [0, D), and |x|, |q| are
+ * below 2^24. */
 static inline void zs_edge_dda_start(zs_edge_dda *s, const zs_edge *e, int32_t row) {
-  int64_t dy = (int64_t)e->Y1 - e->Y0, dx = (int64_t)e->X1 - e->X0;
-  s->d = 256 * dy;
-  int64_t num = ((int64_t)e->X0 - 128) * dy + ((int64_t)row * 256 + 128 - e->Y0) * dx;
-  s->x = zs_floor_div(num + s->d - 1, s->d); /* ceil */
-  s->rem = s->x * s->d - num;
-  s->q = zs_floor_div(256 * dx, s->d);
-  s->rs = 256 * dx - s->q * s->d;
+  const int64_t dy = (int64_t)e->Y1 - e->Y0, dx = (int64_t)e->X1 - e->X0, d = 256 * dy;
+  const int64_t num = ((int64_t)e->X0 - 128) * dy + ((int64_t)row * 256 + 128 - e->Y0) * dx;
+  const int64_t x = zs_floor_div(num + d - 1, d); /* ceil */
+  const int64_t q = zs_floor_div(256 * dx, d);
+  s->x = (int32_t)x;
+  s->q = (int32_t)q;
+  s->d = (uint32_t)d;
+  s->rem = (uint32_t)(x * d - num);
+  s->rs = (uint32_t)(256 * dx - q * d);
   s->last = zs_last_row(e->Y1);
 }
 
-/* One row down.  The carry without a branch: its pattern follows the
- * edge's slope, which the branch predictor cannot learn across thousands
- * of small edges. */
+/* One row down: num grows by q D + rs.  The carry without a branch: its
+ * pattern follows the edge's slope, which the branch predictor cannot
+ * learn across thousands of small edges.  rem - rs + D lies in [0, D),
+ * so the sum wraps back to it in 32 bits. */
 static inline void zs_edge_dda_step(zs_edge_dda *s) {
-  int64_t rem = s->rem - s->rs;
-  int64_t carry = rem < 0;
-  s->rem = rem + (s->d & -carry);
-  s->x += s->q + carry;
+  const uint32_t carry = s->rem < s->rs;
+  s->rem = s->rem - s->rs + (s->d & -carry);
+  s->x += s->q + (int32_t)carry;
 }
 
 #endif

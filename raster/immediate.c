@@ -14,7 +14,7 @@
 
 int zs_walk_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
   zs_target t = zs_draw_frame_target(d);
-  int ok = zs_scan_batch(&d->batch, k, &t, 0, d->cfg.height, NULL, NULL, &d->scratch, out);
+  int ok = zs_paint_batch(&d->batch, k, &t, 0, d->cfg.height, &d->scratch, out);
   zs_batch_reset(&d->batch);
   return ok;
 }
@@ -44,8 +44,8 @@ static void walk_band(void *ctx, int band) {
   int y0 = j->row0 + (int)zs_part_start(j->rows, band, j->nbands);
   int y1 = j->row0 + (int)zs_part_start(j->rows, band + 1, j->nbands);
   j->counts[band] = (zs_walk_counts){0, 0, 0};
-  j->ok[band] = zs_scan_batch(&j->d->batch, j->k, &j->t, y0, y1, NULL, NULL,
-                              &j->d->band_scratch[band], &j->counts[band]);
+  j->ok[band] = zs_paint_batch(&j->d->batch, j->k, &j->t, y0, y1, &j->d->band_scratch[band],
+                               &j->counts[band]);
 }
 
 int zs_walk_frame_banded(zs_device *d, zs_kernel k, zs_walk_counts *out) {

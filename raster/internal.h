@@ -237,25 +237,26 @@ typedef struct zs_row_hooks {
   void *user;
 } zs_row_hooks;
 
-/* An edge being walked: the exact integer DDA (edge_dda.h). */
+/* An edge being walked: the exact integer DDA (edge_dda.h), 24 bytes. */
 typedef struct zs_edge_dda {
-  int64_t x, rem, q, rs, d;
+  int32_t x, q;
+  uint32_t rem, rs, d;
   int32_t last;  /* the last row it covers (the lecture's dy: last - y) */
 } zs_edge_dda;
 
 /* An entry of the active lists: a polygon and its current edge pair, with
  * the polygon's fields the rows read copied in (one place to read per row,
- * not two). */
+ * not two).  Small: the walk streams the whole list every row and moves
+ * each entry after the first polygon that ends on it. */
 typedef struct zs_active {
   zs_edge_dda l, r;
   uint64_t zrow; /* depth plane at (0, y), modulo 2^64 (zs_plane_at) */
   int64_t dzdx, dzdy;
-  int64_t zfar;  /* ZS_DEPTH_FAR << zshift: the far plane in the plane's units */
   uint32_t id, rgb;
-  int32_t row1, zshift;
+  int32_t row1;
   int32_t poly;
-  int32_t left, left_end, right, right_end; /* current and last edge */
-  int32_t inner; /* the polygon's */
+  int32_t left, right;  /* the current edges */
+  uint8_t zshift, inner; /* the polygon's */
 } zs_active;
 
 /* The depth plane at column x of a row whose plane at column 0 is zrow.
@@ -269,8 +270,8 @@ static inline int64_t zs_plane_at(uint64_t zrow, int64_t dzdx, int64_t x) {
 
 /* Per-walk scratch, kept by the device so walks do not allocate. */
 typedef struct zs_walk_scratch {
-  int32_t *bucket_head, *next;  /* the sorted polygon table */
-  int32_t *bucket_count;        /* polygons in each row's bucket */
+  int32_t *bucket_start;        /* the sorted polygon table (table.c): row r's */
+  int32_t *order;               /* bucket is order[bucket_start[r] .. bucket_start[r + 1]) */
   int32_t cap_rows, cap_polys;
   zs_active *active;            /* the active polygon / edge-pair list */
   int32_t cap_active;
@@ -283,14 +284,46 @@ typedef struct zs_walk_scratch {
 void zs_trace_tables(const zs_batch *b, const zs_trace_observer *obs);
 void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_pair *out);
 
-/* Walks rows [row_begin, row_end) of the batch: builds the sorted polygon
- * table, keeps the active lists, fills spans with the kernel.  Returns 0
- * when out of memory. */
+/* table.c: the sorted polygon table of rows [row_begin, row_end) of b,
+ * in s: each polygon bucketed under its first row, each bucket in batch
+ * order (order, bucket_start); polygons begun above the first row head
+ * its bucket, by first row, then batch order, as a walk from the top
+ * would hold them.  0 when out of memory. */
+typedef struct zs_table {
+  int32_t first;     /* the first bucket in use (row_end - row_begin: none) */
+  int32_t last_row;  /* the last row any polygon covers */
+  int32_t polys;     /* polygons in the table */
+  int32_t jumps;     /* of them, how many begin more than two rows from
+                      * the one before in batch order (a soup: most) */
+  int32_t x0, x1;    /* the least and greatest of their planes' origin
+                      * columns (a corner's), within the target's width:
+                      * about the columns they cover */
+} zs_table;
+int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch *s,
+                  zs_table *table);
+
+/* scanline.c: walks rows [row_begin, row_end) of the batch, the
+ * lecture's scanline z-buffer: the sorted polygon table, the active
+ * lists, spans filled with the kernel.  Returns 0 when out of memory. */
 int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
                   int row_begin, int row_end, const zs_row_hooks *hooks,
                   const zs_trace_observer *obs, zs_walk_scratch *s,
                   zs_walk_counts *counts);
 void zs_walk_scratch_free(zs_walk_scratch *s);
+
+/* scanline.c: the walk of a table already sorted, into a full-frame
+ * target, no hooks, no observer (0: out of memory). */
+int zs_walk_sorted(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
+                    int row_end, const zs_table *table, zs_walk_scratch *s,
+                    zs_walk_counts *counts);
+
+/* paint.c: the z-buffer mode's traversal of a batch into a full-frame
+ * target: the same pixels, depths, writes and counters as zs_scan_batch,
+ * a polygon at a time in the sorted table's order for a soup of
+ * polygons, by the scanline walk for a mesh laid out in order.  Returns
+ * 0 when out of memory. */
+int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
+                   int row_end, zs_walk_scratch *s, zs_walk_counts *counts);
 
 /* ---- shade.c ---- */
 /* The flat colour of a face: rgb times the Lambert term of its eye-space

@@ -32,8 +32,8 @@ void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_
   /* q + rs / d is the step 256 (X1 - X0) / D = (X1 - X0) / (Y1 - Y0) */
   out->dxl = (double)a->l.q + (double)a->l.rs / (double)a->l.d;
   out->dxr = (double)a->r.q + (double)a->r.rs / (double)a->r.d;
-  out->dxl_num = a->l.q * a->l.d + a->l.rs;
-  out->dxr_num = a->r.q * a->r.d + a->r.rs;
+  out->dxl_num = (int64_t)a->l.q * a->l.d + a->l.rs;
+  out->dxr_num = (int64_t)a->r.q * a->r.d + a->r.rs;
   out->dyl = a->l.last - y;
   out->dyr = a->r.last - y;
   out->zl = zs_plane_at(a->zrow, a->dzdx, a->l.x); /* the lecture's zl, at xl */

@@ -414,7 +414,7 @@ START_TEST(bench_raster_writes_csv_and_table) {
   int rows = 0;
   ck_assert_ptr_nonnull(fgets(line, sizeof line, f));
   ck_assert_str_eq(line, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,"
-                         "mtri_per_s,mpix_per_s,instructions_per_frame\n");
+                         "mtri_per_s,mpix_per_s,table_bytes,instructions_per_frame\n");
   static const char *const want[] = {
       "triangles 10x10,zbuffer,1,scalar,500,500,200000,10000000,",
       "triangles 10x10,scanline,1,scalar,500,500,200000,10000000,",

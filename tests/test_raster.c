@@ -360,6 +360,68 @@ START_TEST(modes_agree_and_order_does_not_matter) {
 }
 END_TEST
 
+/* The z-buffer mode paints a soup of polygons, and an object's draw, a
+ * polygon at a time, and walks a large mesh laid out in order row by row
+ * (raster/paint.c); the scanline mode always walks.  For one draw both
+ * take the batch's polygons in the same order, so every pixel sees the
+ * same fragments in the same order: the same image, depths and ids, and
+ * the same spans, pixels tested and pixels written, overwrites included. */
+START_TEST(painted_and_walked_agree_to_the_counter) {
+  const int W = 320, H = 240;
+  zs_rng rng;
+  zs_rng_seed(&rng, 23);
+  mesh_buf soup = {0}, grid = {0}, few = {0};
+  /* 8,000 small triangles anywhere, at random depths: overdrawn often */
+  for (int i = 0; i < 8000; i++) {
+    const double cx = zs_rng_range(&rng, -4, W + 4), cy = zs_rng_range(&rng, -4, H + 4);
+    int32_t v[3];
+    for (int k = 0; k < 3; k++) {
+      const double x = cx + zs_rng_range(&rng, -6, 6), y = cy + zs_rng_range(&rng, -6, 6);
+      const double z = i % 4 == 0 ? -2.0 : zs_rng_range(&rng, -9, -1);
+      v[k] = mb_vert(&soup, x, y, z);
+    }
+    mb_face(&soup, v, 3, (uint32_t)zs_rng_below(&rng, 0x1000000));
+  }
+  /* two tilings of 5x5-pixel squares in one mesh, the far one first, the
+   * near one tilted through it: 12,288 triangles in row order */
+  for (int layer = 0; layer < 2; layer++)
+    for (int j = 0; j < H / 5; j++)
+      for (int i = 0; i < W / 5; i++) {
+        const double z0 = layer ? -1.5 - 0.01 * i : -5.0, z1 = layer ? -1.5 - 0.01 * (i + 1) : -5.0;
+        int32_t q[4] = {mb_vert(&grid, 5.0 * i, 5.0 * j, z0), mb_vert(&grid, 5.0 * i + 5, 5.0 * j, z1),
+                        mb_vert(&grid, 5.0 * i + 5, 5.0 * j + 5, z1),
+                        mb_vert(&grid, 5.0 * i, 5.0 * j + 5, z0)};
+        const int32_t t0[3] = {q[0], q[1], q[2]}, t1[3] = {q[0], q[2], q[3]};
+        mb_face(&grid, t0, 3, 0x406080);
+        mb_face(&grid, t1, 3, 0x804020);
+      }
+  random_triangles(&few, &rng, 300, W, H, 10, -5);
+  const mesh_buf *meshes[] = {&soup, &grid, &few};
+  for (int m = 0; m < 3; m++) {
+    frame f[2] = {frame_new(W, H), frame_new(W, H)};
+    zs_raster_stats st[2];
+    for (int algo = 0; algo < 2; algo++)
+      st[algo] = render(&meshes[m]->m, W, H, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &f[algo]);
+    const size_t n = (size_t)W * H * 4;
+    ck_assert_msg(memcmp(f[0].rgb, f[1].rgb, n) == 0 && memcmp(f[0].depth, f[1].depth, n) == 0 &&
+                      memcmp(f[0].id, f[1].id, n) == 0,
+                  "mesh %d: the modes' pictures differ", m);
+    ck_assert_uint_eq(st[0].spans, st[1].spans);
+    ck_assert_uint_eq(st[0].pixels_tested, st[1].pixels_tested);
+    ck_assert_uint_eq(st[0].pixels_written, st[1].pixels_written);
+    uint64_t covered = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) covered += f[0].id[i] != ZS_ID_NONE;
+    if (m < 2) /* overwrites to count, whose number the order decides */
+      ck_assert_uint_gt(st[0].pixels_written, covered);
+    frame_free(&f[0]);
+    frame_free(&f[1]);
+  }
+  mb_free(&soup);
+  mb_free(&grid);
+  mb_free(&few);
+}
+END_TEST
+
 START_TEST(simd_spans_equal_scalar) {
   /* Large random triangles through each other, a third of them at one
    * depth (the id decides), and a sphere: the SSE2 and AVX2 span fills
@@ -895,6 +957,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, closed_mesh_covers_once_front_twice_both);
   tcase_add_test(tc, lecture_zbuffer_examples);
   tcase_add_test(tc, modes_agree_and_order_does_not_matter);
+  tcase_add_test(tc, painted_and_walked_agree_to_the_counter);
   tcase_add_test(tc, simd_spans_equal_scalar);
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);

@@ -87,6 +87,7 @@ typedef struct bench_row {
   char name[64];
   const char *algo;
   double triangles, pixels, ms;
+  double table_bytes;   /* the polygon and edge tables and the walk's scratch, after a frame */
   double instructions;  /* per frame, under callgrind; 0: not counted */
 } bench_row;
 
@@ -224,6 +225,7 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, const double view
   r->triangles = (double)c->polygons_rasterized;
   r->pixels = (double)c->pixels_tested;
   r->ms = zs_median(ms, o->repeat);
+  r->table_bytes = (double)zs_device_memory_of(dev).tables;
   return ZS_OK;
 }
 
@@ -568,25 +570,26 @@ static zs_status run_case(const bench_opts *o, int a, const char *name, const zs
 
 static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts *o, int md) {
   if (md) {
-    fprintf(f, "| case | algo | triangles | pixels tested | ms per frame | Mtri/s | Mpix/s |%s\n",
+    fprintf(f, "| case | algo | triangles | pixels tested | ms per frame | Mtri/s | Mpix/s | "
+               "table bytes per triangle |%s\n",
             o->callgrind ? " instructions per frame | per triangle | per pixel tested |" : "");
-    fprintf(f, "|---|---|---|---|---|---|---|%s\n", o->callgrind ? "---|---|---|" : "");
+    fprintf(f, "|---|---|---|---|---|---|---|---|%s\n", o->callgrind ? "---|---|---|" : "");
   } else {
     fprintf(f, "raster throughput at %dx%d, %d thread%s, %s spans, median of %d frames\n",
             o->width, o->height, o->threads, o->threads > 1 ? "s" : "", simd_label(o->simd),
             o->repeat);
-    fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s%s\n", "case", "algo", "triangles",
-            "pixels_tested", "ms", "Mtri/s", "Mpix/s",
+    fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s %9s%s\n", "case", "algo", "triangles",
+            "pixels_tested", "ms", "Mtri/s", "Mpix/s", "table_B/tri",
             o->callgrind ? "  instr/frame  instr/tri  instr/pix" : "");
   }
   for (int i = 0; i < n; i++) {
     const bench_row *r = &rows[i];
     if (md)
-      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.3g | %.0f |", r->name, r->algo,
-              r->triangles, r->pixels, r->ms, mtri(r), mpix(r));
+      fprintf(f, "| `%s` | %s | %.0f | %.0f | %.2f | %.3g | %.0f | %.0f |", r->name, r->algo,
+              r->triangles, r->pixels, r->ms, mtri(r), mpix(r), per(r->table_bytes, r->triangles));
     else
-      fprintf(f, "%-28s %-9s %10.0f %13.0f %10.3f %8.2f %8.1f", r->name, r->algo, r->triangles,
-              r->pixels, r->ms, mtri(r), mpix(r));
+      fprintf(f, "%-28s %-9s %10.0f %13.0f %10.3f %8.2f %8.1f %11.0f", r->name, r->algo,
+              r->triangles, r->pixels, r->ms, mtri(r), mpix(r), per(r->table_bytes, r->triangles));
     if (o->callgrind)
       fprintf(f, md ? " %.0f | %.0f | %.1f |" : " %12.0f %10.0f %10.1f", r->instructions,
               per(r->instructions, r->triangles), per(r->instructions, r->pixels));
@@ -600,11 +603,11 @@ static zs_status write_csv(const char *path, const bench_row *rows, int n, const
   if (zs_out_open(&out, path, err)) return err->code;
   FILE *f = out.fp;
   fprintf(f, "case,algo,threads,spans,width,height,triangles,pixels_tested,ms,mtri_per_s,"
-             "mpix_per_s,instructions_per_frame\n");
+             "mpix_per_s,table_bytes,instructions_per_frame\n");
   for (int i = 0; i < n; i++) {
-    fprintf(f, "%s,%s,%d,%s,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f,", rows[i].name, rows[i].algo,
+    fprintf(f, "%s,%s,%d,%s,%d,%d,%.0f,%.0f,%.4f,%.3f,%.2f,%.0f,", rows[i].name, rows[i].algo,
             o->threads, zs_simd_name(o->simd), o->width, o->height, rows[i].triangles,
-            rows[i].pixels, rows[i].ms, mtri(&rows[i]), mpix(&rows[i]));
+            rows[i].pixels, rows[i].ms, mtri(&rows[i]), mpix(&rows[i]), rows[i].table_bytes);
     if (o->callgrind) fprintf(f, "%.0f", rows[i].instructions);
     fputc('\n', f);
   }
