@@ -331,7 +331,7 @@ static void choose_stages(zs_device *d) {
 
 static size_t scratch_bytes(const zs_walk_scratch *s) {
   return (size_t)s->cap_rows * sizeof *s->bucket_start +
-         (size_t)s->cap_polys * (sizeof *s->order + sizeof *s->cross) +
+         (size_t)s->cap_polys * sizeof *s->order + (size_t)s->cap_cross * sizeof *s->cross +
          (size_t)s->cap_active * sizeof *s->active;
 }
 

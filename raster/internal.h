@@ -278,6 +278,7 @@ typedef struct zs_walk_scratch {
   zs_trace_pair *trace_pairs;   /* a traced row (trace.c) */
   zs_trace_span *trace_spans;
   int64_t *cross;               /* polygons begun above a band, to order */
+  int32_t cap_cross;
 } zs_walk_scratch;
 
 /* trace.c: the sorted tables handed to obs; one active entry as a pair. */

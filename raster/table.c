@@ -23,9 +23,9 @@ static int reserve(zs_walk_scratch *s, int32_t rows, int32_t polys) {
     s->cap_rows = rows + 1;
   }
   if (polys > s->cap_polys) {
-    void **const arrays[] = {(void **)&s->order, (void **)&s->cross};
-    const size_t sizes[] = {sizeof *s->order, sizeof *s->cross};
-    if (!zs_resize_each(arrays, sizes, 2, (size_t)polys)) return 0;
+    int32_t *q = realloc(s->order, (size_t)polys * sizeof *q);
+    if (!q) return 0;
+    s->order = q;
     s->cap_polys = polys;
   }
   return 1;
@@ -65,6 +65,7 @@ int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch
     if (p->ox < x0) x0 = p->ox;
     if (p->ox > x1) x1 = p->ox;
     if (p->row0 < row_begin) { /* begun above the walk: ordered below */
+      if (!zs_grow((void **)&s->cross, &s->cap_cross, ncross + 1, sizeof *s->cross)) return 0;
       s->cross[ncross++] = (int64_t)p->row0 * ((int64_t)1 << 32) + i;
       continue;
     }
