@@ -270,8 +270,8 @@ static inline int64_t zs_plane_at(uint64_t zrow, int64_t dzdx, int64_t x) {
 
 /* Per-walk scratch, kept by the device so walks do not allocate. */
 typedef struct zs_walk_scratch {
-  int32_t *bucket_start;        /* the sorted polygon table (table.c): row r's */
-  int32_t *order;               /* bucket is order[bucket_start[r] .. bucket_start[r + 1]) */
+  int32_t *bucket_start;        /* the sorted polygon table (table.c, zs_table) */
+  int32_t *order;
   int32_t cap_rows, cap_polys;
   zs_active *active;            /* the active polygon / edge-pair list */
   int32_t cap_active;
@@ -287,11 +287,13 @@ void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_
 
 /* table.c: the sorted polygon table of rows [row_begin, row_end) of b,
  * in s: each polygon bucketed under its first row, each bucket in batch
- * order (order, bucket_start); polygons begun above the first row head
- * its bucket, by first row, then batch order, as a walk from the top
- * would hold them.  0 when out of memory. */
+ * order; polygons begun above the first row head its bucket, by first
+ * row, then batch order, as a walk from the top would hold them.  Bucket
+ * r, for r from first to last, is order[bucket_start[r] ..
+ * bucket_start[r + 1]); no polygon begins past last.  0 when out of
+ * memory. */
 typedef struct zs_table {
-  int32_t first;     /* the first bucket in use (row_end - row_begin: none) */
+  int32_t first, last; /* the buckets in use (first > last: none) */
   int32_t last_row;  /* the last row any polygon covers */
   int32_t polys;     /* polygons in the table */
   int32_t jumps;     /* of them, how many begin more than two rows from

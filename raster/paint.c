@@ -43,13 +43,12 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
   const zs_edge *edges = b->edges;
   const zs_simd simd = k == ZS_KERNEL_DRAW ? t->simd : ZS_SIMD_SCALAR;
   const int vector_from = simd != ZS_SIMD_SCALAR ? ZS_SIMD_MIN_SPAN : INT_MAX;
-  const int32_t nrows = row_end - row_begin;
   const int32_t *start = s->bucket_start, *order = s->order;
   uint64_t spans = 0, tested = 0, written = 0;
-  for (int32_t r = table->first; r < nrows; r++) {
+  for (int32_t r = table->first; r <= table->last; r++) {
     const int32_t y0 = row_begin + r;
     for (int32_t j = start[r]; j < start[r + 1]; j++) {
-      zs_table_prefetch(b, order, j, start[nrows]);
+      zs_table_prefetch(b, order, j, table->polys);
       const int32_t i = order[j];
       const zs_poly *p = &polys[i];
       zs_active a;

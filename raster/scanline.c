@@ -53,7 +53,7 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
   const zs_simd simd = k == ZS_KERNEL_DRAW ? t->simd : ZS_SIMD_SCALAR;
   /* the shortest span the vector fill takes (one compare a span) */
   const int vector_from = simd != ZS_SIMD_SCALAR ? ZS_SIMD_MIN_SPAN : INT_MAX;
-  const int32_t nrows = row_end - row_begin, first_bucket = table->first;
+  const int32_t first_bucket = table->first, last_bucket = table->last;
   const int32_t *start = s->bucket_start, *order = s->order;
 
   if (obs) zs_trace_tables(b, obs);
@@ -64,15 +64,18 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
     if (hooks && hooks->begin_row) hooks->begin_row(hooks->user, y);
 
     /* New polygons join the active lists with their edge pair. */
-    const int32_t j0 = start[y - row_begin], j1 = start[y - row_begin + 1];
-    if (nact + (j1 - j0) > s->cap_active) {
-      if (!zs_grow((void **)&s->active, &s->cap_active, nact + (j1 - j0), sizeof *s->active))
-        return 0;
-      act = s->active;
-    }
-    for (int32_t j = j0; j < j1; j++) {
-      zs_table_prefetch(b, order, j, start[nrows]);
-      zs_activate(&act[nact++], order[j], &polys[order[j]], edges, y);
+    const int32_t r = y - row_begin;
+    if (r >= first_bucket && r <= last_bucket) {
+      const int32_t j0 = start[r], j1 = start[r + 1];
+      if (nact + (j1 - j0) > s->cap_active) {
+        if (!zs_grow((void **)&s->active, &s->cap_active, nact + (j1 - j0), sizeof *s->active))
+          return 0;
+        act = s->active;
+      }
+      for (int32_t j = j0; j < j1; j++) {
+        zs_table_prefetch(b, order, j, table->polys);
+        zs_activate(&act[nact++], order[j], &polys[order[j]], edges, y);
+      }
     }
 
     if (t->fresh && t->fresh[y]) zs_clear_row(t, y);
@@ -98,10 +101,12 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
 
     if (hooks && hooks->end_row) hooks->end_row(hooks->user, y);
     if (!hooks && nact == 0) {
-      /* Nothing active: jump to the next row that has a bucket. */
-      int32_t r = y + 1 - row_begin;
-      while (r < nrows && start[r] == start[r + 1]) r++;
-      y = row_begin + r - 1;
+      /* Nothing active: jump to the next row that has a bucket, or past
+       * the last. */
+      int32_t next = r + 1;
+      while (next <= last_bucket && start[next] == start[next + 1]) next++;
+      if (next > last_bucket) break;
+      y = row_begin + next - 1;
     }
   }
   counts->spans += spans;

@@ -45,16 +45,20 @@ void zs_walk_scratch_free(zs_walk_scratch *s) {
  * table is an array read in order, not a linked list, so the records a
  * traversal reads next are known ahead and fetched together, where a
  * list's next link waits for the last record (zscan bench raster --case
- * "random 10x10 back to front" measures it). */
+ * "random 10x10 back to front" measures it).  Each bucket's count, summed
+ * up to it, is where it ends; placing its polygons from the last one
+ * back leaves where it begins.  Only the buckets in use are summed: a
+ * small draw costs its polygons, not the frame's rows (zscan calibrate's
+ * "draw calls"). */
 int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch *s,
                   zs_table *table) {
   const int32_t nrows = row_end - row_begin;
   if (!reserve(s, nrows, b->npolys > 0 ? b->npolys : 1)) return 0;
   int32_t *start = s->bucket_start, *order = s->order;
   memset(start, 0, (size_t)(nrows + 1) * sizeof *start);
-  int32_t first_bucket = nrows, ncross = 0, last_row = row_begin - 1, polys = 0, jumps = 0;
+  int32_t first = nrows, last = -1, ncross = 0, last_row = row_begin - 1, polys = 0, jumps = 0;
   int32_t prev_row0 = INT32_MIN, x0 = INT32_MAX, x1 = INT32_MIN;
-  /* each bucket's count, at start[r + 1]; the polygons begun above */
+  /* each bucket's count; the polygons begun above */
   for (int32_t i = 0; i < b->npolys; i++) {
     const zs_poly *p = &b->polys[i];
     if (p->row1 < row_begin || p->row0 >= row_end) continue;
@@ -70,21 +74,28 @@ int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch
       continue;
     }
     const int32_t r = p->row0 - row_begin;
-    start[r + 1]++;
-    if (r < first_bucket) first_bucket = r;
+    start[r]++;
+    if (r < first) first = r;
+    if (r > last) last = r;
   }
-  /* start[r]: the first place of bucket r's polygons begun in it (bucket
-   * 0's after those begun above) */
-  start[0] = ncross;
-  for (int32_t r = 1; r <= nrows; r++) start[r] += start[r - 1];
-  for (int32_t i = 0; i < b->npolys; i++) {
+  if (ncross > 0) { /* they head bucket 0 */
+    if (first > 0) first = 0;
+    if (last < 0) last = 0;
+  }
+  if (last < 0) {
+    *table = (zs_table){nrows, -1, last_row, 0, 0, 0, 0};
+    return 1;
+  }
+  /* where each bucket ends (bucket 0's after the polygons begun above) */
+  start[first] += ncross;
+  for (int32_t r = first + 1; r <= last; r++) start[r] += start[r - 1];
+  for (int32_t i = b->npolys - 1; i >= 0; i--) {
     const zs_poly *p = &b->polys[i];
     if (p->row1 < row_begin || p->row0 >= row_end || p->row0 < row_begin) continue;
-    order[start[p->row0 - row_begin]++] = i;
+    order[--start[p->row0 - row_begin]] = i;
   }
-  /* start[r] is now bucket r's end: shifted, its start */
-  for (int32_t r = nrows; r > 0; r--) start[r] = start[r - 1];
-  start[0] = 0;
+  /* now where each begins; and the end of the last */
+  start[last + 1] = polys;
   if (ncross > 0) {
     /* A walk that starts mid-frame (a band of rows) takes first the
      * polygons begun above it, in the order a walk from the top would hold
@@ -93,8 +104,8 @@ int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch
      * overwrites included). */
     qsort(s->cross, (size_t)ncross, sizeof *s->cross, cmp_int64);
     for (int32_t k = 0; k < ncross; k++) order[k] = (int32_t)(s->cross[k] & 0xFFFFFFFF);
-    first_bucket = 0;
+    start[0] = 0;
   }
-  *table = (zs_table){first_bucket, last_row, polys, jumps, x0, x1};
+  *table = (zs_table){first, last, last_row, polys, jumps, x0, x1};
   return 1;
 }
