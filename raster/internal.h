@@ -304,6 +304,7 @@ typedef struct zs_table {
 } zs_table;
 int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch *s,
                   zs_table *table);
+void zs_walk_scratch_free(zs_walk_scratch *s);
 
 /* scanline.c: walks rows [row_begin, row_end) of the batch, the
  * lecture's scanline z-buffer: the sorted polygon table, the active
@@ -312,19 +313,18 @@ int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
                   int row_begin, int row_end, const zs_row_hooks *hooks,
                   const zs_trace_observer *obs, zs_walk_scratch *s,
                   zs_walk_counts *counts);
-void zs_walk_scratch_free(zs_walk_scratch *s);
 
 /* scanline.c: the walk of a table already sorted, into a full-frame
  * target, no hooks, no observer (0: out of memory). */
 int zs_walk_sorted(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
-                    int row_end, const zs_table *table, zs_walk_scratch *s,
-                    zs_walk_counts *counts);
+                   int row_end, const zs_table *table, zs_walk_scratch *s,
+                   zs_walk_counts *counts);
 
 /* paint.c: the z-buffer mode's traversal of a batch into a full-frame
  * target: the same pixels, depths, writes and counters as zs_scan_batch,
- * a polygon at a time in the sorted table's order for a soup of
- * polygons, by the scanline walk for a mesh laid out in order.  Returns
- * 0 when out of memory. */
+ * a polygon at a time in the sorted table's order, or by the scanline
+ * walk for a mesh laid out in order over a quarter of the frame or more.
+ * Returns 0 when out of memory. */
 int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
                    int row_end, zs_walk_scratch *s, zs_walk_counts *counts);
 

@@ -1,8 +1,7 @@
 /* The sorted polygon table of the scanline z-buffer: a batch's polygons
- * bucketed by their first row, a linked list per row in batch order,
- * which every traversal of a batch takes in order (scanline.c row by
- * row, paint.c polygon by polygon); and the per-walk scratch that holds
- * it. */
+ * bucketed by their first row, each bucket in batch order, which every
+ * traversal of a batch takes in order (scanline.c row by row, paint.c
+ * polygon by polygon); and the per-walk scratch that holds it. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
