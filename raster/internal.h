@@ -182,6 +182,14 @@ void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, 
  * or its polygons first .. first + count - 1 with their edges. */
 int zs_batch_append(zs_batch *dst, const zs_batch *src);
 int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count);
+/* The same in parts, for copies made at once over threads: the edges of
+ * polygons first .. first + count - 1 of b; room for polys and edges
+ * more (0: out of memory); those polygons and their edges written at
+ * dst's polygon at_poly and edge at_edge, its counts left as they are. */
+int32_t zs_batch_edges_of(const zs_batch *b, int32_t first, int32_t count);
+int zs_batch_reserve(zs_batch *b, int32_t polys, int32_t edges);
+void zs_batch_place(zs_batch *dst, int32_t at_poly, int32_t at_edge, const zs_batch *src,
+                    int32_t first, int32_t count);
 void zs_batch_free(zs_batch *b);
 
 /* ---- span_simd.c: the draw kernel's span fill with SSE2 or AVX2 ----

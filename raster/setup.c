@@ -60,20 +60,34 @@ void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, 
   *hi = h > height - 1 ? height - 1 : h;
 }
 
-int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count) {
-  if (count <= 0) return 1;
+int32_t zs_batch_edges_of(const zs_batch *b, int32_t first, int32_t count) {
+  if (count <= 0) return 0;
   /* the polygons' edges lie together, in the polygons' order */
-  const int32_t e0 = src->polys[first].edge0;
-  const int32_t e1 = first + count < src->npolys ? src->polys[first + count].edge0 : src->nedges;
-  if (!reserve(dst, count, e1 - e0)) return 0;
+  const int32_t e1 = first + count < b->npolys ? b->polys[first + count].edge0 : b->nedges;
+  return e1 - b->polys[first].edge0;
+}
+
+void zs_batch_place(zs_batch *dst, int32_t at_poly, int32_t at_edge, const zs_batch *src,
+                    int32_t first, int32_t count) {
+  if (count <= 0) return;
+  const int32_t e0 = src->polys[first].edge0, nedges = zs_batch_edges_of(src, first, count);
   for (int32_t i = 0; i < count; i++) {
     zs_poly p = src->polys[first + i];
-    p.edge0 += dst->nedges - e0;
-    dst->polys[dst->npolys + i] = p;
+    p.edge0 += at_edge - e0;
+    dst->polys[at_poly + i] = p;
   }
-  memcpy(dst->edges + dst->nedges, src->edges + e0, (size_t)(e1 - e0) * sizeof *src->edges);
+  memcpy(dst->edges + at_edge, src->edges + e0, (size_t)nedges * sizeof *src->edges);
+}
+
+int zs_batch_reserve(zs_batch *b, int32_t polys, int32_t edges) { return reserve(b, polys, edges); }
+
+int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count) {
+  const int32_t nedges = zs_batch_edges_of(src, first, count);
+  if (count <= 0) return 1;
+  if (!reserve(dst, count, nedges)) return 0;
+  zs_batch_place(dst, dst->npolys, dst->nedges, src, first, count);
   dst->npolys += count;
-  dst->nedges += e1 - e0;
+  dst->nedges += nedges;
   return 1;
 }
 
