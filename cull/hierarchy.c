@@ -124,30 +124,29 @@ int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask) {
 
 /* The objects flagged in draw[], in order front to back as the traversal
  * would reach them (by their boxes' distance, ties by element), into
- * order; returns how many (-1 when out of memory). */
-int32_t cull_order_front_to_back(frame_ctx *f, const uint8_t *draw, int32_t *order) {
+ * c->order; returns how many (-1 when out of memory). */
+int32_t cull_order_front_to_back(frame_ctx *f, const uint8_t *draw) {
   zs_culler *c = f->c;
   c->nheap = 0;
+  if (!zs_grow((void **)&c->order, &c->cap_order, f->s->ninst + 1, sizeof *c->order)) {
+    cull_out_of_memory(f);
+    return -1;
+  }
   for (int32_t i = 0; i < f->s->ninst; i++)
     if (draw[i] && !cull_heap_push(f, object_elem(i), 0)) {
       cull_out_of_memory(f);
       return -1;
     }
   int32_t n = 0;
-  while (c->nheap > 0) order[n++] = object_of(heap_pop(c).e);
+  while (c->nheap > 0) c->order[n++] = object_of(heap_pop(c).e);
   return n;
 }
 
 /* The objects flagged in draw[], drawn in that order, the ordering itself
  * free: the oracles' way of drawing what they know. */
 void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw) {
-  zs_culler *c = f->c;
-  if (!zs_grow((void **)&c->order, &c->cap_order, f->s->ninst + 1, sizeof *c->order)) {
-    cull_out_of_memory(f);
-    return;
-  }
-  const int32_t n = cull_order_front_to_back(f, draw, c->order);
-  for (int32_t k = 0; k < n && f->status == ZS_OK; k++) cull_draw_instance(f, c->order[k]);
+  const int32_t n = cull_order_front_to_back(f, draw);
+  for (int32_t k = 0; k < n && f->status == ZS_OK; k++) cull_draw_instance(f, f->c->order[k]);
 }
 
 /* TraverseNode of the paper, once per frame per element: an object is

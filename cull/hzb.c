@@ -111,11 +111,7 @@ enum { HZB_PASS_OBJECTS = 128, HZB_PASSES = 4 };
 static void phase_one(frame_ctx *f, uint8_t *draw1, level *l, uint8_t **maybe, int32_t *cap_maybe) {
   zs_culler *c = f->c;
   for (int32_t i = 0; i < f->s->ninst; i++) draw1[i] = c->os[i].visible;
-  if (!zs_grow((void **)&c->order, &c->cap_order, f->s->ninst + 1, sizeof *c->order)) {
-    cull_out_of_memory(f);
-    return;
-  }
-  const int32_t n = cull_order_front_to_back(f, draw1, c->order);
+  const int32_t n = cull_order_front_to_back(f, draw1);
   const int passes = n / HZB_PASS_OBJECTS < 1 ? 1
                      : n / HZB_PASS_OBJECTS > HZB_PASSES ? HZB_PASSES : n / HZB_PASS_OBJECTS;
   for (int p = 0; p < passes && f->status == ZS_OK; p++) {

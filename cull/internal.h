@@ -219,9 +219,9 @@ void cull_decide(frame_ctx *f, elem e, zs_node_decision d);
 void cull_draw_instance(frame_ctx *f, int32_t i);
 /* Pushes e on the traversal queue (0 when out of memory). */
 int cull_heap_push(frame_ctx *f, elem e, unsigned mask);
-/* The objects flagged in draw[] front to back into order (n of them; -1
- * when out of memory), and drawn so. */
-int32_t cull_order_front_to_back(frame_ctx *f, const uint8_t *draw, int32_t *order);
+/* The objects flagged in draw[] front to back into the culler's order (n
+ * of them; -1 when out of memory), and drawn so. */
+int32_t cull_order_front_to_back(frame_ctx *f, const uint8_t *draw);
 void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw);
 /* Pops the nearest element and tests it against the frustum; 0: outside. */
 int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);

@@ -31,9 +31,9 @@
  * A box that the near plane cuts, or that holds the eye, is maybe
  * visible.  tests/test_hzb.c holds this against exact box queries on
  * thousands of random boxes, scenes and cameras.  What the descent to
- * the pixels saves: zscan walk builtin:plant,detail=1 --cull hzb, objects
- * drawn a frame against a descent that stops at 17x17 texels
- * (docs/RESULTS.md). */
+ * the pixels saves: zscan walk builtin:plant,detail=1 --cull
+ * hzb,ideal-box,ideal --frames 60, objects drawn a frame against a
+ * descent that stops at 17x17 texels (docs/CULLING.md). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -173,7 +173,7 @@ typedef struct box_test {
   int x0, y0, x1, y1;     /* the pixels, within the window */
   const face_plane *fp;   /* the faces turned to the eye */
   int nf;
-  uint64_t reads;         /* texels read so far */
+  uint64_t *reads;        /* texels read, counted on */
 } box_test;
 
 /* Whether texel (tx, ty) of level k, over the pixels of the box's test
@@ -195,7 +195,7 @@ static int texel_maybe_visible(const zs_device *d, box_test *t, int k, int tx, i
   const int c1 = ((tx + 1) << k) - 1 < t->x1 ? ((tx + 1) << k) - 1 : t->x1;
   const double Y0 = r0 + 0.5 - e, Y1 = r1 + 0.5 + e, X0 = c0 + 0.5 - e, X1 = c1 + 0.5 + e;
   const double far = lv[(size_t)ty * (size_t)h->w[k] + (size_t)tx];
-  t->reads++;
+  ++*t->reads;
   int shows = 0;
   for (int i = 0; i < t->nf && !shows; i++) {
     const face_plane *f = &t->fp[i];
@@ -251,7 +251,7 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
     return 0; /* no pixel of the window: the query counts none */
   box_test t = {(int)fmax(floor(xmin) - 1.0, 0.0), (int)fmax(floor(ymin) - 1.0, 0.0),
                 (int)fmin(floor(xmax) + 1.0, d->cfg.width - 1.0),
-                (int)fmin(floor(ymax) + 1.0, d->cfg.height - 1.0), NULL, 0, 0};
+                (int)fmin(floor(ymax) + 1.0, d->cfg.height - 1.0), NULL, 0, reads};
   if (t.x0 > t.x1 || t.y0 > t.y1) return 0;
   /* the faces the query would draw: those turned to the eye */
   static const int quad[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
@@ -282,7 +282,6 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
   for (int ty = t.y0 >> k; ty <= t.y1 >> k && !shows; ty++)
     for (int tx = t.x0 >> k; tx <= t.x1 >> k && !shows; tx++)
       shows = texel_maybe_visible(d, &t, k, tx, ty);
-  *reads += t.reads;
   return shows;
 }
 

@@ -27,8 +27,6 @@
  * out (raster.h, COVERAGE).
  */
 #include <limits.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "raster/grow.h"
 #include "raster/span.h"

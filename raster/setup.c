@@ -44,7 +44,7 @@ void zs_batch_free(zs_batch *b) {
   *b = (zs_batch){0};
 }
 
-static int reserve(zs_batch *b, int polys, int edges) {
+int zs_batch_reserve(zs_batch *b, int32_t polys, int32_t edges) {
   return zs_grow((void **)&b->polys, &b->cap_polys, (int64_t)b->npolys + polys, sizeof *b->polys) &&
          zs_grow((void **)&b->edges, &b->cap_edges, (int64_t)b->nedges + edges, sizeof *b->edges);
 }
@@ -79,12 +79,10 @@ void zs_batch_place(zs_batch *dst, int32_t at_poly, int32_t at_edge, const zs_ba
   memcpy(dst->edges + at_edge, src->edges + e0, (size_t)nedges * sizeof *src->edges);
 }
 
-int zs_batch_reserve(zs_batch *b, int32_t polys, int32_t edges) { return reserve(b, polys, edges); }
-
 int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count) {
-  const int32_t nedges = zs_batch_edges_of(src, first, count);
   if (count <= 0) return 1;
-  if (!reserve(dst, count, nedges)) return 0;
+  const int32_t nedges = zs_batch_edges_of(src, first, count);
+  if (!zs_batch_reserve(dst, count, nedges)) return 0;
   zs_batch_place(dst, dst->npolys, dst->nedges, src, first, count);
   dst->npolys += count;
   dst->nedges += nedges;
@@ -209,7 +207,7 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   }
   int32_t row0 = zs_first_row(Y[top]), row1 = zs_last_row(Y[bot]);
   if (row0 > row1) return 1; /* between two rows of pixel centres */
-  if (!reserve(b, 1, n)) return 0;
+  if (!zs_batch_reserve(b, 1, n)) return 0;
   if (sp->prefetch_write) { /* a few faces ahead */
     if (b->npolys + 16 < b->cap_polys) prefetch_write(&b->polys[b->npolys + 16]);
     if (b->nedges + 64 < b->cap_edges) prefetch_write(&b->edges[b->nedges + 64]);

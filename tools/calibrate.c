@@ -268,17 +268,11 @@ typedef struct hzb_run {
   int n; /* boxes to test; 0: build HZB_BUILDS_RUN times */
 } hzb_run;
 
-static zs_status hzb_fn(zs_device *d, const hzb_run *r, zs_error *err) {
-  if (r->n == 0) {
-    for (int k = 0; k < HZB_BUILDS_RUN; k++)
-      if (zs_device_hzb_build(d, err)) return err->code;
-    return ZS_OK;
-  }
-  uint8_t *maybe = malloc((size_t)r->n);
-  if (!maybe) return zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
-  zs_status st = zs_device_hzb_test(d, r->lo, r->hi, r->n, maybe, err);
-  free(maybe);
-  return st;
+static zs_status hzb_fn(zs_device *d, const hzb_run *r, uint8_t *maybe, zs_error *err) {
+  if (r->n > 0) return zs_device_hzb_test(d, r->lo, r->hi, r->n, maybe, err);
+  for (int k = 0; k < HZB_BUILDS_RUN; k++)
+    if (zs_device_hzb_build(d, err)) return err->code;
+  return ZS_OK;
 }
 
 /* Times run's pyramid commands after sc drawn from (view, proj) on a
@@ -290,7 +284,9 @@ static zs_status time_hzb(const zs_scene *sc, const double view[16], const doubl
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
   double *times = malloc((size_t)repeat * sizeof *times);
-  zs_status st = times ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
+  uint8_t *maybe = malloc(run->n > 0 ? (size_t)run->n : 1);
+  zs_status st = times && maybe ? ZS_OK
+                                : zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
   for (int r = 0; r < repeat && st == ZS_OK; r++) {
     zs_device_clear(d);
     zs_device_set_camera(d, view, proj);
@@ -298,7 +294,7 @@ static zs_status time_hzb(const zs_scene *sc, const double view[16], const doubl
     if (st == ZS_OK) st = zs_device_hzb_build(d, err);
     const zs_clock_stats before = *zs_device_clock(d);
     double t0 = zs_wall_ms();
-    if (st == ZS_OK) st = hzb_fn(d, run, err);
+    if (st == ZS_OK) st = hzb_fn(d, run, maybe, err);
     times[r] = zs_wall_ms() - t0;
     const zs_clock_stats *after = zs_device_clock(d);
     w->counts[0] = run->n ? 1 : HZB_BUILDS_RUN;
@@ -308,6 +304,7 @@ static zs_status time_hzb(const zs_scene *sc, const double view[16], const doubl
   }
   if (st == ZS_OK) w->ms = zs_median(times, repeat);
   free(times);
+  free(maybe);
   zs_device_destroy(d);
   return st;
 }
