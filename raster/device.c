@@ -56,7 +56,8 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
   /* the span fill, chosen once: BEST and AVX2 take what the CPU has */
   d->simd = zs_span_simd_level(cfg->spans == ZS_SPANS_SCALAR ? ZS_SIMD_SCALAR
                                : cfg->spans == ZS_SPANS_SSE2 ? ZS_SIMD_SSE2
-                                                             : ZS_SIMD_AVX2);
+                               : cfg->spans == ZS_SPANS_AVX2 ? ZS_SIMD_AVX2
+                                                             : ZS_SIMD_AVX512);
   size_t w = (size_t)cfg->width, px = w * (size_t)cfg->height;
   int ok = 1;
   if (cfg->algo == ZS_ALGO_ZBUFFER) { /* else scanline or depthsort: one row */

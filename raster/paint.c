@@ -22,8 +22,6 @@
  * a stride of a whole row between them (zscan bench raster measures
  * both: the random triangles and the tilings).
  */
-#include <limits.h>
-
 #include "raster/span.h"
 
 /* Clears the rows [y0, y1] a lazy target holds nothing in yet. */
@@ -42,7 +40,7 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
   const zs_poly *polys = b->polys;
   const zs_edge *edges = b->edges;
   const zs_simd simd = k == ZS_KERNEL_DRAW ? t->simd : ZS_SIMD_SCALAR;
-  const int vector_from = simd != ZS_SIMD_SCALAR ? ZS_SIMD_MIN_SPAN : INT_MAX;
+  const int vector_from = zs_simd_min_span(simd);
   const int32_t *start = s->bucket_start, *order = s->order;
   uint64_t spans = 0, tested = 0, written = 0;
   for (int32_t r = table->first; r <= table->last; r++) {

@@ -26,7 +26,6 @@
  * [x_left, x_right): a centre on the left edge is in, on the right edge
  * out (raster.h, COVERAGE).
  */
-#include <limits.h>
 
 #include "raster/grow.h"
 #include "raster/span.h"
@@ -50,7 +49,7 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
   zs_active *act = s->active;
   const zs_simd simd = k == ZS_KERNEL_DRAW ? t->simd : ZS_SIMD_SCALAR;
   /* the shortest span the vector fill takes (one compare a span) */
-  const int vector_from = simd != ZS_SIMD_SCALAR ? ZS_SIMD_MIN_SPAN : INT_MAX;
+  const int vector_from = zs_simd_min_span(simd);
   const int32_t first_bucket = table->first, last_bucket = table->last;
   const int32_t *start = s->bucket_start, *order = s->order;
 

@@ -8,6 +8,7 @@
 #ifndef ZS_RASTER_SPAN_H
 #define ZS_RASTER_SPAN_H
 
+#include <limits.h>
 #include <string.h>
 
 #include "raster/edge_dda.h"
@@ -19,13 +20,23 @@ static inline uint32_t zs_depth_of(int64_t z, int shift, int64_t zfar) {
   return (uint32_t)(z >> shift);
 }
 
-/* Spans shorter than this stay with the scalar loop (raster.h, the span
- * fill): below 16 pixels AVX2 needs masked stores for the last pixels,
- * slow on AMD CPUs, or full-width stores that write back what lies past
- * the span, no faster than the loop; and SSE2 from 8 costs more
- * instructions a triangle than from 16 (zscan bench raster --case
- * "triangles 25x25" --callgrind measures both). */
-enum { ZS_SIMD_MIN_SPAN = 16 };
+/* The shortest span a SIMD level fills (raster.h, the span fill); shorter
+ * ones stay with the scalar loop, inlined.  SSE2 and AVX2 from 16 pixels:
+ * below, AVX2 needs masked stores for the last pixels, slow on AMD CPUs,
+ * or full-width stores that write back what lies past the span, no faster
+ * than the loop; and SSE2 from 8 costs more instructions a triangle than
+ * from 16 (zscan bench raster --case "triangles 25x25" --callgrind
+ * measures both).  AVX-512 masks its last step at no cost and takes
+ * spans from 10 pixels.  Not from fewer: a masked load cannot take its
+ * bytes from the masked store just before it, which the next span of a
+ * mesh's row always meets (from 1 the plant walks a tenth slower, from 8
+ * the 10x10 tiling 3 %); and not from 16, where the random 25x25
+ * triangles lose a tenth in scanline mode (zscan bench raster --case
+ * builtin:plant, --case "triangles 10x10" and --case "random 25x25 back
+ * to front" measure them, --simd avx2 beside). */
+static inline int zs_simd_min_span(zs_simd simd) {
+  return simd == ZS_SIMD_AVX512 ? 10 : simd != ZS_SIMD_SCALAR ? 16 : INT_MAX;
+}
 
 /* One row of the target: where a row's spans land. */
 typedef struct zs_row_ptrs {

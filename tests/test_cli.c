@@ -172,7 +172,7 @@ static const bad_option bad_options[] = {
      "--reference off: ", 2},
     {{"query", "builtin:cubes", "--format", "xml", NULL}, "--format: expected text or json, got 'xml'",
      2},
-    {{"bench", "raster", "--simd", "neon", NULL}, "--simd: scalar, sse2 or avx2, not 'neon'", 2},
+    {{"bench", "raster", "--simd", "neon", NULL}, "--simd: scalar, sse2, avx2 or avx512, not 'neon'", 2},
     {{"bench", "raster", "--speedup", NULL}, "--speedup: against --threads N, N of 2 or more", 2},
     {{"bench", "raster", "--case", "triangles 7x7", NULL}, "--case 'triangles 7x7': no such case", 1},
 };

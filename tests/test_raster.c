@@ -65,7 +65,7 @@ static zs_device *device(int w, int h, zs_algo algo, zs_shade shade, int cull) {
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
   ck_assert_int_eq(zs_device_simd(d), zs_span_simd_level(spans_for_devices == ZS_SPANS_BEST
-                                                             ? ZS_SIMD_AVX2
+                                                             ? ZS_SIMD_AVX512
                                                              : (zs_simd)(spans_for_devices - 1)));
   return d;
 }
@@ -424,7 +424,7 @@ END_TEST
 
 START_TEST(simd_spans_equal_scalar) {
   /* Large random triangles through each other, a third of them at one
-   * depth (the id decides), and a sphere: the SSE2 and AVX2 span fills
+   * depth (the id decides), and a sphere: the SSE2, AVX2 and AVX-512 span fills
    * (where the CPU has them) and the scalar loop give the same image,
    * depth, ids and counters, in both modes. */
   const int W = 640, H = 480;
@@ -440,21 +440,21 @@ START_TEST(simd_spans_equal_scalar) {
   ck_assert_int_eq(zs_span_simd_level(ZS_SIMD_SCALAR), ZS_SIMD_SCALAR);
   /* a device asked for a level the CPU lacks falls back to a lower one:
    * that level's comparison then checks nothing, and says so */
-  for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX2; level++)
+  for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX512; level++)
     if ((int)zs_span_simd_level((zs_simd)level) != level)
       printf("simd_spans_equal_scalar: skipped %s: this CPU lacks it\n", zs_simd_name(level));
   for (int algo = 0; algo < 2; algo++) {
-    frame f[3];
-    zs_raster_stats st[3];
-    for (int level = ZS_SIMD_SCALAR; level <= ZS_SIMD_AVX2; level++) {
-      /* the device's own level: ZS_SPANS_SCALAR .. ZS_SPANS_AVX2 */
+    frame f[4];
+    zs_raster_stats st[4];
+    for (int level = ZS_SIMD_SCALAR; level <= ZS_SIMD_AVX512; level++) {
+      /* the device's own level: ZS_SPANS_SCALAR .. ZS_SPANS_AVX512 */
       spans_for_devices = (zs_span_fill)(ZS_SPANS_SCALAR + level);
       f[level] = frame_new(W, H);
       st[level] = render(&b.m, W, H, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &f[level]);
     }
     spans_for_devices = ZS_SPANS_BEST;
     size_t n = (size_t)W * H * 4;
-    for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX2; level++) {
+    for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX512; level++) {
       ck_assert_msg(memcmp(f[0].rgb, f[level].rgb, n) == 0, "%s: colours", zs_simd_name(level));
       ck_assert_msg(memcmp(f[0].depth, f[level].depth, n) == 0, "%s: depths", zs_simd_name(level));
       ck_assert_msg(memcmp(f[0].id, f[level].id, n) == 0, "%s: ids", zs_simd_name(level));

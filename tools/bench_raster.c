@@ -51,8 +51,8 @@ static const char usage[] =
     "  --md FILE         the table in Markdown\n"
     "  --plot FILE.png   Mtri/s and Mpix/s against triangle size, both modes\n"
     "  --no-scenes       the triangle sizes only\n"
-    "  --simd LEVEL      cap the span fill at scalar, sse2 or avx2 (default: the best\n"
-    "                    the CPU has; the same pixels at every level)\n"
+    "  --simd LEVEL      cap the span fill at scalar, sse2, avx2 or avx512 (default:\n"
+    "                    the best the CPU has; the same pixels at every level)\n"
     "  --no-simd         the same as --simd scalar\n"
     "  --mesa            also each case through Mesa's llvmpipe (OSMesa), frames taken\n"
     "                    in turn with zscan's zbuffer mode; llvmpipe's threads: LP_NUM_THREADS\n"
@@ -99,7 +99,7 @@ static double per(double a, double b) { return b > 0 ? a / b : 0.0; }
 static zs_span_fill spans_of(const bench_opts *o) { return (zs_span_fill)(ZS_SPANS_SCALAR + o->simd); }
 
 static const char *simd_label(zs_simd level) {
-  return level == ZS_SIMD_AVX2 ? "AVX2" : level == ZS_SIMD_SSE2 ? "SSE2" : "scalar";
+  return level == ZS_SIMD_AVX512 ? "AVX-512" : level == ZS_SIMD_AVX2 ? "AVX2" : level == ZS_SIMD_SSE2 ? "SSE2" : "scalar";
 }
 
 /* A tiling: each S x S square of the image as two triangles, in pixel
@@ -656,7 +656,7 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX2, 0, 0, 0, -1, NULL, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX512, 0, 0, 0, -1, NULL, NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
@@ -668,7 +668,8 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
       if (strcmp(v, "scalar") == 0) o->simd = ZS_SIMD_SCALAR;
       else if (strcmp(v, "sse2") == 0) o->simd = ZS_SIMD_SSE2;
       else if (strcmp(v, "avx2") == 0) o->simd = ZS_SIMD_AVX2;
-      else return zs_error_set(err, ZS_ERR_ARG, "--simd: scalar, sse2 or avx2, not '%s'", v);
+      else if (strcmp(v, "avx512") == 0) o->simd = ZS_SIMD_AVX512;
+      else return zs_error_set(err, ZS_ERR_ARG, "--simd: scalar, sse2, avx2 or avx512, not '%s'", v);
     } else if (strcmp(a, "--mesa") == 0) {
       if (!zs_mesa_available())
         return zs_error_set(err, ZS_ERR_UNSUPPORTED,

@@ -134,14 +134,16 @@ typedef enum zs_shade {
   ZS_SHADE_OVERDRAW  /* fragments per pixel as a heat map, no depth test */
 } zs_shade;
 
-/* How wide the span fill goes: long spans eight pixels at a time with
- * AVX2, four with SSE2, or one.  Every level gives the same bytes; the
+/* How wide the span fill goes: spans of 10 pixels or more sixteen at a
+ * time with AVX-512, of 16 or more eight at a time with AVX2 or four with
+ * SSE2, or one at a time.  Every level gives the same bytes; the
  * choice is made once, when the device is created. */
 typedef enum zs_span_fill {
   ZS_SPANS_BEST = 0,  /* the widest this CPU has */
   ZS_SPANS_SCALAR,
   ZS_SPANS_SSE2,      /* at most SSE2 */
-  ZS_SPANS_AVX2       /* at most AVX2 (the same as best on x86-64) */
+  ZS_SPANS_AVX2,      /* at most AVX2 */
+  ZS_SPANS_AVX512     /* at most AVX-512 (the same as best on x86-64) */
 } zs_span_fill;
 
 typedef struct zs_device_config {
