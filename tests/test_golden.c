@@ -145,15 +145,19 @@ START_TEST(golden_case_matches) {
   uint64_t hsh = render_case(c, &shuffled, ZS_ALGO_ZBUFFER, NULL);
   ck_assert_msg(hz == hsh, "%s: shuffled faces give %016llx, not %016llx", c->name,
                 (unsigned long long)hsh, (unsigned long long)hz);
-  /* the same bytes and the same counters for every number of threads */
-  zs_raster_stats one, many;
-  render_case_threads(c, &m, ZS_ALGO_ZBUFFER, 1, NULL, &one);
-  for (int threads = 2; threads <= 4; threads++) {
-    uint64_t ht = render_case_threads(c, &m, ZS_ALGO_ZBUFFER, threads, NULL, &many);
-    ck_assert_msg(hz == ht, "%s: %d threads give %016llx, not %016llx", c->name, threads,
-                  (unsigned long long)ht, (unsigned long long)hz);
-    ck_assert_msg(memcmp(&one, &many, sizeof one) == 0, "%s: %d threads change the counters",
-                  c->name, threads);
+  /* the same bytes and the same counters for every number of threads, in
+   * both modes (scanline mode walks bands of rows on threads) */
+  for (int algo = 0; algo < (c->hidden_line ? 1 : 2); algo++) {
+    const zs_algo a = algo ? ZS_ALGO_SCANLINE : ZS_ALGO_ZBUFFER;
+    zs_raster_stats one, many;
+    render_case_threads(c, &m, a, 1, NULL, &one);
+    for (int threads = 2; threads <= 4; threads++) {
+      uint64_t ht = render_case_threads(c, &m, a, threads, NULL, &many);
+      ck_assert_msg(hz == ht, "%s, %s: %d threads give %016llx, not %016llx", c->name,
+                    zs_algo_name(a), threads, (unsigned long long)ht, (unsigned long long)hz);
+      ck_assert_msg(memcmp(&one, &many, sizeof one) == 0, "%s, %s: %d threads change the counters",
+                    c->name, zs_algo_name(a), threads);
+    }
   }
   uint64_t want = 0;
   const int golden = zs_golden_check("hashes.txt", c->name, hz, &want);
