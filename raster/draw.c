@@ -80,9 +80,11 @@ void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs
 
 /* Vertices [i0, i1): to eye space (for the normals of flat shading and
  * the painter's keys) and to clip space, with the outcode, snapped when
- * inside every plane. */
+ * inside every plane.  Eight at a time with AVX-512 where the device has
+ * it (vertex_simd.c, the same bits), the rest here. */
 void zs_draw_transform(const zs_device *d, const zs_draw_prep *pr, const zs_mesh *mesh,
                        zs_vert_scratch *v, int32_t i0, int32_t i1) {
+  if (d->simd == ZS_SIMD_AVX512) i0 = zs_vertex_stage_avx512(pr, mesh, v, i0, i1, d->gx, d->gy);
   for (int32_t i = i0; i < i1; i++) {
     const double *p = &mesh->pos[3 * i];
     double c[4];

@@ -538,6 +538,12 @@ void zs_draw_prep_fixed(const zs_device *d, zs_kernel k, zs_draw_prep *p);
 void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p);
 void zs_draw_transform(const zs_device *d, const zs_draw_prep *p, const zs_mesh *mesh,
                        zs_vert_scratch *v, int32_t i0, int32_t i1);
+/* vertex_simd.c: the vertex stage of vertices [i0, i1) eight at a time
+ * with AVX-512, the same bits as draw.c's loop; returns the first vertex
+ * left to that loop (gx, gy: the guard band, as zs_clip_outcode takes it).
+ * Only on a device whose level is ZS_SIMD_AVX512. */
+int32_t zs_vertex_stage_avx512(const zs_draw_prep *p, const zs_mesh *mesh, zs_vert_scratch *v,
+                               int32_t i0, int32_t i1, double gx, double gy);
 zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *p, const zs_vert_scratch *v,
                         const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
                         uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "raster/pool.h"
-#include "raster/raster.h"
+#include "raster/internal.h"
 #include "raster/rng.h"
 #include "tests/testutil.h"
 
@@ -466,6 +466,79 @@ START_TEST(simd_spans_equal_scalar) {
     frame_free(&f[0]);
   }
   mb_free(&b);
+}
+END_TEST
+
+START_TEST(vertex_stage_simd_equals_scalar) {
+  /* The vertex stage eight at a time (AVX-512) against the scalar loop,
+   * on the same draw: points in the view, beyond each plane and the guard
+   * band, behind the eye, on the near plane, huge, and NaN; a range that
+   * starts and ends off a multiple of eight.  Clip space, outcodes and eye
+   * space equal in every bit; the snapped positions of the vertices inside
+   * every plane (the only ones set-up reads) too. */
+  if (zs_span_simd_level(ZS_SIMD_AVX512) != ZS_SIMD_AVX512) {
+    printf("vertex_stage_simd_equals_scalar: skipped: this CPU lacks AVX-512\n");
+    return;
+  }
+  enum { N = 1003, FROM = 5 };
+  zs_rng rng;
+  zs_rng_seed(&rng, 23);
+  double *pos = malloc(3 * N * sizeof *pos);
+  ck_assert_ptr_nonnull(pos);
+  for (int i = 0; i < N; i++) {
+    const double r = i % 4 == 0 ? 0.6 : i % 4 == 1 ? 3.0 : i % 4 == 2 ? 40.0 : 1e6;
+    for (int c = 0; c < 3; c++) pos[3 * i + c] = zs_rng_range(&rng, -r, r);
+  }
+  pos[3 * 17 + 2] = NAN;
+  pos[3 * 40] = INFINITY;
+  for (int c = 0; c < 3; c++) pos[3 * 41 + c] = 0.0;         /* at the origin */
+  pos[3 * 42] = pos[3 * 42 + 1] = 0.0, pos[3 * 42 + 2] = 2.5; /* on the near plane */
+  zs_mesh m = {pos, N, NULL, NULL, 0, NULL, NULL};
+  zs_vert_scratch v[2] = {{0}, {0}};
+  for (int k = 0; k < 2; k++) {
+    zs_device_config cfg = {320, 200, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0,
+                            k ? ZS_SPANS_AVX512 : ZS_SPANS_SCALAR};
+    zs_device *d = NULL;
+    zs_error err;
+    zs_error_clear(&err);
+    ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+    ck_assert_int_eq(zs_device_simd(d), k ? ZS_SIMD_AVX512 : ZS_SIMD_SCALAR);
+    double view[16], proj[16], model[16];
+    zs_mat_look_at(view, (double[3]){0.3, 0.4, 3.0}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
+    zs_mat_perspective(proj, 50, 1.6, 0.5, 10);
+    zs_mat_identity(model);
+    model[3] = 0.125; /* a translation, so that every matrix entry is used */
+    zs_device_set_camera(d, view, proj);
+    zs_draw_prep prep;
+    zs_draw_prepare(d, model, ZS_KERNEL_DRAW, &prep);
+    ck_assert(prep.need_eye);
+    ck_assert(zs_vert_scratch_reserve(&v[k], N));
+    memset(v[k].snap, 0, N * sizeof *v[k].snap);
+    zs_draw_transform(d, &prep, &m, &v[k], FROM, N);
+    zs_device_destroy(d);
+  }
+  int inside = 0, outside = 0;
+  for (int i = FROM; i < N; i++) {
+    ck_assert_msg(memcmp(&v[0].clip[i], &v[1].clip[i], sizeof v[0].clip[i]) == 0, "clip %d", i);
+    ck_assert_msg(memcmp(&v[0].eyepos[3 * i], &v[1].eyepos[3 * i], 3 * sizeof(double)) == 0,
+                  "eye %d", i);
+    ck_assert_uint_eq(v[0].outcode[i], v[1].outcode[i]);
+    if (v[0].outcode[i]) {
+      outside++;
+      continue;
+    }
+    inside++;
+    ck_assert_int_eq(v[0].snap[i].x, v[1].snap[i].x);
+    ck_assert_int_eq(v[0].snap[i].y, v[1].snap[i].y);
+    ck_assert_msg(memcmp(&v[0].snap[i].z, &v[1].snap[i].z, sizeof(double)) == 0, "z %d", i);
+  }
+  ck_assert_int_gt(inside, 100);
+  ck_assert_int_gt(outside, 100);
+  ck_assert_uint_eq(v[0].outcode[17], ZS_CLIP_NEAR | ZS_CLIP_FAR | ZS_CLIP_LEFT | ZS_CLIP_RIGHT |
+                                          ZS_CLIP_BOTTOM | ZS_CLIP_TOP); /* NaN: out of all */
+  zs_vert_scratch_free(&v[0]);
+  zs_vert_scratch_free(&v[1]);
+  free(pos);
 }
 END_TEST
 
@@ -959,6 +1032,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, modes_agree_and_order_does_not_matter);
   tcase_add_test(tc, painted_and_walked_agree_to_the_counter);
   tcase_add_test(tc, simd_spans_equal_scalar);
+  tcase_add_test(tc, vertex_stage_simd_equals_scalar);
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
   tcase_add_test(tc, degenerate_faces_draw_nothing);

@@ -136,8 +136,9 @@ typedef enum zs_shade {
 
 /* How wide the span fill goes: spans of 10 pixels or more sixteen at a
  * time with AVX-512, of 16 or more eight at a time with AVX2 or four with
- * SSE2, or one at a time.  Every level gives the same bytes; the
- * choice is made once, when the device is created. */
+ * SSE2, or one at a time; at AVX-512 the vertices are transformed eight
+ * at a time too.  Every level gives the same bytes; the choice is made
+ * once, when the device is created. */
 typedef enum zs_span_fill {
   ZS_SPANS_BEST = 0,  /* the widest this CPU has */
   ZS_SPANS_SCALAR,
