@@ -50,7 +50,7 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
       const int32_t i = order[j];
       const zs_poly *p = &polys[i];
       zs_active a;
-      zs_activate(&a, i, p, edges, y0);
+      zs_activate(&a, i, p, edges, y0, 0);
       const int32_t y1 = p->row1 < row_end - 1 ? p->row1 : row_end - 1;
       for (int32_t y = y0;; y++) {
         const zs_row_ptrs row = zs_row_of(t, y);
@@ -58,7 +58,7 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
         zs_row_span(k, &row, t->width, &a, simd, vector_from, &spans, &tested, &written, &x0,
                     &x1);
         if (y == y1) break;
-        zs_step_down(&a, edges, y);
+        zs_step_down(&a, edges, y, 0);
       }
     }
   }

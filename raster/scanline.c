@@ -71,7 +71,7 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
       }
       for (int32_t j = j0; j < j1; j++) {
         zs_table_prefetch(b, order, j, table->polys);
-        zs_activate(&act[nact++], order[j], &polys[order[j]], edges, y);
+        zs_activate(&act[nact++], order[j], &polys[order[j]], edges, y, 1);
       }
     }
 
@@ -86,7 +86,7 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
       if (obs && x0 < x1)
         s->trace_spans[ntrace_spans++] = (zs_trace_span){(int32_t)x0, (int32_t)x1 - 1, a->id};
       if (y == a->row1) continue; /* the polygon ends on this row */
-      zs_step_down(a, edges, y);
+      zs_step_down(a, edges, y, 1);
       if (kept != j) act[kept] = *a;
       kept++;
     }

@@ -146,15 +146,17 @@ static inline int32_t zs_edge_at(const zs_edge *edges, int32_t first, int32_t la
   return i;
 }
 
-/* Polygon i enters at row y: its edge pair on that row and zl. */
+/* Polygon i enters at row y: its edge pair on that row and zl; the
+ * edges' steps down a row always (steps), or only where taken
+ * (zs_edge_dda_begin). */
 static inline void zs_activate(zs_active *a, int32_t i, const zs_poly *p, const zs_edge *edges,
-                               int32_t y) {
+                               int32_t y, const int steps) {
   const int32_t left_end = p->edge0 + p->nleft - 1, right_end = left_end + p->nright;
   a->poly = i;
   a->left = zs_edge_at(edges, p->edge0, left_end, y);
   a->right = zs_edge_at(edges, left_end + 1, right_end, y);
-  zs_edge_dda_start(&a->l, &edges[a->left], y);
-  zs_edge_dda_start(&a->r, &edges[a->right], y);
+  zs_edge_dda_begin(&a->l, &edges[a->left], y, steps);
+  zs_edge_dda_begin(&a->r, &edges[a->right], y, steps);
   a->zrow = (uint64_t)p->zc - (uint64_t)p->dzdx * (uint64_t)(int64_t)p->ox +
             (uint64_t)p->dzdy * (uint64_t)((int64_t)y - p->oy);
   a->dzdx = p->dzdx;
@@ -189,11 +191,11 @@ static inline void zs_row_span(zs_kernel k, const zs_row_ptrs *row, int width, c
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; the plane at column 0 moves by dzdy. */
 __attribute__((always_inline)) static inline void zs_step_down(zs_active *a, const zs_edge *edges,
-                                                               int32_t y) {
+                                                               int32_t y, const int steps) {
   if (y < a->l.last) zs_edge_dda_step(&a->l);
-  else zs_edge_dda_start(&a->l, &edges[++a->left], y + 1);
+  else zs_edge_dda_begin(&a->l, &edges[++a->left], y + 1, steps);
   if (y < a->r.last) zs_edge_dda_step(&a->r);
-  else zs_edge_dda_start(&a->r, &edges[++a->right], y + 1);
+  else zs_edge_dda_begin(&a->r, &edges[++a->right], y + 1, steps);
   a->zrow += (uint64_t)a->dzdy;
 }
 
