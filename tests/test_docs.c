@@ -217,7 +217,7 @@ static void check_page_text(const char *rel) {
     memcpy(target, p + 2, k);
     target[k] = '\0';
     if (strstr(target, "://")) continue;
-    char rel_target[2048];
+    char rel_target[sizeof dir + sizeof target];
     snprintf(rel_target, sizeof rel_target, "%s%s", dir, target);
     ck_assert_msg(zs_test_exists(zs_test_src(rel_target)), "%s: the link to '%s' leads nowhere",
                   rel, target);
