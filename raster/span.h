@@ -13,6 +13,7 @@
 
 #include "raster/edge_dda.h"
 #include "raster/internal.h"
+#include "raster/span_avx512.h"
 
 static inline uint32_t zs_depth_of(int64_t z, int shift, int64_t zfar) {
   if (z <= 0) return 0;
@@ -94,7 +95,14 @@ static inline void zs_fill_span(zs_kernel k, const zs_row_ptrs *row, int x0, int
   if (a->inner || ((uint64_t)z - 1u < (uint64_t)zfar - 1u &&
                    (uint64_t)(z + dz * (x1 - 1 - x0)) - 1u < (uint64_t)zfar - 1u)) {
     if (x1 - x0 >= vector_from) { /* whole vector steps, the rest below */
+#ifdef ZS_HAVE_AVX512_SPANS
+      /* inlined where simd is the constant AVX-512 (paint.c), else a call */
+      int xs = simd == ZS_SIMD_AVX512
+                   ? zs_fill_span_avx512(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written)
+                   : zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+#else
       int xs = zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+#endif
       z += dz * (xs - x0);
       x0 = xs;
     }

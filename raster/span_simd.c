@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "raster/internal.h"
+#include "raster/span_avx512.h"
 
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -117,43 +118,6 @@ __attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir,
   return x;
 }
 
-/* Sixteen pixels a step, the last step masked: a span of any length in
- * whole steps, with no scalar tail and no branch on its pixels' tests
- * (masked lanes neither load nor store, nor fault). */
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) static int
-fill_avx512(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z, int64_t dz,
-            int shift, uint32_t id, uint32_t rgb, uint64_t *written) {
-  const __m512i idv = _mm512_set1_epi32((int)id), rgbv = _mm512_set1_epi32((int)rgb);
-  const __m128i count = _mm_cvtsi32_si128(shift);
-  const __m512i dzv = _mm512_set1_epi64(dz);
-  __m512i za = _mm512_add_epi64(_mm512_set1_epi64(z),
-                                _mm512_mullo_epi64(dzv, _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7)));
-  const __m512i step8 = _mm512_slli_epi64(dzv, 3);
-  __m512i zb = _mm512_add_epi64(za, step8);
-  const __m512i step16 = _mm512_slli_epi64(dzv, 4);
-  uint64_t w = 0;
-  for (int x = x0; x < x1; x += 16) {
-    const int n = x1 - x < 16 ? x1 - x : 16;
-    const __mmask16 m = (__mmask16)((1u << n) - 1u);
-    const __m256i da = _mm512_cvtepi64_epi32(_mm512_srl_epi64(za, count));
-    const __m256i db = _mm512_cvtepi64_epi32(_mm512_srl_epi64(zb, count));
-    const __m512i d = _mm512_inserti64x4(_mm512_castsi256_si512(da), db, 1);
-    const __m512i zold = _mm512_maskz_loadu_epi32(m, zr + x);
-    const __m512i iold = _mm512_maskz_loadu_epi32(m, ir + x);
-    const __mmask16 tie = _mm512_mask_cmpeq_epu32_mask(m, d, zold);
-    const __mmask16 pass = _mm512_mask_cmplt_epu32_mask(m, d, zold) |
-                           _mm512_mask_cmplt_epu32_mask(tie, idv, iold);
-    _mm512_mask_storeu_epi32(zr + x, pass, d);
-    _mm512_mask_storeu_epi32(ir + x, pass, idv);
-    _mm512_mask_storeu_epi32(cr + x, pass, rgbv);
-    w += (uint64_t)__builtin_popcount((unsigned)pass);
-    za = _mm512_add_epi64(za, step16);
-    zb = _mm512_add_epi64(zb, step16);
-  }
-  *written += w;
-  return x1;
-}
-
 static int cpu_has_avx2(void) { return __builtin_cpu_supports("avx2") != 0; }
 static int cpu_has_avx512(void) {
   return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
@@ -180,7 +144,7 @@ int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, i
                       uint64_t *written) {
 #ifdef ZS_HAVE_X86_PATHS
   if (level == ZS_SIMD_AVX512)
-    return fill_avx512(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
+    return zs_fill_span_avx512(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
   if (level == ZS_SIMD_AVX2) return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
   if (level == ZS_SIMD_SSE2) return fill_sse2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
 #endif
