@@ -53,7 +53,8 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
   zs_device *d = calloc(1, sizeof *d);
   if (!d) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   d->cfg = *cfg;
-  /* the span fill, chosen once: BEST and AVX2 take what the CPU has */
+  /* the SIMD level (span fill, vertex stage), chosen once: BEST and
+   * AVX512 take the widest the CPU has */
   d->simd = zs_span_simd_level(cfg->spans == ZS_SPANS_SCALAR ? ZS_SIMD_SCALAR
                                : cfg->spans == ZS_SPANS_SSE2 ? ZS_SIMD_SSE2
                                : cfg->spans == ZS_SPANS_AVX2 ? ZS_SIMD_AVX2

@@ -148,7 +148,7 @@ typedef struct band_clear {
 static void clear_band_row(void *user, int y) {
   const band_clear *c = user;
   const zs_target *t = c->t;
-  const size_t w = (size_t)t->width, off = (size_t)(y - t->row0) * w;
+  const size_t w = (size_t)t->width, off = (size_t)(y - t->row0) * (size_t)t->row_stride;
   zs_fill_u32(t->depth + off, w, ZS_DEPTH_FAR);
   zs_fill_u32(t->id + off, w, ZS_ID_NONE);
   zs_fill_u32(t->rgb + off, w, c->background);

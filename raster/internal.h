@@ -197,7 +197,8 @@ void zs_batch_free(zs_batch *b);
  * inside the depth range: the scalar loop's test and writes, eight (AVX2)
  * or four (SSE2) pixels at a time, as far as whole steps go; adds the
  * pixels written to *written and returns the column where the scalar loop
- * takes over (x0 at ZS_SIMD_SCALAR). */
+ * takes over (x0 at ZS_SIMD_SCALAR, and at ZS_SIMD_AVX512, whose kernel
+ * span.h takes from span_avx512.h itself, inline where it can). */
 int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1,
                       int64_t z, int64_t dz, int shift, uint32_t id, uint32_t rgb,
                       uint64_t *written);

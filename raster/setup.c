@@ -208,7 +208,8 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   int32_t row0 = zs_first_row(Y[top]), row1 = zs_last_row(Y[bot]);
   if (row0 > row1) return 1; /* between two rows of pixel centres */
   /* (the room tested here, a call only to grow it: a face costs less) */
-  if ((b->npolys >= b->cap_polys || b->nedges + n > b->cap_edges) && !zs_batch_reserve(b, 1, n))
+  if ((b->npolys >= b->cap_polys || (int64_t)b->nedges + n > b->cap_edges) &&
+      !zs_batch_reserve(b, 1, n))
     return 0;
   if (sp->prefetch_write) { /* a few faces ahead */
     if (b->npolys + 16 < b->cap_polys) prefetch_write(&b->polys[b->npolys + 16]);

@@ -18,7 +18,6 @@
 #include <stdint.h>
 
 #include "raster/internal.h"
-#include "raster/span_avx512.h"
 
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -136,15 +135,16 @@ zs_simd zs_span_simd_level(zs_simd most) {
 }
 
 const char *zs_simd_name(zs_simd level) {
-  return level == ZS_SIMD_AVX512 ? "avx512" : level == ZS_SIMD_AVX2 ? "avx2" : level == ZS_SIMD_SSE2 ? "sse2" : "scalar";
+  return level == ZS_SIMD_AVX512 ? "avx512"
+         : level == ZS_SIMD_AVX2 ? "avx2"
+         : level == ZS_SIMD_SSE2 ? "sse2"
+                                 : "scalar";
 }
 
 int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1,
                       int64_t z, int64_t dz, int shift, uint32_t id, uint32_t rgb,
                       uint64_t *written) {
 #ifdef ZS_HAVE_X86_PATHS
-  if (level == ZS_SIMD_AVX512)
-    return zs_fill_span_avx512(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
   if (level == ZS_SIMD_AVX2) return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
   if (level == ZS_SIMD_SSE2) return fill_sse2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
 #endif

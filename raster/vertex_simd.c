@@ -5,18 +5,20 @@
  * The same bits.  Every lane does the scalar loop's operations in its
  * order, and IEEE 754 rounds each add, multiply and divide of a lane as
  * it rounds the scalar's: the matrix rows as ((m0 x + m1 y) + m2 z) + m3,
- * never fused (the build has -ffp-contract=off, and no FMA is asked for),
- * the plane distances as in zs_clip_plane_dist (a NaN is outside), the
- * window position as in zs_window_xy, rounded to the nearest subpixel,
- * ties to even, by the same conversion lrint makes in the default
- * rounding mode, and the depth clamped with the same two compares.
- * tests/test_raster.c compares this stage with the scalar one on
- * vertices in and out of every plane, behind the eye and at NaN, and
- * every golden image is drawn through it.
+ * never fused into a multiply-add (AVX-512 has one; -ffp-contract=off,
+ * which the build gives every file, forbids the fusing), the plane
+ * distances as in zs_clip_plane_dist (a NaN is outside), the window
+ * position as in zs_window_xy, rounded to the nearest subpixel, ties to
+ * even, by the same conversion lrint makes in the default rounding mode,
+ * and the depth clamped with the same two compares (a NaN kept).
+ * tests/test_raster.c compares this stage with the scalar one on vertices
+ * in and out of every plane, on them, behind the eye, at w = 0, at NaN
+ * and at rounding ties, and every golden image is drawn through it.
  *
  * Chosen with the span fill, once per device: on a CPU with AVX-512 (F,
- * DQ), unless the device's config caps it lower.  The vertices past the
- * last whole eight go through the scalar loop. */
+ * VL, BW, DQ, as span_simd.c asks), unless the device's config caps it
+ * lower.  The vertices past the last whole eight go through the scalar
+ * loop. */
 #include <stdint.h>
 
 #include "raster/internal.h"

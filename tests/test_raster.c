@@ -424,15 +424,20 @@ END_TEST
 
 START_TEST(simd_spans_equal_scalar) {
   /* Large random triangles through each other, a third of them at one
-   * depth (the id decides), and a sphere: the SSE2, AVX2 and AVX-512 span fills
-   * (where the CPU has them) and the scalar loop give the same image,
-   * depth, ids and counters, in both modes. */
+   * depth (the id decides), and a sphere; then the triangles alone, a
+   * soup, which the z-buffer mode paints (at AVX-512 every span in masked
+   * steps, paint.c): the SSE2, AVX2 and AVX-512 span fills (where the CPU
+   * has them) and the scalar loop give the same image, depth, ids and
+   * counters, in both modes. */
   const int W = 640, H = 480;
   zs_rng rng;
   zs_rng_seed(&rng, 11);
-  mesh_buf b = {0};
-  random_triangles(&b, &rng, 400, W, H, 40, -9);
-  mb_sphere(&b, W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
+  mesh_buf meshes[2];
+  memset(meshes, 0, sizeof meshes);
+  random_triangles(&meshes[1], &rng, 400, W, H, 40, -9);
+  zs_rng_seed(&rng, 11);
+  random_triangles(&meshes[0], &rng, 400, W, H, 40, -9);
+  mb_sphere(&meshes[0], W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
 #if defined(__x86_64__)
   /* every x86-64 CPU has SSE2 */
   ck_assert_int_eq(zs_span_simd_level(ZS_SIMD_SSE2), ZS_SIMD_SSE2);
@@ -443,7 +448,9 @@ START_TEST(simd_spans_equal_scalar) {
   for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX512; level++)
     if ((int)zs_span_simd_level((zs_simd)level) != level)
       printf("simd_spans_equal_scalar: skipped %s: this CPU lacks it\n", zs_simd_name(level));
-  for (int algo = 0; algo < 2; algo++) {
+  for (int run = 0; run < 4; run++) { /* each mesh in each mode */
+    const mesh_buf b = meshes[run / 2];
+    const int algo = run % 2;
     frame f[4];
     zs_raster_stats st[4];
     for (int level = ZS_SIMD_SCALAR; level <= ZS_SIMD_AVX512; level++) {
@@ -465,17 +472,72 @@ START_TEST(simd_spans_equal_scalar) {
     ck_assert_uint_gt(st[0].pixels_written, (uint64_t)W * H); /* overdrawn */
     frame_free(&f[0]);
   }
-  mb_free(&b);
+  mb_free(&meshes[0]);
+  mb_free(&meshes[1]);
 }
 END_TEST
 
+/* The vertex stage of vertices [FROM, n) of pos on a 256 x 256 device at
+ * the span fill's scalar level (v[0]) and at AVX-512 (v[1]), under view
+ * and proj. */
+static void vertex_stage_both(double *pos, int n, const double view[16], const double proj[16],
+                              zs_vert_scratch v[2], double *gx, double *gy) {
+  enum { FROM = 5 };
+  zs_mesh m = {pos, n, NULL, NULL, 0, NULL, NULL};
+  for (int k = 0; k < 2; k++) {
+    zs_device_config cfg = {256, 256, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0,
+                            k ? ZS_SPANS_AVX512 : ZS_SPANS_SCALAR};
+    zs_device *d = NULL;
+    zs_error err;
+    zs_error_clear(&err);
+    ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+    ck_assert_int_eq(zs_device_simd(d), k ? ZS_SIMD_AVX512 : ZS_SIMD_SCALAR);
+    zs_device_set_camera(d, view, proj);
+    double model[16];
+    zs_mat_identity(model);
+    zs_draw_prep prep;
+    zs_draw_prepare(d, model, ZS_KERNEL_DRAW, &prep);
+    ck_assert(prep.need_eye);
+    ck_assert(zs_vert_scratch_reserve(&v[k], n));
+    memset(v[k].snap, 0, (size_t)n * sizeof *v[k].snap);
+    zs_draw_transform(d, &prep, &m, &v[k], FROM, n);
+    *gx = d->gx;
+    *gy = d->gy;
+    zs_device_destroy(d);
+  }
+}
+
+/* Every bit of clip space, outcode, eye space and (inside every plane)
+ * the snapped position equal at both levels; the outcodes and the
+ * vertices inside, for the caller. */
+static int same_bits(const zs_vert_scratch v[2], int from, int n, int *inside) {
+  int in = 0;
+  for (int i = from; i < n; i++) {
+    ck_assert_msg(memcmp(&v[0].clip[i], &v[1].clip[i], sizeof v[0].clip[i]) == 0, "clip %d", i);
+    ck_assert_msg(memcmp(&v[0].eyepos[3 * i], &v[1].eyepos[3 * i], 3 * sizeof(double)) == 0,
+                  "eye %d", i);
+    ck_assert_uint_eq(v[0].outcode[i], v[1].outcode[i]);
+    if (v[0].outcode[i]) continue;
+    in++;
+    ck_assert_msg(v[0].snap[i].x == v[1].snap[i].x && v[0].snap[i].y == v[1].snap[i].y,
+                  "snap %d: (%d, %d) against (%d, %d)", i, v[0].snap[i].x, v[0].snap[i].y,
+                  v[1].snap[i].x, v[1].snap[i].y);
+    ck_assert_msg(memcmp(&v[0].snap[i].z, &v[1].snap[i].z, sizeof(double)) == 0, "z %d", i);
+  }
+  *inside = in;
+  return n - from - in;
+}
+
 START_TEST(vertex_stage_simd_equals_scalar) {
   /* The vertex stage eight at a time (AVX-512) against the scalar loop,
-   * on the same draw: points in the view, beyond each plane and the guard
-   * band, behind the eye, on the near plane, huge, and NaN; a range that
-   * starts and ends off a multiple of eight.  Clip space, outcodes and eye
-   * space equal in every bit; the snapped positions of the vertices inside
-   * every plane (the only ones set-up reads) too. */
+   * bit for bit.  Under a perspective camera: 1,000 points in the view,
+   * beyond each plane and the guard band, behind the eye, huge, NaN and
+   * infinite.  Under a camera whose clip space is (x, y, z, -z), placed
+   * by hand: on each plane exactly, at w = 0 (the origin is inside every
+   * plane and snaps to NaN), w < 0, and at rounding ties of the subpixel
+   * grid (x + 1 = (2k + 1) / 2^16 on a 256-pixel window: half a
+   * subpixel), even and odd k.  Both ranges start and end off a multiple
+   * of eight. */
   if (zs_span_simd_level(ZS_SIMD_AVX512) != ZS_SIMD_AVX512) {
     printf("vertex_stage_simd_equals_scalar: skipped: this CPU lacks AVX-512\n");
     return;
@@ -491,54 +553,107 @@ START_TEST(vertex_stage_simd_equals_scalar) {
   }
   pos[3 * 17 + 2] = NAN;
   pos[3 * 40] = INFINITY;
-  for (int c = 0; c < 3; c++) pos[3 * 41 + c] = 0.0;         /* at the origin */
-  pos[3 * 42] = pos[3 * 42 + 1] = 0.0, pos[3 * 42 + 2] = 2.5; /* on the near plane */
-  zs_mesh m = {pos, N, NULL, NULL, 0, NULL, NULL};
   zs_vert_scratch v[2] = {{0}, {0}};
-  for (int k = 0; k < 2; k++) {
-    zs_device_config cfg = {320, 200, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0,
-                            k ? ZS_SPANS_AVX512 : ZS_SPANS_SCALAR};
-    zs_device *d = NULL;
-    zs_error err;
-    zs_error_clear(&err);
-    ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
-    ck_assert_int_eq(zs_device_simd(d), k ? ZS_SIMD_AVX512 : ZS_SIMD_SCALAR);
-    double view[16], proj[16], model[16];
-    zs_mat_look_at(view, (double[3]){0.3, 0.4, 3.0}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
-    zs_mat_perspective(proj, 50, 1.6, 0.5, 10);
-    zs_mat_identity(model);
-    model[3] = 0.125; /* a translation, so that every matrix entry is used */
-    zs_device_set_camera(d, view, proj);
-    zs_draw_prep prep;
-    zs_draw_prepare(d, model, ZS_KERNEL_DRAW, &prep);
-    ck_assert(prep.need_eye);
-    ck_assert(zs_vert_scratch_reserve(&v[k], N));
-    memset(v[k].snap, 0, N * sizeof *v[k].snap);
-    zs_draw_transform(d, &prep, &m, &v[k], FROM, N);
-    zs_device_destroy(d);
-  }
-  int inside = 0, outside = 0;
-  for (int i = FROM; i < N; i++) {
-    ck_assert_msg(memcmp(&v[0].clip[i], &v[1].clip[i], sizeof v[0].clip[i]) == 0, "clip %d", i);
-    ck_assert_msg(memcmp(&v[0].eyepos[3 * i], &v[1].eyepos[3 * i], 3 * sizeof(double)) == 0,
-                  "eye %d", i);
-    ck_assert_uint_eq(v[0].outcode[i], v[1].outcode[i]);
-    if (v[0].outcode[i]) {
-      outside++;
-      continue;
-    }
-    inside++;
-    ck_assert_int_eq(v[0].snap[i].x, v[1].snap[i].x);
-    ck_assert_int_eq(v[0].snap[i].y, v[1].snap[i].y);
-    ck_assert_msg(memcmp(&v[0].snap[i].z, &v[1].snap[i].z, sizeof(double)) == 0, "z %d", i);
-  }
+  double view[16], proj[16], gx, gy;
+  zs_mat_look_at(view, (double[3]){0.3, 0.4, 3.0}, (double[3]){0, 0, 0}, (double[3]){0, 1, 0});
+  zs_mat_perspective(proj, 50, 1.0, 0.5, 10);
+  vertex_stage_both(pos, N, view, proj, v, &gx, &gy);
+  int inside;
+  const int outside = same_bits(v, FROM, N, &inside);
   ck_assert_int_gt(inside, 100);
   ck_assert_int_gt(outside, 100);
   ck_assert_uint_eq(v[0].outcode[17], ZS_CLIP_NEAR | ZS_CLIP_FAR | ZS_CLIP_LEFT | ZS_CLIP_RIGHT |
                                           ZS_CLIP_BOTTOM | ZS_CLIP_TOP); /* NaN: out of all */
+
+  /* clip space (x, y, z, -z) */
+  zs_mat_identity(view);
+  zs_mat_identity(proj);
+  proj[10] = 1.0, proj[14] = -1.0, proj[15] = 0.0;
+  enum { M = 45 };
+  double hand[3 * M];
+  int n = 0;
+#define PUT(X, Y, Z) (hand[3 * n] = (X), hand[3 * n + 1] = (Y), hand[3 * n + 2] = (Z), n++)
+  for (int k = 0; k < FROM; k++) PUT(0.0, 0.0, -1.0); /* before the range */
+  PUT(0.0, 0.0, 0.0);                                 /* w = 0: inside, NaN snap */
+  PUT(0.0, 0.0, -0.0);
+  PUT(1.0, 0.0, 0.0);                                 /* w = 0, beyond the right plane */
+  PUT(0.5, 0.5, 1.0);                                 /* w = -1: behind the eye */
+  PUT(0.0, 0.0, -1.0);                                /* z + w = 0: on the near plane */
+  PUT(0.25, -0.25, -2.0);
+  double g[2];
+  vertex_stage_both(hand, n, view, proj, v, &g[0], &g[1]); /* the guard band, to place on it */
+  for (int s = -1; s <= 1; s += 2) {                         /* on the left, right, top, bottom */
+    PUT(s * g[0], 0.0, -1.0);
+    PUT(0.0, s * g[1], -1.0);
+    PUT(s * 2.0 * g[0], 0.0, -2.0);
+  }
+  for (int k = 0; k < 8; k++) { /* ties: half a subpixel, k even and odd */
+    const double t = -1.0 + (2.0 * (100 * k + k % 2) + 1.0) / 65536.0;
+    PUT(t, 0.0, -1.0);
+    PUT(0.0, t, -1.0);
+    PUT(t, t, -1.0);
+  }
+#undef PUT
+  ck_assert_int_le(n, M);
+  vertex_stage_both(hand, n, view, proj, v, &gx, &gy);
+  const int out_hand = same_bits(v, FROM, n, &inside);
+  ck_assert_int_gt(inside, 24);
+  ck_assert_int_gt(out_hand, 1);
+  ck_assert_uint_eq(v[0].outcode[FROM], 0u); /* the origin: inside, at w = 0 */
+  ck_assert(isnan(v[1].snap[FROM].z));
+  ck_assert_uint_eq(v[0].outcode[FROM + 4], 0u); /* on the near plane: inside */
   zs_vert_scratch_free(&v[0]);
   zs_vert_scratch_free(&v[1]);
   free(pos);
+}
+END_TEST
+
+START_TEST(scanline_bands_start_each_frame_clean) {
+  /* Scanline mode on threads walks bands into buffers it keeps from frame
+   * to frame, cleared row by row as the walk reaches them: a second frame
+   * on the same device, with fewer faces than the first, is the one
+   * thread's second frame to the byte, in overdraw shading (its counts)
+   * and flat (depth, ids, colours). */
+  const int W = 160, H = 120;
+  zs_rng rng;
+  zs_rng_seed(&rng, 31);
+  mesh_buf heavy = {0}, light = {0};
+  random_triangles(&heavy, &rng, 300, W, H, 10, -9);
+  random_triangles(&light, &rng, 12, W, H, 10, -9);
+  for (int shade = 0; shade < 2; shade++) {
+    const zs_shade sh = shade ? ZS_SHADE_OVERDRAW : ZS_SHADE_FLAT;
+    frame f[2];
+    zs_raster_stats st[2];
+    for (int k = 0; k < 2; k++) {
+      zs_device_config cfg = {W, H, ZS_ALGO_SCANLINE, sh, 0, k ? 3 : 1, 0, ZS_SPANS_BEST};
+      zs_device *d = NULL;
+      zs_error err;
+      zs_error_clear(&err);
+      ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+      ortho_camera(d, W, H, -10, 10);
+      for (int frame_no = 0; frame_no < 2; frame_no++) {
+        zs_device_clear(d);
+        f[k] = frame_new(W, H);
+        ck_assert_int_eq(zs_device_draw(d, frame_no ? &light.m : &heavy.m, NULL, 0, ZS_RGB_MESH,
+                                        &err),
+                         ZS_OK);
+        ck_assert_int_eq(zs_device_finish(d, frame_sink, &f[k], &err), ZS_OK);
+        if (!frame_no) frame_free(&f[k]); /* the first frame only fills the bands */
+      }
+      st[k] = *zs_device_stats(d);
+      zs_device_destroy(d);
+    }
+    const size_t n = (size_t)W * H * 4;
+    ck_assert_msg(memcmp(f[0].rgb, f[1].rgb, n) == 0, "shade %d: colours", shade);
+    ck_assert_msg(memcmp(f[0].depth, f[1].depth, n) == 0, "shade %d: depths", shade);
+    ck_assert_msg(memcmp(f[0].id, f[1].id, n) == 0, "shade %d: ids", shade);
+    ck_assert_uint_eq(st[0].pixels_written, st[1].pixels_written);
+    ck_assert_uint_gt(st[0].pixels_written, 0);
+    frame_free(&f[0]);
+    frame_free(&f[1]);
+  }
+  mb_free(&heavy);
+  mb_free(&light);
 }
 END_TEST
 
@@ -1033,6 +1148,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, painted_and_walked_agree_to_the_counter);
   tcase_add_test(tc, simd_spans_equal_scalar);
   tcase_add_test(tc, vertex_stage_simd_equals_scalar);
+  tcase_add_test(tc, scanline_bands_start_each_frame_clean);
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
   tcase_add_test(tc, degenerate_faces_draw_nothing);
