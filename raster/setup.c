@@ -140,7 +140,7 @@ static int binary_exponent(double v) {
  * it). */
 __attribute__((always_inline)) static inline plane
 make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, int c,
-           double box_w, double box_h) {
+           double box_w, double box_h, int *no_depth) {
   double dx1 = (double)X[b] - X[a], dy1 = (double)Y[b] - Y[a];
   double dx2 = (double)X[c] - X[a], dy2 = (double)Y[c] - Y[a];
   double dz1 = Z[b] - Z[a], dz2 = Z[c] - Z[a];
@@ -157,6 +157,9 @@ make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, in
   /* Everything the walk adds up stays below this, in depth units: zc is
    * within half a pixel of vertex a. */
   double bound = fabs(A) * (box_w + 0.5) + fabs(B) * (box_h + 0.5) + fabs(Z[a]) + 1.0;
+  /* NaN when a corner has no depth (w = 0, the eye, which a projection
+   * may put inside every plane): the face has no plane */
+  *no_depth = bound != bound;
   /* bound = m 2^e with m in [0.5, 1): bound 2^(32 + shift) < 2^61 holds
    * exactly when shift <= 29 - e. */
   int e = binary_exponent(bound);
@@ -351,7 +354,9 @@ setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32
   }
   double box_w = (double)(xmax - xmin) / 256.0 + 2.0;
   double box_h = (double)(ymax - ymin) / 256.0 + 2.0;
-  plane pl = make_plane(X, Y, Z, 0, best, best + 1, box_w, box_h);
+  int no_depth;
+  plane pl = make_plane(X, Y, Z, 0, best, best + 1, box_w, box_h, &no_depth);
+  if (no_depth) return ZS_SETUP_DEGENERATE;
 
   /* (a triangle of non-zero area always is) */
   if (m == 3 || convex_monotone(X, Y, m, area2))

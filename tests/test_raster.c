@@ -1039,6 +1039,28 @@ START_TEST(degenerate_faces_draw_nothing) {
     frame_free(&f);
   }
   mb_free(&b);
+  /* A corner at the eye under a projection that puts it inside every
+   * plane, clip space (x, y, z, -z): w = 0, no depth; the face is
+   * degenerate, the other drawn (and nothing overflows: the sanitizer
+   * build runs this). */
+  mesh_buf e = {0};
+  int32_t t[3] = {mb_vert(&e, 0, 0, 0), mb_vert(&e, 0.5, 0, -1), mb_vert(&e, 0, 0.5, -1)};
+  mb_face(&e, t, 3, 0xFFFFFF);
+  int32_t w[3] = {mb_vert(&e, -0.5, -0.5, -1), mb_vert(&e, 0, -0.5, -1), mb_vert(&e, -0.5, 0, -1)};
+  mb_face(&e, w, 3, 0xFFFFFF);
+  double view[16], proj[16];
+  zs_mat_identity(view);
+  zs_mat_identity(proj);
+  proj[10] = 1.0, proj[14] = -1.0, proj[15] = 0.0;
+  for (int algo = 0; algo < 2; algo++) {
+    frame f = frame_new(16, 16);
+    zs_raster_stats s = render(&e.m, 16, 16, (zs_algo)algo, ZS_SHADE_OVERDRAW, 0, view, proj, &f);
+    ck_assert_uint_eq(s.polygons_degenerate, 1);
+    ck_assert_uint_eq(s.polygons_rasterized, 1);
+    ck_assert_uint_gt(s.pixels_written, 0);
+    frame_free(&f);
+  }
+  mb_free(&e);
 }
 END_TEST
 
