@@ -69,10 +69,8 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
     d->blank = alloc_u32(4 * w);
     ok = d->depth && d->id && d->rgb && d->fresh && d->blank;
     if (ok) {
-      zs_fill_u32(d->blank, w, ZS_DEPTH_FAR);
-      zs_fill_u32(d->blank + w, w, ZS_ID_NONE);
-      zs_fill_u32(d->blank + 2 * w, w, cfg->background);
-      memset(d->blank + 3 * w, 0, w * sizeof *d->blank);
+      zs_clear_pixels(d->blank, d->blank + w, d->blank + 2 * w, d->blank + 3 * w, w,
+                      cfg->background);
     }
     if (ok && cfg->shade == ZS_SHADE_OVERDRAW) ok = (d->count = alloc_u32(px)) != NULL;
   } else {
@@ -220,10 +218,8 @@ static void clear_part(void *ctx, int part) {
   size_t y0 = (size_t)zs_part_start(d->cfg.height, part, j->nparts);
   size_t y1 = (size_t)zs_part_start(d->cfg.height, part + 1, j->nparts);
   size_t off = y0 * w, px = (y1 - y0) * w;
-  zs_fill_u32(d->depth + off, px, ZS_DEPTH_FAR);
-  zs_fill_u32(d->id + off, px, ZS_ID_NONE);
-  zs_fill_u32(d->rgb + off, px, d->cfg.background);
-  if (d->count) memset(d->count + off, 0, px * sizeof *d->count);
+  zs_clear_pixels(d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL, px,
+                  d->cfg.background);
 }
 
 static void clear_frame(zs_device *d) {

@@ -48,10 +48,8 @@ void zs_frame_clear_fresh(const zs_device *d) {
   for (int y = 0; y < d->cfg.height; y++)
     if (d->fresh[y]) {
       const size_t off = (size_t)y * w;
-      zs_fill_u32(t.depth + off, w, ZS_DEPTH_FAR);
-      zs_fill_u32(t.id + off, w, ZS_ID_NONE);
-      zs_fill_u32(t.rgb + off, w, d->cfg.background);
-      if (t.count) memset(t.count + off, 0, w * sizeof *t.count);
+      zs_clear_pixels(t.depth + off, t.id + off, t.rgb + off, t.count ? t.count + off : NULL, w,
+                      d->cfg.background);
       d->fresh[y] = 0;
     }
 }

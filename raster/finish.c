@@ -58,11 +58,8 @@ typedef struct row_emit {
 static void begin_row(void *user, int y) {
   (void)y;
   zs_device *d = ((row_emit *)user)->d;
-  size_t w = (size_t)d->cfg.width;
-  zs_fill_u32(d->row_depth, w, ZS_DEPTH_FAR);
-  zs_fill_u32(d->row_id, w, ZS_ID_NONE);
-  zs_fill_u32(d->row_rgb, w, d->cfg.background);
-  memset(d->row_count, 0, w * sizeof *d->row_count);
+  zs_clear_pixels(d->row_depth, d->row_id, d->row_rgb, d->row_count, (size_t)d->cfg.width,
+                  d->cfg.background);
 }
 
 static void end_row(void *user, int y) {
@@ -148,11 +145,9 @@ typedef struct band_clear {
 static void clear_band_row(void *user, int y) {
   const band_clear *c = user;
   const zs_target *t = c->t;
-  const size_t w = (size_t)t->width, off = (size_t)(y - t->row0) * (size_t)t->row_stride;
-  zs_fill_u32(t->depth + off, w, ZS_DEPTH_FAR);
-  zs_fill_u32(t->id + off, w, ZS_ID_NONE);
-  zs_fill_u32(t->rgb + off, w, c->background);
-  if (c->counts) memset(t->count + off, 0, w * sizeof *t->count);
+  const size_t off = (size_t)(y - t->row0) * (size_t)t->row_stride;
+  zs_clear_pixels(t->depth + off, t->id + off, t->rgb + off, c->counts ? t->count + off : NULL,
+                  (size_t)t->width, c->background);
 }
 
 static void walk_band_rows(void *ctx, int t) {

@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "raster/raster.h"
 
@@ -18,6 +19,17 @@ enum { ZS_MAX_THREADS = 64, ZS_MAX_BANDS = 64 };
 
 static inline void zs_fill_u32(uint32_t *p, size_t n, uint32_t v) {
   for (size_t i = 0; i < n; i++) p[i] = v;
+}
+
+/* n pixels of a target's buffers cleared: the far depth, no id, the
+ * background, no fragments (count may be NULL: no counts kept).  Every
+ * clear of the project's buffers, a frame's, a row's or a band's. */
+static inline void zs_clear_pixels(uint32_t *depth, uint32_t *id, uint32_t *rgb, uint32_t *count,
+                                   size_t n, uint32_t background) {
+  zs_fill_u32(depth, n, ZS_DEPTH_FAR);
+  zs_fill_u32(id, n, ZS_ID_NONE);
+  zs_fill_u32(rgb, n, background);
+  if (count) memset(count, 0, n * sizeof *count);
 }
 
 /* A polygon may gain one vertex per clip plane (6 planes). */

@@ -23,7 +23,6 @@
  * both: the random triangles and the tilings).
  */
 #include "raster/span.h"
-#include "raster/span_avx512.h"
 
 /* Clears the rows [y0, y1] a lazy target holds nothing in yet. */
 static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {

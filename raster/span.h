@@ -55,11 +55,7 @@ static inline zs_row_ptrs zs_row_of(const zs_target *t, int32_t y) {
  * it (zs_target.fresh). */
 static inline void zs_clear_row(const zs_target *t, int32_t y) {
   const zs_row_ptrs r = zs_row_of(t, y);
-  const size_t w = (size_t)t->width;
-  zs_fill_u32(r.depth, w, ZS_DEPTH_FAR);
-  zs_fill_u32(r.id, w, ZS_ID_NONE);
-  zs_fill_u32(r.rgb, w, t->background);
-  if (r.count) memset(r.count, 0, w * sizeof *r.count);
+  zs_clear_pixels(r.depth, r.id, r.rgb, r.count, (size_t)t->width, t->background);
   t->fresh[y] = 0;
 }
 
