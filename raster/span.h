@@ -30,7 +30,7 @@ static inline uint32_t zs_depth_of(int64_t z, int shift, int64_t zfar) {
  * measures both).  AVX-512 masks its last step at no cost and takes
  * spans from 10 pixels.  Not from fewer: a masked load cannot take its
  * bytes from the masked store just before it, which the next span of a
- * mesh's row always meets (from 1 the plant walks a tenth slower, from 8
+ * mesh's row always meets (from 1 the plant walks 8 % slower, from 8
  * the 10x10 tiling 3 %); and not from 16, where the random 25x25
  * triangles lose a tenth in scanline mode (zscan bench raster --case
  * builtin:plant, --case "triangles 10x10" and --case "random 25x25 back

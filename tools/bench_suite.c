@@ -693,7 +693,7 @@ static const char prose_not_paid[] =
           "- AVX-512 for every span, or from 8 pixels: slower on meshes, as a\n"
           "  masked load of a row's next span cannot take its bytes from the masked\n"
           "  store of the span before it, which neighbouring faces of a mesh always\n"
-          "  have (the plant a tenth slower from 1 pixel, the 10x10 tiling 3 % from\n"
+          "  have (the plant 8 % slower from 1 pixel, the 10x10 tiling 3 % from\n"
           "  8); it takes spans from 10 pixels.\n"
           "- A branchless scalar span loop: where every pixel tested is written the\n"
           "  branch is always predicted, and the selects only add loads.\n"
