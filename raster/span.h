@@ -92,7 +92,7 @@ static inline void zs_fill_span(zs_kernel k, const zs_row_ptrs *row, int x0, int
                    (uint64_t)(z + dz * (x1 - 1 - x0)) - 1u < (uint64_t)zfar - 1u)) {
     if (x1 - x0 >= vector_from) { /* whole vector steps, the rest below */
 #ifdef ZS_HAVE_AVX512_SPANS
-      /* inlined where simd is the constant AVX-512 (paint.c), else a call */
+      /* where simd is the constant AVX-512 (paint.c), the kernel itself */
       int xs = simd == ZS_SIMD_AVX512
                    ? zs_fill_span_avx512(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written)
                    : zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);

@@ -318,6 +318,40 @@ static void random_triangles(mesh_buf *b, zs_rng *rng, int n, int w, int h, doub
   }
 }
 
+/* n small triangles and parallelograms, a soup, 0.5 to 20 pixels across:
+ * half their corners on the half-pixel grid (edges through pixel
+ * centres), some over the window's sides, a quarter at one depth (the id
+ * decides), a quarter with corners on the near and far planes or
+ * through them (depths at the clamp), the rest between. */
+static void small_polygons(mesh_buf *b, zs_rng *rng, int n, int w, int h) {
+  for (int i = 0; i < n; i++) {
+    double px[4], py[4], pz[4];
+    const double cx = zs_rng_range(rng, -12, w + 12), cy = zs_rng_range(rng, -12, h + 12);
+    const double size = zs_rng_range(rng, 0.5, 20);
+    for (int k = 0; k < 3; k++) {
+      px[k] = cx + zs_rng_range(rng, -size, size);
+      py[k] = cy + zs_rng_range(rng, -size, size);
+      if (zs_rng_below(rng, 2)) { /* on the half-pixel grid */
+        px[k] = (double)(int64_t)(2 * px[k]) / 2;
+        py[k] = (double)(int64_t)(2 * py[k]) / 2;
+      }
+      const uint64_t on = zs_rng_below(rng, 3); /* through a plane, or corners on one */
+      pz[k] = i % 4 == 0   ? -2.0
+              : i % 4 == 1 ? (on == 0 ? 10.0 : on == 1 ? -10.0 : zs_rng_range(rng, -14, 14))
+                           : zs_rng_range(rng, -9, -1);
+    }
+    const int quad = i % 3 == 0;
+    if (quad) { /* the fourth corner: a parallelogram, flat */
+      px[3] = px[0] + px[2] - px[1];
+      py[3] = py[0] + py[2] - py[1];
+      pz[3] = pz[0] + pz[2] - pz[1];
+    }
+    int32_t v[4];
+    for (int k = 0; k < 3 + quad; k++) v[k] = mb_vert(b, px[k], py[k], pz[k]);
+    mb_face(b, v, 3 + quad, (uint32_t)zs_rng_below(rng, 0x1000000));
+  }
+}
+
 /* ---- order independence and the two modes ---- */
 
 START_TEST(modes_agree_and_order_does_not_matter) {
@@ -426,18 +460,20 @@ START_TEST(simd_spans_equal_scalar) {
   /* Large random triangles through each other, a third of them at one
    * depth (the id decides), and a sphere; then the triangles alone, a
    * soup, which the z-buffer mode paints (at AVX-512 every span in masked
-   * steps, paint.c): the SSE2, AVX2 and AVX-512 span fills (where the CPU
-   * has them) and the scalar loop give the same image, depth, ids and
-   * counters, in both modes. */
+   * steps, paint.c); then a soup of small polygons, which it paints at
+   * AVX-512 by their edge functions: the SSE2, AVX2 and AVX-512 span
+   * fills (where the CPU has them) and the scalar loop give the same
+   * image, depth, ids and counters, in both modes. */
   const int W = 640, H = 480;
   zs_rng rng;
   zs_rng_seed(&rng, 11);
-  mesh_buf meshes[2];
+  mesh_buf meshes[3];
   memset(meshes, 0, sizeof meshes);
   random_triangles(&meshes[1], &rng, 400, W, H, 40, -9);
   zs_rng_seed(&rng, 11);
   random_triangles(&meshes[0], &rng, 400, W, H, 40, -9);
   mb_sphere(&meshes[0], W / 2.0, H / 2.0, -5.0, 150.0, 48, 24, 0);
+  small_polygons(&meshes[2], &rng, 20000, W, H);
 #if defined(__x86_64__)
   /* every x86-64 CPU has SSE2 */
   ck_assert_int_eq(zs_span_simd_level(ZS_SIMD_SSE2), ZS_SIMD_SSE2);
@@ -448,7 +484,7 @@ START_TEST(simd_spans_equal_scalar) {
   for (int level = ZS_SIMD_SSE2; level <= ZS_SIMD_AVX512; level++)
     if ((int)zs_span_simd_level((zs_simd)level) != level)
       printf("simd_spans_equal_scalar: skipped %s: this CPU lacks it\n", zs_simd_name(level));
-  for (int run = 0; run < 4; run++) { /* each mesh in each mode */
+  for (int run = 0; run < 6; run++) { /* each mesh in each mode */
     const mesh_buf b = meshes[run / 2];
     const int algo = run % 2;
     frame f[4];
@@ -472,8 +508,7 @@ START_TEST(simd_spans_equal_scalar) {
     ck_assert_uint_gt(st[0].pixels_written, (uint64_t)W * H); /* overdrawn */
     frame_free(&f[0]);
   }
-  mb_free(&meshes[0]);
-  mb_free(&meshes[1]);
+  for (int i = 0; i < 3; i++) mb_free(&meshes[i]);
 }
 END_TEST
 
