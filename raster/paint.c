@@ -1,8 +1,10 @@
 /* The z-buffer mode's traversal of a batch: each polygon painted whole,
  * row by row from its top, in the sorted table's order, with the scanline
  * walk's own pieces (span.h): the same exact edge DDA, the same depth
- * plane, the same span kernels; or, for a mesh laid out in order over a
- * large part of the frame, the scanline walk itself.
+ * plane, the same span kernels (with AVX-512, a soup's small polygons by
+ * their edge functions instead of the DDA: the same spans, proved at
+ * paint_small_avx512); or, for a mesh laid out in order over a large part
+ * of the frame, the scanline walk itself.
  *
  * Why the two are equal, to the counter.  On any row the walk's active
  * list holds its polygons in the order they entered it: by first row,
