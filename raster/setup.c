@@ -263,9 +263,13 @@ static int64_t cross3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
          ((int64_t)Y[b] - Y[a]) * ((int64_t)X[c] - X[b]);
 }
 
-/* Convex (every turn the way of area2, or straight) and y-monotone: one
- * left and one right chain, one span per row.  Local turns alone would let
- * a star that winds twice through; monotony catches it. */
+/* Convex (every turn the way of area2, or straight on) and y-monotone:
+ * one left and one right chain, one span per row.  Local turns alone
+ * would let a star that winds twice through; monotony catches it.  A
+ * turn straight back (no turn, the path reversed) would let a fold hide
+ * a reflex corner, whose edge's line then cuts the polygon: the walk's
+ * spans would follow the edges in force and the painter's edge
+ * functions every edge (paint.c), so it goes to the fan. */
 static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t area2) {
   /* (neighbours by comparison, not %: a division per vertex costs more
    * than the test on the teapots, whose quads all come here; zscan bench
@@ -274,6 +278,10 @@ static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t ar
     int next = i + 1 < n ? i + 1 : 0;
     int64_t t = cross3(X, Y, prev, i, next);
     if ((t > 0 && area2 < 0) || (t < 0 && area2 > 0)) return 0;
+    if (t == 0 && ((int64_t)X[i] - X[prev]) * ((int64_t)X[next] - X[i]) +
+                          ((int64_t)Y[i] - Y[prev]) * ((int64_t)Y[next] - Y[i]) <
+                      0)
+      return 0;
   }
   /* Going round, the vertical direction may change only at the top and
    * at the bottom vertex. */

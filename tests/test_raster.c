@@ -512,6 +512,42 @@ START_TEST(simd_spans_equal_scalar) {
 }
 END_TEST
 
+START_TEST(folded_face_painted_as_walked) {
+  /* A pentagon whose every turn is the way of its area or straight, but
+   * one straight back along a row (4 -> 0 after 3 -> 4): the fold hides a
+   * reflex corner at 3, and the line of edge 3-2 cuts the pixel (7, 6)
+   * that the walk's edges give the face.  Set-up draws such a face as a
+   * fan; at every span fill level, in both modes, the same pixels and
+   * counters. */
+  const int S = 16;
+  const double px[5] = {8, 7, 6.5, 7, 6.5}, py[5] = {6.5, 5, 7.5, 6.5, 6.5}; /* image, y down */
+  mesh_buf b = {0};
+  int32_t v[5];
+  for (int k = 0; k < 5; k++) v[k] = mb_vert(&b, px[k], S - py[k], -2);
+  mb_face(&b, v, 5, 0xFFFFFF);
+  frame f[2][2];
+  zs_raster_stats st[2][2];
+  for (int algo = 0; algo < 2; algo++)
+    for (int k = 0; k < 2; k++) {
+      spans_for_devices = k ? ZS_SPANS_BEST : ZS_SPANS_SCALAR;
+      f[algo][k] = frame_new(S, S);
+      st[algo][k] = render(&b.m, S, S, (zs_algo)algo, ZS_SHADE_ID, 0, NULL, NULL, &f[algo][k]);
+    }
+  spans_for_devices = ZS_SPANS_BEST;
+  for (int algo = 0; algo < 2; algo++)
+    for (int k = 0; k < 2; k++) {
+      ck_assert_msg(memcmp(f[0][0].id, f[algo][k].id, (size_t)S * S * 4) == 0,
+                    "mode %d, level %d: ids", algo, k);
+      ck_assert_uint_eq(st[0][0].pixels_tested, st[algo][k].pixels_tested);
+      ck_assert_uint_eq(st[0][0].spans, st[algo][k].spans);
+    }
+  ck_assert_uint_eq(f[0][0].id[6 * S + 7], 0); /* the pixel the fold's edge cuts is the face's */
+  for (int algo = 0; algo < 2; algo++)
+    for (int k = 0; k < 2; k++) frame_free(&f[algo][k]);
+  mb_free(&b);
+}
+END_TEST
+
 /* The vertex stage of vertices [FROM, n) of pos on a 256 x 256 device at
  * the span fill's scalar level (v[0]) and at AVX-512 (v[1]), under view
  * and proj. */
@@ -1204,6 +1240,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, modes_agree_and_order_does_not_matter);
   tcase_add_test(tc, painted_and_walked_agree_to_the_counter);
   tcase_add_test(tc, simd_spans_equal_scalar);
+  tcase_add_test(tc, folded_face_painted_as_walked);
   tcase_add_test(tc, vertex_stage_simd_equals_scalar);
   tcase_add_test(tc, scanline_bands_start_each_frame_clean);
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
