@@ -34,7 +34,6 @@ static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
 }
 
 #ifdef ZS_HAVE_AVX512_SPANS
-#define ZS_AVX512_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
 
 /* A small polygon of a soup painted by its edge functions, sixteen
  * columns a row, where the walk would start and step each edge's DDA.
@@ -45,11 +44,12 @@ static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
  * edge; with
  *   E(xc, yc) = (xc - X0) dy - (yc - Y0) dx,   dy = Y1 - Y0 > 0,
  * the centre is at or right of the edge exactly when E >= 0, in integers.
- * A polygon of the table is convex, so on each of its rows the line of
- * every other edge of its chain lies at or outside the edge in force
- * there: a centre is in the DDA's span exactly when it passes the test
- * of every left edge (E >= 0) and of every right edge (E < 0).  Its
- * columns lie between its edges' lowest and highest X.  Each pixel is
+ * A polygon of the table is convex (setup.c, convex_monotone), so on
+ * each of its rows the line of every other edge of its chain lies at or
+ * outside the edge in force there: a centre is in the DDA's span
+ * exactly when it passes the test of every left edge (E >= 0) and of
+ * every right edge (E < 0).  Its columns lie between its edges' lowest
+ * and highest X.  Each pixel is
  * then tested and written as zs_fill_span does (the depth clamped to
  * [0, far] before its shift, as zs_depth_of does), and counted the same:
  * the same pixels, depths, ties and counters.
@@ -67,13 +67,11 @@ static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
  * from the masked store of its neighbour (span.h), and the teapots took
  * 7 % longer painted this way.  Returns 0, having painted nothing, for a
  * polygon it does not take. */
-ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *e,
-                                               const zs_target *t, int32_t y0, int32_t y1,
-                                               uint64_t *spans, uint64_t *tested,
-                                               uint64_t *written) {
-  enum { MAX_ROWS = 8, MAX_EDGES = 6 };
-  const int n = p->nleft + p->nright;
-  if (n > MAX_EDGES || y1 - y0 >= MAX_ROWS) return 0;
+enum { SMALL_MAX_ROWS = 8, SMALL_MAX_EDGES = 6 };
+
+ZS_AVX512_INLINE int paint_small_n(const zs_poly *p, const zs_edge *e, const zs_target *t,
+                                   int32_t y0, int32_t y1, const int n, uint64_t *spans,
+                                   uint64_t *tested, uint64_t *written) {
   int32_t xlo = e[0].X0, xhi = e[0].X0, ylo = e[0].Y0, yhi = e[0].Y1;
   for (int i = 0; i < n; i++) {
     xlo = e[i].X0 < xlo ? e[i].X0 : xlo;
@@ -94,20 +92,20 @@ ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *
   /* Each edge's test as F >= 0, its sign bit clear: F = E on the left,
    * -E - 1 on the right; F on row y0 across the lanes, and its change a
    * row down */
-  __m512i f[MAX_EDGES], down[MAX_EDGES];
+  __m512i f[SMALL_MAX_EDGES], down[SMALL_MAX_EDGES];
   for (int i = 0; i < n; i++) {
     const int32_t dy = e[i].Y1 - e[i].Y0, dx = e[i].X1 - e[i].X0;
     const int64_t e0 = ((int64_t)cs * 256 + 128 - e[i].X0) * dy -
                        ((int64_t)y0 * 256 + 128 - e[i].Y0) * dx;
     const int left = i < p->nleft;
+    const int32_t across = left ? 256 * dy : -256 * dy; /* a column right */
     f[i] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)(left ? e0 : -e0 - 1)),
-                            _mm512_mullo_epi32(lane, _mm512_set1_epi32(left ? 256 * dy : -256 * dy)));
+                            _mm512_mullo_epi32(lane, _mm512_set1_epi32(across)));
     down[i] = _mm512_set1_epi32(left ? -256 * dx : 256 * dx);
   }
   /* the depth plane at the lanes' columns, in two halves of eight */
   const int64_t dz = p->dzdx;
-  const uint64_t zrow = (uint64_t)p->zc - (uint64_t)p->dzdx * (uint64_t)(int64_t)p->ox +
-                        (uint64_t)p->dzdy * (uint64_t)((int64_t)y0 - p->oy);
+  const uint64_t zrow = zs_plane_row(p, y0);
   const __m512i dzv = _mm512_set1_epi64(dz);
   __m512i za = _mm512_add_epi64(
       _mm512_set1_epi64((int64_t)(zrow + (uint64_t)dz * (uint64_t)(int64_t)cs)),
@@ -127,17 +125,8 @@ ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *
       uint32_t *zr = row.depth + cs, *ir = row.id + cs, *cr = row.rgb + cs;
       const __m512i ca = _mm512_min_epi64(_mm512_max_epi64(za, zero), zfar);
       const __m512i cb = _mm512_min_epi64(_mm512_max_epi64(zb, zero), zfar);
-      const __m256i da = _mm512_cvtepi64_epi32(_mm512_srl_epi64(ca, count));
-      const __m256i db = _mm512_cvtepi64_epi32(_mm512_srl_epi64(cb, count));
-      const __m512i d = _mm512_inserti64x4(_mm512_castsi256_si512(da), db, 1);
-      const __m512i zold = _mm512_maskz_loadu_epi32(m, zr);
-      const __m512i iold = _mm512_maskz_loadu_epi32(m, ir);
-      const __mmask16 tie = _mm512_mask_cmpeq_epu32_mask(m, d, zold);
-      const __mmask16 pass = _mm512_mask_cmplt_epu32_mask(m, d, zold) |
-                             _mm512_mask_cmplt_epu32_mask(tie, idv, iold);
-      _mm512_mask_storeu_epi32(zr, pass, d);
-      _mm512_mask_storeu_epi32(ir, pass, idv);
-      _mm512_mask_storeu_epi32(cr, pass, rgbv);
+      const __m512i d = zs_avx512_depths(ca, cb, count);
+      const __mmask16 pass = zs_avx512_test_write(zr, ir, cr, m, d, idv, rgbv);
       sp++;
       te += (uint64_t)__builtin_popcount((unsigned)m);
       w += (uint64_t)__builtin_popcount((unsigned)pass);
@@ -150,6 +139,21 @@ ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *
   *tested += te;
   *written += w;
   return 1;
+}
+
+/* n a constant for a triangle's three edges and a quad's four: the
+ * edges' lanes then stay in registers, where a loop to a variable n
+ * keeps them in memory (the random 4x4 triangles 7 % faster: zscan bench
+ * raster --algo zbuffer --case "random 4x4 back to front") */
+ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *e,
+                                               const zs_target *t, int32_t y0, int32_t y1,
+                                               uint64_t *spans, uint64_t *tested,
+                                               uint64_t *written) {
+  const int n = p->nleft + p->nright;
+  if (n > SMALL_MAX_EDGES || y1 - y0 >= SMALL_MAX_ROWS) return 0;
+  if (n == 3) return paint_small_n(p, e, t, y0, y1, 3, spans, tested, written);
+  if (n == 4) return paint_small_n(p, e, t, y0, y1, 4, spans, tested, written);
+  return paint_small_n(p, e, t, y0, y1, n, spans, tested, written);
 }
 #endif
 
@@ -250,7 +254,8 @@ int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_b
             counts);
       break;
     case ZS_KERNEL_QUERY:
-      paint(b, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0, t, row_begin, row_end, &table, s, counts);
+      paint(b, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0, t, row_begin, row_end, &table, s,
+            counts);
       break;
   }
   return 1;

@@ -263,6 +263,11 @@ static int64_t cross3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
          ((int64_t)Y[b] - Y[a]) * ((int64_t)X[c] - X[b]);
 }
 
+static int64_t dot3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
+  return ((int64_t)X[b] - X[a]) * ((int64_t)X[c] - X[b]) +
+         ((int64_t)Y[b] - Y[a]) * ((int64_t)Y[c] - Y[b]);
+}
+
 /* Convex (every turn the way of area2, or straight on) and y-monotone:
  * one left and one right chain, one span per row.  Local turns alone
  * would let a star that winds twice through; monotony catches it.  A
@@ -278,10 +283,7 @@ static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t ar
     int next = i + 1 < n ? i + 1 : 0;
     int64_t t = cross3(X, Y, prev, i, next);
     if ((t > 0 && area2 < 0) || (t < 0 && area2 > 0)) return 0;
-    if (t == 0 && ((int64_t)X[i] - X[prev]) * ((int64_t)X[next] - X[i]) +
-                          ((int64_t)Y[i] - Y[prev]) * ((int64_t)Y[next] - Y[i]) <
-                      0)
-      return 0;
+    if (t == 0 && dot3(X, Y, prev, i, next) < 0) return 0; /* straight back */
   }
   /* Going round, the vertical direction may change only at the top and
    * at the bottom vertex. */

@@ -150,6 +150,12 @@ static inline int32_t zs_edge_at(const zs_edge *edges, int32_t first, int32_t la
   return i;
 }
 
+/* p's depth plane at (0, y), modulo 2^64 (zs_plane_at). */
+static inline uint64_t zs_plane_row(const zs_poly *p, int32_t y) {
+  return (uint64_t)p->zc - (uint64_t)p->dzdx * (uint64_t)(int64_t)p->ox +
+         (uint64_t)p->dzdy * (uint64_t)((int64_t)y - p->oy);
+}
+
 /* Polygon i enters at row y: its edge pair on that row and zl; the
  * edges' steps down a row always (steps), or only where taken
  * (zs_edge_dda_begin). */
@@ -161,8 +167,7 @@ static inline void zs_activate(zs_active *a, int32_t i, const zs_poly *p, const 
   a->right = zs_edge_at(edges, left_end + 1, right_end, y);
   zs_edge_dda_begin(&a->l, &edges[a->left], y, steps);
   zs_edge_dda_begin(&a->r, &edges[a->right], y, steps);
-  a->zrow = (uint64_t)p->zc - (uint64_t)p->dzdx * (uint64_t)(int64_t)p->ox +
-            (uint64_t)p->dzdy * (uint64_t)((int64_t)y - p->oy);
+  a->zrow = zs_plane_row(p, y);
   a->dzdx = p->dzdx;
   a->dzdy = p->dzdy;
   a->id = p->id;

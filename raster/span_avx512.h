@@ -14,12 +14,44 @@
 #include <immintrin.h>
 #define ZS_HAVE_AVX512_SPANS 1
 
+/* What the AVX-512 span fill and the painter's AVX-512 copy ask of the CPU */
+#define ZS_AVX512_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#define ZS_AVX512_INLINE ZS_AVX512_TARGET __attribute__((always_inline)) static inline
+
+/* The depths of sixteen pixels from their planes' values, eight in za and
+ * eight in zb, each already between 0 and the far plane: shifted down,
+ * the low 32 bits. */
+ZS_AVX512_INLINE __m512i zs_avx512_depths(__m512i za, __m512i zb, __m128i shift) {
+  const __m256i da = _mm512_cvtepi64_epi32(_mm512_srl_epi64(za, shift));
+  const __m256i db = _mm512_cvtepi64_epi32(_mm512_srl_epi64(zb, shift));
+  return _mm512_inserti64x4(_mm512_castsi256_si512(da), db, 1);
+}
+
+/* The pixels of mask m among sixteen from zr, ir, cr tested at depths d
+ * and written where they pass, as the scalar loop does (nearer, or as
+ * near with a smaller id); masked lanes neither load nor store.  Returns
+ * the pixels written. */
+ZS_AVX512_INLINE __mmask16 zs_avx512_test_write(uint32_t *zr, uint32_t *ir, uint32_t *cr,
+                                                __mmask16 m, __m512i d, __m512i idv,
+                                                __m512i rgbv) {
+  const __m512i zold = _mm512_maskz_loadu_epi32(m, zr);
+  const __m512i iold = _mm512_maskz_loadu_epi32(m, ir);
+  const __mmask16 tie = _mm512_mask_cmpeq_epu32_mask(m, d, zold);
+  const __mmask16 pass = _mm512_mask_cmplt_epu32_mask(m, d, zold) |
+                         _mm512_mask_cmplt_epu32_mask(tie, idv, iold);
+  _mm512_mask_storeu_epi32(zr, pass, d);
+  _mm512_mask_storeu_epi32(ir, pass, idv);
+  _mm512_mask_storeu_epi32(cr, pass, rgbv);
+  return pass;
+}
+
 /* Sixteen pixels a step, the last step masked: a span of any length in
  * whole steps, with no scalar tail and no branch on its pixels' tests
  * (masked lanes neither load nor store, nor fault). */
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq"))) static inline int
-zs_fill_span_avx512(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
-                    int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written) {
+ZS_AVX512_TARGET static inline int zs_fill_span_avx512(uint32_t *zr, uint32_t *ir, uint32_t *cr,
+                                                       int x0, int x1, int64_t z, int64_t dz,
+                                                       int shift, uint32_t id, uint32_t rgb,
+                                                       uint64_t *written) {
   const __m512i idv = _mm512_set1_epi32((int)id), rgbv = _mm512_set1_epi32((int)rgb);
   const __m128i count = _mm_cvtsi32_si128(shift);
   const __m512i dzv = _mm512_set1_epi64(dz);
@@ -32,17 +64,8 @@ zs_fill_span_avx512(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, in
   for (int x = x0; x < x1; x += 16) {
     const int n = x1 - x < 16 ? x1 - x : 16;
     const __mmask16 m = (__mmask16)((1u << n) - 1u);
-    const __m256i da = _mm512_cvtepi64_epi32(_mm512_srl_epi64(za, count));
-    const __m256i db = _mm512_cvtepi64_epi32(_mm512_srl_epi64(zb, count));
-    const __m512i d = _mm512_inserti64x4(_mm512_castsi256_si512(da), db, 1);
-    const __m512i zold = _mm512_maskz_loadu_epi32(m, zr + x);
-    const __m512i iold = _mm512_maskz_loadu_epi32(m, ir + x);
-    const __mmask16 tie = _mm512_mask_cmpeq_epu32_mask(m, d, zold);
-    const __mmask16 pass = _mm512_mask_cmplt_epu32_mask(m, d, zold) |
-                           _mm512_mask_cmplt_epu32_mask(tie, idv, iold);
-    _mm512_mask_storeu_epi32(zr + x, pass, d);
-    _mm512_mask_storeu_epi32(ir + x, pass, idv);
-    _mm512_mask_storeu_epi32(cr + x, pass, rgbv);
+    const __m512i d = zs_avx512_depths(za, zb, count);
+    const __mmask16 pass = zs_avx512_test_write(zr + x, ir + x, cr + x, m, d, idv, rgbv);
     w += (uint64_t)__builtin_popcount((unsigned)pass);
     za = _mm512_add_epi64(za, step16);
     zb = _mm512_add_epi64(zb, step16);
