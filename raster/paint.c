@@ -59,7 +59,7 @@ static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
  * fit 32-bit lanes with no wrap: a centre of the box and a corner both
  * lie in the box, |E| <= 2 (xhi - xlo)(yhi - ylo) < 2 * 2^13 * 2^15.
  * Past 8 rows the DDA's starts cost less than the rows' tests of every
- * edge: the random 4x4 triangles are painted a tenth faster this way,
+ * edge: the random 4x4 triangles are painted a sixth faster this way,
  * the 10x10 ones as fast as with the DDA, and with no limit on the rows
  * a tenth slower (zscan bench raster --case "random 4x4 back to front" and
  * --case "random 10x10 back to front", the builds in turn).  A mesh's

@@ -734,7 +734,7 @@ static const char prose_not_paid[] =
           "- Painting every small polygon of a soup by its edge functions, with no\n"
           "  limit on its rows: the random 10x10 triangles a tenth slower (55.3\n"
           "  against 61.0 ms a frame), where 8 rows at most leaves them as fast and\n"
-          "  takes the 4x4 ones a tenth faster. And a mesh's small polygons so (the\n"
+          "  takes the 4x4 ones a sixth faster. And a mesh's small polygons so (the\n"
           "  span from the mask of centres inside, filled by the span kernel): the\n"
           "  teapots 43.9 -> 47.2 ms, the teapot field 27.7 -> 29.7 (`zscan bench\n"
           "  raster --algo zbuffer --case C --repeat 15`, the builds in turn).\n"
