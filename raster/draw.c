@@ -110,12 +110,34 @@ __attribute__((always_inline)) static inline void newell_of_face(const double *e
     zs_newell_add(nrm, &eye[3 * fv[i]], &eye[3 * fv[j]]);
 }
 
-/* Faces [f0, f1): trivial reject, flat colour, clipping where a face
- * crosses a plane. */
-zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
-                        const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
-                        uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
-                        zs_error *err) {
+/* The faces of a draw whose flat colour waits for the levels of a run of
+ * them at once (zs_flat_levels: why, in shade.c): each face's normal, its
+ * colour and its polygons [first, end) in the batch. */
+enum { FLAT_RUN = 64 };
+typedef struct flat_run {
+  double nx[FLAT_RUN], ny[FLAT_RUN], nz[FLAT_RUN];
+  uint32_t rgb[FLAT_RUN];
+  int32_t first[FLAT_RUN], end[FLAT_RUN];
+  int n;
+} flat_run;
+
+/* The run's faces' polygons get their flat colours; the run is empty. */
+static void flat_run_finish(flat_run *run, zs_simd simd, zs_batch *b) {
+  uint32_t q[FLAT_RUN];
+  zs_flat_levels(simd, run->nx, run->ny, run->nz, run->n, q);
+  for (int k = 0; k < run->n; k++) {
+    const uint32_t shaded = zs_flat_tint(run->rgb[k], q[k]);
+    for (int32_t i = run->first[k]; i < run->end[k]; i++) b->polys[i].rgb = shaded;
+  }
+  run->n = 0;
+}
+
+/* Faces [f0, f1): trivial reject, clipping where a face crosses a plane,
+ * set-up; under flat shading, the faces that became polygons join run. */
+static zs_status setup_faces(const zs_device *d, const zs_draw_prep *pr,
+                             const zs_vert_scratch *v, const zs_mesh *mesh, int32_t f0,
+                             int32_t f1, uint32_t id_base, uint32_t rgb, zs_depthsort *ds,
+                             zs_batch *b, zs_face_counts *fc, flat_run *run, zs_error *err) {
   zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
   zs_setup_params sp = pr->sp;
   for (int32_t f = f0; f < f1; f++) {
@@ -169,8 +191,10 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
         newell_of_face(v->eyepos, fv, 4, nrm);
       else
         newell_of_face(v->eyepos, fv, nv, nrm);
-      const uint32_t shaded = zs_shade_flat(sp.rgb, nrm);
-      for (int32_t i = first_poly; i < b->npolys; i++) b->polys[i].rgb = shaded;
+      const int k = run->n++;
+      run->nx[k] = nrm[0], run->ny[k] = nrm[1], run->nz[k] = nrm[2];
+      run->rgb[k] = sp.rgb, run->first[k] = first_poly, run->end[k] = b->npolys;
+      if (run->n == FLAT_RUN) flat_run_finish(run, d->simd, b);
     }
     /* The painter orders the faces that meet the circle around the
      * window, drawn or not, turned to the eye or nearly: a roll keeps that
@@ -196,6 +220,17 @@ zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_ver
     }
   }
   return ZS_OK;
+}
+
+zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
+                        const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
+                        uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
+                        zs_error *err) {
+  flat_run run;
+  run.n = 0;
+  const zs_status st = setup_faces(d, pr, v, mesh, f0, f1, id_base, rgb, ds, b, fc, &run, err);
+  flat_run_finish(&run, d->simd, b); /* on an error too: no polygon left uncoloured */
+  return st;
 }
 
 void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc) {

@@ -355,21 +355,31 @@ int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_b
                    int row_end, zs_walk_scratch *s, zs_walk_counts *counts);
 
 /* ---- shade.c ---- */
-/* The flat colour of a face: rgb times the Lambert term of its eye-space
- * normal n (need not be unit) against the fixed light. */
-static inline uint32_t zs_shade_flat(uint32_t rgb, const double n[3]) {
+/* The flat level of a face, q = round(255 I) (shade.c), from its
+ * eye-space normal n (need not be unit) against the fixed light. */
+static inline uint32_t zs_flat_level(const double n[3]) {
   const double l[3] = {0.2672612419124244, 0.5345224838248488,
                        0.8017837257372732}; /* (1,2,3)/sqrt(14) */
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   double cosine = len > 0.0 ? fabs(n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / len : 0.0;
   if (cosine > 1.0) cosine = 1.0;
-  uint32_t q = (uint32_t)lrint(255.0 * (0.25 + 0.75 * cosine));
+  return (uint32_t)lrint(255.0 * (0.25 + 0.75 * cosine));
+}
+
+/* rgb at level q: each channel times q / 255, rounded. */
+static inline uint32_t zs_flat_tint(uint32_t rgb, uint32_t q) {
   uint32_t r = (rgb >> 16) & 0xFF, g = (rgb >> 8) & 0xFF, b = rgb & 0xFF;
   r = (r * q + 127) / 255;
   g = (g * q + 127) / 255;
   b = (b * q + 127) / 255;
   return r << 16 | g << 8 | b;
 }
+
+/* The levels q[0 .. n) of n faces whose normals are (nx, ny, nz)[k]:
+ * eight at a time with AVX-512 where simd is, the same bits as
+ * zs_flat_level (shade.c). */
+void zs_flat_levels(zs_simd simd, const double *nx, const double *ny, const double *nz, int n,
+                    uint32_t *q);
 
 /* The colours of one finished row (out) for a shading mode other than
  * flat; chosen with the projection, when the camera is set (device.c). */

@@ -548,6 +548,64 @@ START_TEST(folded_face_painted_as_walked) {
 }
 END_TEST
 
+START_TEST(flat_levels_simd_equal_scalar) {
+  /* The flat levels eight at a time (AVX-512) against zs_flat_level, one
+   * face at a time, on 2,003 normals (not a multiple of eight): random
+   * ones at every scale from 1e-300 to 1e300 (squares that underflow to
+   * 0 or overflow to infinity), along the light and against it, across it
+   * (cosine near 0), at cosines whose level lies a hair from a rounding
+   * tie (where an operation taken in another order or rounded otherwise
+   * shows), zero and minus zero, infinite and NaN components. */
+  if (zs_span_simd_level(ZS_SIMD_AVX512) != ZS_SIMD_AVX512) {
+    printf("flat_levels_simd_equal_scalar: skipped: this CPU lacks AVX-512\n");
+    return;
+  }
+  enum { N = 2003 };
+  static double nx[N], ny[N], nz[N];
+  static uint32_t q[2][N];
+  const double l[3] = {0.2672612419124244, 0.5345224838248488, 0.8017837257372732};
+  const double scale[] = {1e-300, 1e-170, 1e-150, 1e-8, 1.0, 3.5, 1e8, 1e150, 1e170, 1e300};
+  zs_rng rng;
+  zs_rng_seed(&rng, 31);
+  for (int k = 0; k < N; k++) {
+    const double s = scale[k % 10];
+    const int kind = (k / 10) % 6;
+    double n[3];
+    for (int c = 0; c < 3; c++) n[c] = zs_rng_range(&rng, -1.0, 1.0);
+    if (kind == 1) /* along the light, or against it */
+      for (int c = 0; c < 3; c++) n[c] = (k % 20 < 10 ? 1.0 : -1.0) * l[c] * (1.0 + n[0] * 1e-9);
+    if (kind == 2) /* across it: n . L near 0 */
+      n[2] = -(n[0] * l[0] + n[1] * l[1]) / l[2];
+    if (kind >= 3) { /* a level a hair from a tie, k' + 1/2: any other rounding flips some */
+      const double c = ((double)(64 + k % 191) + 0.5) / 255.0, t = (c - 0.25) / 0.75;
+      const double rl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+      double p[3], pl = 0.0;
+      for (int j = 0; j < 3; j++) p[j] = n[j] - rl * l[j], pl += p[j] * p[j];
+      pl = sqrt(pl);
+      for (int j = 0; j < 3; j++) n[j] = t * l[j] + sqrt(1.0 - t * t) * p[j] / pl;
+    }
+    nx[k] = s * n[0], ny[k] = s * n[1], nz[k] = s * n[2];
+  }
+  const double odd[][3] = {{0, 0, 0},       {-0.0, 0, -0.0},     {INFINITY, 1, 0},
+                           {1, -INFINITY, 1}, {NAN, 1, 1},       {1, 1, NAN},
+                           {INFINITY, INFINITY, INFINITY}, {1e-320, 0, 0}, {0, 0, 1e308}};
+  for (size_t j = 0; j < sizeof odd / sizeof odd[0]; j++)
+    nx[7 * j + 3] = odd[j][0], ny[7 * j + 3] = odd[j][1], nz[7 * j + 3] = odd[j][2];
+  zs_flat_levels(ZS_SIMD_SCALAR, nx, ny, nz, N, q[0]);
+  zs_flat_levels(ZS_SIMD_AVX512, nx, ny, nz, N, q[1]);
+  int bright = 0, dark = 0;
+  for (int k = 0; k < N; k++) {
+    ck_assert_msg(q[0][k] == zs_flat_level((const double[3]){nx[k], ny[k], nz[k]}), "face %d", k);
+    ck_assert_msg(q[1][k] == q[0][k], "face %d: (%g, %g, %g): level %u, not %u", k, nx[k], ny[k],
+                  nz[k], q[1][k], q[0][k]);
+    bright += q[0][k] == 255;
+    dark += q[0][k] == 64; /* 255 / 4 rounded: a cosine of 0 */
+  }
+  ck_assert_int_gt(bright, 100);
+  ck_assert_int_gt(dark, 100);
+}
+END_TEST
+
 /* The vertex stage of vertices [FROM, n) of pos on a 256 x 256 device at
  * the span fill's scalar level (v[0]) and at AVX-512 (v[1]), under view
  * and proj. */
@@ -1242,6 +1300,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, simd_spans_equal_scalar);
   tcase_add_test(tc, folded_face_painted_as_walked);
   tcase_add_test(tc, vertex_stage_simd_equals_scalar);
+  tcase_add_test(tc, flat_levels_simd_equal_scalar);
   tcase_add_test(tc, scanline_bands_start_each_frame_clean);
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
