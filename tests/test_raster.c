@@ -550,12 +550,15 @@ END_TEST
 
 START_TEST(flat_levels_simd_equal_scalar) {
   /* The flat levels eight at a time (AVX-512) against zs_flat_level, one
-   * face at a time, on 2,003 normals (not a multiple of eight): random
-   * ones at every scale from 1e-300 to 1e300 (squares that underflow to
-   * 0 or overflow to infinity), along the light and against it, across it
-   * (cosine near 0), at cosines whose level lies a hair from a rounding
-   * tie (where an operation taken in another order or rounded otherwise
-   * shows), zero and minus zero, infinite and NaN components. */
+   * face at a time, on 2,003 normals (not a multiple of eight), random in
+   * kind and at scales from 1e-300 to 1e300: squares that underflow to 0
+   * or overflow to infinity, squares that are subnormal (whose rounding
+   * takes the cosine past 1, where the clamp keeps the level 255), along
+   * the light and against it, across it (cosine near 0), and cosines
+   * whose level lies a hair from a rounding tie k + 1/2 (where an
+   * operation taken in another order or rounded otherwise shows); then
+   * zero and minus zero, infinite and NaN components.  The counts below
+   * say that each kind is there. */
   if (zs_span_simd_level(ZS_SIMD_AVX512) != ZS_SIMD_AVX512) {
     printf("flat_levels_simd_equal_scalar: skipped: this CPU lacks AVX-512\n");
     return;
@@ -564,7 +567,7 @@ START_TEST(flat_levels_simd_equal_scalar) {
   static double nx[N], ny[N], nz[N];
   static uint32_t q[2][N];
   const double l[3] = {0.2672612419124244, 0.5345224838248488, 0.8017837257372732};
-  const double scale[] = {1e-300, 1e-170, 1e-150, 1e-8, 1.0, 3.5, 1e8, 1e150, 1e170, 1e300};
+  const double scale[] = {1e-300, 1e-170, 3e-162, 1e-150, 1e-8, 1.0, 3.5, 1e8, 1e150, 1e300};
   zs_rng rng;
   zs_rng_seed(&rng, 31);
   for (int k = 0; k < N; k++) {
@@ -572,11 +575,13 @@ START_TEST(flat_levels_simd_equal_scalar) {
     const int kind = (k / 10) % 6;
     double n[3];
     for (int c = 0; c < 3; c++) n[c] = zs_rng_range(&rng, -1.0, 1.0);
-    if (kind == 1) /* along the light, or against it */
-      for (int c = 0; c < 3; c++) n[c] = (k % 20 < 10 ? 1.0 : -1.0) * l[c] * (1.0 + n[0] * 1e-9);
+    if (kind == 1) { /* along the light or against it, a little off */
+      const double sign = (k / 60) % 2 ? -1.0 : 1.0, off = 1.0 + n[0] * 1e-9;
+      for (int c = 0; c < 3; c++) n[c] = sign * l[c] * off;
+    }
     if (kind == 2) /* across it: n . L near 0 */
       n[2] = -(n[0] * l[0] + n[1] * l[1]) / l[2];
-    if (kind >= 3) { /* a level a hair from a tie, k' + 1/2: any other rounding flips some */
+    if (kind >= 3) { /* a level a hair from a tie */
       const double c = ((double)(64 + k % 191) + 0.5) / 255.0, t = (c - 0.25) / 0.75;
       const double rl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
       double p[3], pl = 0.0;
@@ -593,16 +598,69 @@ START_TEST(flat_levels_simd_equal_scalar) {
     nx[7 * j + 3] = odd[j][0], ny[7 * j + 3] = odd[j][1], nz[7 * j + 3] = odd[j][2];
   zs_flat_levels(ZS_SIMD_SCALAR, nx, ny, nz, N, q[0]);
   zs_flat_levels(ZS_SIMD_AVX512, nx, ny, nz, N, q[1]);
-  int bright = 0, dark = 0;
+  int past_one = 0, across = 0, near_tie = 0, no_length = 0, nan_cosine = 0;
   for (int k = 0; k < N; k++) {
     ck_assert_msg(q[0][k] == zs_flat_level((const double[3]){nx[k], ny[k], nz[k]}), "face %d", k);
     ck_assert_msg(q[1][k] == q[0][k], "face %d: (%g, %g, %g): level %u, not %u", k, nx[k], ny[k],
                   nz[k], q[1][k], q[0][k]);
-    bright += q[0][k] == 255;
-    dark += q[0][k] == 64; /* 255 / 4 rounded: a cosine of 0 */
+    /* the kinds, from zs_flat_level's own steps before its clamp */
+    const double len = sqrt(nx[k] * nx[k] + ny[k] * ny[k] + nz[k] * nz[k]);
+    const double cosine = fabs(nx[k] * l[0] + ny[k] * l[1] + nz[k] * l[2]) / len;
+    const double level = 255.0 * (0.25 + 0.75 * cosine);
+    no_length += len == 0.0 || isinf(len);
+    nan_cosine += len > 0.0 && cosine != cosine;
+    past_one += len > 0.0 && cosine > 1.0;
+    across += len > 0.0 && !isinf(len) && q[0][k] == 64; /* 255 / 4 rounded: cosine 0 */
+    near_tie += fabs(level - floor(level) - 0.5) < 1e-12;
   }
-  ck_assert_int_gt(bright, 100);
-  ck_assert_int_gt(dark, 100);
+  ck_assert_int_gt(past_one, 20);
+  ck_assert_int_gt(across, 100);
+  ck_assert_int_gt(near_tie, 300);
+  ck_assert_int_gt(no_length, 100);
+  ck_assert_int_gt(nan_cosine, 1);
+}
+END_TEST
+
+START_TEST(a_failed_draw_leaves_its_earlier_faces_as_drawn) {
+  /* A draw whose second face uses a vertex out of range fails.  In
+   * scanline and depth sort modes the face set up before it stays in the
+   * frame's batch and is painted with the colour (its flat level) and the
+   * depth it gets drawn alone: the face stage's deferred work is done on
+   * the error path too.  zbuffer mode drops the draw. */
+  enum { S = 48 };
+  double pos[] = {4, 4, -1, 40, 6, -2, 38, 36, -3, 5, 30, -1.5};
+  int32_t fs[] = {0, 4, 8}, fv[] = {0, 1, 2, 3, 0, 1, 2, 9};
+  uint32_t frgb[] = {0xC08040, 0xFFFFFF};
+  const zs_mesh bad = {pos, 4, fs, fv, 2, frgb, NULL}, good = {pos, 4, fs, fv, 1, frgb, NULL};
+  for (int algo = ZS_ALGO_ZBUFFER; algo <= ZS_ALGO_DEPTHSORT; algo++) {
+    frame alone = frame_new(S, S), failed = frame_new(S, S);
+    render(&good, S, S, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &alone);
+    zs_device *d = device(S, S, (zs_algo)algo, ZS_SHADE_FLAT, 0);
+    ortho_camera(d, S, S, -10, 10);
+    zs_device_clear(d);
+    zs_error err;
+    zs_error_clear(&err);
+    ck_assert_int_eq(zs_device_draw(d, &bad, NULL, 0, ZS_RGB_MESH, &err), ZS_ERR_ARG);
+    ck_assert_ptr_nonnull(strstr(err.msg, "uses vertex 9"));
+    ck_assert_int_eq(zs_device_finish(d, frame_sink, &failed, &err), ZS_OK);
+    zs_device_destroy(d);
+    int drawn = 0;
+    for (int i = 0; i < S * S; i++)
+      if (alone.id[i] != ZS_ID_NONE) {
+        drawn++;
+        ck_assert_uint_ne(alone.rgb[i], 0xC08040); /* shaded, not the bare colour */
+      }
+    ck_assert_int_gt(drawn, 500);
+    if (algo == ZS_ALGO_ZBUFFER) {
+      for (int i = 0; i < S * S; i++) ck_assert_uint_eq(failed.id[i], ZS_ID_NONE);
+    } else {
+      ck_assert_mem_eq(alone.rgb, failed.rgb, S * S * 4);
+      ck_assert_mem_eq(alone.depth, failed.depth, S * S * 4);
+      ck_assert_mem_eq(alone.id, failed.id, S * S * 4);
+    }
+    frame_free(&alone);
+    frame_free(&failed);
+  }
 }
 END_TEST
 
@@ -1301,6 +1359,7 @@ static Suite *suite(void) {
   tcase_add_test(tc, folded_face_painted_as_walked);
   tcase_add_test(tc, vertex_stage_simd_equals_scalar);
   tcase_add_test(tc, flat_levels_simd_equal_scalar);
+  tcase_add_test(tc, a_failed_draw_leaves_its_earlier_faces_as_drawn);
   tcase_add_test(tc, scanline_bands_start_each_frame_clean);
   tcase_add_test(tc, scanline_memory_grows_with_width_not_area);
   tcase_add_test(tc, depth_stepping_equals_evaluation);
