@@ -362,6 +362,8 @@ static inline uint32_t zs_flat_level(const double n[3]) {
                        0.8017837257372732}; /* (1,2,3)/sqrt(14) */
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   double cosine = len > 0.0 ? fabs(n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / len : 0.0;
+  /* past 1 where the squares are subnormal (|n| near 1e-162) and round
+   * coarsely: up to 1.015, a level of 258 without the clamp */
   if (cosine > 1.0) cosine = 1.0;
   return (uint32_t)lrint(255.0 * (0.25 + 0.75 * cosine));
 }
