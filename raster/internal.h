@@ -13,6 +13,16 @@
 
 #include "raster/raster.h"
 
+/* x86-64 under gcc or clang: the SIMD paths (SSE2, AVX2, AVX-512) are
+ * built, each taken at run time where the CPU has it (span_simd.c,
+ * zs_span_simd_level).  ZS_AVX512_TARGET: what the device's AVX-512
+ * level asks of the CPU (F, VL, BW, DQ), for every AVX-512 path (the
+ * span fill, the painter, the vertex stage, the flat levels). */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define ZS_HAVE_X86_PATHS 1
+#define ZS_AVX512_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#endif
+
 /* Threads a device may have, and bands of rows a walk is cut into: the
  * fixed sizes of the per-thread and per-band records. */
 enum { ZS_MAX_THREADS = 64, ZS_MAX_BANDS = 64 };

@@ -215,7 +215,6 @@ ZS_AVX512_TARGET static void paint_avx512(const zs_batch *b, const zs_target *t,
                                           const zs_walk_scratch *s, zs_walk_counts *counts) {
   paint(b, ZS_KERNEL_DRAW, ZS_SIMD_AVX512, 1, 1, t, row_begin, row_end, table, s, counts);
 }
-
 #endif
 
 int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
@@ -244,7 +243,6 @@ int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_b
         paint_avx512(b, t, row_begin, row_end, &table, s, counts);
         break;
       }
-
 #endif
       paint(b, ZS_KERNEL_DRAW, t->simd, zs_simd_min_span(t->simd), 0, t, row_begin, row_end,
             &table, s, counts);

@@ -28,13 +28,13 @@
 
 #include "raster/internal.h"
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>
 
 /* zs_flat_level of faces [0, n - n % 8), eight a step; returns the first
  * face left. */
-__attribute__((target("avx512f,avx512dq"))) static int
-flat_levels_avx512(const double *nx, const double *ny, const double *nz, int n, uint32_t *q) {
+ZS_AVX512_TARGET static int flat_levels_avx512(const double *nx, const double *ny,
+                                               const double *nz, int n, uint32_t *q) {
   const __m512d l0 = _mm512_set1_pd(0.2672612419124244), l1 = _mm512_set1_pd(0.5345224838248488),
                 l2 = _mm512_set1_pd(0.8017837257372732), one = _mm512_set1_pd(1.0);
   int k = 0;
@@ -63,7 +63,7 @@ flat_levels_avx512(const double *nx, const double *ny, const double *nz, int n, 
 void zs_flat_levels(zs_simd simd, const double *nx, const double *ny, const double *nz, int n,
                     uint32_t *q) {
   int k = 0;
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#ifdef ZS_HAVE_X86_PATHS
   if (simd == ZS_SIMD_AVX512) k = flat_levels_avx512(nx, ny, nz, n, q);
 #endif
   (void)simd;

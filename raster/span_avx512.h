@@ -10,12 +10,12 @@
 
 #include <stdint.h>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include "raster/internal.h"
+
+#ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>
 #define ZS_HAVE_AVX512_SPANS 1
 
-/* What the AVX-512 span fill and the painter's AVX-512 copy ask of the CPU */
-#define ZS_AVX512_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
 #define ZS_AVX512_INLINE ZS_AVX512_TARGET __attribute__((always_inline)) static inline
 
 /* The depths of sixteen pixels from their planes' values, eight in za and

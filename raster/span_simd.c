@@ -20,10 +20,8 @@
 #include "raster/internal.h"
 
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>
-
-#define ZS_HAVE_X86_PATHS 1
 
 /* SSE2 has no blend: keep old where the mask is clear, take new where set. */
 static inline __m128i select_sse2(__m128i mask, __m128i old, __m128i new_) {

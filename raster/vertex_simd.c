@@ -23,11 +23,11 @@
 
 #include "raster/internal.h"
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>
 
 /* One row of m applied to the eight points (x, y, z, 1). */
-__attribute__((target("avx512f,avx512dq"), always_inline)) static inline __m512d
+ZS_AVX512_TARGET __attribute__((always_inline)) static inline __m512d
 row_of(const double *m, __m512d x, __m512d y, __m512d z) {
   const __m512d s = _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(m[0]), x),
                                   _mm512_mul_pd(_mm512_set1_pd(m[1]), y));
@@ -36,13 +36,13 @@ row_of(const double *m, __m512d x, __m512d y, __m512d z) {
 }
 
 /* A lane's outcode bit where the distance is not >= 0 (NaN included). */
-__attribute__((target("avx512f,avx512dq"), always_inline)) static inline __m512i
+ZS_AVX512_TARGET __attribute__((always_inline)) static inline __m512i
 mark_out(__m512i code, __m512d dist, unsigned bit) {
   const __mmask8 in = _mm512_cmp_pd_mask(dist, _mm512_setzero_pd(), _CMP_GE_OQ);
   return _mm512_mask_or_epi64(code, (__mmask8)~in, code, _mm512_set1_epi64(bit));
 }
 
-__attribute__((target("avx512f,avx512dq"))) int32_t
+ZS_AVX512_TARGET int32_t
 zs_vertex_stage_avx512(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scratch *v,
                        int32_t i0, int32_t i1, double gx, double gy) {
   /* the x, y and z of eight points from their 24 doubles, and back */
