@@ -169,6 +169,12 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
                                                         zs_walk_counts *counts) {
   const zs_poly *polys = b->polys;
   const zs_edge *edges = b->edges;
+  /* The target by value: read through t, its buffers, stride and width
+   * would be fetched again on every row, after each call of the span
+   * fill, which might have changed them for all the compiler knows
+   * (zscan bench raster --algo zbuffer --case "random 10x10 back to
+   * front" measures it) */
+  const zs_target tl = *t;
   const int32_t *start = s->bucket_start, *order = s->order;
   uint64_t spans = 0, tested = 0, written = 0;
   for (int32_t r = table->first; r <= table->last; r++) {
@@ -186,9 +192,9 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
       zs_active a;
       zs_activate(&a, i, p, edges, y0, 0);
       for (int32_t y = y0;; y++) {
-        const zs_row_ptrs row = zs_row_of(t, y);
+        const zs_row_ptrs row = zs_row_of(&tl, y);
         int64_t x0, x1;
-        zs_row_span(k, &row, t->width, &a, simd, vector_from, &spans, &tested, &written, &x0,
+        zs_row_span(k, &row, tl.width, &a, simd, vector_from, &spans, &tested, &written, &x0,
                     &x1);
         if (y == y1) break;
         zs_step_down(&a, edges, y, 0);
