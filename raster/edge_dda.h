@@ -6,8 +6,12 @@
 
 #include "raster/internal.h"
 
+/* floor(a / d) for d > 0: C's quotient truncates, so one less where
+ * the remainder is negative.  Without a branch on a's sign, which the
+ * walk's edges take either way at random. */
 static inline int64_t zs_floor_div(int64_t a, int64_t d) {
-  return a >= 0 ? a / d : -((-a + d - 1) / d);
+  const int64_t q = a / d;
+  return q - (a - q * d < 0);
 }
 
 /* The edge's DDA on row `row`: x the first column whose centre lies at or
