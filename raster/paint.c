@@ -159,15 +159,10 @@ ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *
 
 /* The table's polygons, each whole, in the table's order; with small
  * (the AVX-512 draw kernel's copy for a soup), the small ones by their
- * edge functions.  The records are fetched ahead for a soup only (soup:
- * most polygons begin far from the one before): a mesh's lie in the
- * order they are read, which the caches' own prefetch follows, and
- * fetching them ahead as well costs the teapots 2 % (zscan bench raster
- * --algo zbuffer --case builtin:teapots). */
+ * edge functions. */
 __attribute__((always_inline)) static inline void paint(const zs_batch *b, const zs_kernel k,
                                                         const zs_simd simd, const int vector_from,
-                                                        const int small, const int soup,
-                                                        const zs_target *t,
+                                                        const int small, const zs_target *t,
                                                         int row_begin, int row_end,
                                                         const zs_table *table,
                                                         const zs_walk_scratch *s,
@@ -185,7 +180,7 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
   for (int32_t r = table->first; r <= table->last; r++) {
     const int32_t y0 = row_begin + r;
     for (int32_t j = start[r]; j < start[r + 1]; j++) {
-      if (soup) zs_table_prefetch(b, order, j, table->polys);
+      zs_table_prefetch(b, order, j, table->polys);
       const int32_t i = order[j];
       const zs_poly *p = &polys[i];
       const int32_t y1 = p->row1 < row_end - 1 ? p->row1 : row_end - 1;
@@ -224,7 +219,7 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
 ZS_AVX512_TARGET static void paint_avx512(const zs_batch *b, const zs_target *t, int row_begin,
                                           int row_end, const zs_table *table,
                                           const zs_walk_scratch *s, zs_walk_counts *counts) {
-  paint(b, ZS_KERNEL_DRAW, ZS_SIMD_AVX512, 1, 1, 1, t, row_begin, row_end, table, s, counts);
+  paint(b, ZS_KERNEL_DRAW, ZS_SIMD_AVX512, 1, 1, t, row_begin, row_end, table, s, counts);
 }
 #endif
 
@@ -246,26 +241,25 @@ int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_b
       4 * rows * cols >= (int64_t)(row_end - row_begin) * t->width)
     return zs_walk_sorted(b, k, t, row_begin, row_end, &table, s, counts);
   clear_fresh(t, row_begin + table.first, table.last_row);
-  const int soup = 2 * (int64_t)table.jumps > table.polys;
   /* a copy of the loop per kernel, k a constant in each */
   switch (k) {
     case ZS_KERNEL_DRAW:
 #ifdef ZS_HAVE_AVX512_SPANS
-      if (t->simd == ZS_SIMD_AVX512 && soup) {
+      if (t->simd == ZS_SIMD_AVX512 && 2 * (int64_t)table.jumps > table.polys) {
         paint_avx512(b, t, row_begin, row_end, &table, s, counts);
         break;
       }
 #endif
-      paint(b, ZS_KERNEL_DRAW, t->simd, zs_simd_min_span(t->simd), 0, soup, t, row_begin,
-            row_end, &table, s, counts);
-      break;
-    case ZS_KERNEL_OVERDRAW:
-      paint(b, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR, INT_MAX, 0, soup, t, row_begin, row_end,
+      paint(b, ZS_KERNEL_DRAW, t->simd, zs_simd_min_span(t->simd), 0, t, row_begin, row_end,
             &table, s, counts);
       break;
+    case ZS_KERNEL_OVERDRAW:
+      paint(b, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR, INT_MAX, 0, t, row_begin, row_end, &table, s,
+            counts);
+      break;
     case ZS_KERNEL_QUERY:
-      paint(b, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0, soup, t, row_begin, row_end, &table,
-            s, counts);
+      paint(b, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0, t, row_begin, row_end, &table, s,
+            counts);
       break;
   }
   return 1;
