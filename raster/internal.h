@@ -21,6 +21,7 @@
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define ZS_HAVE_X86_PATHS 1
 #define ZS_AVX512_TARGET __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq")))
+#define ZS_AVX512_INLINE ZS_AVX512_TARGET __attribute__((always_inline)) static inline
 #endif
 
 /* Threads a device may have, and bands of rows a walk is cut into: the

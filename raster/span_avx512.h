@@ -16,8 +16,6 @@
 #include <immintrin.h>
 #define ZS_HAVE_AVX512_SPANS 1
 
-#define ZS_AVX512_INLINE ZS_AVX512_TARGET __attribute__((always_inline)) static inline
-
 /* The depths of sixteen pixels from their planes' values, eight in za and
  * eight in zb, each already between 0 and the far plane: shifted down,
  * the low 32 bits. */

@@ -27,7 +27,7 @@
 #include <immintrin.h>
 
 /* One row of m applied to the eight points (x, y, z, 1). */
-ZS_AVX512_TARGET __attribute__((always_inline)) static inline __m512d
+ZS_AVX512_INLINE __m512d
 row_of(const double *m, __m512d x, __m512d y, __m512d z) {
   const __m512d s = _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(m[0]), x),
                                   _mm512_mul_pd(_mm512_set1_pd(m[1]), y));
@@ -36,7 +36,7 @@ row_of(const double *m, __m512d x, __m512d y, __m512d z) {
 }
 
 /* A lane's outcode bit where the distance is not >= 0 (NaN included). */
-ZS_AVX512_TARGET __attribute__((always_inline)) static inline __m512i
+ZS_AVX512_INLINE __m512i
 mark_out(__m512i code, __m512d dist, unsigned bit) {
   const __mmask8 in = _mm512_cmp_pd_mask(dist, _mm512_setzero_pd(), _CMP_GE_OQ);
   return _mm512_mask_or_epi64(code, (__mmask8)~in, code, _mm512_set1_epi64(bit));
