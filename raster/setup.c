@@ -289,7 +289,7 @@ static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t ar
    * a turn, so the four less than two whole turns; a polygon that winds
    * once and turns one way is convex, and so monotone.  A quad, most
    * faces of a mesh, skips the count below (zscan bench raster --algo
-   * zbuffer --case builtin:teapots measures it). */
+   * zbuffer --case builtin:teapots --callgrind counts what it saves). */
   if (n == 4) return 1;
   /* Going round, the vertical direction may change only at the top and
    * at the bottom vertex. */
