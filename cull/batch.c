@@ -6,8 +6,8 @@
 #include <string.h>
 
 #include "cull/internal.h"
-#include "raster/exactmath.h"
-#include "raster/grow.h"
+#include "util/exactmath.h"
+#include "util/grow.h"
 
 int cull_push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem e, unsigned mask,
                       uint8_t was_visible) {

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/grow.h"
+#include "util/grow.h"
 
 int cull_churn_begin(zs_churn *ch, int32_t n) {
   if (n != ch->n) ch->have_last = 0;

@@ -8,7 +8,7 @@
 #include <math.h>
 
 #include "cull/internal.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* Polygons under every node: its objects' faces plus its children's. */
 static int count_polygons(frame_ctx *f) {

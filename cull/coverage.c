@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
-#include "raster/grow.h"
+#include "util/exactmath.h"
+#include "util/grow.h"
 #include "raster/raster.h"
 
 int zs_coverage_reset(zs_coverage *c, int width, int height, const double view[16],

@@ -132,8 +132,7 @@ zs_status zs_culler_frame(zs_culler *c, zs_device *dev, const zs_scene *s, const
   zs_device_clear(dev);
   zs_device_set_camera(dev, view, proj);
   zs_frustum_from_matrices(&f.frustum, view, proj);
-  for (int i = 0; i < 3; i++)
-    f.eye[i] = -(view[i] * view[3] + view[4 + i] * view[7] + view[8 + i] * view[11]);
+  zs_mat_eye_of_view(view, f.eye);
   c->ops->frame(&f);
   return f.status;
 }

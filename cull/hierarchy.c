@@ -4,7 +4,7 @@
  * element), and what is done to an element visited. */
 
 #include "cull/internal.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* ---- elements ---- */
 

@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "cull/internal.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* The elements of one level, and where each one's boxes start. */
 typedef struct level {

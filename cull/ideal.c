@@ -7,7 +7,7 @@
 #include <stdlib.h>
 
 #include "cull/internal.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* The oracle device (ids, z-buffer), the culler's flags and the churn's
  * arrays (which hold the pixels each instance owns, for both), cleared

@@ -20,7 +20,7 @@
 #include "cull/cull.h"
 #include "cull/frustum.h"
 #include "cull/parts.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 
 /* The hierarchy the methods walk: the octree's nodes, with each object as
  * a leaf of the node that holds it (so a visible object does not drag its

@@ -85,7 +85,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/scene.h"
 
 enum {

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "cull/box.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* A mesh's parts: the vertices of each (a vertex of faces in two parts is
  * in both), as one list with offsets. */

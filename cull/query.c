@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "cull/internal.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* Appends the boxes a query over element e draws: a node's tight box; an
  * object's parts (parts.h) or its box. */

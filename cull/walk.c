@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "cull/internal.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 /* The culler's state for the frame's tree and scene, the near plane's
  * reach and the decisions' overlay; 0 when out of memory. */

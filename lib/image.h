@@ -32,7 +32,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "zscan/zscan.h"
 
 /* The text chunk (keyword, text) that marks a PNG whose pixels are face

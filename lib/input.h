@@ -2,7 +2,7 @@
 #ifndef ZS_LIB_INPUT_H
 #define ZS_LIB_INPUT_H
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/model.h"
 #include "scene/scene.h"
 

@@ -26,7 +26,7 @@
 
 #include <stdio.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 typedef struct zs_out {
   FILE *fp;     /* where the bytes go; NULL when closed */

@@ -12,7 +12,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "raster/raster.h"
 
 zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_line_run *runs,

@@ -46,7 +46,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 #include "raster/pool.h"
 

@@ -9,8 +9,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "raster/exactmath.h"
-#include "raster/grow.h"
+#include "util/exactmath.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 
 const char *zs_motion_class_name(zs_motion_class m) {

@@ -162,9 +162,7 @@ void zs_device_set_camera(zs_device *d, const double view[16],
                           const double proj[16]) {
   memcpy(d->view, view, sizeof d->view);
   memcpy(d->proj, proj, sizeof d->proj);
-  /* view = [R | t] with R a rotation: the eye is -R^T t. */
-  for (int i = 0; i < 3; i++)
-    d->eye[i] = -(view[i] * view[3] + view[4 + i] * view[7] + view[8 + i] * view[11]);
+  zs_mat_eye_of_view(view, d->eye);
   /* A perspective matrix has -1 in its last row; recover near and far
    * from its third row for the depth shading. */
   double a = proj[10], b = proj[11];

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 
 #define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */

@@ -38,7 +38,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 
 /* ---- the pyramid ---- */

@@ -2,7 +2,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 
 zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {

@@ -57,7 +57,8 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "util/matrix.h"
+#include "zscan/error.h"
 #include "zscan/clock.h"
 #include "zscan/depthsort.h"
 #include "zscan/trace.h"
@@ -68,8 +69,6 @@ enum {
   ZS_SUBPIXEL_ONE = 1 << ZS_SUBPIXEL_BITS,
   ZS_GUARD_PIXELS = 1 << 15    /* snapped |x|,|y| stay below this */
 };
-
-#define ZS_PI 3.14159265358979323846
 
 /* The faces the clock charges a draw for: those that reached set-up and
  * were not culled as back faces or degenerate.  A face dropped there for
@@ -193,27 +192,5 @@ void zs_device_keep_line_runs(zs_device *d, int keep);
 /* The runs recorded since the last clear, n of them (NULL when none; n
  * is -1 when one could not be kept for want of memory). */
 const zs_line_run *zs_device_line_runs(const zs_device *d, int32_t *n);
-
-/* zs_mat_rotate with the angle in turns (1 turn = 360 degrees): for an
- * angle drawn in turns, which would not survive * 360 / 360 bit for bit. */
-void zs_mat_rotate_turns(double m[16], double turns, double x, double y, double z);
-
-/* out = m (p, 1): inline, as set-up calls it once or twice per vertex. */
-static inline void zs_mat_apply(const double m[16], const double p[3], double out[4]) {
-  for (int i = 0; i < 4; i++)
-    out[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
-}
-
-/* Newell's normal of a polygon is the sum of this term over its edges a-c
- * (corner i to corner i + 1, the last back to the first): twice its vector
- * area, exact for planar polygons and the best-fitting plane's normal for
- * others; its component along an axis is twice the signed area of the
- * projection onto the plane of the other two.  Every caller sums the edges
- * in that order from nrm = 0, so all get the same bits. */
-static inline void zs_newell_add(double nrm[3], const double *a, const double *c) {
-  nrm[0] += (a[1] - c[1]) * (a[2] + c[2]);
-  nrm[1] += (a[2] - c[2]) * (a[0] + c[0]);
-  nrm[2] += (a[0] - c[0]) * (a[1] + c[1]);
-}
 
 #endif

@@ -27,7 +27,7 @@
  * out (raster.h, COVERAGE).
  */
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/span.h"
 
 /* The scanline z-buffer of the lecture: row by row, with the active

@@ -29,7 +29,7 @@
 #include <cpuid.h> /* PREFETCHW, below */
 #endif
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 
 

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "raster/internal.h"
 
 static int cmp_int64(const void *a, const void *b) {

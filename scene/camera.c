@@ -2,8 +2,8 @@
 
 #include <math.h>
 
-#include "raster/exactmath.h"
-#include "raster/raster.h"
+#include "util/exactmath.h"
+#include "util/matrix.h"
 
 void zs_camera_default(zs_camera *c) {
   *c = (zs_camera){.up = {0, 1, 0}, .fovy = ZS_CAMERA_DEFAULT_FOVY};

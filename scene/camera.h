@@ -22,7 +22,7 @@
 #ifndef ZS_SCENE_CAMERA_H
 #define ZS_SCENE_CAMERA_H
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 #define ZS_CAMERA_DEFAULT_DIR {0.55, 0.45, 1.0}
 #define ZS_CAMERA_DEFAULT_FOVY 45.0

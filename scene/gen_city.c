@@ -40,7 +40,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 
 #define BLOCK 40.0

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 

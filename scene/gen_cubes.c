@@ -3,7 +3,7 @@
  * "cube_i_j_k", centred at (2i - (n-1), 2j - (n-1), 2k - (n-1)) (centres 2
  * apart, the block centred on the origin), with palette colour number mod
  * ZS_GEN_PALETTE_SIZE. */
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 
 enum { CUBES_MAX = 64 }; /* n: 1 .. 64 */

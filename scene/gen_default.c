@@ -12,7 +12,7 @@
  *   z in [-12, 12], y in [-0.25, 0], the last object.  Ids: teapot t's
  *   faces start at t * 32 level^2, the ground's after the nine.  The camera
  *   is left to be completed from the bounds. */
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 

@@ -7,8 +7,8 @@
 #include <stdarg.h>
 #include <stdint.h>
 
-#include "raster/error.h"
-#include "raster/rng.h"
+#include "zscan/error.h"
+#include "util/rng.h"
 #include "scene/generate.h"
 #include "scene/model.h"
 #include "scene/scene.h"

@@ -1,9 +1,9 @@
 /* Placing generated parts: the matrices the generators build on zs_mat_*
- * (raster/transform.c) and zs_mat_rotate_turns.  See gen_internal.h. */
+ * (util/matrix.c) and zs_mat_rotate_turns.  See gen_internal.h. */
 #include <math.h>
 
-#include "raster/exactmath.h"
-#include "raster/raster.h"
+#include "util/exactmath.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 
 void zs_gen_random_rotation(zs_rng *rng, double m[16]) {

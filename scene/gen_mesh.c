@@ -16,9 +16,9 @@
 #include <string.h>
 #include <stdlib.h>
 
-#include "raster/exactmath.h"
-#include "raster/grow.h"
-#include "raster/raster.h"
+#include "util/exactmath.h"
+#include "util/grow.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 

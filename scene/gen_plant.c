@@ -44,8 +44,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
-#include "raster/raster.h"
+#include "util/exactmath.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 
 /* ---- colours ----------------------------------------------------------- */

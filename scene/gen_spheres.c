@@ -12,7 +12,7 @@
  *   changes which spheres move and nothing else: the first `moving` ones
  *   move along their local x axis and bounce off the cube's walls.
  */
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 
 #define SIDE 1000.0

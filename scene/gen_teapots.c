@@ -28,7 +28,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/gen_internal.h"
 #include "scene/teapot.h"
 

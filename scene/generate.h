@@ -15,9 +15,9 @@
  *     x: unknown generated scene 'x' (teapots, spheres, city, plant, cubes, default)
  *
  * DETERMINISM
- *   Every random choice draws from one zs_rng (raster/rng.h) seeded with
+ *   Every random choice draws from one zs_rng (util/rng.h) seeded with
  *   the spec's seed (default ZS_GEN_DEFAULT_SEED), and every angle goes
- *   through zs_sincos_turns (raster/exactmath.h), from + - * / only: the
+ *   through zs_sincos_turns (util/exactmath.h), from + - * / only: the
  *   same spec gives the same bytes (vertices, matrices, colours, path keys)
  *   on every run, compiler, optimisation level and C library.
  *   Two draws never share one expression: C leaves the order in which a
@@ -127,7 +127,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/model.h"
 #include "scene/scene.h"
 

@@ -37,7 +37,7 @@
 #ifndef ZS_SCENE_LOAD_ASSIMP_H
 #define ZS_SCENE_LOAD_ASSIMP_H
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/model.h"
 
 #define ZS_ASSIMP_MAX_BYTES (256ll << 20) /* 256 MiB */

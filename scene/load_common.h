@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 #if defined(__GNUC__)
 #define ZS_PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))

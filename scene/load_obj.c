@@ -11,7 +11,7 @@
  * those numbers are replaced by the materials' colours.
  */
 #include "scene/load_obj.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 #include "scene/load_common.h"
 #include "scene/text.h"
 

@@ -38,7 +38,7 @@
 
 #include <stddef.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/model.h"
 
 enum { ZS_OBJ_LINE_MAX = 65536 }; /* bytes per line, without "\r\n" */

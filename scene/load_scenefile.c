@@ -19,7 +19,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "raster/raster.h"
+#include "util/matrix.h"
 #include "scene/load_assimp.h"
 #include "scene/generate.h"
 #include "scene/load_common.h"

@@ -108,7 +108,7 @@
 
 #include <stddef.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/scene.h"
 
 #define ZS_SCENEFILE_MAX_BYTES (256ll << 20) /* scene and mesh files: 256 MiB */

@@ -6,7 +6,7 @@
  * writes anything, so an allocation failure leaves the model as it was.
  */
 #include "scene/model.h"
-#include "raster/grow.h"
+#include "util/grow.h"
 
 #include <math.h>
 #include <stdint.h>

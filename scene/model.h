@@ -14,7 +14,7 @@
 
 #include <stdint.h>
 
-#include "raster/raster.h"
+#include "util/matrix.h"
 
 #define ZS_GREY 0xB4B4B4u /* the colour of faces without a material */
 

@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
-#include "raster/raster.h"
+#include "util/exactmath.h"
+#include "util/matrix.h"
 
 const char zs_path_names[] = "static, translate, roll, yaw, fast";
 

@@ -36,7 +36,7 @@
  *                its start: s_f = 2.5 dist w(f) with w = 0, 1, 2, 1, 0,
  *                -1, -2, -1 repeating (period 8), up_f = u.  Most of the
  *                picture changes every frame (paper: 11.91 % old).
- * Angles go through zs_sincos_deg (raster/exactmath.h): the same bytes
+ * Angles go through zs_sincos_deg (util/exactmath.h): the same bytes
  * with every compiler and C library.
  */
 #ifndef ZS_SCENE_PATHS_H
@@ -45,7 +45,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

@@ -35,8 +35,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/grow.h"
-#include "raster/raster.h"
+#include "util/grow.h"
+#include "util/matrix.h"
 #include "scene/paths.h"
 
 /* ---- storage ---------------------------------------------------------- */

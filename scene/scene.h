@@ -31,7 +31,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/camera.h"
 #include "scene/model.h"
 

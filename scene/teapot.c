@@ -4,7 +4,7 @@
 
 #include <stddef.h>
 
-#include "raster/raster.h"
+#include "util/matrix.h"
 
 /* The 306 control points (x, y, z), z up, in the order of the published
  * table.  Vertices 205, 206, 216 and 223 of that table (1-based; the points

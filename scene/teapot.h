@@ -47,7 +47,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/model.h"
 
 enum {

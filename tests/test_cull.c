@@ -12,7 +12,7 @@
 #include "cull/frustum.h"
 #include "cull/octree.h"
 #include "cull/parts.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "scene/generate.h"
 #include "scene/load_obj.h"
 #include "scene/scene.h"

@@ -1,4 +1,4 @@
-/* The one trigonometry, e^x and log x (raster/exactmath.h): close to the C
+/* The one trigonometry, e^x and log x (util/exactmath.h): close to the C
  * library's, and the same bits everywhere, pinned for the matrices that
  * reach an image (perspective, rotation, the automatic camera, the walks'
  * paths).  The C library here is only the yardstick. */
@@ -6,9 +6,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
+#include "util/exactmath.h"
 #include "raster/raster.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "scene/camera.h"
 #include "scene/paths.h"
 #include "tests/testutil.h"

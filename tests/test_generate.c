@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
+#include "util/exactmath.h"
 #include "raster/raster.h"
 #include "scene/camera.h"
 #include "scene/generate.h"

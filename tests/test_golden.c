@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "scene/camera.h"
 #include "scene/model.h"
 #include "tests/testutil.h"

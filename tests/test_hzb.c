@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "raster/internal.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tests/testutil.h"
 
 static zs_error err;

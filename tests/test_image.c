@@ -15,7 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tools/crosscheck.h"
 #include "tools/commands.h"
 #include "lib/frame.h"

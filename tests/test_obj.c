@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
-#include "raster/rng.h"
+#include "util/exactmath.h"
+#include "util/rng.h"
 #include "scene/model.h"
 #include "scene/load_obj.h"
 #include "tests/testutil.h"

@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "cull/octree.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "scene/generate.h"
 #include "scene/scene.h"
 #include "tests/testutil.h"

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tests/testutil.h"
 
 static zs_error err;

@@ -10,7 +10,7 @@
 
 #include "raster/pool.h"
 #include "raster/internal.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tests/testutil.h"
 
 /* ---- helpers ---- */

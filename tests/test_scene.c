@@ -15,7 +15,7 @@
 #include <unistd.h>
 
 #include "raster/raster.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "scene/load_assimp.h"
 #include "scene/generate.h"
 #include "scene/camera.h"

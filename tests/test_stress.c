@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tests/testutil.h"
 
 enum { W = 128, H = 96 };

@@ -10,7 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tests/testutil.h"
 #include "lib/image.h"
 

@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 /* Loads each of specs[0..n-1] (INPUT forms: builtin:NAME,k=v) once and
  * prints its wall time with its objects and triangles. */

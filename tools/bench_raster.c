@@ -29,9 +29,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/exactmath.h"
+#include "util/exactmath.h"
 #include "raster/raster.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "scene/scene.h"
 #include "tools/callgrind.h"
 #include "tools/cli.h"

@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 zs_status zs_bench_tuning_report(FILE *f, zs_error *err);
 

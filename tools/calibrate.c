@@ -33,8 +33,8 @@
 #include <string.h>
 
 #include "raster/raster.h"
-#include "raster/grow.h"
-#include "raster/rng.h"
+#include "util/grow.h"
+#include "util/rng.h"
 #include "scene/generate.h"
 #include "scene/camera.h"
 #include "tools/clockfile.h"

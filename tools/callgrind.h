@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 /* Whether instruction counts can be taken here: valgrind on the PATH and a
  * build without sanitizers (valgrind cannot run those).  When not, the

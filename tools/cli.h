@@ -9,7 +9,7 @@
 
 #include <stddef.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err);
 zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,

@@ -27,7 +27,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/scene.h"
 
 /* Four steps of a 24-bit depth buffer, in zscan's depth units (2^-32 of

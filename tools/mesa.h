@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/scene.h"
 
 typedef struct zs_mesa zs_mesa;

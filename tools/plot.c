@@ -1,7 +1,7 @@
 #include "tools/plot.h"
 
 #include "lib/outfile.h"
-#include "raster/exactmath.h"
+#include "util/exactmath.h"
 #include "tools/spawn.h"
 
 #include <errno.h>

@@ -6,7 +6,7 @@
 #ifndef ZS_TOOLS_PLOT_H
 #define ZS_TOOLS_PLOT_H
 
-#include "raster/error.h"
+#include "zscan/error.h"
 
 /* Whether gnuplot can be run (found on PATH). */
 int zs_plot_available(void);

@@ -11,7 +11,7 @@
 #include "cull/cull.h"
 #include "cull/octree.h"
 #include "raster/raster.h"
-#include "raster/exactmath.h"
+#include "util/exactmath.h"
 #include "scene/load_assimp.h"
 #include "scene/camera.h"
 #include "scene/model.h"

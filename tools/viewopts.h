@@ -4,7 +4,7 @@
 #ifndef ZS_TOOLS_VIEWOPTS_H
 #define ZS_TOOLS_VIEWOPTS_H
 
-#include "raster/error.h"
+#include "zscan/error.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

@@ -10,7 +10,7 @@
 
 #include "cull/cull.h"
 #include "cull/octree.h"
-#include "raster/rng.h"
+#include "util/rng.h"
 #include "tests/fuzz/fuzz_obj_scene.h"
 
 enum { W = 64, H = 48, FRAMES = 4 };

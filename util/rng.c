@@ -1,4 +1,4 @@
-#include "raster/rng.h"
+#include "util/rng.h"
 
 #include <string.h>
 

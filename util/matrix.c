@@ -1,11 +1,12 @@
-/* Matrices and the camera, with the conventions of raster.h: row-major
+/* Matrices and the camera, with the conventions of zscan/zscan.h: row-major
  * double[16] acting on column vectors, OpenGL's gluLookAt, gluPerspective
  * and glOrtho. */
 #include <math.h>
 #include <string.h>
 
-#include "raster/raster.h"
-#include "raster/exactmath.h"
+#include "util/matrix.h"
+
+#include "util/exactmath.h"
 
 void zs_mat_identity(double m[16]) {
   memset(m, 0, 16 * sizeof m[0]);

@@ -1,9 +1,9 @@
-/* Trigonometry, e^x and log x from + - * / (raster/exactmath.h).
+/* Trigonometry, e^x and log x from + - * / (util/exactmath.h).
  *
  * Each function reduces its argument to a small interval exactly (or with
  * a two-part constant), then sums a truncated series by Horner's rule; the
  * first omitted term is below 2^-60 of the result. */
-#include "raster/exactmath.h"
+#include "util/exactmath.h"
 
 #include <math.h> /* floor, frexp, ldexp: exact; the constants HUGE_VAL, NAN */
 

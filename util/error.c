@@ -1,4 +1,4 @@
-#include "raster/error.h"
+#include "zscan/error.h"
 
 #include <stdarg.h>
 #include <stdio.h>
