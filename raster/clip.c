@@ -21,7 +21,7 @@
  * and lose every digit (a triangle with vertices at 1e30 came out half its
  * size before this).
  */
-#include "raster/internal.h"
+#include "raster/clip.h"
 
 /* The point where the edge from `in` (d_in >= 0) to `out` (d_out < 0)
  * crosses plane p, with its coordinate across the plane taken from the

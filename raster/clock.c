@@ -31,7 +31,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "raster/internal.h"
+#include "raster/device.h"
 
 void zs_clock_params_default(zs_clock_params *p) {
   *p = (zs_clock_params){
@@ -82,28 +82,16 @@ zs_status zs_device_set_clock(zs_device *d, const zs_clock_params *p, zs_error *
 }
 
 void zs_clock_reset(zs_device *d) {
+  memset(&d->stats, 0, sizeof d->stats);
   memset(&d->clock, 0, sizeof d->clock);
   d->nqueries = 0;
   d->query_open = 0;
   d->last_was_query = 0;
 }
 
-void zs_clock_cpu(zs_device *d, int64_t cost) { d->clock.cpu_ps += cost; }
-
-int64_t zs_clock_command_cost(const zs_device *d, int32_t vertices, uint64_t polygons,
-                              const zs_walk_counts *c, int is_query) {
-  const zs_clock_costs *k = &d->costs;
-  int64_t pixels = is_query ? k->per_query_pixel * (int64_t)c->tested
-                            : k->per_pixel * (int64_t)c->tested + k->per_write * (int64_t)c->written;
-  return k->per_call + k->per_vertex * vertices + k->per_polygon * (int64_t)polygons +
-         k->per_span * (int64_t)c->spans + pixels;
-}
-
-int64_t zs_clock_gpu_command(zs_device *d, int64_t cost, int is_query) {
-  return zs_clock_gpu_command_at(d, cost, is_query, d->clock.cpu_ps);
-}
-
-int64_t zs_clock_gpu_command_at(zs_device *d, int64_t cost, int is_query, int64_t cpu_ps) {
+/* The GPU runs a command of the given cost (ps), issued by the CPU at
+ * cpu_ps; returns the GPU time at which it ends. */
+static int64_t gpu_command(zs_device *d, int64_t cost, int is_query, int64_t cpu_ps) {
   /* The GPU cannot start a command before the CPU has issued it. */
   if (d->clock.gpu_ps < cpu_ps) d->clock.gpu_ps = cpu_ps;
   if (is_query != d->last_was_query) {
@@ -117,11 +105,115 @@ int64_t zs_clock_gpu_command_at(zs_device *d, int64_t cost, int is_query, int64_
   return d->clock.gpu_ps;
 }
 
+/* The GPU time of a draw or query box with these counts. */
+static int64_t command_cost(const zs_clock_costs *k, const zs_command *c, int is_query) {
+  const zs_scan_counts *s = &c->scan;
+  int64_t pixels = is_query ? k->per_query_pixel * (int64_t)s->tested
+                            : k->per_pixel * (int64_t)s->tested + k->per_write * (int64_t)s->written;
+  return k->per_call + k->per_vertex * c->vertices +
+         k->per_polygon * (int64_t)zs_face_counts_set_up(&c->faces) + k->per_span * (int64_t)s->spans +
+         pixels;
+}
+
+static void add_faces(zs_raster_stats *s, const zs_face_counts *fc) {
+  s->polygons_in += fc->in;
+  s->polygons_outside += fc->outside;
+  s->polygons_clipped += fc->clipped;
+  s->polygons_culled_back += fc->culled_back;
+  s->polygons_degenerate += fc->degenerate;
+  s->polygons_offscreen += fc->offscreen;
+  s->polygons_rasterized += fc->rasterized;
+}
+
+/* A query waits for its result: the CPU first for the GPU to finish the
+ * query's last command (a sync), then for the latency (a stall). */
+static void wait_for(zs_device *d, const zs_query_rec *r) {
+  zs_clock_stats *ck = &d->clock;
+  const int64_t ready = r->gpu_end_ps + d->costs.latency;
+  if (ck->cpu_ps >= ready) return;
+  ck->query_waits++;
+  if (ck->cpu_ps < r->gpu_end_ps) {
+    ck->sync_ps += r->gpu_end_ps - ck->cpu_ps;
+    ck->cpu_ps = r->gpu_end_ps;
+  }
+  if (ck->cpu_ps < ready) {
+    ck->stalls++;
+    ck->stall_ps += ready - ck->cpu_ps;
+    ck->cpu_ps = ready;
+  }
+}
+
+int64_t zs_clock_charge(zs_device *d, const zs_command *c) {
+  const zs_clock_costs *k = &d->costs;
+  zs_raster_stats *s = &d->stats;
+  zs_clock_stats *ck = &d->clock;
+  switch (c->kind) {
+    case ZS_CMD_DRAW:
+    case ZS_CMD_QUERY_BOXES: {
+      const int query = c->kind == ZS_CMD_QUERY_BOXES;
+      ck->cpu_ps += query ? k->cpu_per_query : k->cpu_per_call;
+      if (c->reached < ZS_COUNTED) return ck->gpu_ps;
+      s->draws++;
+      s->vertices += (uint64_t)c->vertices;
+      add_faces(s, &c->faces);
+      if (c->reached < ZS_COMPLETED) return ck->gpu_ps;
+      s->spans += c->scan.spans;
+      /* a query box tests pixels; the clock counts them */
+      if (query) ck->query_pixels += c->scan.tested;
+      else {
+        s->pixels_tested += c->scan.tested;
+        s->pixels_written += c->scan.written;
+      }
+      const int64_t end = gpu_command(d, command_cost(k, c, query), query,
+                                      c->issued_ps < 0 ? ck->cpu_ps : c->issued_ps);
+      if (d->query_open || query) { /* the open query counts its samples */
+        zs_query_rec *q = &d->queries[d->nqueries - 1];
+        q->samples += c->scan.written;
+        q->gpu_end_ps = end;
+      }
+      return end;
+    }
+    case ZS_CMD_FRAME_SCAN: /* the pixels of the frame's draws, their calls charged */
+      s->spans += c->scan.spans;
+      s->pixels_tested += c->scan.tested;
+      s->pixels_written += c->scan.written;
+      return gpu_command(d, command_cost(k, c, 0) - k->per_call, 0, ck->cpu_ps);
+    case ZS_CMD_QUERY_BEGIN:
+      ck->cpu_ps += k->cpu_per_query;
+      ck->queries++;
+      return ck->gpu_ps > ck->cpu_ps ? ck->gpu_ps : ck->cpu_ps;
+    case ZS_CMD_QUERY_RESULT:
+      wait_for(d, &d->queries[c->query]);
+      return ck->gpu_ps;
+    case ZS_CMD_HZB_BUILD:
+      ck->cpu_ps += k->cpu_per_call;
+      ck->hzb_texels += c->texels;
+      return gpu_command(d, k->hzb_pass + k->hzb_per_texel * (int64_t)c->texels, 0, ck->cpu_ps);
+    case ZS_CMD_HZB_TEST:
+      ck->cpu_ps += k->cpu_per_call;
+      ck->hzb_boxes += c->boxes;
+      ck->hzb_reads += c->reads;
+      return gpu_command(d,
+                         k->hzb_pass + k->hzb_per_box * (int64_t)c->boxes +
+                             k->hzb_per_read * (int64_t)c->reads,
+                         0, ck->cpu_ps);
+    case ZS_CMD_EDGES:
+      s->pixels_written += c->scan.written;
+      return ck->gpu_ps;
+    case ZS_CMD_CPU_WORK:
+      ck->cpu_ps += c->cpu_cost;
+      return ck->gpu_ps;
+  }
+  return ck->gpu_ps;
+}
+
 void zs_device_cpu_work(zs_device *d, zs_cpu_work kind, uint64_t count) {
   int64_t each = kind == ZS_CPU_NODE ? d->costs.cpu_per_node
                  : kind == ZS_CPU_FRUSTUM_TEST ? d->costs.cpu_per_frustum
                                                : d->costs.cpu_per_cost_eval;
-  zs_clock_cpu(d, each * (int64_t)count);
+  const zs_command c = {.kind = ZS_CMD_CPU_WORK, .issued_ps = -1,
+                        .cpu_cost = each * (int64_t)count};
+  zs_clock_charge(d, &c);
 }
 
 const zs_clock_stats *zs_device_clock(const zs_device *d) { return &d->clock; }

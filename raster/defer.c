@@ -1,7 +1,7 @@
-/* Deferred drawing (raster.h, zs_device_defer_draws; internal.h).
+/* Deferred drawing (raster.h, zs_device_defer_draws; device.h).
  *
  * With two threads or more, a draw of a few hundred faces is too small to
- * split: waking the threads for its set-up or its walk costs more than it
+ * split: waking the threads for its set-up or its scan costs more than it
  * saves (the plant's draws average 165 faces, a teapot's 688).  So while
  * deferral is on, zs_device_draw only queues the draw, and the next flush
  * renders the whole queue at once:
@@ -10,25 +10,25 @@
  *      of about equal faces; each chunk transforms and sets up its draws
  *      into a batch, and every draw remembers where its polygons lie
  *      (batch, first, count) and the rows they cover;
- *   2. the walk in bands of rows: each band takes the chunks in order,
- *      and in each every draw in issue order, and walks that draw's
+ *   2. the scan in bands of rows: each band takes the chunks in order,
+ *      and in each every draw in issue order, and scans that draw's
  *      polygons over the band's rows.  A pixel lies in one band, so it
  *      sees the fragments of the draws in the order they were issued,
  *      exactly as with immediate drawing: the same depth tests, the same
  *      writes, the same overwrites counted;
  *   3. settling, draw by draw in issue order: its set-up counters, its
- *      walk counters summed over the bands, and the clock: its GPU command
+ *      scan counters summed over the bands, and the clock: its GPU command
  *      charged as if issued when the CPU issued it (the CPU clock read at
  *      queueing time), so the modelled frame is also unchanged.
  *
- * Steps 1 and 2 overlap: a band walks a chunk as soon as the chunk is set
+ * Steps 1 and 2 overlap: a band scans a chunk as soon as the chunk is set
  * up and the band is through the chunk before it, and a free thread takes
- * such a walk before a new set-up, so a chunk's polygons are read while
- * still in the caches.  The chunks share DEFER_SLOTS_PER_THREAD batches a
+ * such a scan before a new set-up, so a chunk's polygons are read while
+ * still in the caches.  The chunks share ZS_DEFER_SLOTS_PER_THREAD batches a
  * thread in turn: a chunk is set up only when every band is through the
  * chunk that last used its batch, so the same few megabytes are written
  * over and over instead of the whole frame's polygons.  Setting up the
- * whole queue first and walking it after would leave the walk reading
+ * whole queue first and scanning it after would leave the scan reading
  * every polygon back from memory, a slower flush (zscan bench raster
  * --case builtin:plant --threads 2 measures it).
  *
@@ -46,21 +46,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "util/grow.h"
-#include "raster/internal.h"
+#include "raster/device.h"
 #include "raster/pool.h"
+#include "util/grow.h"
 
-/* Batches a thread for the chunks in flight: with one, a thread could not
- * set up its next chunk until the slowest band was through the last one;
- * with two it can, and more gain nothing (zscan bench raster --case
- * builtin:plant --threads 2 measures it). */
-enum { MAX_CHUNKS = 64, DEFER_SLOTS_PER_THREAD = 2 };
-
-/* Polls before a task with nothing to take sleeps: enough to outlast most
- * waits of the flush for a set-up or a band, as a task that sleeps costs
- * the one that wakes it a system call (zscan bench raster --case
- * builtin:plant --threads 2 measures it). */
-enum { FLUSH_SPINS = 1 << 14 };
+/* The chunks a flush cuts its queue into, at most (the records' size). */
+enum { MAX_CHUNKS = 64 };
 
 typedef struct queued_draw {
   const zs_mesh *mesh;
@@ -77,12 +68,13 @@ typedef struct queued_draw {
 struct zs_deferred {
   queued_draw *q;
   int32_t n, cap;
+  int64_t pending_ps;              /* the queued draws' CPU cost, charged at the flush */
   int32_t first[MAX_CHUNKS + 1];   /* chunk c: draws first[c] .. first[c + 1] - 1 */
   zs_batch batch[MAX_CHUNKS];      /* slot s: chunks c with c % nslots == s, in turn */
   zs_vert_scratch verts[MAX_CHUNKS];  /* the same, for their transformed vertices */
   zs_error err[MAX_CHUNKS];        /* per chunk, as st */
   zs_status st[MAX_CHUNKS];
-  zs_walk_counts *counts;          /* [band][draw] */
+  zs_scan_counts *counts;          /* [band][draw] */
   int32_t cap_counts;
   int32_t rows0, rows1;            /* rows the last flush's draws covered (rows1 < rows0: none yet) */
   pthread_mutex_t lock;            /* guards the flow of a flush (below) */
@@ -91,38 +83,37 @@ struct zs_deferred {
 };
 
 zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16],
-                        uint32_t id_base, uint32_t rgb, zs_kernel k, zs_error *err) {
+                        uint32_t id_base, uint32_t rgb, zs_error *err) {
   zs_deferred *q = d->deferred;
   if (mesh->nverts < 0 || mesh->nfaces < 0)
     return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
   if (!zs_grow((void **)&q->q, &q->cap, q->n + 1, sizeof *q->q))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-  /* what zs_device_draw counts and charges when it is issued */
-  zs_clock_cpu(d, d->costs.cpu_per_call);
-  d->stats.draws++;
-  d->stats.vertices += (uint64_t)mesh->nverts;
+  /* When the CPU issues it: the draws queued before it charge the CPU's
+   * clock only at the flush, each in turn as it settles */
+  q->pending_ps += d->costs.cpu_per_call;
   queued_draw *e = &q->q[q->n++];
   memset(e, 0, sizeof *e);
   e->mesh = mesh;
-  zs_draw_prepare(d, model, k, &e->prep);
+  zs_draw_prepare(&d->drawing->prep, d->view, d->proj, model, &e->prep);
   e->id_base = id_base;
   e->rgb = rgb;
-  e->cpu_ps = d->clock.cpu_ps;
+  e->cpu_ps = d->clock.cpu_ps + q->pending_ps;
   return ZS_OK;
 }
 
 /* ---- the flow of a flush ----
  *
  * Two kinds of task: set-up of a chunk (a run of consecutive draws), and
- * the walk of one band over one chunk.  Band b walks chunk c once chunk c
- * is set up and band b has walked chunk c - 1, so every pixel still sees
+ * the scan of one band over one chunk.  Band b scans chunk c once chunk c
+ * is set up and band b has scanned chunk c - 1, so every pixel still sees
  * the draws in issue order.  Each band has an owner, the task (thread)
- * that takes its walks first: task t owns a run of nbands / threads
+ * that takes its scans first: task t owns a run of nbands / threads
  * bands in a row, so a band's rows of the frame stay in one core's caches
  * from chunk to chunk.  A free task takes, in turn of preference, a ready
- * walk of a band it owns (the chunk's polygons are still in the caches),
- * a set-up, a ready walk of another task's band; it waits (polling, then
- * asleep: FLUSH_SPINS) only while every task it could take waits on one
+ * scan of a band it owns (the chunk's polygons are still in the caches),
+ * a set-up, a ready scan of another task's band; it waits (polling, then
+ * asleep: ZS_FLUSH_SPINS) only while every task it could take waits on one
  * running.  Were any task to take any ready band, a band's rows would go
  * back and forth between the cores, and the span fill would wait on the
  * old depth it loads from the other core's cache (zscan bench raster
@@ -131,17 +122,17 @@ zs_status zs_defer_push(zs_device *d, const zs_mesh *mesh, const double model[16
 typedef struct flush_job {
   zs_device *d;
   zs_deferred *q;
-  zs_kernel k;
+  const zs_traversal *tr;
   zs_target t;
   int nbands, row0, rows;      /* bands split rows row0 .. row0 + rows - 1 */
   int nslots;                   /* chunk c is set up in batch c % nslots */
   int ok[ZS_MAX_BANDS];
   /* the flow, under q->lock */
   int next_setup;               /* the next chunk to set up */
-  int last_chunk;               /* the last chunk to walk: a failed set-up ends the queue */
+  int last_chunk;               /* the last chunk to scan: a failed set-up ends the queue */
   int bands_left;               /* bands not through last_chunk */
   uint8_t set_up[MAX_CHUNKS];   /* chunk set up (whole, or up to its failed draw) */
-  int band_next[ZS_MAX_BANDS];     /* the next chunk each band walks */
+  int band_next[ZS_MAX_BANDS];     /* the next chunk each band scans */
   uint8_t band_busy[ZS_MAX_BANDS];
   _Atomic uint32_t changes;     /* bumped under q->lock at each change of the flow */
 } flush_job;
@@ -165,11 +156,10 @@ static void setup_chunk(flush_job *j, int c) {
       st = zs_error_set(&err, ZS_ERR_NOMEM, "draw: out of memory");
       break;
     }
-    zs_draw_transform(j->d, &e->prep, m, &v, 0, m->nverts);
+    zs_draw_transform(&e->prep, m, &v, 0, m->nverts);
     zs_face_counts fc = {0, 0, 0, 0, 0, 0, 0};
     int32_t poly0 = b.npolys;
-    st = zs_draw_setup(j->d, &e->prep, &v, m, 0, m->nfaces, e->id_base, e->rgb, NULL, &b, &fc,
-                       &err);
+    st = zs_draw_setup(&e->prep, &v, m, 0, m->nfaces, e->id_base, e->rgb, NULL, &b, &fc, &err);
     e->fc = fc;
     /* a failed draw's polygons too: drawing at once leaves those set up
      * before its bad face in scanline mode's batch */
@@ -189,7 +179,7 @@ static void setup_chunk(flush_job *j, int c) {
 /* Cuts the queue into nfull runs of about equal weight (faces, plus one
  * per draw for its fixed work) followed by nsmall runs of a quarter of
  * that.  Small chunks last, so that the thread that runs out of work
- * first waits on a short walk or set-up, not on a whole chunk's, at the
+ * first waits on a short scan or set-up, not on a whole chunk's, at the
  * end of the flush (zscan bench raster --case builtin:plant --threads 2
  * --speedup measures it). */
 static void cut_chunks(zs_deferred *q, int nfull, int nsmall) {
@@ -214,7 +204,7 @@ static void cut_chunks(zs_deferred *q, int nfull, int nsmall) {
 /* The first row of band b (b = nbands: the window's end).  The bands
  * split the rows the last flush covered, the first and the last reaching
  * out to the window's edges: which draw lands in which band changes no
- * pixel and no counter, only how evenly the threads share the walk, and
+ * pixel and no counter, only how evenly the threads share the scan, and
  * this flush's rows are known only once its draws are set up. */
 static int band_start(const flush_job *j, int b) {
   if (b == 0) return 0;
@@ -222,29 +212,29 @@ static int band_start(const flush_job *j, int b) {
   return j->row0 + (int)zs_part_start(j->rows, b, j->nbands);
 }
 
-/* Walks band over chunk c's draws; returns 0 when it met a draw not set
+/* Scans band over chunk c's draws; returns 0 when it met a draw not set
  * up (the queue ends there). */
-static int walk_chunk(flush_job *j, int band, int c) {
+static int scan_chunk(flush_job *j, int band, int c) {
   zs_deferred *q = j->q;
   int y0 = band_start(j, band), y1 = band_start(j, band + 1);
-  zs_walk_counts *counts = &q->counts[(size_t)band * (size_t)q->n];
+  zs_scan_counts *counts = &q->counts[(size_t)band * (size_t)q->n];
   for (int32_t i = q->first[c]; i < q->first[c + 1]; i++) {
     const queued_draw *e = &q->q[i];
     if (!e->set_up) return 0;
-    counts[i] = (zs_walk_counts){0, 0, 0};
+    counts[i] = (zs_scan_counts){0, 0, 0};
     int r0 = e->row0 > y0 ? e->row0 : y0, r1 = e->row1 + 1 < y1 ? e->row1 + 1 : y1;
     if (e->npolys == 0 || r0 >= r1) continue;
     const zs_batch *b = &q->batch[e->slot];
     /* the draw's polygons: their edges are indexed in the chunk's batch */
     zs_batch view = {b->polys + e->poly0, e->npolys, e->npolys, b->edges, b->nedges,
                      b->nedges};
-    j->ok[band] &= zs_paint_batch(&view, j->k, &j->t, r0, r1, &j->d->band_scratch[band],
-                                  &counts[i]);
+    j->ok[band] &= zs_polyorder_batch(j->tr, &view, &j->t, r0, r1, &j->d->band_scratch[band],
+                                      &counts[i]);
   }
   return 1;
 }
 
-/* Whether chunk c may be set up: every band has walked the chunk that
+/* Whether chunk c may be set up: every band has scanned the chunk that
  * held its batch before. */
 static int slot_free(const flush_job *j, int c) {
   for (int b = 0; b < j->nbands; b++)
@@ -257,7 +247,7 @@ static int band_owner(const flush_job *j, int b) {
   return (int)((int64_t)b * j->d->cfg.threads / j->nbands);
 }
 
-/* A band free to walk its next chunk, or -1: among the bands task owns
+/* A band free to scan its next chunk, or -1: among the bands task owns
  * when own is set, else among the others. */
 static int ready_band(const flush_job *j, int task, int own) {
   for (int b = 0; b < j->nbands; b++) {
@@ -290,7 +280,7 @@ static void flush_worker(void *ctx, int task) {
       int c = j->band_next[band];
       j->band_busy[band] = 1;
       pthread_mutex_unlock(&q->lock);
-      int more = walk_chunk(j, band, c);
+      int more = scan_chunk(j, band, c);
       pthread_mutex_lock(&q->lock);
       j->band_busy[band] = 0;
       j->band_next[band] = c + 1;
@@ -312,7 +302,7 @@ static void flush_worker(void *ctx, int task) {
        * machine, and each wake is a system call for the waker. */
       const uint32_t seen = atomic_load_explicit(&j->changes, memory_order_relaxed);
       pthread_mutex_unlock(&q->lock);
-      for (int i = 0; i < FLUSH_SPINS &&
+      for (int i = 0; i < ZS_FLUSH_SPINS &&
                       atomic_load_explicit(&j->changes, memory_order_acquire) == seen;
            i++)
         cpu_relax();
@@ -340,44 +330,34 @@ static int32_t first_failure(const zs_deferred *q, zs_status *st, zs_error *err)
   return q->n;
 }
 
-/* Settles draws 0 .. ndraw - 1 in the order issued: their set-up
- * counters, their walk counters summed over nbands bands (none: the
- * pixels are walked and charged at finish), and the clock, each charged
- * as issued when the CPU queued it.  After a failed draw (st), its set-up
- * counters, as zs_device_draw would have added; the draws queued behind
- * it are taken back, counters and CPU time, as a caller drawing at once
- * would have stopped there. */
+/* Settles draws 0 .. ndraw - 1 in the order issued, each charged as the
+ * draw it is (zs_clock_charge): its set-up counters, its scan counters
+ * summed over nbands bands (none: the pixels are scanned and charged at
+ * finish), and its GPU command as issued when the CPU queued it.  After a
+ * failed draw (st), its set-up counters, as zs_device_draw would have
+ * added; the draws queued behind it are never charged, as a caller
+ * drawing at once would have stopped there. */
 static void settle(zs_device *d, const zs_deferred *q, int32_t ndraw, zs_status st, int nbands) {
-  for (int32_t i = 0; i < ndraw; i++) {
+  for (int32_t i = 0; i < ndraw + (st != ZS_OK); i++) {
     const queued_draw *e = &q->q[i];
-    zs_add_face_counts(&d->stats, &e->fc);
-    zs_walk_counts c = {0, 0, 0};
+    zs_command c = {.kind = ZS_CMD_DRAW, .issued_ps = e->cpu_ps, .vertices = e->mesh->nverts,
+                    .faces = e->fc, .reached = i < ndraw ? ZS_COMPLETED : ZS_COUNTED};
     for (int b = 0; b < nbands; b++)
-      zs_walk_counts_add(&c, &q->counts[(size_t)b * (size_t)q->n + (size_t)i]);
-    zs_add_walk_counts(&d->stats, &c);
-    int64_t cost = zs_clock_command_cost(d, e->mesh->nverts, e->fc.rasterized + e->fc.offscreen,
-                                         &c, 0);
-    zs_clock_gpu_command_at(d, cost, 0, e->cpu_ps);
-  }
-  if (st != ZS_OK) {
-    zs_add_face_counts(&d->stats, &q->q[ndraw].fc);
-    for (int32_t i = ndraw + 1; i < q->n; i++) {
-      d->stats.draws--;
-      d->stats.vertices -= (uint64_t)q->q[i].mesh->nverts;
-    }
-    d->clock.cpu_ps = q->q[ndraw].cpu_ps;
+      zs_scan_counts_add(&c.scan, &q->counts[(size_t)b * (size_t)q->n + (size_t)i]);
+    zs_clock_charge(d, &c);
   }
 }
 
-/* Sets up and walks the queue; returns the status of the first failed
- * draw (its set-up or, for all of them, memory for the walk). */
+/* Sets up and scans the queue; returns the status of the first failed
+ * draw (its set-up or, for all of them, memory for the scan). */
 static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   zs_deferred *q = j->q;
   /* sixteen chunks' weight a thread, so that the last one to finish does
    * not keep the others waiting long (with a few large chunks a thread,
    * the others sit idle through the last one), the last of them in
    * quarters */
-  int nsmall = 4 * d->cfg.threads, nfull = 15 * d->cfg.threads;
+  int nsmall = ZS_DEFER_SMALL_CHUNKS_PER_THREAD * d->cfg.threads,
+      nfull = ZS_DEFER_FULL_CHUNKS_PER_THREAD * d->cfg.threads;
   if (nfull + nsmall > MAX_CHUNKS) {
     nsmall = MAX_CHUNKS / 4;
     nfull = MAX_CHUNKS - nsmall;
@@ -395,7 +375,7 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   j->row0 = q->rows0;
   j->rows = q->rows1 - q->rows0 + 1;
   int nbands = zs_band_count(d->cfg.threads, j->rows);
-  j->nslots = DEFER_SLOTS_PER_THREAD * d->cfg.threads;
+  j->nslots = ZS_DEFER_SLOTS_PER_THREAD * d->cfg.threads;
   if (j->nslots > MAX_CHUNKS) j->nslots = MAX_CHUNKS;
   j->nbands = nbands < 1 ? 1 : nbands;
   if (!zs_grow((void **)&q->counts, &q->cap_counts, (int64_t)j->nbands * q->n,
@@ -427,22 +407,22 @@ static zs_status flush_queue(zs_device *d, flush_job *j, zs_error *err) {
   return st;
 }
 
-/* zbuffer mode: the queue set up and walked into the frame. */
-static zs_status flush_walking(zs_device *d, zs_error *err) {
+/* zbuffer mode: the queue set up and scanned into the frame. */
+static zs_status flush_scanning(zs_device *d, zs_error *err) {
   zs_deferred *q = d->deferred;
   flush_job j;
   memset(&j, 0, sizeof j);
   atomic_init(&j.changes, 0);
   j.d = d;
   j.q = q;
-  j.k = d->kernel;
-  j.t = zs_draw_frame_target(d);
+  j.tr = &d->drawing->traversal;
+  j.t = zs_frame_target(d);
   return flush_queue(d, &j, err);
 }
 
 /* ---- scanline mode: the queue set up into the frame's batch ----
  *
- * The frame is walked at finish, in bands (finish.c); what its draws
+ * The frame is scanned at finish, in bands (finish.c); what its draws
  * leave to the threads before is their set-up: chunks of draws set up in
  * parallel, each into its own batch, then appended to the frame's batch
  * in issue order, so the batch, and with it every pixel and counter, is
@@ -490,7 +470,9 @@ static zs_status flush_setting_up(zs_device *d, zs_error *err) {
   /* sixteen chunks a thread, taken as the threads come free: the one
    * to finish last waits on a short chunk (zscan bench raster --case
    * builtin:plant --algo scanline --threads 2 --speedup measures it) */
-  int nchunks = 16 * d->cfg.threads < MAX_CHUNKS ? 16 * d->cfg.threads : MAX_CHUNKS;
+  int nchunks = ZS_SETUP_CHUNKS_PER_THREAD * d->cfg.threads < MAX_CHUNKS
+                    ? ZS_SETUP_CHUNKS_PER_THREAD * d->cfg.threads
+                    : MAX_CHUNKS;
   if (nchunks > q->n) nchunks = q->n;
   cut_chunks(q, nchunks, 0);
   flush_job j;
@@ -544,7 +526,7 @@ int zs_defer_start(zs_device *d) {
   }
   q->rows1 = -1; /* no rows covered yet */
   /* what a flush does, for the mode: chosen once */
-  q->flush = d->cfg.algo == ZS_ALGO_ZBUFFER ? flush_walking : flush_setting_up;
+  q->flush = d->cfg.algo == ZS_ALGO_ZBUFFER ? flush_scanning : flush_setting_up;
   d->deferred = q;
   return 1;
 }
@@ -554,12 +536,16 @@ zs_status zs_device_flush(zs_device *d, zs_error *err) {
   if (!q || q->n == 0) return ZS_OK;
   zs_status st = q->flush(d, err);
   q->n = 0;
+  q->pending_ps = 0;
   for (int c = 0; c < MAX_CHUNKS; c++) zs_batch_reset(&q->batch[c]);
   return st;
 }
 
 void zs_defer_discard(zs_device *d) {
-  if (d->deferred) d->deferred->n = 0;
+  if (d->deferred) {
+    d->deferred->n = 0;
+    d->deferred->pending_ps = 0;
+  }
 }
 
 void zs_defer_free(zs_device *d) {

@@ -11,7 +11,7 @@
 
 #include "util/exactmath.h"
 #include "util/grow.h"
-#include "raster/internal.h"
+#include "raster/depthsort.h"
 
 const char *zs_motion_class_name(zs_motion_class m) {
   static const char *names[] = {"first", "static", "translate", "roll",
@@ -19,7 +19,60 @@ const char *zs_motion_class_name(zs_motion_class m) {
   return (unsigned)m < sizeof names / sizeof names[0] ? names[m] : "?";
 }
 
-void zs_depthsort_free(zs_depthsort *ds) {
+struct zs_depthsort {
+  uint32_t *face_ids;    /* this frame's faces in view, as drawn */
+  double *face_keys;     /* and their sort keys */
+  uint32_t nfaces, cap_faces;
+  uint32_t *noted_ids;   /* the last frame's face_ids and face_keys */
+  double *noted_keys;
+  uint32_t nnoted, cap_noted;
+  /* per face id (dense, grown to the largest id seen) */
+  double *key_of, *prev_key;
+  int32_t *rank_of;      /* this frame's place, back to front */
+  uint32_t *seen;        /* frame stamp: present this frame */
+  uint32_t *was;         /* frame stamp: kept in this frame's old queue */
+  uint32_t cap_ids;
+  uint32_t *order, *prev_order, *tmp, *fresh;  /* ids */
+  uint32_t n_prev, cap_order;
+  uint32_t frame;
+  uint32_t ordered_frame; /* the seen stamp of the faces in prev_order */
+  double drift;           /* the depth shift since prev_key was written */
+  double prev_view[16];
+  int has_prev;
+  zs_depthsort_stats stats;
+  double ms;
+  /* The faces ordered are those that meet the circle around the window,
+   * centred where the view axis meets the image plane: a roll keeps that
+   * set whole.  A point's place on the image plane is u = (x_ndc - cx) *
+   * sx, v = (y_ndc - cy) * sy; the circle is u^2 + v^2 <= r2. */
+  double cx, cy, sx, sy, r2;
+};
+
+zs_depthsort *zs_depthsort_create(void) { return calloc(1, sizeof(zs_depthsort)); }
+
+void zs_depthsort_set_projection(zs_depthsort *ds, const double proj[16], int perspective) {
+  /* Where the view axis lands in NDC: (-P02, -P12) under a perspective
+   * (x_ndc = (P00 x + P02 z) / -z), (P03, P13) under a parallel
+   * projection; the image plane's units are NDC over P00 and P11. */
+  ds->cx = perspective ? -proj[2] : proj[3];
+  ds->cy = perspective ? -proj[6] : proj[7];
+  ds->sx = proj[0] != 0.0 ? 1.0 / proj[0] : 0.0;
+  ds->sy = proj[5] != 0.0 ? 1.0 / proj[5] : 0.0;
+  ds->r2 = 0.0;
+  for (int corner = 0; corner < 4; corner++) { /* the farthest corner */
+    double u = ((corner & 1 ? 1.0 : -1.0) - ds->cx) * ds->sx;
+    double v = ((corner & 2 ? 1.0 : -1.0) - ds->cy) * ds->sy;
+    if (u * u + v * v > ds->r2) ds->r2 = u * u + v * v;
+  }
+}
+
+void zs_depthsort_clear(zs_depthsort *ds) { ds->nfaces = 0; }
+void zs_depthsort_forget(zs_depthsort *ds) { ds->has_prev = 0; }
+const zs_depthsort_stats *zs_depthsort_stats_of(const zs_depthsort *ds) { return &ds->stats; }
+double zs_depthsort_ms(const zs_depthsort *ds) { return ds->ms; }
+
+void zs_depthsort_destroy(zs_depthsort *ds) {
+  if (!ds) return;
   free(ds->face_ids);
   free(ds->face_keys);
   free(ds->noted_ids);
@@ -33,7 +86,7 @@ void zs_depthsort_free(zs_depthsort *ds) {
   free(ds->prev_order);
   free(ds->tmp);
   free(ds->fresh);
-  memset(ds, 0, sizeof *ds);
+  free(ds);
 }
 
 int zs_depthsort_note(zs_depthsort *ds, uint32_t id, double key) {
@@ -360,19 +413,19 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
  * circle around the window: some edge passes within its radius (a corner
  * inside is an edge's end inside), or the polygon holds its centre (by
  * the crossings of the ray from the centre along +u). */
-static int meets_sort_circle(const zs_device *d, const zs_clip_vert *p, int n) {
-  double u0 = (p[n - 1].x / p[n - 1].w - d->sort_cx) * d->sort_sx;
-  double v0 = (p[n - 1].y / p[n - 1].w - d->sort_cy) * d->sort_sy;
+static int meets_sort_circle(const zs_depthsort *ds, const zs_clip_vert *p, int n) {
+  double u0 = (p[n - 1].x / p[n - 1].w - ds->cx) * ds->sx;
+  double v0 = (p[n - 1].y / p[n - 1].w - ds->cy) * ds->sy;
   int inside = 0;
   for (int i = 0; i < n; i++) {
-    double u = (p[i].x / p[i].w - d->sort_cx) * d->sort_sx;
-    double v = (p[i].y / p[i].w - d->sort_cy) * d->sort_sy;
+    double u = (p[i].x / p[i].w - ds->cx) * ds->sx;
+    double v = (p[i].y / p[i].w - ds->cy) * ds->sy;
     /* the point of the edge (u0, v0)-(u, v) nearest the centre */
     double du = u - u0, dv = v - v0, len2 = du * du + dv * dv;
     double t = len2 > 0.0 ? -(u0 * du + v0 * dv) / len2 : 0.0;
     t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
     double nu = u0 + t * du, nv = v0 + t * dv;
-    if (nu * nu + nv * nv <= d->sort_r2) return 1;
+    if (nu * nu + nv * nv <= ds->r2) return 1;
     if ((v0 > 0.0) != (v > 0.0) && u0 - v0 * du / dv > 0.0) inside = !inside;
     u0 = u;
     v0 = v;
@@ -408,12 +461,12 @@ static int nearly_turned_to_eye(const zs_setup_params *sp, const zs_clip_vert *p
  * snapped in v->snap) drawn with a corner in the window does, and one
  * plainly turned away does not; else the tests run on the clipped polygon
  * or on the corners copied to scratch. */
-int zs_depthsort_selects(const zs_device *d, const zs_setup_params *sp,
-                              zs_setup_result r, const zs_vert_scratch *v, const int32_t *fv,
-                              const zs_clip_vert *clipped, int n, zs_clip_vert *scratch) {
+int zs_depthsort_selects(const zs_depthsort *ds, const zs_setup_params *sp, zs_setup_result r,
+                         const zs_clip_vert *clip, const zs_snap_vert *snap, const int32_t *fv,
+                         const zs_clip_vert *clipped, int n, zs_clip_vert *scratch) {
   const zs_clip_vert *poly = clipped;
   if (!clipped) {
-    const zs_snap_vert *sn = v->snap; /* corner i at sn[fv[i]] */
+    const zs_snap_vert *sn = snap; /* corner i at sn[fv[i]] */
     if (r == ZS_SETUP_BACK && sp->cull_back) {
       /* Most back faces are plainly so: twice their snapped area (in
        * subpixels) beyond four times their L1 perimeter (which bounds
@@ -435,11 +488,11 @@ int zs_depthsort_selects(const zs_device *d, const zs_setup_params *sp,
         if (si->x >= 0 && si->x <= wx && si->y >= 0 && si->y <= wy) return 1;
       }
     }
-    for (int i = 0; i < n; i++) scratch[i] = v->clip[fv[i]];
+    for (int i = 0; i < n; i++) scratch[i] = clip[fv[i]];
     poly = scratch;
   }
   if ((r == ZS_SETUP_BACK || r == ZS_SETUP_DEGENERATE) && sp->cull_back &&
       !nearly_turned_to_eye(sp, poly, n))
     return 0;
-  return meets_sort_circle(d, poly, n);
+  return meets_sort_circle(ds, poly, n);
 }

@@ -1,20 +1,22 @@
 /* The device: its context, and the commands clear, draw and finish.
  *
  * zbuffer mode (immediate): each draw is transformed, clipped, set up into
- * a batch and walked at once into full-frame depth, id and colour buffers.
+ * a batch and scanned at once into full-frame depth, id and colour buffers.
  * scanline mode: draws are set up into one batch for the whole frame, and
- * zs_device_finish walks it with buffers one row long, handing each row
+ * zs_device_finish scans it with buffers one row long, handing each row
  * out as soon as it is complete; the device then holds O(width) pixels.
- * Both walk with the same code and the same total order on (depth, id), so
+ * Both scan with the same code and the same total order on (depth, id), so
  * their images are the same to the byte.
  * depthsort mode collects the frame like scanline mode, then orders its
- * faces (depthsort.c) and walks it with painter's depths.
+ * faces (depthsort.c) and scans it with painter's depths.
  */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/internal.h"
+#include "raster/device.h"
+
+#include "raster/cpu.h"
 #include "raster/pool.h"
 
 static const char *const algo_names[] = {"zbuffer", "scanline", "depthsort"};
@@ -81,6 +83,7 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
     ok = d->row_depth && d->row_id && d->row_rgb && d->row_count;
   }
   if (ok) ok = (d->row_out = alloc_u32(w)) != NULL;
+  if (ok) ok = (d->depthsort = zs_depthsort_create()) != NULL;
   if (!ok) {
     zs_device_destroy(d);
     return zs_error_set(err, ZS_ERR_NOMEM,
@@ -130,12 +133,12 @@ void zs_device_destroy(zs_device *d) {
   free(d->band_rows);
   free(d->runs);
   zs_batch_free(&d->batch);
-  zs_walk_scratch_free(&d->scratch);
-  zs_depthsort_free(&d->depthsort);
-  zs_hzb_free(&d->hzb);
+  zs_scan_scratch_free(&d->scratch);
+  zs_depthsort_destroy(d->depthsort);
+  zs_hzb_destroy(d->hzb);
   zs_pool_destroy(d->pool);
   if (d->band_scratch)
-    for (int i = 0; i < ZS_MAX_BANDS; i++) zs_walk_scratch_free(&d->band_scratch[i]);
+    for (int i = 0; i < ZS_MAX_BANDS; i++) zs_scan_scratch_free(&d->band_scratch[i]);
   free(d->band_scratch);
   if (d->setup_parts)
     for (int i = 0; i < d->cfg.threads; i++) zs_batch_free(&d->setup_parts[i]);
@@ -150,13 +153,13 @@ const zs_device_config *zs_device_config_of(const zs_device *d) { return &d->cfg
 const zs_raster_stats *zs_device_stats(const zs_device *d) { return &d->stats; }
 void zs_device_set_trace(zs_device *d, const zs_trace_observer *obs) {
   d->trace = obs;
-  zs_finish_choose(d); /* the trace follows one walk, row by row */
+  zs_finish_choose(d); /* the trace follows one scan, row by row */
 }
 const zs_depthsort_stats *zs_device_depthsort_stats(const zs_device *d) {
-  return &d->depthsort.stats;
+  return zs_depthsort_stats_of(d->depthsort);
 }
-double zs_device_depthsort_ms(const zs_device *d) { return d->depthsort.ms; }
-void zs_device_depthsort_reset(zs_device *d) { d->depthsort.has_prev = 0; }
+double zs_device_depthsort_ms(const zs_device *d) { return zs_depthsort_ms(d->depthsort); }
+void zs_device_depthsort_reset(zs_device *d) { zs_depthsort_forget(d->depthsort); }
 
 void zs_device_set_camera(zs_device *d, const double view[16],
                           const double proj[16]) {
@@ -175,25 +178,13 @@ void zs_device_set_camera(zs_device *d, const double view[16],
     d->zfar = (b - 1.0) / a;
   }
   d->shade_row = zs_row_shader_for(d->cfg.shade, d->perspective);
-  /* Where the view axis lands in NDC: (-P02, -P12) under a perspective
-   * (x_ndc = (P00 x + P02 z) / -z), (P03, P13) under a parallel
-   * projection; the image plane's units are NDC over P00 and P11. */
-  d->sort_cx = d->perspective ? -proj[2] : proj[3];
-  d->sort_cy = d->perspective ? -proj[6] : proj[7];
-  d->sort_sx = proj[0] != 0.0 ? 1.0 / proj[0] : 0.0;
-  d->sort_sy = proj[5] != 0.0 ? 1.0 / proj[5] : 0.0;
-  d->sort_r2 = 0.0;
-  for (int corner = 0; corner < 4; corner++) { /* the farthest corner */
-    double u = ((corner & 1 ? 1.0 : -1.0) - d->sort_cx) * d->sort_sx;
-    double v = ((corner & 2 ? 1.0 : -1.0) - d->sort_cy) * d->sort_sy;
-    if (u * u + v * v > d->sort_r2) d->sort_r2 = u * u + v * v;
-  }
+  zs_depthsort_set_projection(d->depthsort, proj, d->perspective);
 }
 
 /* ---- clear ---- */
 
 /* zbuffer mode clears lazily: a clear marks every row fresh, and a row is
- * cleared when a walk first reaches it (zs_target.fresh) or a reader of
+ * cleared when a scan first reaches it (zs_target.fresh) or a reader of
  * the whole frame asks (zs_frame_clear_fresh); finish hands out a blank
  * row for a row no draw reached.  A small model's frame so clears only
  * the rows it covers (zscan bench raster --case models measures it). */
@@ -231,6 +222,24 @@ static void clear_frame_in_parts(zs_device *d) {
   zs_pool_run(d->pool, clear_part, &j, j.nparts);
 }
 
+zs_target zs_frame_target(const zs_device *d) {
+  zs_target t = {d->depth, d->id,  d->rgb,  d->count, d->cfg.width,
+                 d->cfg.width, 0, d->fresh, d->cfg.background};
+  return t;
+}
+
+void zs_frame_clear_fresh(const zs_device *d) {
+  if (!d->fresh) return;
+  const size_t w = (size_t)d->cfg.width;
+  for (int y = 0; y < d->cfg.height; y++)
+    if (d->fresh[y]) {
+      const size_t off = (size_t)y * w;
+      zs_clear_pixels(d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL,
+                      w, d->cfg.background);
+      d->fresh[y] = 0;
+    }
+}
+
 /* The buffers handed out: cleared now, and eagerly from now on.  (The
  * device is the caller's own, never a const object: only the view is.) */
 static const uint32_t *hand_out(const zs_device *cd, const uint32_t *buffer) {
@@ -245,13 +254,12 @@ const uint32_t *zs_device_id_buffer(const zs_device *d) { return hand_out(d, d->
 
 void zs_device_clear(zs_device *d) {
   zs_defer_discard(d); /* drawn and cleared away: the same frame */
-  memset(&d->stats, 0, sizeof d->stats);
   d->nruns = 0;
   d->nomem_runs = 0;
   zs_clock_reset(d);
   zs_batch_reset(&d->batch);
-  d->depthsort.nfaces = 0;
-  d->hzb.built = 0;
+  zs_depthsort_clear(d->depthsort);
+  if (d->hzb) zs_hzb_invalidate(d->hzb);
   d->clear_buffers(d);
 }
 
@@ -264,22 +272,12 @@ static zs_status draw_now(zs_device *d, const zs_mesh *mesh, const double model[
                           uint32_t id_base, uint32_t rgb, zs_error *err) {
   zs_status st = zs_device_flush(d, err);
   if (st != ZS_OK) return st;
-  uint64_t polygons = zs_polygons_set_up(&d->stats);
-  zs_walk_counts c;
-  zs_clock_cpu(d, d->costs.cpu_per_call);
-  st = zs_draw_at_once(d, mesh, model, id_base, rgb, d->kernel, &c, err);
-  if (st != ZS_OK) return st;
-  /* In scanline mode the pixels are walked in finish; the clock charges
+  /* In scanline mode the pixels are scanned at finish; the clock charges
    * them there. */
-  int64_t cost = zs_clock_command_cost(d, mesh->nverts, zs_polygons_set_up(&d->stats) - polygons,
-                                       &c, 0);
-  int64_t end = zs_clock_gpu_command(d, cost, 0);
-  if (d->query_open) {
-    zs_query_rec *q = &d->queries[d->nqueries - 1];
-    q->samples += c.written;
-    q->gpu_end_ps = end;
-  }
-  return ZS_OK;
+  zs_command c = {.kind = ZS_CMD_DRAW, .issued_ps = -1};
+  st = zs_draw_at_once(d, mesh, model, id_base, rgb, d->drawing, &c, err);
+  zs_clock_charge(d, &c);
+  return st;
 }
 
 /* Deferring: a draw is queued unless a query counts its pixels now or it
@@ -288,7 +286,7 @@ static zs_status draw_queued(zs_device *d, const zs_mesh *mesh, const double mod
                              uint32_t id_base, uint32_t rgb, zs_error *err) {
   if (d->query_open || mesh->nfaces >= ZS_DEFER_MAX_FACES)
     return draw_now(d, mesh, model, id_base, rgb, err);
-  return zs_defer_push(d, mesh, model, id_base, rgb, d->kernel, err);
+  return zs_defer_push(d, mesh, model, id_base, rgb, err);
 }
 
 zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh, const double model[16],
@@ -297,8 +295,8 @@ zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh, const double model[1
 }
 
 /* Deferral pays where there are threads: zbuffer mode sets the queue up
- * and walks it in parallel (defer.c), scanline mode sets it up in
- * parallel and walks the frame in bands at finish (finish.c); depth sort
+ * and scans it in parallel (defer.c), scanline mode sets it up in
+ * parallel and scans the frame in bands at finish (finish.c); depth sort
  * notes its faces in one list, so its draws stay immediate.  Without
  * memory for the queue, drawing stays immediate.  Turned off, the queue is
  * drawn at the next command that flushes (a draw does). */
@@ -312,23 +310,24 @@ void zs_device_defer_draws(zs_device *d, int on) {
  * threads decide, so that no command asks again. */
 static void choose_stages(zs_device *d) {
   const int zbuffer = d->cfg.algo == ZS_ALGO_ZBUFFER;
-  d->kernel = d->cfg.shade == ZS_SHADE_OVERDRAW ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW;
-  for (int k = ZS_KERNEL_DRAW; k <= ZS_KERNEL_QUERY; k++)
-    zs_draw_prep_fixed(d, (zs_kernel)k, &d->prep_of[k]);
-  d->painter = d->cfg.algo == ZS_ALGO_DEPTHSORT ? &d->depthsort : NULL;
+  /* each kernel's draw stage and traversals at the device's SIMD level */
+  for (int k = 0; k < ZS_KERNELS; k++) {
+    zs_kernel_state *ks = &d->state_of[k];
+    zs_draw_prep_fixed(&d->cfg, d->simd, d->gx, d->gy, d->prefetch_write, (zs_kernel)k, &ks->prep);
+    zs_scan_choose((zs_kernel)k, d->simd, &ks->traversal);
+    zs_polyorder_choose((zs_kernel)k, d->simd, &ks->traversal);
+  }
+  const int overdraw = d->cfg.shade == ZS_SHADE_OVERDRAW;
+  d->drawing = &d->state_of[overdraw ? ZS_KERNEL_OVERDRAW : ZS_KERNEL_DRAW];
+  d->clear_counts = overdraw;
+  d->painter = d->cfg.algo == ZS_ALGO_DEPTHSORT ? d->depthsort : NULL;
   /* the painter notes its faces' keys in one list: set up whole */
   d->set_up = d->pool && !d->painter ? zs_set_up_split : zs_set_up_whole;
-  d->walk = !zbuffer ? zs_walk_kept : d->pool ? zs_walk_frame_banded : zs_walk_frame;
+  d->rasterize = !zbuffer ? zs_rasterize_later : d->pool ? zs_rasterize_banded : zs_rasterize_frame;
   d->clear_buffers = zbuffer ? mark_rows_fresh : clear_rows_later;
   d->draw = draw_now;
   d->shade_row = zs_row_shader_for(d->cfg.shade, d->perspective);
   zs_finish_choose(d);
-}
-
-static size_t scratch_bytes(const zs_walk_scratch *s) {
-  return (size_t)s->cap_rows * sizeof *s->bucket_start +
-         (size_t)s->cap_polys * sizeof *s->order + (size_t)s->cap_cross * sizeof *s->cross +
-         (size_t)s->cap_active * sizeof *s->active;
 }
 
 zs_device_memory zs_device_memory_of(const zs_device *d) {
@@ -341,10 +340,10 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
   if (d->band_rows) m.pixel_buffers += zs_finish_bands_bytes(d);
   m.pixel_buffers += w * sizeof(uint32_t); /* the shaded row */
   m.tables = (size_t)d->batch.cap_polys * sizeof(zs_poly) +
-             (size_t)d->batch.cap_edges * sizeof(zs_edge) + scratch_bytes(&d->scratch);
+             (size_t)d->batch.cap_edges * sizeof(zs_edge) + zs_scan_scratch_bytes(&d->scratch);
   if (d->band_scratch)
-    for (int i = 0; i < ZS_MAX_BANDS; i++) m.tables += scratch_bytes(&d->band_scratch[i]);
-  m.tables += zs_defer_bytes(d) + zs_hzb_bytes(&d->hzb);
+    for (int i = 0; i < ZS_MAX_BANDS; i++) m.tables += zs_scan_scratch_bytes(&d->band_scratch[i]);
+  m.tables += zs_defer_bytes(d) + (d->hzb ? zs_hzb_bytes(d->hzb) : 0);
   m.vertices = zs_vert_scratch_bytes(&d->verts);
   return m;
 }

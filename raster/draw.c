@@ -1,12 +1,13 @@
-/* The draw stage: a draw's vertices transformed (the vertex stage) and its
- * faces rejected, shaded, clipped and set up into a batch (the face
- * stage), with the counters they add.  The device runs it at once
- * (immediate.c) or queued (defer.c); it calls neither. */
+/* The draw stage (draw.h): a draw's vertices transformed (the vertex
+ * stage) and its faces rejected, shaded, clipped and set up into a batch
+ * (the face stage), with the counters they add.  The device runs it at
+ * once (now.c) or queued (defer.c); it calls neither. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "util/grow.h"
-#include "raster/internal.h"
+#include "raster/draw.h"
+#include "raster/tuning.h"
 
 #define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
 
@@ -34,61 +35,41 @@ size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
          (sizeof(zs_clip_vert) + 3 * sizeof(double) + sizeof(unsigned) + sizeof(zs_snap_vert));
 }
 
-zs_target zs_draw_frame_target(zs_device *d) {
-  zs_target t = {d->depth, d->id,  d->rgb,  d->count, d->cfg.width,
-                 d->cfg.width, d->simd, 0, d->fresh, d->cfg.background};
-  return t;
-}
-
-/* device.c marks the rows fresh at a clear (internal.h). */
-void zs_frame_clear_fresh(const zs_device *d) {
-  if (!d->fresh) return;
-  const zs_target t = zs_draw_frame_target((zs_device *)d);
-  const size_t w = (size_t)d->cfg.width;
-  for (int y = 0; y < d->cfg.height; y++)
-    if (d->fresh[y]) {
-      const size_t off = (size_t)y * w;
-      zs_clear_pixels(t.depth + off, t.id + off, t.rgb + off, t.count ? t.count + off : NULL, w,
-                      d->cfg.background);
-      d->fresh[y] = 0;
-    }
-}
-
-void zs_add_walk_counts(zs_raster_stats *s, const zs_walk_counts *c) {
-  s->spans += c->spans;
-  s->pixels_tested += c->tested;
-  s->pixels_written += c->written;
-}
-
-void zs_draw_prep_fixed(const zs_device *d, zs_kernel k, zs_draw_prep *p) {
+void zs_draw_prep_fixed(const zs_device_config *cfg, zs_simd simd, double gx, double gy,
+                        int prefetch_write, zs_kernel k, zs_draw_prep *p) {
   memset(p, 0, sizeof *p);
-  p->flat = d->cfg.shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
-  p->need_eye = p->flat || d->cfg.algo == ZS_ALGO_DEPTHSORT;
-  p->sp = (zs_setup_params){d->cfg.width, d->cfg.height, d->cfg.cull_back && k != ZS_KERNEL_QUERY,
+  p->flat = cfg->shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
+  p->need_eye = p->flat || cfg->algo == ZS_ALGO_DEPTHSORT;
+  p->sp = (zs_setup_params){cfg->width, cfg->height, cfg->cull_back && k != ZS_KERNEL_QUERY,
                             0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0,
-                            d->prefetch_write};
+                            prefetch_write};
+  p->gx = gx;
+  p->gy = gy;
+  p->vertex_stage = zs_vertex_stage_for(simd);
+  p->flat_levels = zs_flat_levels_for(simd);
 }
 
-void zs_draw_prepare(const zs_device *d, const double model[16], zs_kernel k, zs_draw_prep *p) {
-  *p = d->prep_of[k];
-  if (model) zs_mat_mul(p->mv, d->view, model);
-  else memcpy(p->mv, d->view, sizeof p->mv);
-  zs_mat_mul(p->mvp, d->proj, p->mv);
+void zs_draw_prepare(const zs_draw_prep *fixed, const double view[16], const double proj[16],
+                     const double model[16], zs_draw_prep *p) {
+  *p = *fixed;
+  if (model) zs_mat_mul(p->mv, view, model);
+  else memcpy(p->mv, view, sizeof p->mv);
+  zs_mat_mul(p->mvp, proj, p->mv);
 }
 
 /* Vertices [i0, i1): to eye space (for the normals of flat shading and
  * the painter's keys) and to clip space, with the outcode, snapped when
  * inside every plane.  Eight at a time with AVX-512 where the device has
  * it (vertex_simd.c, the same bits), the rest here. */
-void zs_draw_transform(const zs_device *d, const zs_draw_prep *pr, const zs_mesh *mesh,
-                       zs_vert_scratch *v, int32_t i0, int32_t i1) {
-  if (d->simd == ZS_SIMD_AVX512) i0 = zs_vertex_stage_avx512(pr, mesh, v, i0, i1, d->gx, d->gy);
+void zs_draw_transform(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scratch *v, int32_t i0,
+                       int32_t i1) {
+  i0 = pr->vertex_stage(pr, mesh, v, i0, i1);
   for (int32_t i = i0; i < i1; i++) {
     const double *p = &mesh->pos[3 * i];
     double c[4];
     zs_mat_apply(pr->mvp, p, c);
     v->clip[i] = (zs_clip_vert){c[0], c[1], c[2], c[3]};
-    v->outcode[i] = zs_clip_outcode(&v->clip[i], d->gx, d->gy);
+    v->outcode[i] = zs_clip_outcode(&v->clip[i], pr->gx, pr->gy);
     /* snapped once here for all the faces that share it (set-up snaps
      * the vertices of a clipped face itself) */
     if (v->outcode[i] == 0) zs_snap_vertex(&pr->sp, &v->clip[i], &v->snap[i]);
@@ -113,7 +94,7 @@ __attribute__((always_inline)) static inline void newell_of_face(const double *e
 /* The faces of a draw whose flat colour waits for the levels of a run of
  * them at once (zs_flat_levels: why, in shade.c): each face's normal, its
  * colour and its polygons [first, end) in the batch. */
-enum { FLAT_RUN = 64 };
+enum { FLAT_RUN = ZS_FLAT_RUN };
 typedef struct flat_run {
   double nx[FLAT_RUN], ny[FLAT_RUN], nz[FLAT_RUN];
   uint32_t rgb[FLAT_RUN];
@@ -122,9 +103,9 @@ typedef struct flat_run {
 } flat_run;
 
 /* The run's faces' polygons get their flat colours; the run is empty. */
-static void flat_run_finish(flat_run *run, zs_simd simd, zs_batch *b) {
+static void flat_run_finish(flat_run *run, zs_flat_levels_fn flat_levels, zs_batch *b) {
   uint32_t q[FLAT_RUN];
-  zs_flat_levels(simd, run->nx, run->ny, run->nz, run->n, q);
+  flat_levels(run->nx, run->ny, run->nz, run->n, q);
   for (int k = 0; k < run->n; k++) {
     const uint32_t shaded = zs_flat_tint(run->rgb[k], q[k]);
     for (int32_t i = run->first[k]; i < run->end[k]; i++) b->polys[i].rgb = shaded;
@@ -134,8 +115,7 @@ static void flat_run_finish(flat_run *run, zs_simd simd, zs_batch *b) {
 
 /* Faces [f0, f1): trivial reject, clipping where a face crosses a plane,
  * set-up; under flat shading, the faces that became polygons join run. */
-static zs_status setup_faces(const zs_device *d, const zs_draw_prep *pr,
-                             const zs_vert_scratch *v, const zs_mesh *mesh, int32_t f0,
+static zs_status setup_faces(const zs_draw_prep *pr, const zs_vert_scratch *v, const zs_mesh *mesh, int32_t f0,
                              int32_t f1, uint32_t id_base, uint32_t rgb, zs_depthsort *ds,
                              zs_batch *b, zs_face_counts *fc, flat_run *run, zs_error *err) {
   zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
@@ -171,7 +151,7 @@ static zs_status setup_faces(const zs_device *d, const zs_draw_prep *pr,
     if (or_code) {
       for (int i = 0; i < n; i++) in[i] = v->clip[fv[i]];
       fc->clipped++;
-      n = zs_clip_polygon(in, n, or_code, d->gx, d->gy, clipped);
+      n = zs_clip_polygon(in, n, or_code, pr->gx, pr->gy, clipped);
       if (n == 0) {
         fc->outside++;
         continue;
@@ -194,7 +174,7 @@ static zs_status setup_faces(const zs_device *d, const zs_draw_prep *pr,
       const int k = run->n++;
       run->nx[k] = nrm[0], run->ny[k] = nrm[1], run->nz[k] = nrm[2];
       run->rgb[k] = sp.rgb, run->first[k] = first_poly, run->end[k] = b->npolys;
-      if (run->n == FLAT_RUN) flat_run_finish(run, d->simd, b);
+      if (run->n == FLAT_RUN) flat_run_finish(run, pr->flat_levels, b);
     }
     /* The painter orders the faces that meet the circle around the
      * window, drawn or not, turned to the eye or nearly: a roll keeps that
@@ -202,7 +182,8 @@ static zs_status setup_faces(const zs_device *d, const zs_draw_prep *pr,
      * order already.  A face drawn outside it (its box met a pixel centre,
      * the face does not) covers no pixel and is painted farthest. */
     if (__builtin_expect(ds != NULL, 0) && r != ZS_SETUP_NOMEM) { /* the painter only */
-      if (zs_depthsort_selects(d, &sp, r, v, fv, or_code ? clipped : NULL, n, in)) {
+      if (zs_depthsort_selects(ds, &sp, r, v->clip, v->snap, fv, or_code ? clipped : NULL, n,
+                               in)) {
         /* the sort key: distance along the view axis of the centroid of
          * the face's vertices */
         double zsum = 0.0;
@@ -222,23 +203,12 @@ static zs_status setup_faces(const zs_device *d, const zs_draw_prep *pr,
   return ZS_OK;
 }
 
-zs_status zs_draw_setup(const zs_device *d, const zs_draw_prep *pr, const zs_vert_scratch *v,
-                        const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
-                        uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
-                        zs_error *err) {
+zs_status zs_draw_setup(const zs_draw_prep *pr, const zs_vert_scratch *v, const zs_mesh *mesh,
+                        int32_t f0, int32_t f1, uint32_t id_base, uint32_t rgb, zs_depthsort *ds,
+                        zs_batch *b, zs_face_counts *fc, zs_error *err) {
   flat_run run;
   run.n = 0;
-  const zs_status st = setup_faces(d, pr, v, mesh, f0, f1, id_base, rgb, ds, b, fc, &run, err);
-  flat_run_finish(&run, d->simd, b); /* on an error too: no polygon left uncoloured */
+  const zs_status st = setup_faces(pr, v, mesh, f0, f1, id_base, rgb, ds, b, fc, &run, err);
+  flat_run_finish(&run, pr->flat_levels, b); /* on an error too: no polygon left uncoloured */
   return st;
-}
-
-void zs_add_face_counts(zs_raster_stats *s, const zs_face_counts *fc) {
-  s->polygons_in += fc->in;
-  s->polygons_outside += fc->outside;
-  s->polygons_clipped += fc->clipped;
-  s->polygons_culled_back += fc->culled_back;
-  s->polygons_degenerate += fc->degenerate;
-  s->polygons_offscreen += fc->offscreen;
-  s->polygons_rasterized += fc->rasterized;
 }

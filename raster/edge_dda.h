@@ -1,14 +1,14 @@
 /* zscan raster — the exact integer DDA of an edge (scanline.c's header
- * comment derives it), inline for the walk's inner loop and shared with
- * the trace, which reports the walk's own integers. */
+ * comment derives it), inline for the scan's inner loop and shared with
+ * the trace, which reports the scan's own integers. */
 #ifndef ZS_RASTER_EDGE_DDA_H
 #define ZS_RASTER_EDGE_DDA_H
 
-#include "raster/internal.h"
+#include "raster/scan.h"
 
 /* floor(a / d) for d > 0: C's quotient truncates, so one less where
  * the remainder is negative.  Without a branch on a's sign, which the
- * walk's edges take either way at random. */
+ * scan's edges take either way at random. */
 static inline int64_t zs_floor_div(int64_t a, int64_t d) {
   const int64_t q = a / d;
   return q - (a - q * d < 0);
@@ -20,7 +20,7 @@ static inline int64_t zs_floor_div(int64_t a, int64_t d) {
  * D = 256 (Y1 - Y0) < 2^32, rem and rs lie in [0, D), and |x|, |q| are
  * below 2^24.  The step down a row (q, rs) only where it is taken, when
  * steps is 0: on the edge's last row none is, and the division it costs
- * is saved (the painter, which reports no steps; the walk keeps them all,
+ * is saved (the polygon-order traversal, which reports no steps; the scan keeps them all,
  * as the trace reports them). */
 static inline void zs_edge_dda_begin(zs_edge_dda *s, const zs_edge *e, int32_t row,
                                      const int steps) {

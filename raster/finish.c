@@ -1,14 +1,14 @@
 /* Finishing a frame: its rows handed out, shaded, in order.
  *
  * zbuffer mode hands out the rows of the full frame it has drawn.
- * scanline mode walks the frame's batch now, with buffers one row long,
+ * scanline mode scans the frame's batch now, with buffers one row long,
  * handing each row out as soon as it is complete; depthsort mode orders
  * the batch's faces first (depthsort.c).  Which finish and which row
  * shading a device uses is chosen once, at create (zs_finish_choose). */
 #include <stdlib.h>
 #include <string.h>
 
-#include "raster/internal.h"
+#include "raster/device.h"
 #include "raster/pool.h"
 
 /* ---- a row handed out ---- */
@@ -45,7 +45,7 @@ static void emit_overdraw(zs_device *d, int y, const uint32_t *depth, const uint
   emit_colours_of(d, y, depth, id, count, count, sink, user);
 }
 
-/* ---- scanline and depthsort: the walk, row by row ---- */
+/* ---- scanline and depthsort: the scan, row by row ---- */
 
 typedef struct row_emit {
   zs_device *d;
@@ -68,34 +68,32 @@ static void end_row(void *user, int y) {
   if (e->sink) d->emit(d, y, d->row_depth, d->row_id, d->row_rgb, d->row_count, e->sink, e->user);
 }
 
-static zs_status finish_walk(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
+static zs_status finish_scan(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   row_emit e = {d, sink, user};
   zs_row_hooks hooks = {begin_row, end_row, &e};
-  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, d->simd,
-                 0, NULL, 0};
-  zs_walk_counts c = {0, 0, 0};
-  if (!zs_scan_batch(&d->batch, d->kernel, &t, 0, d->cfg.height, &hooks, d->trace, &d->scratch,
-                     &c))
+  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, 0, NULL, 0};
+  zs_command c = {.kind = ZS_CMD_FRAME_SCAN, .issued_ps = -1};
+  if (!zs_scan_batch(&d->drawing->traversal, &d->batch, &t, 0, d->cfg.height, &hooks, d->trace,
+                     &d->scratch, &c.scan))
     return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
-  zs_add_walk_counts(&d->stats, &c);
-  zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);
+  zs_clock_charge(d, &c);
   zs_batch_reset(&d->batch);
   return ZS_OK;
 }
 
 /* ---- scanline and depthsort on threads: bands of rows ----
  *
- * The rows of a frame are independent in the scanline walk, so the
- * frame's batch is walked in bands, one a thread, each into its thread's
+ * The rows of a frame are independent in the row scan, so the
+ * frame's batch is scanned in bands, one a thread, each into its thread's
  * buffers of a band's rows; then the rows are handed out in order.  The
  * counts are summed in band order: the same bytes and counters as one
- * walk.  One band a thread, not more in rounds: each band sorts the whole
+ * scan.  One band a thread, not more in rounds: each band sorts the whole
  * batch into its rows' buckets, so more bands scan it more often (zscan
  * bench raster --case builtin:plant --algo scanline --threads 2 --speedup
  * measures it; docs/RESULTS.md).  So on threads the device holds the
  * frame's rows, in bands, not one row. */
 static int band_count(const zs_device *d) {
-  const int n = d->cfg.height / 16; /* at least 16 rows a band */
+  const int n = d->cfg.height / ZS_BAND_MIN_ROWS;
   return d->cfg.threads < n ? d->cfg.threads : n;
 }
 
@@ -114,7 +112,7 @@ int zs_finish_bands_alloc(zs_device *d) {
 typedef struct band_round {
   zs_device *d;
   int nbands, first;          /* this round: bands first .. first + threads - 1 */
-  zs_walk_counts counts[ZS_MAX_BANDS];
+  zs_scan_counts counts[ZS_MAX_BANDS];
   int ok[ZS_MAX_BANDS];
 } band_round;
 
@@ -127,13 +125,13 @@ static zs_target band_target(const zs_device *d, int t, int row0) {
   const size_t n = (size_t)d->band_max_rows * (size_t)d->cfg.width;
   uint32_t *base = d->band_rows + 4 * n * (size_t)t;
   return (zs_target){base, base + n, base + 2 * n, base + 3 * n, d->cfg.width, d->cfg.width,
-                     d->simd, row0, NULL, 0};
+                     row0, NULL, 0};
 }
 
-/* A band's row is cleared just before the walk reaches it, not the band
- * at once before the walk: the row's lines are then in the caches when
+/* A band's row is cleared just before the scan reaches it, not the band
+ * at once before the scan: the row's lines are then in the caches when
  * its spans land, where clearing a band's megabytes first evicts them
- * before the walk comes back (zscan bench raster --case builtin:plant
+ * before the scan comes back (zscan bench raster --case builtin:plant
  * --algo scanline --threads 2 --speedup measures it).  The counts only
  * where the overdraw kernel fills them. */
 typedef struct band_clear {
@@ -150,33 +148,33 @@ static void clear_band_row(void *user, int y) {
                   (size_t)t->width, c->background);
 }
 
-static void walk_band_rows(void *ctx, int t) {
+static void scan_band_rows(void *ctx, int t) {
   band_round *j = ctx;
   zs_device *d = j->d;
   const int b = j->first + t;
   if (b >= j->nbands) return;
   const int y0 = band_start(j, b), y1 = band_start(j, b + 1);
   zs_target tg = band_target(d, t, y0);
-  band_clear clear = {&tg, d->cfg.background, d->kernel == ZS_KERNEL_OVERDRAW};
+  band_clear clear = {&tg, d->cfg.background, d->clear_counts};
   const zs_row_hooks hooks = {clear_band_row, NULL, &clear};
-  j->counts[b] = (zs_walk_counts){0, 0, 0};
-  j->ok[b] = zs_scan_batch(&d->batch, d->kernel, &tg, y0, y1, &hooks, NULL, &d->band_scratch[b],
-                           &j->counts[b]);
+  j->counts[b] = (zs_scan_counts){0, 0, 0};
+  j->ok[b] = zs_scan_batch(&d->drawing->traversal, &d->batch, &tg, y0, y1, &hooks, NULL,
+                           &d->band_scratch[b], &j->counts[b]);
 }
 
 static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   band_round j;
   j.d = d;
   j.nbands = band_count(d);
-  if (j.nbands < 2) return finish_walk(d, sink, user, err);
+  if (j.nbands < 2) return finish_scan(d, sink, user, err);
   const int threads = d->cfg.threads, w = d->cfg.width;
-  zs_walk_counts c = {0, 0, 0};
+  zs_command c = {.kind = ZS_CMD_FRAME_SCAN, .issued_ps = -1};
   for (j.first = 0; j.first < j.nbands; j.first += threads) {
-    zs_pool_run(d->pool, walk_band_rows, &j, threads);
+    zs_pool_run(d->pool, scan_band_rows, &j, threads);
     for (int t = 0; t < threads && j.first + t < j.nbands; t++) {
       const int b = j.first + t, y0 = band_start(&j, b), y1 = band_start(&j, b + 1);
       if (!j.ok[b]) return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
-      zs_walk_counts_add(&c, &j.counts[b]);
+      zs_scan_counts_add(&c.scan, &j.counts[b]);
       if (!sink) continue;
       const zs_target tg = band_target(d, t, y0);
       for (int y = y0; y < y1; y++) {
@@ -185,21 +183,20 @@ static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_err
       }
     }
   }
-  zs_add_walk_counts(&d->stats, &c);
-  zs_clock_gpu_command(d, zs_clock_command_cost(d, 0, 0, &c, 0) - d->costs.per_call, 0);
+  zs_clock_charge(d, &c);
   zs_batch_reset(&d->batch);
   return ZS_OK;
 }
 
 static zs_status finish_painter(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
-  if (!zs_depthsort_order(&d->depthsort, &d->batch, d->view))
+  if (!zs_depthsort_order(d->depthsort, &d->batch, d->view))
     return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
-  return finish_walk(d, sink, user, err);
+  return finish_scan(d, sink, user, err);
 }
 
 static zs_status finish_painter_bands(zs_device *d, zs_row_sink sink, void *user,
                                       zs_error *err) {
-  if (!zs_depthsort_order(&d->depthsort, &d->batch, d->view))
+  if (!zs_depthsort_order(d->depthsort, &d->batch, d->view))
     return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
   return finish_bands(d, sink, user, err);
 }
@@ -224,12 +221,12 @@ static zs_status finish_frame(zs_device *d, zs_row_sink sink, void *user, zs_err
 }
 
 void zs_finish_choose(zs_device *d) {
-  /* the trace follows one walk; threads walk bands of rows */
+  /* the trace follows one scan; threads scan bands of rows */
   const int bands = d->band_rows && !d->trace;
   d->finish = d->cfg.algo == ZS_ALGO_ZBUFFER     ? finish_frame
               : d->cfg.algo == ZS_ALGO_DEPTHSORT ? (bands ? finish_painter_bands : finish_painter)
               : bands                            ? finish_bands
-                                                 : finish_walk;
+                                                 : finish_scan;
   d->emit = d->cfg.shade == ZS_SHADE_FLAT       ? emit_as_drawn
             : d->cfg.shade == ZS_SHADE_OVERDRAW ? emit_overdraw
                                                 : emit_shaded;

@@ -31,15 +31,51 @@
  * A box that the near plane cuts, or that holds the eye, is maybe
  * visible.  tests/test_hzb.c holds this against exact box queries on
  * thousands of random boxes, scenes and cameras.  What the descent to
- * the pixels saves: zscan walk builtin:plant,detail=1 --cull
+ * the pixels saves: zscan scan builtin:plant,detail=1 --cull
  * hzb,ideal-box,ideal --frames 60, objects drawn a frame against a
  * descent that stops at 17x17 texels (docs/CULLING.md). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "raster/hzb.h"
+
+#include "raster/box.h"
+#include "raster/clip.h"
+#include "raster/setup.h"
 #include "util/grow.h"
-#include "raster/internal.h"
+
+/* The levels 1 .. levels - 1 (level 0 is the depth buffer), level k at
+ * texel + offset[k], w[k] x h[k]. */
+enum { ZS_HZB_MAX_LEVELS = 24 };
+struct zs_hzb {
+  uint32_t *texel;
+  int32_t cap;
+  int levels;
+  int w[ZS_HZB_MAX_LEVELS], h[ZS_HZB_MAX_LEVELS];
+  int64_t offset[ZS_HZB_MAX_LEVELS];
+  int64_t texels;                 /* in levels 1 .. levels - 1 */
+  int built;                      /* built since the last clear */
+};
+
+zs_hzb *zs_hzb_create(void) { return calloc(1, sizeof(zs_hzb)); }
+
+void zs_hzb_destroy(zs_hzb *h) {
+  if (!h) return;
+  free(h->texel);
+  free(h);
+}
+
+void zs_hzb_invalidate(zs_hzb *h) { h->built = 0; }
+int zs_hzb_built(const zs_hzb *h) { return h->built; }
+size_t zs_hzb_bytes(const zs_hzb *h) { return (size_t)h->cap * sizeof *h->texel; }
+int zs_hzb_levels(const zs_hzb *h) { return h->levels; }
+
+const uint32_t *zs_hzb_level(const zs_hzb *h, int k, int *w, int *h_out) {
+  *w = h->w[k];
+  *h_out = h->h[k];
+  return h->texel + h->offset[k];
+}
 
 /* ---- the pyramid ---- */
 
@@ -58,16 +94,10 @@ static void reduce_level(const uint32_t *src, int sw, int sh, uint32_t *dst, int
   }
 }
 
-zs_status zs_device_hzb_build(zs_device *d, zs_error *err) {
-  if (!d->depth)
-    return zs_error_set(err, ZS_ERR_UNSUPPORTED, "the depth pyramid needs the z-buffer mode");
-  zs_status st = zs_device_flush(d, err); /* the pyramid is of what is drawn */
-  if (st != ZS_OK) return st;
-  zs_frame_clear_fresh(d);
-  zs_hzb *h = &d->hzb;
-  /* the levels' sizes and offsets, once for the device's size */
+int zs_hzb_build(zs_hzb *h, const uint32_t *depth, int width, int height, int64_t *texels) {
+  /* the levels' sizes and offsets, once for the buffer's size */
   if (h->levels == 0) {
-    int w = d->cfg.width, ht = d->cfg.height, k = 0;
+    int w = width, ht = height, k = 0;
     int64_t total = 0;
     h->w[0] = w;
     h->h[0] = ht;
@@ -80,29 +110,25 @@ zs_status zs_device_hzb_build(zs_device *d, zs_error *err) {
       h->offset[k] = total;
       total += (int64_t)w * ht;
     }
+    if (!zs_grow((void **)&h->texel, &h->cap, total > 0 ? total : 1, sizeof *h->texel)) return 0;
     h->levels = k + 1;
     h->texels = total;
-    if (!zs_grow((void **)&h->texel, &h->cap, total > 0 ? total : 1, sizeof *h->texel))
-      return zs_error_set(err, ZS_ERR_NOMEM, "depth pyramid: out of memory");
   }
-  const uint32_t *src = d->depth;
+  const uint32_t *src = depth;
   for (int k = 1; k < h->levels; k++) {
     uint32_t *dst = h->texel + h->offset[k];
     reduce_level(src, h->w[k - 1], h->h[k - 1], dst, h->w[k], h->h[k]);
     src = dst;
   }
   h->built = 1;
-  /* a compute pass: issued by the CPU, run on the GPU after the draws */
-  zs_clock_cpu(d, d->costs.cpu_per_call);
-  zs_clock_gpu_command(d, d->costs.hzb_pass + d->costs.hzb_per_texel * h->texels, 0);
-  d->clock.hzb_texels += (uint64_t)h->texels;
-  return ZS_OK;
+  *texels = h->texels;
+  return 1;
 }
 
 /* The texels of level k over pixels [x0, x1] x [y0, y1]: the farthest. */
-static uint32_t farthest_over(const zs_device *d, int k, int x0, int y0, int x1, int y1) {
-  const zs_hzb *h = &d->hzb;
-  const uint32_t *lv = k == 0 ? d->depth : h->texel + h->offset[k];
+static uint32_t farthest_over(const zs_hzb *h, const uint32_t *depth, int k, int x0, int y0,
+                              int x1, int y1) {
+  const uint32_t *lv = k == 0 ? depth : h->texel + h->offset[k];
   const int w = h->w[k];
   uint32_t far = 0;
   for (int y = y0 >> k; y <= y1 >> k; y++)
@@ -129,7 +155,7 @@ typedef struct face_plane {
 
 /* The plane through corners q[0], q[1], q[3] of win; 0 when the face is
  * seen edge-on. */
-static int face_plane_of(const double (*win)[3], const int q[4], face_plane *f) {
+static int face_plane_of(const double (*win)[3], const int32_t q[4], face_plane *f) {
   const double *p0 = win[q[0]], *p1 = win[q[1]], *p3 = win[q[3]];
   const double ux = p1[0] - p0[0], uy = p1[1] - p0[1], uz = p1[2] - p0[2];
   const double vx = p3[0] - p0[0], vy = p3[1] - p0[1], vz = p3[2] - p0[2];
@@ -185,9 +211,9 @@ typedef struct box_test {
  * turn, down to the depth buffer's own pixels.  A box hidden everywhere
  * but at its outline's pixels is so found hidden, which a test at one
  * level is not; a visible box stops at the first pixel that shows it. */
-static int texel_maybe_visible(const zs_device *d, box_test *t, int k, int tx, int ty) {
-  const zs_hzb *h = &d->hzb;
-  const uint32_t *lv = k == 0 ? d->depth : h->texel + h->offset[k];
+static int texel_maybe_visible(const zs_hzb *h, const uint32_t *depth, box_test *t, int k, int tx,
+                               int ty) {
+  const uint32_t *lv = k == 0 ? depth : h->texel + h->offset[k];
   const double e = 1.0 / 64.0;
   const int r0 = ty << k > t->y0 ? ty << k : t->y0;
   const int r1 = ((ty + 1) << k) - 1 < t->y1 ? ((ty + 1) << k) - 1 : t->y1;
@@ -211,35 +237,31 @@ static int texel_maybe_visible(const zs_device *d, box_test *t, int k, int tx, i
   for (int cy = 2 * ty; cy <= 2 * ty + 1 && cy << (k - 1) <= r1; cy++)
     for (int cx = 2 * tx; cx <= 2 * tx + 1 && cx << (k - 1) <= c1; cx++)
       if (((cx + 1) << (k - 1)) > c0 && ((cy + 1) << (k - 1)) > r0 &&
-          texel_maybe_visible(d, t, k - 1, cx, cy))
+          texel_maybe_visible(h, depth, t, k - 1, cx, cy))
         return 1;
   return 0;
 }
 
 /* Whether the box lo..hi may show a sample to a query (1) or is hidden
  * behind the pyramid (0); adds the texels it read to *reads. */
-static int box_maybe_visible(const zs_device *d, const double mvp[16], const double lo[3],
-                             const double hi[3], uint64_t *reads) {
-  const double m = zs_device_query_margin(d, lo, hi);
+static int box_maybe_visible(const zs_hzb *h, const uint32_t *depth, const zs_hzb_view *v,
+                             const double lo[3], const double hi[3], uint64_t *reads) {
+  const double m = zs_box_margin(v->view, v->proj, v->perspective, v->width, v->height, lo, hi);
   const double blo[3] = {lo[0] - m, lo[1] - m, lo[2] - m};
   const double bhi[3] = {hi[0] + m, hi[1] + m, hi[2] + m};
-  int inside = 1;
-  for (int a = 0; a < 3; a++)
-    if (d->eye[a] < blo[a] || d->eye[a] > bhi[a]) inside = 0;
-  if (inside) return 1;
+  if (zs_box_holds(blo, bhi, v->eye)) return 1;
   /* the corners in the window: x right, y down, z the window depth */
   double win[8][3];
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY, zmin = INFINITY;
   for (int b = 0; b < 8; b++) {
-    const double p[3] = {b & 1 ? bhi[0] : blo[0], b & 2 ? bhi[1] : blo[1],
-                         b & 4 ? bhi[2] : blo[2]};
-    double o[4];
-    zs_mat_apply(mvp, p, o);
-    const zs_clip_vert v = {o[0], o[1], o[2], o[3]};
-    if (!(v.w > 0.0) || !(v.z + v.w >= 0.0)) return 1; /* the near plane cuts it */
-    zs_window_xy(d->cfg.width, d->cfg.height, &v, &win[b][0], &win[b][1]);
-    win[b][1] = d->cfg.height - win[b][1];
-    win[b][2] = zs_window_depth(&v);
+    double p[3], o[4];
+    zs_box_corner(blo, bhi, b, p);
+    zs_mat_apply(v->mvp, p, o);
+    const zs_clip_vert c = {o[0], o[1], o[2], o[3]};
+    if (!(c.w > 0.0) || !(c.z + c.w >= 0.0)) return 1; /* the near plane cuts it */
+    zs_window_xy(v->width, v->height, &c, &win[b][0], &win[b][1]);
+    win[b][1] = v->height - win[b][1];
+    win[b][2] = zs_window_depth(&c);
     xmin = fmin(xmin, win[b][0]);
     xmax = fmax(xmax, win[b][0]);
     ymin = fmin(ymin, win[b][1]);
@@ -247,21 +269,18 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
     zmin = fmin(zmin, win[b][2]);
   }
   /* the pixels whose centres the query box could cover, within the window */
-  if (!(xmax >= -1.0 && ymax >= -1.0 && xmin <= d->cfg.width + 1.0 && ymin <= d->cfg.height + 1.0))
+  if (!(xmax >= -1.0 && ymax >= -1.0 && xmin <= v->width + 1.0 && ymin <= v->height + 1.0))
     return 0; /* no pixel of the window: the query counts none */
   box_test t = {(int)fmax(floor(xmin) - 1.0, 0.0), (int)fmax(floor(ymin) - 1.0, 0.0),
-                (int)fmin(floor(xmax) + 1.0, d->cfg.width - 1.0),
-                (int)fmin(floor(ymax) + 1.0, d->cfg.height - 1.0), NULL, 0, reads};
+                (int)fmin(floor(xmax) + 1.0, v->width - 1.0),
+                (int)fmin(floor(ymax) + 1.0, v->height - 1.0), NULL, 0, reads};
   if (t.x0 > t.x1 || t.y0 > t.y1) return 0;
   /* the faces the query would draw: those turned to the eye */
-  static const int quad[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                 {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   face_plane fp[3];
   double slope = 0.0;
   for (int f = 0; f < 6; f++) {
-    const int a = f / 2;
-    if (!((f % 2) ? d->eye[a] > bhi[a] : d->eye[a] < blo[a])) continue;
-    if (!face_plane_of(win, quad[f], &fp[t.nf])) return 1; /* seen edge-on: no bound */
+    if (!zs_box_face_turned_to(blo, bhi, v->eye, f)) continue;
+    if (!face_plane_of(win, zs_box_faces[f], &fp[t.nf])) return 1; /* seen edge-on: no bound */
     slope = fmax(slope, fabs(fp[t.nf].a) + fabs(fp[t.nf].b));
     t.nf++;
   }
@@ -272,40 +291,23 @@ static int box_maybe_visible(const zs_device *d, const double mvp[16], const dou
   if (!(near > 0.0)) return 1; /* NaN too */
   const int span = (t.x1 - t.x0 > t.y1 - t.y0 ? t.x1 - t.x0 : t.y1 - t.y0) + 1;
   int k = 0;
-  while ((1 << k) < span >> 1 && k + 1 < d->hzb.levels) k++;
+  while ((1 << k) < span >> 1 && k + 1 < h->levels) k++;
   *reads += (uint64_t)(((t.x1 >> k) - (t.x0 >> k) + 1) * ((t.y1 >> k) - (t.y0 >> k) + 1));
-  if ((double)farthest_over(d, k, t.x0, t.y0, t.x1, t.y1) < near) return 0;
+  if ((double)farthest_over(h, depth, k, t.x0, t.y0, t.x1, t.y1) < near) return 0;
   /* Then finely: the same texels, each against the nearest depth of the
    * faces that reach it, over its own pixels, and where that cannot tell,
    * its children, down to the pixels. */
   int shows = 0;
   for (int ty = t.y0 >> k; ty <= t.y1 >> k && !shows; ty++)
     for (int tx = t.x0 >> k; tx <= t.x1 >> k && !shows; tx++)
-      shows = texel_maybe_visible(d, &t, k, tx, ty);
+      shows = texel_maybe_visible(h, depth, &t, k, tx, ty);
   return shows;
 }
 
-zs_status zs_device_hzb_test(zs_device *d, const double (*lo)[3], const double (*hi)[3], int n,
-                             uint8_t *maybe_visible, zs_error *err) {
-  if (!d->hzb.built)
-    return zs_error_set(err, ZS_ERR_ARG, "hzb_test: no depth pyramid built this frame");
-  if (n < 1) return ZS_OK;
-  double mvp[16];
-  zs_mat_mul(mvp, d->proj, d->view);
+uint64_t zs_hzb_test(const zs_hzb *h, const uint32_t *depth, const zs_hzb_view *v,
+                     const double (*lo)[3], const double (*hi)[3], int n, uint8_t *maybe_visible) {
   uint64_t reads = 0;
   for (int i = 0; i < n; i++)
-    maybe_visible[i] = (uint8_t)box_maybe_visible(d, mvp, lo[i], hi[i], &reads);
-  zs_clock_cpu(d, d->costs.cpu_per_call);
-  zs_clock_gpu_command(d, d->costs.hzb_pass + d->costs.hzb_per_box * n +
-                              d->costs.hzb_per_read * (int64_t)reads, 0);
-  d->clock.hzb_boxes += (uint64_t)n;
-  d->clock.hzb_reads += reads;
-  return ZS_OK;
+    maybe_visible[i] = (uint8_t)box_maybe_visible(h, depth, v, lo[i], hi[i], &reads);
+  return reads;
 }
-
-void zs_hzb_free(zs_hzb *h) {
-  free(h->texel);
-  memset(h, 0, sizeof *h);
-}
-
-size_t zs_hzb_bytes(const zs_hzb *h) { return (size_t)h->cap * sizeof *h->texel; }

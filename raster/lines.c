@@ -3,7 +3,8 @@
 #include <string.h>
 
 #include "util/grow.h"
-#include "raster/internal.h"
+#include "raster/box.h"
+#include "raster/device.h"
 
 zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {
   zs_status st = zs_device_flush(d, err); /* queued faces paint before the fill */
@@ -101,10 +102,10 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
   zs_status st = zs_device_flush(d, err); /* the edges test the faces' depths */
   if (st != ZS_OK) return st;
   zs_frame_clear_fresh(d);
-  double mv[16], mvp[16];
-  if (model) zs_mat_mul(mv, d->view, model);
-  else memcpy(mv, d->view, sizeof mv);
-  zs_mat_mul(mvp, d->proj, mv);
+  zs_draw_prep prep; /* the matrices a draw of the mesh uses */
+  zs_draw_prepare(&d->drawing->prep, d->view, d->proj, model, &prep);
+  const double *mv = prep.mv, *mvp = prep.mvp;
+  zs_command edges = {.kind = ZS_CMD_EDGES, .issued_ps = -1};
   for (int32_t f = 0; f < mesh->nfaces; f++) {
     int32_t s = mesh->face_start[f], n = mesh->face_start[f + 1] - s;
     if (n < 3 || n > ZS_MAX_POLY_VERTS) continue;
@@ -153,9 +154,10 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
       double p[3], q[3];
       to_window(d, &a, p);
       to_window(d, &b, q);
-      d->stats.pixels_written += draw_segment(d, p, q, bias, rgb, 1);
+      edges.scan.written += draw_segment(d, p, q, bias, rgb, 1);
     }
   }
+  zs_clock_charge(d, &edges);
   return ZS_OK;
 }
 
@@ -173,10 +175,8 @@ zs_status zs_device_draw_box_lines(zs_device *d, const double lo[3], const doubl
       int b = a | bit;
       if (b == a) continue;
       double pa[3], pb[3], o[4];
-      for (int k = 0; k < 3; k++) {
-        pa[k] = (a >> k) & 1 ? hi[k] : lo[k];
-        pb[k] = (b >> k) & 1 ? hi[k] : lo[k];
-      }
+      zs_box_corner(lo, hi, a, pa);
+      zs_box_corner(lo, hi, b, pb);
       zs_mat_apply(mvp, pa, o);
       zs_clip_vert va = {o[0], o[1], o[2], o[3]};
       zs_mat_apply(mvp, pb, o);

@@ -10,12 +10,13 @@
  * wait (zscan bench raster --threads 2 --speedup measures it). */
 #include "raster/pool.h"
 
+#include "raster/tuning.h"
+
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 
-enum { SPINS = 1 << 14 };  /* polls before sleeping: longer than most gaps between jobs */
 
 struct zs_pool {
   pthread_t *workers;
@@ -54,7 +55,7 @@ static void *worker(void *arg) {
   uint32_t seen = 0;
   for (;;) {
     uint32_t gen = seen;
-    for (int i = 0; i < SPINS && gen == seen; i++) {
+    for (int i = 0; i < ZS_POOL_SPINS && gen == seen; i++) {
       if (atomic_load_explicit(&p->quit, memory_order_relaxed)) return NULL;
       gen = generation_of(atomic_load_explicit(&p->state, memory_order_acquire));
     }
@@ -136,7 +137,7 @@ void zs_pool_run(zs_pool *p, void (*fn)(void *ctx, int task), void *ctx, int nta
   int ran = take_tasks(p, gen);
   int total = ran > 0 ? atomic_fetch_add_explicit(&p->finished, ran, memory_order_acq_rel) + ran
                       : atomic_load_explicit(&p->finished, memory_order_acquire);
-  for (int i = 0; i < SPINS && total < ntasks; i++)
+  for (int i = 0; i < ZS_POOL_SPINS && total < ntasks; i++)
     total = atomic_load_explicit(&p->finished, memory_order_acquire);
   if (total < ntasks) {
     pthread_mutex_lock(&p->lock);

@@ -1,5 +1,5 @@
 /* zscan raster — a small pool of worker threads (pthreads) for running the
- * bands of a walk in parallel.  Deterministic by construction: each task
+ * bands of a scan in parallel.  Deterministic by construction: each task
  * writes only its own rows and counters, and the caller sums the counters
  * in task order. */
 #ifndef ZS_RASTER_POOL_H

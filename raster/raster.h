@@ -81,7 +81,7 @@ static inline uint64_t zs_polygons_set_up(const zs_raster_stats *s) {
 /* Deferred drawing (defer.c), for a whole scene drawn on two threads or
  * more in zbuffer mode: while on, zs_device_draw queues each draw of fewer
  * than 262,144 faces, and the next flush renders the queue at once, set up
- * in parallel and walked in bands of rows with the draws in issue order.
+ * in parallel and scanned in bands of rows with the draws in issue order.
  * The image, the counters and the modelled clock come out the same as
  * drawing at once, but they lag the queue: they hold after a flush, which
  * zs_device_flush, zs_device_finish, a query, zs_device_fill_color,
@@ -137,7 +137,7 @@ zs_status zs_device_hzb_test(zs_device *dev, const double (*lo)[3], const double
 
 /* The memory a device holds now, in bytes: pixel buffers (full-frame in
  * zbuffer mode; one row in scanline and depthsort modes), the polygon and
- * edge tables with the walk's scratch (which grow with the polygons of a
+ * edge tables with the scan's scratch (which grow with the polygons of a
  * draw, or of the whole frame in scanline mode, and one entry per row),
  * and the per-vertex arrays of the largest mesh drawn. */
 typedef struct zs_device_memory {
@@ -173,7 +173,7 @@ const char *zs_simd_name(zs_simd level);
  * lies on its own face, so it is tested with a bias towards the eye, as
  * glPolygonOffset(1, units) does: its face's largest depth slope per pixel
  * (|dz/dx| or |dz/dy| in window depth) plus ZS_EDGE_DEPTH_UNITS units of
- * 2^-32.  Edges are walked one pixel per step along their major axis,
+ * 2^-32.  Edges are scanned one pixel per step along their major axis,
  * through the pixel the exact edge crosses at that column's (row's)
  * centre. */
 enum { ZS_EDGE_DEPTH_UNITS = 1024 };

@@ -1,7 +1,7 @@
-/* The scanline z-buffer walk of the lecture, in integers.
+/* The scanline z-buffer scan of the lecture, in integers.
  *
  * Sorted polygon table: the batch's polygons bucketed by their first row
- * (clamped to the walk's first row), each bucket in batch order
+ * (clamped to the scan's first row), each bucket in batch order
  * (table.c).
  * Sorted edge table: each polygon's edges, in two chains (left and right)
  * ordered by their top row; when an edge of a pair runs out, the next edge
@@ -33,21 +33,20 @@
 /* The scanline z-buffer of the lecture: row by row, with the active
  * polygon and edge lists, over the sorted table.  Rows in order stream
  * through the buffers, one row in the caches at a time: for a mesh laid
- * out in order the fastest traversal (paint.c says when it is not).
+ * out in order the fastest traversal (polyorder.c says when it is not).
  * Returns 0 when out of memory. */
-__attribute__((always_inline)) static inline int walk(const zs_batch *b, const zs_kernel k,
-                        const zs_target *t, int row_begin, int row_end,
-                        const zs_row_hooks *hooks, const zs_trace_observer *obs,
-                        const zs_table *table, zs_walk_scratch *s, zs_walk_counts *counts) {
+__attribute__((always_inline)) static inline int
+scan(const zs_batch *b, const zs_kernel k, const zs_simd simd, const zs_target *t, int row_begin,
+     int row_end, const zs_row_hooks *hooks, const zs_trace_observer *obs, const zs_table *table,
+     zs_scan_scratch *s, zs_scan_counts *counts) {
   const zs_poly *polys = b->polys;
   const zs_edge *edges = b->edges;
-  /* the active list grows as the walk needs it, checked once a row
+  /* the active list grows as the scan needs it, checked once a row
    * (bucket_start): most polygons of a large batch are never active at
    * once */
   if (s->cap_active == 0 && !zs_grow((void **)&s->active, &s->cap_active, 64, sizeof *s->active))
     return 0;
   zs_active *act = s->active;
-  const zs_simd simd = k == ZS_KERNEL_DRAW ? t->simd : ZS_SIMD_SCALAR;
   /* the shortest span the vector fill takes (one compare a span) */
   const int vector_from = zs_simd_min_span(simd);
   const int32_t first_bucket = table->first, last_bucket = table->last;
@@ -112,10 +111,43 @@ __attribute__((always_inline)) static inline int walk(const zs_batch *b, const z
   return 1;
 }
 
-int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
-                  int row_begin, int row_end, const zs_row_hooks *hooks,
-                  const zs_trace_observer *obs, zs_walk_scratch *s,
-                  zs_walk_counts *counts) {
+/* The copies of the row scan: per kernel and SIMD level, with hooks and
+ * observer (zs_scan_batch's) and without (drawing and querying, their
+ * tests folded away); only the draw kernel fills spans with SIMD. */
+#define ZS_SCAN_COPIES(name, k, simd)                                                             \
+  static int name##_rows(const zs_batch *b, const zs_target *t, int row_begin, int row_end,      \
+                         const zs_row_hooks *hooks, const zs_trace_observer *obs,                \
+                         const zs_table *table, zs_scan_scratch *s, zs_scan_counts *counts) {    \
+    return scan(b, k, simd, t, row_begin, row_end, hooks, obs, table, s, counts);                \
+  }                                                                                              \
+  static int name##_sorted(const zs_batch *b, const zs_target *t, int row_begin, int row_end,    \
+                           const zs_table *table, zs_scan_scratch *s, zs_scan_counts *counts) {  \
+    return scan(b, k, simd, t, row_begin, row_end, NULL, NULL, table, s, counts);                \
+  }
+ZS_SCAN_COPIES(draw_scalar, ZS_KERNEL_DRAW, ZS_SIMD_SCALAR)
+ZS_SCAN_COPIES(draw_sse2, ZS_KERNEL_DRAW, ZS_SIMD_SSE2)
+ZS_SCAN_COPIES(draw_avx2, ZS_KERNEL_DRAW, ZS_SIMD_AVX2)
+ZS_SCAN_COPIES(draw_avx512, ZS_KERNEL_DRAW, ZS_SIMD_AVX512)
+ZS_SCAN_COPIES(overdraw, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR)
+ZS_SCAN_COPIES(query, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR)
+
+void zs_scan_choose(zs_kernel k, zs_simd simd, zs_traversal *out) {
+  static const zs_scan_rows_fn rows[ZS_KERNELS][4] = {
+      {draw_scalar_rows, draw_sse2_rows, draw_avx2_rows, draw_avx512_rows},
+      {overdraw_rows, overdraw_rows, overdraw_rows, overdraw_rows},
+      {query_rows, query_rows, query_rows, query_rows}};
+  static const zs_scan_sorted_fn sorted[ZS_KERNELS][4] = {
+      {draw_scalar_sorted, draw_sse2_sorted, draw_avx2_sorted, draw_avx512_sorted},
+      {overdraw_sorted, overdraw_sorted, overdraw_sorted, overdraw_sorted},
+      {query_sorted, query_sorted, query_sorted, query_sorted}};
+  out->kernel = k;
+  out->scan_rows = rows[k][simd];
+  out->scan_sorted = sorted[k][simd];
+}
+
+int zs_scan_batch(const zs_traversal *tr, const zs_batch *b, const zs_target *t, int row_begin,
+                  int row_end, const zs_row_hooks *hooks, const zs_trace_observer *obs,
+                  zs_scan_scratch *s, zs_scan_counts *counts) {
   if (row_end <= row_begin) return 1;
   zs_table table;
   if (!zs_table_sort(b, row_begin, row_end, s, &table)) return 0;
@@ -126,31 +158,6 @@ int zs_scan_batch(const zs_batch *b, zs_kernel k, const zs_target *t,
     const size_t sizes[] = {sizeof *s->trace_pairs, sizeof *s->trace_spans};
     if (!zs_resize_each(arrays, sizes, 2, n)) return 0;
   }
-  if (!hooks && !obs) return zs_walk_sorted(b, k, t, row_begin, row_end, &table, s, counts);
-  /* a copy of the walk per kernel, k a constant in each */
-  switch (k) {
-    case ZS_KERNEL_DRAW:
-      return walk(b, ZS_KERNEL_DRAW, t, row_begin, row_end, hooks, obs, &table, s, counts);
-    case ZS_KERNEL_OVERDRAW:
-      return walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, hooks, obs, &table, s, counts);
-    case ZS_KERNEL_QUERY:
-      return walk(b, ZS_KERNEL_QUERY, t, row_begin, row_end, hooks, obs, &table, s, counts);
-  }
-  return 1;
-}
-
-/* Drawing and querying: a copy per kernel without hooks and observer,
- * their tests folded away. */
-int zs_walk_sorted(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
-                   int row_end, const zs_table *table, zs_walk_scratch *s,
-                   zs_walk_counts *counts) {
-  switch (k) {
-    case ZS_KERNEL_DRAW:
-      return walk(b, ZS_KERNEL_DRAW, t, row_begin, row_end, NULL, NULL, table, s, counts);
-    case ZS_KERNEL_OVERDRAW:
-      return walk(b, ZS_KERNEL_OVERDRAW, t, row_begin, row_end, NULL, NULL, table, s, counts);
-    case ZS_KERNEL_QUERY:
-      return walk(b, ZS_KERNEL_QUERY, t, row_begin, row_end, NULL, NULL, table, s, counts);
-  }
-  return 1;
+  if (!hooks && !obs) return tr->scan_sorted(b, t, row_begin, row_end, &table, s, counts);
+  return tr->scan_rows(b, t, row_begin, row_end, hooks, obs, &table, s, counts);
 }

@@ -25,92 +25,21 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <cpuid.h> /* PREFETCHW, below */
-#endif
 
-#include "util/grow.h"
-#include "raster/internal.h"
-
-
-void zs_batch_reset(zs_batch *b) {
-  b->npolys = 0;
-  b->nedges = 0;
-}
-
-void zs_batch_free(zs_batch *b) {
-  free(b->polys);
-  free(b->edges);
-  *b = (zs_batch){0};
-}
-
-int zs_batch_reserve(zs_batch *b, int32_t polys, int32_t edges) {
-  return zs_grow((void **)&b->polys, &b->cap_polys, (int64_t)b->npolys + polys, sizeof *b->polys) &&
-         zs_grow((void **)&b->edges, &b->cap_edges, (int64_t)b->nedges + edges, sizeof *b->edges);
-}
-
-void zs_batch_rows(const zs_batch *b, int32_t first, int32_t count, int height, int32_t *lo,
-                   int32_t *hi) {
-  int32_t l = height, h = -1;
-  for (int32_t i = first; i < first + count; i++) {
-    if (b->polys[i].row0 < l) l = b->polys[i].row0;
-    if (b->polys[i].row1 > h) h = b->polys[i].row1;
-  }
-  *lo = l < 0 ? 0 : l;
-  *hi = h > height - 1 ? height - 1 : h;
-}
-
-int32_t zs_batch_edges_of(const zs_batch *b, int32_t first, int32_t count) {
-  if (count <= 0) return 0;
-  /* the polygons' edges lie together, in the polygons' order */
-  const int32_t e1 = first + count < b->npolys ? b->polys[first + count].edge0 : b->nedges;
-  return e1 - b->polys[first].edge0;
-}
-
-void zs_batch_place(zs_batch *dst, int32_t at_poly, int32_t at_edge, const zs_batch *src,
-                    int32_t first, int32_t count) {
-  if (count <= 0) return;
-  const int32_t e0 = src->polys[first].edge0, nedges = zs_batch_edges_of(src, first, count);
-  for (int32_t i = 0; i < count; i++) {
-    zs_poly p = src->polys[first + i];
-    p.edge0 += at_edge - e0;
-    dst->polys[at_poly + i] = p;
-  }
-  memcpy(dst->edges + at_edge, src->edges + e0, (size_t)nedges * sizeof *src->edges);
-}
-
-int zs_batch_append_range(zs_batch *dst, const zs_batch *src, int32_t first, int32_t count) {
-  if (count <= 0) return 1;
-  const int32_t nedges = zs_batch_edges_of(src, first, count);
-  if (!zs_batch_reserve(dst, count, nedges)) return 0;
-  zs_batch_place(dst, dst->npolys, dst->nedges, src, first, count);
-  dst->npolys += count;
-  dst->nedges += nedges;
-  return 1;
-}
-
-int zs_batch_append(zs_batch *dst, const zs_batch *src) {
-  return zs_batch_append_range(dst, src, 0, src->npolys);
-}
+#include "raster/setup.h"
+#include "raster/tuning.h"
 
 /* Asks for the cache line at p, to be written (PREFETCHW).  With two
  * threads or more a batch's lines were last read by the other cores, which
- * walked the chunk set up in it before; a store to such a line waits for
+ * scanned the chunk set up in it before; a store to such a line waits for
  * them to give it up, and set-up, which writes a polygon and its edges a
  * face, would stall on it (zscan bench raster --case builtin:plant
  * --threads 2 --speedup measures it). */
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-int zs_cpu_has_prefetchw(void) {
-  unsigned a, b, c, d;
-  return __get_cpuid(0x80000001u, &a, &b, &c, &d) && (c & (1u << 8)) != 0;
-}
-
 static inline void prefetch_write(const void *p) {
   __asm__ volatile("prefetchw %0" : : "m"(*(const char *)p));
 }
 #else
-int zs_cpu_has_prefetchw(void) { return 0; }
-
 static inline void prefetch_write(const void *p) { (void)p; } /* never asked for */
 #endif
 
@@ -154,7 +83,7 @@ make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, in
   /* Offsets of the origin pixel's centre from vertex a, in pixels (< 1). */
   double cx = ((double)p.ox * 256 + 128 - X[a]) / 256.0;
   double cy = ((double)p.oy * 256 + 128 - Y[a]) / 256.0;
-  /* Everything the walk adds up stays below this, in depth units: zc is
+  /* Everything the scan adds up stays below this, in depth units: zc is
    * within half a pixel of vertex a. */
   double bound = fabs(A) * (box_w + 0.5) + fabs(B) * (box_h + 0.5) + fabs(Z[a]) + 1.0;
   /* NaN when a corner has no depth (w = 0, the eye, which a projection
@@ -179,7 +108,7 @@ make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, in
   return p;
 }
 
-/* Whether the walk may skip, for every span of p, the clamp to the
+/* Whether the scan may skip, for every span of p, the clamp to the
  * window's columns and the test of its depths against the planes (the
  * zs_poly's inner).  The exact DDA keeps each span to the columns whose
  * centres lie in [xmin, xmax], p's extent in subpixels, and each row to
@@ -215,8 +144,10 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
       !zs_batch_reserve(b, 1, n))
     return 0;
   if (sp->prefetch_write) { /* a few faces ahead */
-    if (b->npolys + 16 < b->cap_polys) prefetch_write(&b->polys[b->npolys + 16]);
-    if (b->nedges + 64 < b->cap_edges) prefetch_write(&b->edges[b->nedges + 64]);
+    if (b->npolys + ZS_SETUP_PREFETCH_POLYS < b->cap_polys)
+      prefetch_write(&b->polys[b->npolys + ZS_SETUP_PREFETCH_POLYS]);
+    if (b->nedges + ZS_SETUP_PREFETCH_EDGES < b->cap_edges)
+      prefetch_write(&b->edges[b->nedges + ZS_SETUP_PREFETCH_EDGES]);
   }
 
   zs_poly *p = &b->polys[b->npolys];
@@ -236,9 +167,9 @@ static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
   p->zshift = pl->zshift;
   p->edge0 = b->nedges;
   /* a polygon of a few rows would pay more for the test than it saves */
-  p->inner = row1 - row0 >= 3 && spans_inner(sp->width, p, xmin, xmax);
+  p->inner = row1 - row0 >= ZS_INNER_MIN_ROWS && spans_inner(sp->width, p, xmin, xmax);
 
-  /* Walking forward (increasing index) from the top vertex runs down the
+  /* Going forward (increasing index) from the top vertex runs down the
    * right side when area2 > 0 (clockwise on the screen), else the left. */
   int forward_is_left = area2 < 0;
   int counts[2] = {0, 0};
@@ -272,9 +203,9 @@ static int64_t dot3(const int32_t *X, const int32_t *Y, int a, int b, int c) {
  * one left and one right chain, one span per row.  Local turns alone
  * would let a star that winds twice through; monotony catches it.  A
  * turn straight back (no turn, the path reversed) would let a fold hide
- * a reflex corner, whose edge's line then cuts the polygon: the walk's
- * spans would follow the edges in force and the painter's edge
- * functions every edge (paint.c), so it goes to the fan. */
+ * a reflex corner, whose edge's line then cuts the polygon: the scan's
+ * spans would follow the edges in force and the polygon-order
+ * traversal's edge functions every edge (polyorder.c), so it goes to the fan. */
 static int convex_monotone(const int32_t *X, const int32_t *Y, int n, int64_t area2) {
   /* (neighbours by comparison, not %: a division per vertex costs more
    * than the test on the teapots, whose quads all come here; zscan bench
@@ -341,7 +272,7 @@ setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32
   if (area2 == 0) return ZS_SETUP_DEGENERATE;
   if (sp->cull_back && area2 > 0) return ZS_SETUP_BACK;
   /* Clipping stops at the guard band, far outside the window: a face
-   * whose box holds no pixel centre of the window would only walk its
+   * whose box holds no pixel centre of the window would only scan its
    * edges down rows it never fills.  The test is on the box, inclusive
    * at both ends, so it never drops a face that covers a pixel. */
   if (xmax < ZS_SUBPIXEL_ONE / 2 || ymax < ZS_SUBPIXEL_ONE / 2 ||
@@ -352,7 +283,7 @@ setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32
    * not entered in the tables, and counts as drawn, as a polygon between
    * two rows of centres always did.  Most faces of the million-triangle
    * teapot field are such specks: they skip the plane, the edges and the
-   * walk. */
+   * scan. */
   if (zs_first_row(ymin) > zs_last_row(ymax) ||
       zs_floordiv256((int64_t)xmin - 129) + 1 > zs_floordiv256((int64_t)xmax - 128))
     return ZS_SETUP_DRAWN;

@@ -7,12 +7,11 @@
  * quantized once to q = round(255 I), and each channel becomes
  *   c' = (c q + 127) / 255               (integer division)
  * so the only floating point is the one rounding to q.  (zs_flat_level
- * and zs_flat_tint are inline in internal.h.)  The face stage (draw.c)
+ * and zs_flat_tint are inline in shade.h.)  The face stage (draw.c)
  * takes the levels of a run of faces at once, eight at a time with
- * AVX-512: a face's square root and division wait twenty-odd cycles
- * each, and one face's at a time held up the faces of a small model
- * (zscan bench raster --case "triangles 4x4" and --case builtin:teapots
- * measure it).  Each lane does zs_flat_level's operations in its order,
+ * AVX-512: a face's square root and division wait many cycles each, and
+ * one face's at a time held up the faces of a small model (zscan bench
+ * raster --case "triangles 4x4" and --case builtin:teapots measure it).  Each lane does zs_flat_level's operations in its order,
  * and IEEE 754 rounds a lane's square root, division, add and multiply
  * as it rounds the scalar's (never fused: -ffp-contract=off); the
  * conversion to an integer is lrint's, in the default rounding mode; a
@@ -26,7 +25,9 @@
  */
 #include <math.h>
 
-#include "raster/internal.h"
+#include "raster/shade.h"
+
+#include "raster/cpu.h"
 
 #ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>
@@ -60,14 +61,30 @@ ZS_AVX512_TARGET static int flat_levels_avx512(const double *nx, const double *n
 }
 #endif
 
-void zs_flat_levels(zs_simd simd, const double *nx, const double *ny, const double *nz, int n,
-                    uint32_t *q) {
-  int k = 0;
+/* zs_flat_level of faces [k, n). */
+static void flat_levels_from(const double *nx, const double *ny, const double *nz, int k, int n,
+                             uint32_t *q) {
+  for (; k < n; k++) q[k] = zs_flat_level((const double[3]){nx[k], ny[k], nz[k]});
+}
+
+static void flat_levels_scalar(const double *nx, const double *ny, const double *nz, int n,
+                               uint32_t *q) {
+  flat_levels_from(nx, ny, nz, 0, n, q);
+}
+
 #ifdef ZS_HAVE_X86_PATHS
-  if (simd == ZS_SIMD_AVX512) k = flat_levels_avx512(nx, ny, nz, n, q);
+static void flat_levels_wide(const double *nx, const double *ny, const double *nz, int n,
+                             uint32_t *q) {
+  flat_levels_from(nx, ny, nz, flat_levels_avx512(nx, ny, nz, n, q), n, q);
+}
+#endif
+
+zs_flat_levels_fn zs_flat_levels_for(zs_simd simd) {
+#ifdef ZS_HAVE_X86_PATHS
+  if (simd == ZS_SIMD_AVX512) return flat_levels_wide;
 #endif
   (void)simd;
-  for (; k < n; k++) q[k] = zs_flat_level((const double[3]){nx[k], ny[k], nz[k]});
+  return flat_levels_scalar;
 }
 
 static const uint32_t heat[9] = {0x000000, 0x2050E0, 0x20C040, 0xF0E020,

@@ -1,10 +1,11 @@
 /* zscan raster — what the traversals of a batch share: the span kernels
  * (what a polygon's run of pixels on one row does to the target, one loop
  * per kernel: draw, overdraw, query, inlined into each traversal with the
- * kernel a constant), and a polygon being walked (zs_active: its entry at
- * its first row, its span on a row, its step down a row).  The scanline
- * walk (scanline.c) and the painter (paint.c) both use them, so both
- * test and write the same pixels the same way. */
+ * kernel and the SIMD level constants), and a polygon being traversed
+ * (zs_active: its entry at its first row, its span on a row, its step
+ * down a row).  The row scan (scanline.c) and the polygon-order traversal
+ * (polyorder.c) both use them, so both test and write the same pixels
+ * the same way. */
 #ifndef ZS_RASTER_SPAN_H
 #define ZS_RASTER_SPAN_H
 
@@ -12,31 +13,13 @@
 #include <string.h>
 
 #include "raster/edge_dda.h"
-#include "raster/internal.h"
-#include "raster/span_avx512.h"
+#include "raster/span_simd.h"
+#include "raster/traversal.h"
 
 static inline uint32_t zs_depth_of(int64_t z, int shift, int64_t zfar) {
   if (z <= 0) return 0;
   if (z >= zfar) return ZS_DEPTH_FAR;
   return (uint32_t)(z >> shift);
-}
-
-/* The shortest span a SIMD level fills (raster.h, the span fill); shorter
- * ones stay with the scalar loop, inlined.  SSE2 and AVX2 from 16 pixels:
- * below, AVX2 needs masked stores for the last pixels, slow on AMD CPUs,
- * or full-width stores that write back what lies past the span, no faster
- * than the loop; and SSE2 from 8 costs more instructions a triangle than
- * from 16 (zscan bench raster --case "triangles 25x25" --callgrind
- * measures both).  AVX-512 masks its last step at no cost and takes
- * spans from 10 pixels.  Not from fewer: a masked load cannot take its
- * bytes from the masked store just before it, which the next span of a
- * mesh's row always meets (from 1 the plant walks 8 % slower, from 8
- * the 10x10 tiling 3 %); and not from 16, where the random 25x25
- * triangles lose a tenth in scanline mode (zscan bench raster --case
- * builtin:plant, --case "triangles 10x10" and --case "random 25x25 back
- * to front" measure them, --simd avx2 beside). */
-static inline int zs_simd_min_span(zs_simd simd) {
-  return simd == ZS_SIMD_AVX512 ? 10 : simd != ZS_SIMD_SCALAR ? 16 : INT_MAX;
 }
 
 /* One row of the target: where a row's spans land. */
@@ -51,7 +34,7 @@ static inline zs_row_ptrs zs_row_of(const zs_target *t, int32_t y) {
   return r;
 }
 
-/* Clears row y of a lazily cleared target, the first time a walk reaches
+/* Clears row y of a lazily cleared target, the first time a scan reaches
  * it (zs_target.fresh). */
 static inline void zs_clear_row(const zs_target *t, int32_t y) {
   const zs_row_ptrs r = zs_row_of(t, y);
@@ -59,11 +42,13 @@ static inline void zs_clear_row(const zs_target *t, int32_t y) {
   t->fresh[y] = 0;
 }
 
-/* The span kernels, one loop per kernel, chosen once per batch: each
- * traversal is inlined into a copy per kernel with k a constant.  The
- * span [x0, x1) of a's polygon, z its depth plane at x0. */
-static inline void zs_fill_span(zs_kernel k, const zs_row_ptrs *row, int x0, int x1, int64_t z,
-                                const zs_active *a, zs_simd simd, int vector_from,
+/* The span kernels, one loop per kernel: each traversal is inlined into
+ * a copy per kernel and SIMD level with k and simd constants, chosen once
+ * per device (traversal.h).  The span [x0, x1) of a's polygon, z its
+ * depth plane at x0. */
+static inline void zs_fill_span(const zs_kernel k, const zs_row_ptrs *row, int x0, int x1,
+                                int64_t z, const zs_active *a, const zs_simd simd,
+                                const int vector_from,
                                 uint64_t *written) {
   if (k == ZS_KERNEL_OVERDRAW) {
     uint32_t *cnt = row->count;
@@ -91,14 +76,7 @@ static inline void zs_fill_span(zs_kernel k, const zs_row_ptrs *row, int x0, int
   if (a->inner || ((uint64_t)z - 1u < (uint64_t)zfar - 1u &&
                    (uint64_t)(z + dz * (x1 - 1 - x0)) - 1u < (uint64_t)zfar - 1u)) {
     if (x1 - x0 >= vector_from) { /* whole vector steps, the rest below */
-#ifdef ZS_HAVE_AVX512_SPANS
-      /* where simd is the constant AVX-512 (paint.c), the kernel itself */
-      int xs = simd == ZS_SIMD_AVX512
-                   ? zs_fill_span_avx512(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written)
-                   : zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
-#else
-      int xs = zs_fill_span_simd(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
-#endif
+      int xs = zs_fill_span_wide(simd, zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
       z += dz * (xs - x0);
       x0 = xs;
     }
@@ -127,19 +105,18 @@ static inline void zs_fill_span(zs_kernel k, const zs_row_ptrs *row, int x0, int
   *written += w;
 }
 
-/* Asks for the table's records the traversal reads a few polygons on:
- * order[j] is about to be read; the polygon record of order[j + 16] and
- * the edges of order[j + 8] (whose record has arrived by then) are
- * fetched ahead.  In a batch whose polygons lie where they please (a
- * random triangle soup) each record is a cache miss, and without it the
- * traversal waits on each in turn (zscan bench raster --case "random
- * 10x10 back to front" measures it).  Inlined by force: a function whose
- * only work is a prefetch has no effect gcc must keep, and gcc drops its
- * calls where it does not inline it first. */
+/* Asks for the table's records the traversal reads a few polygons on
+ * (tuning.h): order[j] is about to be read; the polygon record some
+ * places on and the edges of one nearer (whose record has arrived by
+ * then) are fetched ahead.  In a soup each record is a cache miss, and
+ * without it the traversal waits on each in turn.  Inlined by force: a
+ * function whose only work is a prefetch has no effect gcc must keep, and
+ * gcc drops its calls where it does not inline it first. */
 __attribute__((always_inline)) static inline void
 zs_table_prefetch(const zs_batch *b, const int32_t *order, int32_t j, int32_t n) {
-  if (j + 16 < n) __builtin_prefetch(&b->polys[order[j + 16]]);
-  if (j + 8 < n) __builtin_prefetch(&b->edges[b->polys[order[j + 8]].edge0]);
+  if (j + ZS_TABLE_PREFETCH_POLYS < n) __builtin_prefetch(&b->polys[order[j + ZS_TABLE_PREFETCH_POLYS]]);
+  if (j + ZS_TABLE_PREFETCH_EDGES < n)
+    __builtin_prefetch(&b->edges[b->polys[order[j + ZS_TABLE_PREFETCH_EDGES]].edge0]);
 }
 
 /* Index of the edge of chain [first, last] that covers row. */
@@ -179,8 +156,8 @@ static inline void zs_activate(zs_active *a, int32_t i, const zs_poly *p, const 
 
 /* a's span on the row, clamped to the target's width, filled with kernel
  * k; [*x0, *x1) is what was filled (empty when *x0 >= *x1). */
-static inline void zs_row_span(zs_kernel k, const zs_row_ptrs *row, int width, const zs_active *a,
-                               zs_simd simd, int vector_from, uint64_t *spans, uint64_t *tested,
+static inline void zs_row_span(const zs_kernel k, const zs_row_ptrs *row, int width,
+                               const zs_active *a, const zs_simd simd, const int vector_from, uint64_t *spans, uint64_t *tested,
                                uint64_t *written, int64_t *x0_out, int64_t *x1_out) {
   int64_t x0 = a->l.x, x1 = a->r.x;
   if (!a->inner) {

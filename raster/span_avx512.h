@@ -1,8 +1,8 @@
 /* zscan raster — the draw kernel's span fill with AVX-512 (span_simd.c's
  * header comment: the same test and writes as the scalar loop), in a
- * header: span_simd.c calls it for the walk's long spans, and the
- * painter's AVX-512 copy (paint.c) for every span of a soup, where clang
- * inlines it and gcc calls it.  Forcing it inline under gcc (the painter
+ * header: span_simd.c calls it for the scan's long spans, and the
+ * polygon-order traversal's AVX-512 copy (polyorder.c) for every span of a soup, where clang
+ * inlines it and gcc calls it.  Forcing it inline under gcc (that copy
  * built for AVX-512 throughout) gained nothing measurable (zscan bench
  * raster --case "random 4x4 back to front", the two builds in turn). */
 #ifndef ZS_RASTER_SPAN_AVX512_H
@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "raster/internal.h"
+#include "raster/cpu.h"
 
 #ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>

@@ -1,5 +1,5 @@
 /* The draw kernel's span fill, sixteen pixels at a time with AVX-512,
- * eight with AVX2 or four with SSE2 (internal.h, "span_simd.c").
+ * eight with AVX2 or four with SSE2 (span.h).
  *
  * It does what the scalar loop of scanline.c does for a span whose depth
  * stays strictly inside the range (depth = z >> shift, no clamps): the
@@ -11,13 +11,14 @@
  * SSE2 and AVX2 compare signed 32-bit lanes, so both sides are offset by
  * 2^31; AVX-512 compares unsigned lanes into a mask.
  *
- * Chosen once per device, when it is created: AVX-512 when the CPU has it
- * (cpuid), else AVX2, else SSE2, which every x86-64 CPU has, capped by the
- * device's config (tests, benchmarks).  Elsewhere the scalar loop fills every
- * span. */
+ * Each traversal is compiled once per SIMD level and calls its level's
+ * fill directly (traversal.h); the level is chosen once per device, when
+ * it is created: AVX-512 when the CPU has it (cpuid), else AVX2, else
+ * SSE2, which every x86-64 CPU has, capped by the device's config (tests,
+ * benchmarks).  Elsewhere the scalar loop fills every span. */
 #include <stdint.h>
 
-#include "raster/internal.h"
+#include "raster/span_simd.h"
 
 
 #ifdef ZS_HAVE_X86_PATHS
@@ -28,7 +29,7 @@ static inline __m128i select_sse2(__m128i mask, __m128i old, __m128i new_) {
   return _mm_or_si128(_mm_and_si128(mask, new_), _mm_andnot_si128(mask, old));
 }
 
-static int fill_sse2(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
+int zs_fill_span_sse2(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, int64_t z,
                      int64_t dz, int shift, uint32_t id, uint32_t rgb, uint64_t *written) {
   const __m128i sign = _mm_set1_epi32((int)0x80000000u);
   const __m128i idv = _mm_set1_epi32((int)id), rgbv = _mm_set1_epi32((int)rgb);
@@ -70,7 +71,7 @@ static int fill_sse2(uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1, i
   return x;
 }
 
-__attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir, uint32_t *cr,
+__attribute__((target("avx2"))) int zs_fill_span_avx2(uint32_t *zr, uint32_t *ir, uint32_t *cr,
                                                       int x0, int x1, int64_t z, int64_t dz,
                                                       int shift, uint32_t id, uint32_t rgb,
                                                       uint64_t *written) {
@@ -115,38 +116,4 @@ __attribute__((target("avx2"))) static int fill_avx2(uint32_t *zr, uint32_t *ir,
   return x;
 }
 
-static int cpu_has_avx2(void) { return __builtin_cpu_supports("avx2") != 0; }
-static int cpu_has_avx512(void) {
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-         __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-}
 #endif
-
-zs_simd zs_span_simd_level(zs_simd most) {
-#ifdef ZS_HAVE_X86_PATHS
-  if (most >= ZS_SIMD_AVX512 && cpu_has_avx512()) return ZS_SIMD_AVX512;
-  if (most >= ZS_SIMD_AVX2 && cpu_has_avx2()) return ZS_SIMD_AVX2;
-  if (most >= ZS_SIMD_SSE2) return ZS_SIMD_SSE2;
-#endif
-  (void)most;
-  return ZS_SIMD_SCALAR;
-}
-
-const char *zs_simd_name(zs_simd level) {
-  return level == ZS_SIMD_AVX512 ? "avx512"
-         : level == ZS_SIMD_AVX2 ? "avx2"
-         : level == ZS_SIMD_SSE2 ? "sse2"
-                                 : "scalar";
-}
-
-int zs_fill_span_simd(zs_simd level, uint32_t *zr, uint32_t *ir, uint32_t *cr, int x0, int x1,
-                      int64_t z, int64_t dz, int shift, uint32_t id, uint32_t rgb,
-                      uint64_t *written) {
-#ifdef ZS_HAVE_X86_PATHS
-  if (level == ZS_SIMD_AVX2) return fill_avx2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
-  if (level == ZS_SIMD_SSE2) return fill_sse2(zr, ir, cr, x0, x1, z, dz, shift, id, rgb, written);
-#endif
-  (void)level, (void)zr, (void)ir, (void)cr, (void)x1, (void)z, (void)dz, (void)shift, (void)id,
-      (void)rgb, (void)written;
-  return x0;
-}

@@ -1,36 +1,34 @@
 /* The sorted polygon table of the scanline z-buffer: a batch's polygons
  * bucketed by their first row, each bucket in batch order, which every
- * traversal of a batch takes in order (scanline.c row by row, paint.c
- * polygon by polygon); and the per-walk scratch that holds it. */
+ * traversal of a batch takes in order (scanline.c row by row,
+ * polyorder.c polygon by polygon); and the traversals' scratch that holds
+ * it. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "util/grow.h"
-#include "raster/internal.h"
+#include "raster/scan.h"
+#include "raster/tuning.h"
 
 static int cmp_int64(const void *a, const void *b) {
   int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
   return (x > y) - (x < y);
 }
 
-static int reserve(zs_walk_scratch *s, int32_t rows, int32_t polys) {
-  if (rows + 1 > s->cap_rows) {
-    int32_t *q = realloc(s->bucket_start, (size_t)(rows + 1) * sizeof *q);
-    if (!q) return 0;
-    s->bucket_start = q;
-    s->cap_rows = rows + 1;
-  }
-  if (polys > s->cap_polys) {
-    int32_t *q = realloc(s->order, (size_t)polys * sizeof *q);
-    if (!q) return 0;
-    s->order = q;
-    s->cap_polys = polys;
-  }
-  return 1;
+static int reserve(zs_scan_scratch *s, int32_t rows, int32_t polys) {
+  return zs_grow((void **)&s->bucket_start, &s->cap_rows, (int64_t)rows + 1,
+                 sizeof *s->bucket_start) &&
+         zs_grow((void **)&s->order, &s->cap_polys, polys, sizeof *s->order);
 }
 
-void zs_walk_scratch_free(zs_walk_scratch *s) {
+size_t zs_scan_scratch_bytes(const zs_scan_scratch *s) {
+  return (size_t)s->cap_rows * sizeof *s->bucket_start +
+         (size_t)s->cap_polys * sizeof *s->order + (size_t)s->cap_cross * sizeof *s->cross +
+         (size_t)s->cap_active * sizeof *s->active;
+}
+
+void zs_scan_scratch_free(zs_scan_scratch *s) {
   free(s->bucket_start);
   free(s->order);
   free(s->active);
@@ -49,7 +47,7 @@ void zs_walk_scratch_free(zs_walk_scratch *s) {
  * back leaves where it begins.  Only the buckets in use are summed: a
  * small draw costs its polygons, not the frame's rows (zscan calibrate's
  * "draw calls"). */
-int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch *s,
+int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_scan_scratch *s,
                   zs_table *table) {
   const int32_t nrows = row_end - row_begin;
   if (!reserve(s, nrows, b->npolys > 0 ? b->npolys : 1)) return 0;
@@ -63,11 +61,11 @@ int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch
     if (p->row1 < row_begin || p->row0 >= row_end) continue;
     if (p->row1 > last_row) last_row = p->row1 < row_end ? p->row1 : row_end - 1;
     polys++;
-    jumps += p->row0 > prev_row0 + 2 || p->row0 < prev_row0 - 2;
+    jumps += p->row0 > prev_row0 + ZS_SOUP_ROW_JUMP || p->row0 < prev_row0 - ZS_SOUP_ROW_JUMP;
     prev_row0 = p->row0;
     if (p->ox < x0) x0 = p->ox;
     if (p->ox > x1) x1 = p->ox;
-    if (p->row0 < row_begin) { /* begun above the walk: ordered below */
+    if (p->row0 < row_begin) { /* begun above the scan: ordered below */
       if (!zs_grow((void **)&s->cross, &s->cap_cross, ncross + 1, sizeof *s->cross)) return 0;
       s->cross[ncross++] = (int64_t)p->row0 * ((int64_t)1 << 32) + i;
       continue;
@@ -96,8 +94,8 @@ int zs_table_sort(const zs_batch *b, int row_begin, int row_end, zs_walk_scratch
   /* now where each begins; and the end of the last */
   start[last + 1] = polys;
   if (ncross > 0) {
-    /* A walk that starts mid-frame (a band of rows) takes first the
-     * polygons begun above it, in the order a walk from the top would hold
+    /* A scan that starts mid-frame (a band of rows) takes first the
+     * polygons begun above it, in the order a scan from the top would hold
      * them.  The spans of a row are then filled in the same order in every
      * band layout, and so are counters that depend on it (pixels written,
      * overwrites included). */

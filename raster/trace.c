@@ -1,4 +1,4 @@
-/* The trace of the scanline walk (raster.h, "trace"): the walk's own
+/* The trace of the row scan (raster.h, "trace"): the scan's own
  * integers, and the same values in the lecture's real units.
  *
  * In pixel-centre units (column c has centre x = c) the DDA of an edge
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "raster/edge_dda.h"
-#include "raster/internal.h"
+#include "raster/scan.h"
 
 static double depth_real(int64_t z, int zshift) { return ldexp((double)z, -(32 + zshift)); }
 

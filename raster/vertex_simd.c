@@ -1,5 +1,5 @@
-/* The vertex stage eight vertices at a time with AVX-512 (internal.h,
- * "vertex_simd.c"): what draw.c's loop does for each vertex, to clip
+/* The vertex stage eight vertices at a time with AVX-512 (draw.h,
+ * zs_vertex_stage_for): what draw.c's loop does for each vertex, to clip
  * space, the outcode, the snapped window position, and eye space.
  *
  * The same bits.  Every lane does the scalar loop's operations in its
@@ -21,7 +21,8 @@
  * loop. */
 #include <stdint.h>
 
-#include "raster/internal.h"
+#include "raster/cpu.h"
+#include "raster/draw.h"
 
 #ifdef ZS_HAVE_X86_PATHS
 #include <immintrin.h>
@@ -42,9 +43,10 @@ mark_out(__m512i code, __m512d dist, unsigned bit) {
   return _mm512_mask_or_epi64(code, (__mmask8)~in, code, _mm512_set1_epi64(bit));
 }
 
-ZS_AVX512_TARGET int32_t
-zs_vertex_stage_avx512(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scratch *v,
-                       int32_t i0, int32_t i1, double gx, double gy) {
+ZS_AVX512_TARGET static int32_t
+vertex_stage_avx512(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scratch *v,
+                    int32_t i0, int32_t i1) {
+  const double gx = pr->gx, gy = pr->gy;
   /* the x, y and z of eight points from their 24 doubles, and back */
   const __m512i x_ab = _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0);
   const __m512i x_c = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13);
@@ -128,10 +130,19 @@ zs_vertex_stage_avx512(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scra
   }
   return i;
 }
-#else
-int32_t zs_vertex_stage_avx512(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scratch *v,
-                               int32_t i0, int32_t i1, double gx, double gy) {
-  (void)pr, (void)mesh, (void)v, (void)i1, (void)gx, (void)gy;
-  return i0; /* never chosen: no AVX-512 here */
-}
 #endif
+
+/* Below AVX-512 draw.c's loop takes every vertex. */
+static int32_t vertex_stage_none(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scratch *v,
+                                 int32_t i0, int32_t i1) {
+  (void)pr, (void)mesh, (void)v, (void)i1;
+  return i0;
+}
+
+zs_vertex_stage_fn zs_vertex_stage_for(zs_simd simd) {
+#ifdef ZS_HAVE_X86_PATHS
+  if (simd == ZS_SIMD_AVX512) return vertex_stage_avx512;
+#endif
+  (void)simd;
+  return vertex_stage_none;
+}

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "raster/internal.h"
+#include "raster/device.h"
 #include "util/rng.h"
 #include "tests/testutil.h"
 
@@ -213,26 +213,33 @@ START_TEST(levels_hold_the_farthest) {
   ck_assert_int_eq(zs_device_draw(d, &b.m, NULL, 0, ZS_RGB_MESH, &err), ZS_OK);
   const zs_clock_stats before = *zs_device_clock(d);
   ck_assert_int_eq(zs_device_hzb_build(d, &err), ZS_OK);
-  const zs_hzb *hz = &d->hzb;
-  /* 51x19, 26x10, 13x5, 7x3, 4x2, 2x1, 1x1 */
-  ck_assert_int_eq(hz->levels, 8);
-  ck_assert_int_eq(hz->texels, 51 * 19 + 26 * 10 + 13 * 5 + 7 * 3 + 4 * 2 + 2 * 1 + 1);
+  /* the device's pyramid is the one built from its depth buffer */
   const uint32_t *depth = zs_device_depth_buffer(d);
-  for (int k = 1; k < hz->levels; k++)
-    for (int ty = 0; ty < hz->h[k]; ty++)
-      for (int tx = 0; tx < hz->w[k]; tx++) {
+  zs_hzb *hz = zs_hzb_create();
+  int64_t texels = 0;
+  ck_assert(hz && zs_hzb_build(hz, depth, w, h, &texels));
+  /* 51x19, 26x10, 13x5, 7x3, 4x2, 2x1, 1x1 */
+  ck_assert_int_eq(zs_hzb_levels(hz), 8);
+  ck_assert_int_eq(texels, 51 * 19 + 26 * 10 + 13 * 5 + 7 * 3 + 4 * 2 + 2 * 1 + 1);
+  for (int k = 1; k < zs_hzb_levels(hz); k++) {
+    int lw, lh;
+    const uint32_t *lv = zs_hzb_level(hz, k, &lw, &lh);
+    for (int ty = 0; ty < lh; ty++)
+      for (int tx = 0; tx < lw; tx++) {
         uint32_t far = 0;
         for (int y = ty << k; y < ((ty + 1) << k) && y < h; y++)
           for (int x = tx << k; x < ((tx + 1) << k) && x < w; x++)
             if (depth[y * w + x] > far) far = depth[y * w + x];
-        ck_assert_uint_eq(hz->texel[hz->offset[k] + ty * hz->w[k] + tx], far);
+        ck_assert_uint_eq(lv[ty * lw + tx], far);
       }
+  }
+  zs_hzb_destroy(hz);
   /* its cost: the pass and the texels written, on the GPU; one call on the CPU */
   const zs_clock_stats *after = zs_device_clock(d);
   const zs_clock_params *p = zs_device_clock_params(d);
-  ck_assert_uint_eq(after->hzb_texels - before.hzb_texels, (uint64_t)hz->texels);
+  ck_assert_uint_eq(after->hzb_texels - before.hzb_texels, (uint64_t)texels);
   ck_assert_int_eq(after->draw_ps - before.draw_ps,
-                   llround(p->hzb_pass_ns * 1000) + llround(p->hzb_per_texel_ns * 1000) * hz->texels);
+                   llround(p->hzb_pass_ns * 1000) + llround(p->hzb_per_texel_ns * 1000) * texels);
   ck_assert_int_eq(after->cpu_ps - before.cpu_ps, llround(p->cpu_per_call_ns * 1000));
   mb_free(&b);
   zs_device_destroy(d);

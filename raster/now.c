@@ -1,79 +1,75 @@
 /* Drawing at once: a draw's vertices and faces through the draw stage
  * (draw.c) into the device's batch, then, in zbuffer mode, the batch
- * walked into the full frame.  Which set-up and which walk a device uses
- * is chosen once, at create (device.c, choose_stages): one thread or
- * split over the pool, the frame walked or the batch kept for finish.
- * Every choice gives the same bytes: work split over threads is summed in
- * a fixed order. */
+ * rasterized into the full frame.  Which set-up and which rasterization
+ * a device uses is chosen once, at create (device.c, choose_stages): one
+ * thread or split over the pool, the frame traversed now or the batch
+ * kept for finish.  Every choice gives the same bytes: work split over
+ * threads is summed in a fixed order. */
 #include <stdlib.h>
 
-#include "raster/internal.h"
+#include "raster/device.h"
 #include "raster/pool.h"
 
-/* ---- walks ---- */
+/* ---- rasterizing the batch ---- */
 
-int zs_walk_frame(zs_device *d, zs_kernel k, zs_walk_counts *out) {
-  zs_target t = zs_draw_frame_target(d);
-  int ok = zs_paint_batch(&d->batch, k, &t, 0, d->cfg.height, &d->scratch, out);
+int zs_rasterize_frame(zs_device *d, const zs_traversal *tr, zs_scan_counts *out) {
+  zs_target t = zs_frame_target(d);
+  int ok = zs_polyorder_batch(tr, &d->batch, &t, 0, d->cfg.height, &d->scratch, out);
   zs_batch_reset(&d->batch);
   return ok;
 }
 
-int zs_walk_kept(zs_device *d, zs_kernel k, zs_walk_counts *out) {
+int zs_rasterize_later(zs_device *d, const zs_traversal *tr, zs_scan_counts *out) {
   (void)d;
-  (void)k;
-  *out = (zs_walk_counts){0, 0, 0};
+  (void)tr;
+  *out = (zs_scan_counts){0, 0, 0};
   return 1;
 }
 
-/* A batch walked in bands of rows, one per thread: each band writes only
+/* A batch scanned in bands of rows, one per thread: each band writes only
  * its rows and counts into its own counters; they are summed in band
  * order, so images, counters and modelled times are the same for every
  * number of threads. */
 typedef struct band_job {
   zs_device *d;
-  zs_kernel k;
+  const zs_traversal *tr;
   zs_target t;
-  zs_walk_counts counts[ZS_MAX_BANDS];
+  zs_scan_counts counts[ZS_MAX_BANDS];
   int ok[ZS_MAX_BANDS];
   int nbands, row0, rows;  /* the bands split rows [row0, row0 + rows) */
 } band_job;
 
-static void walk_band(void *ctx, int band) {
+static void rasterize_band(void *ctx, int band) {
   band_job *j = ctx;
   int y0 = j->row0 + (int)zs_part_start(j->rows, band, j->nbands);
   int y1 = j->row0 + (int)zs_part_start(j->rows, band + 1, j->nbands);
-  j->counts[band] = (zs_walk_counts){0, 0, 0};
-  j->ok[band] = zs_paint_batch(&j->d->batch, j->k, &j->t, y0, y1, &j->d->band_scratch[band],
-                               &j->counts[band]);
+  j->counts[band] = (zs_scan_counts){0, 0, 0};
+  j->ok[band] = zs_polyorder_batch(j->tr, &j->d->batch, &j->t, y0, y1,
+                                   &j->d->band_scratch[band], &j->counts[band]);
 }
 
-int zs_walk_frame_banded(zs_device *d, zs_kernel k, zs_walk_counts *out) {
-  /* below a thousand polygons, waking the threads costs more than it saves:
-   * a teapot's 688 faces are walked on one thread (zscan render
-   * builtin:teapots --cull vfc --repeat 11, drawing object by object, with
-   * --threads 2 against --threads 1 measures it) */
-  if (d->batch.npolys < 1024) return zs_walk_frame(d, k, out);
+int zs_rasterize_banded(zs_device *d, const zs_traversal *tr, zs_scan_counts *out) {
+  if (d->batch.npolys < ZS_BANDED_MIN_POLYS) return zs_rasterize_frame(d, tr, out);
   /* The rows the batch covers: bands over the whole frame would leave
    * most of them idle for an object that covers a few rows, and each band
    * still reads every polygon. */
   int32_t lo, hi;
   zs_batch_rows(&d->batch, 0, d->batch.npolys, d->cfg.height, &lo, &hi);
   int rows = hi - lo + 1, nbands = zs_band_count(d->cfg.threads, rows);
-  if (nbands < 2) return zs_walk_frame(d, k, out);
+  if (nbands < 2) return zs_rasterize_frame(d, tr, out);
   band_job j;
   j.d = d;
-  j.k = k;
-  j.t = zs_draw_frame_target(d);
+  j.tr = tr;
+  j.t = zs_frame_target(d);
   j.nbands = nbands;
   j.row0 = lo;
   j.rows = rows;
-  zs_pool_run(d->pool, walk_band, &j, nbands);
-  *out = (zs_walk_counts){0, 0, 0};
+  zs_pool_run(d->pool, rasterize_band, &j, nbands);
+  *out = (zs_scan_counts){0, 0, 0};
   int ok = 1;
   for (int b = 0; b < nbands; b++) {
     ok &= j.ok[b];
-    zs_walk_counts_add(out, &j.counts[b]);
+    zs_scan_counts_add(out, &j.counts[b]);
   }
   zs_batch_reset(&d->batch);
   return ok;
@@ -82,18 +78,15 @@ int zs_walk_frame_banded(zs_device *d, zs_kernel k, zs_walk_counts *out) {
 /* ---- set-ups ---- */
 
 zs_status zs_set_up_whole(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
-                          uint32_t id_base, uint32_t rgb, zs_error *err) {
-  zs_draw_transform(d, prep, mesh, &d->verts, 0, mesh->nverts);
-  zs_face_counts fc = {0, 0, 0, 0, 0, 0, 0};
-  zs_status st = zs_draw_setup(d, prep, &d->verts, mesh, 0, mesh->nfaces, id_base, rgb,
-                               d->painter, &d->batch, &fc, err);
-  zs_add_face_counts(&d->stats, &fc);
-  return st;
+                          uint32_t id_base, uint32_t rgb, zs_face_counts *fc, zs_error *err) {
+  zs_draw_transform(prep, mesh, &d->verts, 0, mesh->nverts);
+  return zs_draw_setup(prep, &d->verts, mesh, 0, mesh->nfaces, id_base, rgb, d->painter,
+                       &d->batch, fc, err);
 }
 
 /* A large draw in zbuffer mode, split over the threads: the vertices in
  * ranges, then the faces in ranges, each set up into a batch of its own;
- * the batches are joined in face order, so the walk, the picture and the
+ * the batches are joined in face order, so the scan, the picture and the
  * counters are those of one thread. */
 typedef struct setup_job {
   zs_device *d;
@@ -110,7 +103,7 @@ typedef struct setup_job {
 static void transform_part(void *ctx, int part) {
   setup_job *j = ctx;
   int64_t n = j->mesh->nverts;
-  zs_draw_transform(j->d, j->prep, j->mesh, &j->d->verts, (int32_t)zs_part_start(n, part, j->nparts),
+  zs_draw_transform(j->prep, j->mesh, &j->d->verts, (int32_t)zs_part_start(n, part, j->nparts),
                     (int32_t)zs_part_start(n, part + 1, j->nparts));
 }
 
@@ -119,16 +112,16 @@ static void setup_part(void *ctx, int part) {
   int64_t n = j->mesh->nfaces;
   j->fc[part] = (zs_face_counts){0, 0, 0, 0, 0, 0, 0};
   zs_error_clear(&j->err[part]);
-  j->st[part] = zs_draw_setup(j->d, j->prep, &j->d->verts, j->mesh,
+  j->st[part] = zs_draw_setup(j->prep, &j->d->verts, j->mesh,
                               (int32_t)zs_part_start(n, part, j->nparts),
                               (int32_t)zs_part_start(n, part + 1, j->nparts), j->id_base, j->rgb, NULL,
                               j->batch[part], &j->fc[part], &j->err[part]);
 }
 
 zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,
-                          uint32_t id_base, uint32_t rgb, zs_error *err) {
+                          uint32_t id_base, uint32_t rgb, zs_face_counts *fc, zs_error *err) {
   if (mesh->nfaces < ZS_PARALLEL_SETUP_FACES)
-    return zs_set_up_whole(d, mesh, prep, id_base, rgb, err);
+    return zs_set_up_whole(d, mesh, prep, id_base, rgb, fc, err);
   setup_job *j = malloc(sizeof *j);
   if (!j) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
   *j = (setup_job){d, mesh, prep, d->cfg.threads, id_base, rgb,
@@ -140,7 +133,7 @@ zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep 
   zs_status st = ZS_OK;
   for (int t = 0; t < j->nparts; t++) {
     if (st == ZS_OK) { /* as one thread would: counted up to the first error */
-      zs_add_face_counts(&d->stats, &j->fc[t]);
+      zs_face_counts_add(fc, &j->fc[t]);
       if ((st = j->st[t]) != ZS_OK) zs_error_set(err, st, "%s", j->err[t].msg);
       else if (t > 0 && !zs_batch_append(&d->batch, j->batch[t]))
         st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
@@ -154,24 +147,20 @@ zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep 
 /* ---- a draw ---- */
 
 zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[16],
-                          uint32_t id_base, uint32_t rgb, zs_kernel k, zs_walk_counts *out,
-                          zs_error *err) {
+                          uint32_t id_base, uint32_t rgb, const zs_kernel_state *ks,
+                          zs_command *c, zs_error *err) {
   if (mesh->nverts < 0 || mesh->nfaces < 0)
     return zs_error_set(err, ZS_ERR_ARG, "draw: negative mesh size");
   if (!zs_vert_scratch_reserve(&d->verts, mesh->nverts > 0 ? mesh->nverts : 1))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-  d->stats.draws++;
-  d->stats.vertices += (uint64_t)mesh->nverts;
+  c->reached = ZS_COUNTED;
+  c->vertices = mesh->nverts;
   zs_draw_prep prep;
-  zs_draw_prepare(d, model, k, &prep);
-  zs_status st = d->set_up(d, mesh, &prep, id_base, rgb, err);
+  zs_draw_prepare(&ks->prep, d->view, d->proj, model, &prep);
+  zs_status st = d->set_up(d, mesh, &prep, id_base, rgb, &c->faces, err);
   if (st != ZS_OK) return st;
-  *out = (zs_walk_counts){0, 0, 0};
-  if (!d->walk(d, k, out)) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
-  d->stats.spans += out->spans;
-  if (k != ZS_KERNEL_QUERY) { /* a query box tests pixels; the clock counts them */
-    d->stats.pixels_tested += out->tested;
-    d->stats.pixels_written += out->written;
-  }
+  if (!d->rasterize(d, &ks->traversal, &c->scan))
+    return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  c->reached = ZS_COMPLETED;
   return ZS_OK;
 }

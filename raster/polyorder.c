@@ -1,30 +1,31 @@
-/* The z-buffer mode's traversal of a batch: each polygon painted whole,
+/* The polygon-order traversal, the z-buffer mode's: each polygon whole,
  * row by row from its top, in the sorted table's order, with the scanline
- * walk's own pieces (span.h): the same exact edge DDA, the same depth
+ * scan's own pieces (span.h): the same exact edge DDA, the same depth
  * plane, the same span kernels (with AVX-512, a soup's small polygons by
  * their edge functions instead of the DDA: the same spans, proved at
  * paint_small_avx512); or, for a mesh laid out in order over a large part
- * of the frame, the scanline walk itself.
+ * of the frame, the row scan itself.
  *
- * Why the two are equal, to the counter.  On any row the walk's active
+ * Why the two are equal, to the counter.  On any row the scan's active
  * list holds its polygons in the order they entered it: by first row,
  * then batch order (table.c).  Painting whole polygons in that same
  * order, the fragments of every pixel arrive in the same order as in the
- * walk, so each depth test sees what it saw there: the same image, the
+ * scan, so each depth test sees what it saw there: the same image, the
  * same pixels written (overwrites included), spans and pixels tested
- * (tests/test_raster.c, painted_and_walked_agree_to_the_counter, and
+ * (tests/test_raster.c, by_polygon_and_scanned_agree_to_the_counter, and
  * every golden image and clock hash).
  *
  * Why paint: a polygon's edge pair and plane stay in registers from its
- * first row to its last, where the walk keeps an active entry per
+ * first row to its last, where the scan keeps an active entry per
  * polygon in memory and reads, steps, writes and moves it every row; in a
- * soup of small polygons the walk's list is thousands long.  Why walk a
- * mesh laid out in order over much of the frame: the walk's rows stream
+ * soup of small polygons the scan's list is thousands long.  Why scan a
+ * mesh laid out in order over much of the frame: the scan's rows stream
  * through the caches, where painting fetches each polygon's rows apart,
  * a stride of a whole row between them (zscan bench raster measures
  * both: the random triangles and the tilings).
  */
 #include "raster/span.h"
+#include "raster/tuning.h"
 
 /* Clears the rows [y0, y1] a lazy target holds nothing in yet. */
 static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
@@ -36,7 +37,7 @@ static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
 #ifdef ZS_HAVE_AVX512_SPANS
 
 /* A small polygon of a soup painted by its edge functions, sixteen
- * columns a row, where the walk would start and step each edge's DDA.
+ * columns a row, where the scan would start and step each edge's DDA.
  *
  * Why the pixels are the DDA's.  On a row whose centres lie at yc, the
  * DDA's span begins at the first column whose centre xc lies at or right
@@ -54,20 +55,16 @@ static void clear_fresh(const zs_target *t, int32_t y0, int32_t y1) {
  * [0, far] before its shift, as zs_depth_of does), and counted the same:
  * the same pixels, depths, ties and counters.
  *
- * Which polygons.  At most 16 columns (one vector) and 8 rows, with at
- * most 6 edges, and less than 128 pixels tall, so that E and its steps
- * fit 32-bit lanes with no wrap: a centre of the box and a corner both
- * lie in the box, |E| <= 2 (xhi - xlo)(yhi - ylo) < 2 * 2^13 * 2^15.
- * Past 8 rows the DDA's starts cost less than the rows' tests of every
- * edge: the random 4x4 triangles are painted a sixth faster this way,
- * the 10x10 ones as fast as with the DDA, and with no limit on the rows
- * a tenth slower (zscan bench raster --case "random 4x4 back to front" and
- * --case "random 10x10 back to front", the builds in turn).  A mesh's
- * polygons stay with the DDA: a masked load of one cannot take its bytes
- * from the masked store of its neighbour (span.h), and the teapots took
- * 7 % longer painted this way.  Returns 0, having painted nothing, for a
- * polygon it does not take. */
-enum { SMALL_MAX_ROWS = 8, SMALL_MAX_EDGES = 6 };
+ * Which polygons.  At most 16 columns (one vector) and ZS_SMALL_MAX_ROWS
+ * rows, with at most ZS_SMALL_MAX_EDGES edges (tuning.h: past them the
+ * DDA's starts cost less than the rows' tests of every edge), and less
+ * than 128 pixels tall, so that E and its steps fit 32-bit lanes with no
+ * wrap: a centre of the box and a corner both lie in the box, |E| <= 2
+ * (xhi - xlo)(yhi - ylo) < 2 * 2^13 * 2^15.  A mesh's polygons stay with
+ * the DDA: a masked load of one cannot take its bytes from the masked
+ * store of its neighbour (span.h).  Returns 0, having painted nothing,
+ * for a polygon it does not take. */
+
 
 ZS_AVX512_INLINE int paint_small_n(const zs_poly *p, const zs_edge *e, const zs_target *t,
                                    int32_t y0, int32_t y1, const int n, uint64_t *spans,
@@ -92,7 +89,7 @@ ZS_AVX512_INLINE int paint_small_n(const zs_poly *p, const zs_edge *e, const zs_
   /* Each edge's test as F >= 0, its sign bit clear: F = E on the left,
    * -E - 1 on the right; F on row y0 across the lanes, and its change a
    * row down */
-  __m512i f[SMALL_MAX_EDGES], down[SMALL_MAX_EDGES];
+  __m512i f[ZS_SMALL_MAX_EDGES], down[ZS_SMALL_MAX_EDGES];
   for (int i = 0; i < n; i++) {
     const int32_t dy = e[i].Y1 - e[i].Y0, dx = e[i].X1 - e[i].X0;
     const int64_t e0 = ((int64_t)cs * 256 + 128 - e[i].X0) * dy -
@@ -143,14 +140,14 @@ ZS_AVX512_INLINE int paint_small_n(const zs_poly *p, const zs_edge *e, const zs_
 
 /* n a constant for a triangle's three edges and a quad's four: the
  * edges' lanes then stay in registers, where a loop to a variable n
- * keeps them in memory (the random 4x4 triangles 7 % faster: zscan bench
- * raster --algo zbuffer --case "random 4x4 back to front") */
+ * keeps them in memory (zscan bench raster --algo zbuffer --case "random
+ * 4x4 back to front") */
 ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *e,
                                                const zs_target *t, int32_t y0, int32_t y1,
                                                uint64_t *spans, uint64_t *tested,
                                                uint64_t *written) {
   const int n = p->nleft + p->nright;
-  if (n > SMALL_MAX_EDGES || y1 - y0 >= SMALL_MAX_ROWS) return 0;
+  if (n > ZS_SMALL_MAX_EDGES || y1 - y0 >= ZS_SMALL_MAX_ROWS) return 0;
   if (n == 3) return paint_small_n(p, e, t, y0, y1, 3, spans, tested, written);
   if (n == 4) return paint_small_n(p, e, t, y0, y1, 4, spans, tested, written);
   return paint_small_n(p, e, t, y0, y1, n, spans, tested, written);
@@ -165,15 +162,13 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
                                                         const int small, const zs_target *t,
                                                         int row_begin, int row_end,
                                                         const zs_table *table,
-                                                        const zs_walk_scratch *s,
-                                                        zs_walk_counts *counts) {
+                                                        const zs_scan_scratch *s,
+                                                        zs_scan_counts *counts) {
   const zs_poly *polys = b->polys;
   const zs_edge *edges = b->edges;
   /* The target by value: read through t, its buffers, stride and width
    * would be fetched again on every row, after each call of the span
-   * fill, which might have changed them for all the compiler knows
-   * (zscan bench raster --algo zbuffer --case "random 10x10 back to
-   * front" measures it) */
+   * fill, which might have changed them for all the compiler knows */
   const zs_target tl = *t;
   const int32_t *start = s->bucket_start, *order = s->order;
   uint64_t spans = 0, tested = 0, written = 0;
@@ -206,61 +201,68 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
   counts->written += written;
 }
 
+/* The copies, per kernel and SIMD level (traversal.h); only the draw
+ * kernel fills spans with SIMD. */
+#define ZS_BY_POLYGON_COPY(name, k, simd, vector_from, small)                                    \
+  static void name(const zs_batch *b, const zs_target *t, int row_begin, int row_end,            \
+                   const zs_table *table, const zs_scan_scratch *s, zs_scan_counts *counts) {    \
+    paint(b, k, simd, vector_from, small, t, row_begin, row_end, table, s, counts);              \
+  }
+ZS_BY_POLYGON_COPY(draw_scalar, ZS_KERNEL_DRAW, ZS_SIMD_SCALAR, INT_MAX, 0)
+ZS_BY_POLYGON_COPY(draw_sse2, ZS_KERNEL_DRAW, ZS_SIMD_SSE2, ZS_SIMD_MIN_SPAN, 0)
+ZS_BY_POLYGON_COPY(draw_avx2, ZS_KERNEL_DRAW, ZS_SIMD_AVX2, ZS_SIMD_MIN_SPAN, 0)
+ZS_BY_POLYGON_COPY(draw_avx512, ZS_KERNEL_DRAW, ZS_SIMD_AVX512, ZS_AVX512_MIN_SPAN, 0)
+ZS_BY_POLYGON_COPY(overdraw, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR, INT_MAX, 0)
+ZS_BY_POLYGON_COPY(query, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0)
+
 #ifdef ZS_HAVE_AVX512_SPANS
-/* The draw kernel's copy for a device with AVX-512, its span fill the
- * AVX-512 kernel itself (span_avx512.h): a soup's small polygons by
- * their edge functions, its others' spans of any length in
- * masked steps of sixteen, with no branch on their pixels; a mesh's from
- * 10 pixels, as in the walk (span.h: the masked load of a span cannot
- * take its bytes from the masked store of its neighbour on the row,
- * which a mesh's faces have and a soup's mostly not).  zscan bench raster
- * --case "random 10x10 back to front" and --case builtin:teapots measure
- * both. */
-ZS_AVX512_TARGET static void paint_avx512(const zs_batch *b, const zs_target *t, int row_begin,
-                                          int row_end, const zs_table *table,
-                                          const zs_walk_scratch *s, zs_walk_counts *counts) {
+/* The draw kernel's copy for a soup on a device with AVX-512, built for
+ * AVX-512 throughout, its span fill the AVX-512 kernel itself
+ * (span_avx512.h): the small polygons by their edge functions, the others'
+ * spans of any length in masked steps of sixteen, with no branch on
+ * their pixels (a mesh's take the fill from ZS_AVX512_MIN_SPAN pixels, as
+ * in the row scan: span.h).  zscan bench raster --case "random 10x10 back
+ * to front" and --case builtin:teapots measure both. */
+ZS_AVX512_TARGET static void draw_avx512_soup(const zs_batch *b, const zs_target *t,
+                                              int row_begin, int row_end, const zs_table *table,
+                                              const zs_scan_scratch *s, zs_scan_counts *counts) {
   paint(b, ZS_KERNEL_DRAW, ZS_SIMD_AVX512, 1, 1, t, row_begin, row_end, table, s, counts);
 }
+#else
+#define draw_avx512_soup draw_avx512
 #endif
 
-int zs_paint_batch(const zs_batch *b, zs_kernel k, const zs_target *t, int row_begin,
-                   int row_end, zs_walk_scratch *s, zs_walk_counts *counts) {
+void zs_polyorder_choose(zs_kernel k, zs_simd simd, zs_traversal *out) {
+  static const zs_by_polygon_fn mesh[ZS_KERNELS][4] = {
+      {draw_scalar, draw_sse2, draw_avx2, draw_avx512},
+      {overdraw, overdraw, overdraw, overdraw},
+      {query, query, query, query}};
+  static const zs_by_polygon_fn soup[ZS_KERNELS][4] = {
+      {draw_scalar, draw_sse2, draw_avx2, draw_avx512_soup},
+      {overdraw, overdraw, overdraw, overdraw},
+      {query, query, query, query}};
+  out->by_polygon_mesh = mesh[k][simd];
+  out->by_polygon_soup = soup[k][simd];
+}
+
+int zs_polyorder_batch(const zs_traversal *tr, const zs_batch *b, const zs_target *t,
+                       int row_begin, int row_end, zs_scan_scratch *s, zs_scan_counts *counts) {
   if (row_end <= row_begin) return 1;
   zs_table table;
   if (!zs_table_sort(b, row_begin, row_end, s, &table)) return 0;
   /* A mesh laid out in order over a quarter of the frame or more is
-   * walked: its rows stream through the caches, where a polygon at a time
-   * would fetch each of its rows apart.  A soup, most of whose polygons
-   * begin far from the one before, and a draw over a smaller part of the
-   * frame are painted (zscan bench raster measures all three: the
-   * tilings, the random triangles, the scenes and small models). */
+   * scanned by rows: its rows stream through the caches, where a polygon
+   * at a time would fetch each of its rows apart.  A soup, most of whose
+   * polygons begin far from the one before, and a draw over a smaller
+   * part of the frame go a polygon at a time (tuning.h). */
   const int64_t rows = (int64_t)table.last_row - (row_begin + table.first) + 1;
   const int64_t cols = (int64_t)(table.x1 < t->width ? table.x1 : t->width - 1) -
                        (table.x0 > 0 ? table.x0 : 0) + 1;
-  if (2 * (int64_t)table.jumps <= table.polys &&
-      4 * rows * cols >= (int64_t)(row_end - row_begin) * t->width)
-    return zs_walk_sorted(b, k, t, row_begin, row_end, &table, s, counts);
+  const int soup = 2 * (int64_t)table.jumps > table.polys;
+  if (!soup &&
+      ZS_SCAN_FRAME_SHARE * rows * cols >= (int64_t)(row_end - row_begin) * t->width)
+    return tr->scan_sorted(b, t, row_begin, row_end, &table, s, counts);
   clear_fresh(t, row_begin + table.first, table.last_row);
-  /* a copy of the loop per kernel, k a constant in each */
-  switch (k) {
-    case ZS_KERNEL_DRAW:
-#ifdef ZS_HAVE_AVX512_SPANS
-      if (t->simd == ZS_SIMD_AVX512 && 2 * (int64_t)table.jumps > table.polys) {
-        paint_avx512(b, t, row_begin, row_end, &table, s, counts);
-        break;
-      }
-#endif
-      paint(b, ZS_KERNEL_DRAW, t->simd, zs_simd_min_span(t->simd), 0, t, row_begin, row_end,
-            &table, s, counts);
-      break;
-    case ZS_KERNEL_OVERDRAW:
-      paint(b, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR, INT_MAX, 0, t, row_begin, row_end, &table, s,
-            counts);
-      break;
-    case ZS_KERNEL_QUERY:
-      paint(b, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0, t, row_begin, row_end, &table, s,
-            counts);
-      break;
-  }
+  (soup ? tr->by_polygon_soup : tr->by_polygon_mesh)(b, t, row_begin, row_end, &table, s, counts);
   return 1;
 }
