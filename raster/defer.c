@@ -416,7 +416,7 @@ static zs_status flush_scanning(zs_device *d, zs_error *err) {
   j.d = d;
   j.q = q;
   j.tr = &d->drawing->traversal;
-  j.t = zs_frame_target(d);
+  j.t = zs_raster_frame_target(d);
   return flush_queue(d, &j, err);
 }
 

@@ -185,7 +185,7 @@ void zs_device_set_camera(zs_device *d, const double view[16],
 
 /* zbuffer mode clears lazily: a clear marks every row fresh, and a row is
  * cleared when a scan first reaches it (zs_target.fresh) or a reader of
- * the whole frame asks (zs_frame_clear_fresh); finish hands out a blank
+ * the whole frame asks (zs_raster_clear_fresh); finish hands out a blank
  * row for a row no draw reached.  A small model's frame so clears only
  * the rows it covers (zscan bench raster --case models measures it). */
 static void mark_rows_fresh(zs_device *d) { memset(d->fresh, 1, (size_t)d->cfg.height); }
@@ -222,13 +222,13 @@ static void clear_frame_in_parts(zs_device *d) {
   zs_pool_run(d->pool, clear_part, &j, j.nparts);
 }
 
-zs_target zs_frame_target(const zs_device *d) {
+zs_target zs_raster_frame_target(const zs_device *d) {
   zs_target t = {d->depth, d->id,  d->rgb,  d->count, d->cfg.width,
                  d->cfg.width, 0, d->fresh, d->cfg.background};
   return t;
 }
 
-void zs_frame_clear_fresh(const zs_device *d) {
+void zs_raster_clear_fresh(const zs_device *d) {
   if (!d->fresh) return;
   const size_t w = (size_t)d->cfg.width;
   for (int y = 0; y < d->cfg.height; y++)
@@ -244,7 +244,7 @@ void zs_frame_clear_fresh(const zs_device *d) {
  * device is the caller's own, never a const object: only the view is.) */
 static const uint32_t *hand_out(const zs_device *cd, const uint32_t *buffer) {
   zs_device *d = (zs_device *)cd;
-  zs_frame_clear_fresh(d);
+  zs_raster_clear_fresh(d);
   d->clear_buffers = d->pool ? clear_frame_in_parts : clear_frame;
   return buffer;
 }

@@ -88,8 +88,8 @@ struct zs_device {
  * target; the rows of the full frame not cleared yet cleared, for a
  * reader of the whole frame (the buffers' getters, the pyramid, the
  * hidden lines). */
-zs_target zs_frame_target(const zs_device *d);
-void zs_frame_clear_fresh(const zs_device *d);
+zs_target zs_raster_frame_target(const zs_device *d);
+void zs_raster_clear_fresh(const zs_device *d);
 
 /* now.c: drawing at once.  A draw through the draw stage into the batch
  * (set_up: whole on one thread, or split over the pool when large), then

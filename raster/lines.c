@@ -9,7 +9,7 @@
 zs_status zs_device_fill_color(zs_device *d, uint32_t rgb, zs_error *err) {
   zs_status st = zs_device_flush(d, err); /* queued faces paint before the fill */
   if (st != ZS_OK || !d->rgb) return st;
-  zs_frame_clear_fresh(d);
+  zs_raster_clear_fresh(d);
   size_t n = (size_t)d->cfg.width * (size_t)d->cfg.height;
   for (size_t i = 0; i < n; i++) d->rgb[i] = rgb;
   return ZS_OK;
@@ -101,7 +101,7 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "hidden-line output needs the z-buffer mode");
   zs_status st = zs_device_flush(d, err); /* the edges test the faces' depths */
   if (st != ZS_OK) return st;
-  zs_frame_clear_fresh(d);
+  zs_raster_clear_fresh(d);
   zs_draw_prep prep; /* the matrices a draw of the mesh uses */
   zs_draw_prepare(&d->drawing->prep, d->view, d->proj, model, &prep);
   const double *mv = prep.mv, *mvp = prep.mvp;
@@ -165,7 +165,7 @@ zs_status zs_device_draw_box_lines(zs_device *d, const double lo[3], const doubl
                                    uint32_t rgb, zs_error *err) {
   if (d->cfg.algo != ZS_ALGO_ZBUFFER)
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "box outlines need the z-buffer mode");
-  zs_frame_clear_fresh(d);
+  zs_raster_clear_fresh(d);
   double mvp[16];
   zs_mat_mul(mvp, d->proj, d->view);
   /* corner b: bit 0 picks x, bit 1 y, bit 2 z; an edge joins corners one

@@ -13,7 +13,7 @@
 /* ---- rasterizing the batch ---- */
 
 int zs_rasterize_frame(zs_device *d, const zs_traversal *tr, zs_scan_counts *out) {
-  zs_target t = zs_frame_target(d);
+  zs_target t = zs_raster_frame_target(d);
   int ok = zs_polyorder_batch(tr, &d->batch, &t, 0, d->cfg.height, &d->scratch, out);
   zs_batch_reset(&d->batch);
   return ok;
@@ -60,7 +60,7 @@ int zs_rasterize_banded(zs_device *d, const zs_traversal *tr, zs_scan_counts *ou
   band_job j;
   j.d = d;
   j.tr = tr;
-  j.t = zs_frame_target(d);
+  j.t = zs_raster_frame_target(d);
   j.nbands = nbands;
   j.row0 = lo;
   j.rows = rows;

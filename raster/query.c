@@ -136,7 +136,7 @@ zs_status zs_device_hzb_build(zs_device *d, zs_error *err) {
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "the depth pyramid needs the z-buffer mode");
   zs_status st = zs_device_flush(d, err); /* the pyramid is of what is drawn */
   if (st != ZS_OK) return st;
-  zs_frame_clear_fresh(d);
+  zs_raster_clear_fresh(d);
   if (!d->hzb && !(d->hzb = zs_hzb_create()))
     return zs_error_set(err, ZS_ERR_NOMEM, "depth pyramid: out of memory");
   int64_t texels;
