@@ -76,13 +76,18 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
   return zs_device_finish(dev, gather_row, &g, err);
 }
 
+int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
+  return algo == ZS_ALGO_ZBUFFER && shade == ZS_SHADE_FLAT;
+}
+
 zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           const zs_frame_opts *o, zs_image *out, float *depth,
                           zs_raster_stats *stats, zs_error *err) {
   double view[16], proj[16];
   if (zs_frame_camera(scene, cam, o->width, o->height, view, proj, err)) return err->code;
-  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
-    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
+  if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
+    return zs_error_set(err, ZS_ERR_ARG,
+                        "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0};
   zs_device *dev = NULL;

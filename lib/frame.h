@@ -21,6 +21,13 @@ typedef struct zs_frame_opts {
   int hidden_line;  /* draw the visible edges of front faces, not the faces */
 } zs_frame_opts;
 
+/* Whether the hidden-line style can draw with algo and shade: its edges
+ * are tested against the faces' full-frame depth buffer, which zbuffer
+ * mode alone keeps, and its picture is ink on paper, not a shading.  The
+ * rule lives here once; the library and the command each word a refusal
+ * in their own terms (fields here, flags there). */
+int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade);
+
 /* Renders scene seen by cam (completed from the scene's bounds where it is
  * partial) into out (allocated here), and the window depth (1 = far) into
  * depth when it is not NULL (width * height floats, row 0 at the top).

@@ -71,7 +71,7 @@ static const char usage_tail[] =
 /* What the options ask together, and of the outputs: their formats,
  * their folders, the one stream standard output carries. */
 static zs_status check_options(render_opts *o, int in_memory, zs_error *err) {
-  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
+  if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
   if (o->overlay && o->cull < 0)
     return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
