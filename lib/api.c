@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/input.h"
 #include "lib/query.h"
 #include "scene/camera.h"

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 
 static int by_first_face(const void *a, const void *b) {
   const zs_object_visibility *x = a, *y = b;

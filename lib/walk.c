@@ -5,7 +5,7 @@
 
 #include "cull/cull.h"
 #include "cull/octree.h"
-#include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "zscan/walk.h"
 
 struct zs_walk {

@@ -19,6 +19,7 @@
 #include "tools/crosscheck.h"
 #include "tools/commands.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
 

@@ -20,6 +20,7 @@
 #include "scene/scene.h"
 #include "tools/cli.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
 

@@ -41,6 +41,7 @@
 #include "lib/outfile.h"
 #include "tools/cli.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 
 enum { NTERMS = 7, SIDE = 512 };
 static const char *term_names[NTERMS] = {"per_call_ns",  "per_vertex_ns", "per_polygon_ns",

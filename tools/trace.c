@@ -22,6 +22,7 @@
 #include "tools/cli.h"
 #include "tools/glyphs.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
