@@ -4,6 +4,8 @@
  * The methods run in lockstep: each frame the scene moves once, the octree
  * is brought up to date once, and then every method draws that frame on a
  * device of its own (each keeps its culler's state from frame to frame).
+ * Both are the library's frame step (lib/walk.h), the one zs_walk_next
+ * takes for a single method.
  * Each method's face ids are compared with those of `none` in the same
  * frame: diff_pixels.  The modelled times come from the device clock and
  * are the same on every run; wall times are measured and are not.
@@ -26,6 +28,7 @@
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
+#include "lib/walk.h"
 #include "tools/walk.h"
 
 static const char usage[] =
@@ -288,9 +291,9 @@ static zs_status set_latency(const walk_opts *o, walk *wk, zs_clock_params *cloc
   double view[16], proj[16];
   zs_cull_stats cs;
   const zs_walk_method *none = &wk->runs[0];
-  if (zs_frame_path_camera(&wk->s, 0, wk->w, wk->h, view, proj, err) ||
-      zs_culler_frame(none->culler, none->dev, &wk->s, &wk->tree, view, proj, &cs, err) ||
-      zs_device_finish(none->dev, NULL, NULL, err))
+  if (zs_walk_step_scene(&wk->s, &wk->tree, 0, o->step, wk->w, wk->h, view, proj, err) ||
+      zs_walk_step_method(none->culler, none->dev, &wk->s, &wk->tree, view, proj, &cs, NULL,
+                          NULL, err))
     return err->code;
   clock->query_latency_ns = o->latency_frames * (double)zs_device_frame_ps(none->dev) * 1e-3;
   for (int k = 0; k < o->nmethods; k++)
@@ -336,8 +339,7 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
   if (o->named &&
       zs_frame_named_path(&wk->s, o->named, o->frames ? o->frames : 100, wk->w, wk->h, err))
     return err->code;
-  wk->frames = o->frames ? o->frames
-               : s->path.frames > 0 ? (s->path.frames + o->step - 1) / o->step : 1;
+  wk->frames = o->frames ? o->frames : zs_walk_frame_count(s, o->step);
   zs_octree_params tp;
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
   tp.max_depth = o->depth;
@@ -364,8 +366,8 @@ static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const 
   zs_walk_method *r = &wk->runs[k];
   zs_cull_stats cs;
   double t0 = zs_wall_ms();
-  if (zs_culler_frame(r->culler, r->dev, &wk->s, &wk->tree, view, proj, &cs, err) ||
-      zs_device_finish(r->dev, o->frames_dir ? keep_rows : NULL, &wk->frame_image, err))
+  if (zs_walk_step_method(r->culler, r->dev, &wk->s, &wk->tree, view, proj, &cs,
+                          o->frames_dir ? keep_rows : NULL, &wk->frame_image, err))
     return err->code;
   double wall = zs_wall_ms() - t0;
   const zs_clock_stats *ck = zs_device_clock(r->dev);
@@ -442,12 +444,9 @@ static zs_status walk_frames(const walk_opts *o, walk *wk, zs_error *err) {
   zs_progress progress;
   zs_progress_start(&progress, "walk", "frame", wk->frames, o->quiet);
   for (int f = 0; f < wk->frames; f++) {
-    if (f > 0) {
-      for (int k = 0; k < o->step; k++) zs_scene_advance(&wk->s);
-      if (zs_octree_update(&wk->tree, &wk->s, NULL, err)) return err->code;
-    }
     double view[16], proj[16];
-    if (zs_frame_path_camera(&wk->s, f * o->step, wk->w, wk->h, view, proj, err)) return err->code;
+    if (zs_walk_step_scene(&wk->s, &wk->tree, f, o->step, wk->w, wk->h, view, proj, err))
+      return err->code;
     for (int k = 0; k < o->nmethods; k++)
       if (method_frame(o, wk, k, f, view, proj, err)) return err->code;
     for (int k = 0; k < o->nalgos; k++) /* everything, in another mode */
