@@ -1,7 +1,7 @@
 /* `zscan walk`'s reports: the CSV's rows, the summary (the paper's Table 2
  * per frame on average, the GPU's share, ideal-box's churn), and the
  * Markdown table and plots asked for. */
-#include "tools/walk.h"
+#include "tools/cmd_walk.h"
 
 #include <string.h>
 

@@ -27,7 +27,7 @@
 #include "lib/outfile.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
-#include "tools/render.h"
+#include "tools/cmd_render.h"
 
 static const char usage[] =
     "usage: zscan golden update MANIFEST [--dir DIR]\n"

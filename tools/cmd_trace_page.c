@@ -1,10 +1,10 @@
-/* The page `zscan trace --html` writes (tools/trace.c): everything inline,
- * so it opens from a file:// address with nothing loaded from elsewhere.
+/* The page `zscan trace --html` writes (tools/cmd_trace.c): everything
+ * inline, so it opens from a file:// address with nothing loaded from elsewhere.
  * The trace's JSON lines go between the two halves, as the array the
  * script reads; the script draws the grid and the tables of one scanline
  * at a time, from #row=N (or, for --algo zbuffer, the depth and frame
- * buffers after one polygon, from #step=N).  tools/trace.c writes it. */
-#include "tools/trace_page.h"
+ * buffers after one polygon, from #step=N).  tools/cmd_trace.c writes it. */
+#include "tools/cmd_trace_page.h"
 
 const char zs_trace_page_head[] =
     "<!DOCTYPE html>\n"

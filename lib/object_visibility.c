@@ -1,6 +1,6 @@
 /* Per-object visibility, as `zscan query` prints it (zscan/zscan.h,
- * zs_query_objects; lib/query.h). */
-#include "lib/query.h"
+ * zs_query_objects; lib/object_visibility.h). */
+#include "lib/object_visibility.h"
 
 #include <stdlib.h>
 

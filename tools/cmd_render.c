@@ -1,7 +1,7 @@
 /* `zscan render [INPUT] [options]`: one frame of INPUT to a PNG, with its
  * counters.  See `zscan render --help` (usage below) for the options. */
 #include "tools/commands.h"
-#include "tools/render.h"
+#include "tools/cmd_render.h"
 
 #include <stdio.h>
 #include <stdlib.h>

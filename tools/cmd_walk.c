@@ -29,7 +29,7 @@
 #include "lib/input.h"
 #include "lib/outfile.h"
 #include "lib/walk.h"
-#include "tools/walk.h"
+#include "tools/cmd_walk.h"
 
 static const char usage[] =
     "usage: zscan walk SCENE --cull M1,M2,... [options]\n"

@@ -26,7 +26,7 @@
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
-#include "tools/trace_page.h"
+#include "tools/cmd_trace_page.h"
 #include "tools/viewopts.h"
 
 static const char usage[] =

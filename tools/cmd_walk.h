@@ -1,8 +1,8 @@
-/* zscan tools — what `zscan walk`'s frame loop (walk.c) hands its reports
- * (walk_report.c): the sums of every method and mode over the walk, and
+/* zscan tools — what `zscan walk`'s frame loop (cmd_walk.c) hands its
+ * reports (cmd_walk_report.c): the sums of every method and mode over the walk, and
  * the CSV's rows as the loop writes them. */
-#ifndef ZS_TOOLS_WALK_H
-#define ZS_TOOLS_WALK_H
+#ifndef ZS_TOOLS_CMD_WALK_H
+#define ZS_TOOLS_CMD_WALK_H
 
 #include <stdint.h>
 #include <stdio.h>

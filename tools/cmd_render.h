@@ -1,7 +1,7 @@
 /* zscan tools — `zscan render`'s options and frame, for the command and
  * for the golden runner, which renders its cases as render would. */
-#ifndef ZS_TOOLS_RENDER_H
-#define ZS_TOOLS_RENDER_H
+#ifndef ZS_TOOLS_CMD_RENDER_H
+#define ZS_TOOLS_CMD_RENDER_H
 
 #include "cull/cull.h"
 #include "raster/raster.h"
