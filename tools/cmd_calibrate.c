@@ -569,15 +569,15 @@ int zs_cmd_calibrate(int argc, char **argv) {
   p.hzb_per_box_ns = hx[2] * 1e6;
   p.hzb_per_read_ns = hx[3] * 1e6;
   unsigned char measured[sizeof(zs_clock_params) / sizeof(double)] = {0};
-  for (int f = 0; f < zs_clock_nfields; f++) {
+  for (int f = 0; f < zs_clockfile_nfields; f++) {
     for (int i = 0; i < NTERMS; i++)
-      measured[f] |= strcmp(zs_clock_fields[f].name, term_names[i]) == 0;
+      measured[f] |= strcmp(zs_clockfile_fields[f].name, term_names[i]) == 0;
     for (int i = 0; i < NHZB_TERMS; i++)
-      measured[f] |= strcmp(zs_clock_fields[f].name, hzb_term_names[i]) == 0;
+      measured[f] |= strcmp(zs_clockfile_fields[f].name, hzb_term_names[i]) == 0;
   }
-  for (int f = 0; f < zs_clock_nfields; f++)
-    printf("%-22s %12.4f ns  %s\n", zs_clock_fields[f].name,
-           *(const double *)((const char *)&p + zs_clock_fields[f].offset),
+  for (int f = 0; f < zs_clockfile_nfields; f++)
+    printf("%-22s %12.4f ns  %s\n", zs_clockfile_fields[f].name,
+           *(const double *)((const char *)&p + zs_clockfile_fields[f].offset),
            measured[f] ? "measured" : "default (modelled: this device cannot show it)");
   if (zs_clockfile_write(out, &p, measured, &err)) {
     zs_out_error_option(&err, "-o");

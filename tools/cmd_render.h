@@ -8,7 +8,7 @@
 #include "tools/viewopts.h"
 #include "zscan/zscan.h"
 
-typedef struct render_opts {
+typedef struct zs_cmd_render_opts {
   const char *input, *out_png, *out_pfm;
   int out_given; /* -o was given */
   int svg;       /* -o FILE.svg: the hidden lines as vectors */
@@ -24,14 +24,15 @@ typedef struct render_opts {
   zs_query_bounds bounds;
   zs_clock_params clock;
   zs_cost_params cost;
-} render_opts;
+} zs_cmd_render_opts;
 
 /* Parses render's argv (argv[0] "render"); in_memory: for an image kept in
  * memory, so -o, --depth and --stats are refused and no path is checked. */
-zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, zs_error *err);
+zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_render_opts *o,
+                              zs_error *err);
 
 /* The frame o asks for, exactly as `zscan render` draws it, into *out
  * (allocated here). */
-zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err);
+zs_status zs_cmd_render_image(const zs_cmd_render_opts *o, zs_image *out, zs_error *err);
 
 #endif

@@ -6,7 +6,7 @@
  * buffers after one polygon, from #step=N).  tools/cmd_trace.c writes it. */
 #include "tools/cmd_trace_page.h"
 
-const char zs_trace_page_head[] =
+const char zs_cmd_trace_page_head[] =
     "<!DOCTYPE html>\n"
     "<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
     "<title>zscan trace</title>\n"
@@ -31,7 +31,7 @@ const char zs_trace_page_head[] =
     "<div id=\"main\"><div><svg id=\"grid\"></svg></div><div id=\"tables\"></div></div>\n"
     "<script id=\"trace\" type=\"application/json\">\n";
 
-const char zs_trace_page_tail[] =
+const char zs_cmd_trace_page_tail[] =
     "</script>\n"
     "<script>\n"
     "\"use strict\";\n"

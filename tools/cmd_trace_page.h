@@ -3,7 +3,7 @@
 #ifndef ZS_TOOLS_CMD_TRACE_PAGE_H
 #define ZS_TOOLS_CMD_TRACE_PAGE_H
 
-extern const char zs_trace_page_head[];
-extern const char zs_trace_page_tail[];
+extern const char zs_cmd_trace_page_head[];
+extern const char zs_cmd_trace_page_tail[];
 
 #endif

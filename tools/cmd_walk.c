@@ -255,8 +255,8 @@ static void keep_rows(void *user, const zs_row *row) {
          (size_t)row->width * sizeof *row->rgb);
 }
 
-static zs_status write_frame(const walk_opts *o, const zs_walk_method *r, const zs_image *im, int f,
-                             zs_error *err) {
+static zs_status write_frame(const walk_opts *o, const zs_cmd_walk_method *r, const zs_image *im,
+                             int f, zs_error *err) {
   char path[4200];
   snprintf(path, sizeof path, "%s/%s-%05d.png", o->frames_dir, zs_cull_method_name(r->m), f);
   zs_status st = zs_png_write_shaded(path, im, o->frames_shade, err);
@@ -275,8 +275,8 @@ typedef struct walk {
   zs_scene s;
   zs_octree tree;
   int w, h, frames;
-  zs_walk_method runs[ZS_CULL_METHODS];
-  zs_walk_algo algos[2];
+  zs_cmd_walk_method runs[ZS_CULL_METHODS];
+  zs_cmd_walk_algo algos[2];
   uint32_t *ref_ids, *algo_ids;
   zs_image frame_image; /* a method's frame, for --frames-dir */
   double *frame_ms;     /* per frame and method, for the plot */
@@ -290,7 +290,7 @@ typedef struct walk {
 static zs_status set_latency(const walk_opts *o, walk *wk, zs_clock_params *clock, zs_error *err) {
   double view[16], proj[16];
   zs_cull_stats cs;
-  const zs_walk_method *none = &wk->runs[0];
+  const zs_cmd_walk_method *none = &wk->runs[0];
   if (zs_walk_step_scene(&wk->s, &wk->tree, 0, o->step, wk->w, wk->h, view, proj, err) ||
       zs_walk_step_method(none->culler, none->dev, &wk->s, &wk->tree, view, proj, &cs, NULL,
                           NULL, err))
@@ -307,7 +307,7 @@ static zs_status set_latency(const walk_opts *o, walk *wk, zs_clock_params *cloc
 static zs_status make_devices(const walk_opts *o, walk *wk, zs_error *err) {
   zs_clock_params clock = o->clock;
   for (int k = 0; k < o->nmethods; k++) {
-    zs_walk_method *r = &wk->runs[k];
+    zs_cmd_walk_method *r = &wk->runs[k];
     r->m = (zs_cull_method)o->methods[k];
     /* id shading, which the comparisons read; flat when --frames-dir shows
      * the frames shaded (the ids are kept either way, the clock the same) */
@@ -355,7 +355,7 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
   if (o->csv) {
     if (zs_out_open(&wk->csv_out, o->csv, err)) return zs_out_error_option(err, "--csv");
     wk->csv = wk->csv_out.fp;
-    zs_walk_csv_header(wk->csv);
+    zs_cmd_walk_csv_header(wk->csv);
   }
   return ZS_OK;
 }
@@ -363,7 +363,7 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
 /* Method k's draw of frame f, added to its sums, compared with none's. */
 static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const double *view,
                               const double *proj, zs_error *err) {
-  zs_walk_method *r = &wk->runs[k];
+  zs_cmd_walk_method *r = &wk->runs[k];
   zs_cull_stats cs;
   double t0 = zs_wall_ms();
   if (zs_walk_step_method(r->culler, r->dev, &wk->s, &wk->tree, view, proj, &cs,
@@ -373,7 +373,7 @@ static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const 
   const zs_clock_stats *ck = zs_device_clock(r->dev);
   double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
   double split[4];
-  zs_walk_gpu_split_ms(r->dev, split);
+  zs_cmd_walk_gpu_split_ms(r->dev, split);
   for (int i = 0; i < 4; i++) r->gpu_ms[i] += split[i];
   const uint32_t *ids = zs_device_id_buffer(r->dev);
   const size_t pixels = (size_t)wk->w * (size_t)wk->h;
@@ -407,15 +407,15 @@ static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const 
   wk->frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
   wk->frame_wall[(size_t)k * (size_t)wk->frames + (size_t)f] = wall;
   if (wk->csv)
-    zs_walk_csv_method(wk->csv, f * o->step, r, &cs, modelled, stall, wall, split,
-                       !o->no_reference, diff);
+    zs_cmd_walk_csv_method(wk->csv, f * o->step, r, &cs, modelled, stall, wall, split,
+                           !o->no_reference, diff);
   return o->frames_dir ? write_frame(o, r, &wk->frame_image, f, err) : ZS_OK;
 }
 
 /* Mode k's draw of everything in frame f, against none's. */
 static zs_status algo_frame(const walk_opts *o, walk *wk, int k, int f, const double *view,
                             const double *proj, zs_error *err) {
-  zs_walk_algo *r = &wk->algos[k];
+  zs_cmd_walk_algo *r = &wk->algos[k];
   double t0 = zs_wall_ms();
   zs_device_clear(r->dev);
   zs_device_set_camera(r->dev, view, proj);
@@ -434,7 +434,8 @@ static zs_status algo_frame(const walk_opts *o, walk *wk, int k, int f, const do
   r->wall_ms += wall;
   r->diff_pixels += diff;
   wk->frame_wall[(size_t)(o->nmethods + k) * (size_t)wk->frames + (size_t)f] = wall;
-  if (wk->csv) zs_walk_csv_algo(wk->csv, f * o->step, r, modelled, wall, faces, (int)wk->s.ninst, diff);
+  if (wk->csv)
+    zs_cmd_walk_csv_algo(wk->csv, f * o->step, r, modelled, wall, faces, (int)wk->s.ninst, diff);
   return ZS_OK;
 }
 
@@ -482,12 +483,12 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     if ((st = zs_out_commit(&wk->csv_out, err))) zs_out_error_option(err, "--csv");
   }
   if (!st) {
-    zs_walk_result res = {o->scene,    wk->w,         wk->h,         wk->frames,
-                          o->step,     (int)wk->s.ninst, zs_scene_faces(&wk->s),
-                          !o->no_reference, wk->runs, o->nmethods, wk->algos, o->nalgos,
-                          wk->frame_ms, wk->frame_wall};
-    zs_walk_report(o->report, &res);
-    st = zs_walk_outputs(&res, o->md, o->tradeoff, o->plot, err);
+    zs_cmd_walk_result res = {o->scene,    wk->w,         wk->h,         wk->frames,
+                              o->step,     (int)wk->s.ninst, zs_scene_faces(&wk->s),
+                              !o->no_reference, wk->runs, o->nmethods, wk->algos, o->nalgos,
+                              wk->frame_ms, wk->frame_wall};
+    zs_cmd_walk_report(o->report, &res);
+    st = zs_cmd_walk_outputs(&res, o->md, o->tradeoff, o->plot, err);
   }
   walk_free(wk);
   free(wk);
