@@ -34,13 +34,18 @@ zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *e
   return st;
 }
 
+zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
+                            const double proj[16], zs_error *err) {
+  zs_device_clear(dev);
+  zs_device_set_camera(dev, view, proj);
+  return zs_frame_draw_scene(dev, scene, err);
+}
+
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err) {
   gather g = {out, depth};
-  zs_device_clear(dev);
-  zs_device_set_camera(dev, view, proj);
-  if (zs_frame_draw_scene(dev, scene, err)) return err->code;
+  if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
   if (hidden_line) {
     /* the faces stay in the depth buffer; the picture is their edges */
     if (zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err)) return err->code;

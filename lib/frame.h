@@ -49,4 +49,9 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
 /* Draws every instance of scene (no clear, no finish). */
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
 
+/* A new frame of everything from (view, proj): clears dev, sets its
+ * camera and draws every instance of scene; the caller finishes it. */
+zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
+                            const double proj[16], zs_error *err);
+
 #endif

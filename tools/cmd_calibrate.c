@@ -289,9 +289,7 @@ static zs_status time_hzb(const zs_scene *sc, const double view[16], const doubl
   zs_status st = times && maybe ? ZS_OK
                                 : zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
   for (int r = 0; r < repeat && st == ZS_OK; r++) {
-    zs_device_clear(d);
-    zs_device_set_camera(d, view, proj);
-    st = zs_frame_draw_scene(d, sc, err);
+    st = zs_frame_draw_all(d, sc, view, proj, err);
     if (st == ZS_OK) st = zs_device_hzb_build(d, err);
     const zs_clock_stats before = *zs_device_clock(d);
     double t0 = zs_wall_ms();

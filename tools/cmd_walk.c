@@ -417,9 +417,7 @@ static zs_status algo_frame(const walk_opts *o, walk *wk, int k, int f, const do
                             const double *proj, zs_error *err) {
   zs_cmd_walk_algo *r = &wk->algos[k];
   double t0 = zs_wall_ms();
-  zs_device_clear(r->dev);
-  zs_device_set_camera(r->dev, view, proj);
-  if (zs_frame_draw_scene(r->dev, &wk->s, err) ||
+  if (zs_frame_draw_all(r->dev, &wk->s, view, proj, err) ||
       zs_device_finish(r->dev, keep_ids, wk->algo_ids, err))
     return err->code;
   double wall = zs_wall_ms() - t0, modelled = zs_device_frame_ps(r->dev) * 1e-9;
