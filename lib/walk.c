@@ -17,7 +17,7 @@ struct zs_walk {
   int32_t frames, next; /* walk frames, and the next one to render */
 };
 
-int32_t zs_walk_frame_count(const zs_scene *s, int step) {
+int32_t zs_walk_step_count(const zs_scene *s, int step) {
   return s->path.frames > 0 ? (s->path.frames + step - 1) / step : 1;
 }
 
@@ -63,7 +63,7 @@ zs_status zs_walk_create(zs_scene *scene, const zs_walk_opts *opts, zs_walk **ou
   w->scene = scene;
   zs_frame_size(scene, o->width, o->height, &w->width, &w->height);
   w->step = o->step ? o->step : 1;
-  w->frames = zs_walk_frame_count(scene, w->step);
+  w->frames = zs_walk_step_count(scene, w->step);
   zs_octree_params tp;
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
   zs_cost_params cost;

@@ -2,7 +2,8 @@
  * the scene and camera moving on, and one method drawing the frame.
  * zs_walk_next is the two for one method; `zscan walk` moves the scene
  * once a frame and runs the second piece for each of its methods, so the
- * frames the command measures are the library's. */
+ * frames the command measures are the library's.  These are the
+ * library's own: zs_walk_step_, apart from the public zs_walk_ names. */
 #ifndef ZS_LIB_WALK_H
 #define ZS_LIB_WALK_H
 
@@ -15,7 +16,7 @@
 
 /* The frames of a walk of s taking every step-th frame of its path: the
  * path's frames over step, rounded up, or 1 without a path. */
-int32_t zs_walk_frame_count(const zs_scene *s, int step);
+int32_t zs_walk_step_count(const zs_scene *s, int step);
 
 /* Brings the walk to its frame k: from the second frame on (k > 0) the
  * scene advances step frames of its path and tree follows it; then the

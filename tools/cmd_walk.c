@@ -339,7 +339,7 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
   if (o->named &&
       zs_frame_named_path(&wk->s, o->named, o->frames ? o->frames : 100, wk->w, wk->h, err))
     return err->code;
-  wk->frames = o->frames ? o->frames : zs_walk_frame_count(s, o->step);
+  wk->frames = o->frames ? o->frames : zs_walk_step_count(s, o->step);
   zs_octree_params tp;
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
   tp.max_depth = o->depth;
