@@ -5,8 +5,9 @@
 #include <string.h>
 
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/input.h"
-#include "lib/query.h"
+#include "lib/object_visibility.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "zscan/zscan.h"

@@ -1,8 +1,9 @@
+/* One frame of a scene into an image (lib/frame.h). */
 #include "lib/frame.h"
 
-#include "scene/paths.h"
-
 #include <string.h>
+
+#include "lib/frame_camera.h"
 
 typedef struct gather {
   zs_image *im;
@@ -19,24 +20,6 @@ static void gather_row(void *user, const zs_row *row) {
           row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
 }
 
-void zs_frame_size(const zs_scene *scene, int width, int height, int *w, int *h) {
-  *w = width ? width : scene->width ? scene->width : ZS_DEVICE_DEFAULT_WIDTH;
-  *h = height ? height : scene->height ? scene->height : ZS_DEVICE_DEFAULT_HEIGHT;
-}
-
-void zs_frame_complete_camera(const zs_scene *scene, const zs_camera *cam, int width, int height,
-                              zs_camera *used) {
-  *used = *cam;
-  zs_camera_complete(used, scene->lo, scene->hi, (double)width / height);
-}
-
-zs_status zs_frame_camera(const zs_scene *scene, const zs_camera *cam, int width,
-                          int height, double view[16], double proj[16], zs_error *err) {
-  zs_camera c;
-  zs_frame_complete_camera(scene, cam, width, height, &c);
-  return zs_camera_matrices(&c, (double)width / height, view, proj, err);
-}
-
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err) {
   /* every instance, nothing read between the draws: on two threads they
    * are queued and rendered together (raster.h, deferred drawing) */
@@ -51,13 +34,18 @@ zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *e
   return st;
 }
 
+zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
+                            const double proj[16], zs_error *err) {
+  zs_device_clear(dev);
+  zs_device_set_camera(dev, view, proj);
+  return zs_frame_draw_scene(dev, scene, err);
+}
+
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err) {
   gather g = {out, depth};
-  zs_device_clear(dev);
-  zs_device_set_camera(dev, view, proj);
-  if (zs_frame_draw_scene(dev, scene, err)) return err->code;
+  if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
   if (hidden_line) {
     /* the faces stay in the depth buffer; the picture is their edges */
     if (zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err)) return err->code;
@@ -76,13 +64,18 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
   return zs_device_finish(dev, gather_row, &g, err);
 }
 
+int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
+  return algo == ZS_ALGO_ZBUFFER && shade == ZS_SHADE_FLAT;
+}
+
 zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           const zs_frame_opts *o, zs_image *out, float *depth,
                           zs_raster_stats *stats, zs_error *err) {
   double view[16], proj[16];
   if (zs_frame_camera(scene, cam, o->width, o->height, view, proj, err)) return err->code;
-  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
-    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
+  if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
+    return zs_error_set(err, ZS_ERR_ARG,
+                        "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0};
   zs_device *dev = NULL;
@@ -93,44 +86,4 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (st != ZS_OK) zs_image_free(out);
   zs_device_destroy(dev);
   return st;
-}
-
-void zs_frame_view(const zs_scene *s, const zs_camera *u, int fovy_given, zs_camera *cam) {
-  *cam = s->camera;
-  if (u->has_eye) memcpy(cam->eye, u->eye, sizeof cam->eye), cam->has_eye = 1;
-  if (u->has_target) memcpy(cam->target, u->target, sizeof cam->target), cam->has_target = 1;
-  if (u->has_up) memcpy(cam->up, u->up, sizeof cam->up), cam->has_up = 1;
-  if (u->has_dir) memcpy(cam->dir, u->dir, sizeof cam->dir), cam->has_dir = 1;
-  if (u->fit > 0) cam->fit = u->fit;
-  if (u->has_near) cam->znear = u->znear, cam->has_near = 1;
-  if (u->has_far) cam->zfar = u->zfar, cam->has_far = 1;
-  if (fovy_given) cam->fovy = u->fovy;
-  if (u->ortho) {
-    cam->ortho = 1;
-    memcpy(cam->extent, u->extent, sizeof cam->extent);
-  }
-  /* an eye of the user's own with the scene's target would look somewhere
-   * the user did not ask: the target then comes from the bounds */
-  if (u->has_eye && !u->has_target) cam->has_target = 0;
-  /* and the scene's near and far planes belong to the scene's eye */
-  if (u->has_eye && !u->has_near) cam->has_near = 0;
-  if (u->has_eye && !u->has_far) cam->has_far = 0;
-}
-
-zs_status zs_frame_path_camera(const zs_scene *s, int32_t f, int w, int h, double view[16],
-                               double proj[16], zs_error *err) {
-  zs_camera cam = s->camera;
-  if (s->path.nkeys > 0) zs_path_camera(s, f % (s->path.frames > 0 ? s->path.frames : 1), &cam);
-  return zs_frame_camera(s, &cam, w, h, view, proj, err);
-}
-
-zs_status zs_frame_named_path(zs_scene *s, const char *name, int32_t frames, int width, int height,
-                              zs_error *err) {
-  zs_camera base;
-  zs_frame_complete_camera(s, &s->camera, width, height, &base);
-  zs_path p;
-  if (zs_path_named(name, &base, frames, &p, err)) return err->code;
-  zs_path_free(&s->path);
-  s->path = p;
-  return ZS_OK;
 }

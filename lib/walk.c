@@ -1,12 +1,11 @@
-/* A scene's camera path walked with one culling method (zscan/walk.h):
- * the frame step of `zscan walk`, for one method. */
+/* A scene's camera path walked with one culling method (zscan/walk.h),
+ * and the frame step it shares with `zscan walk` (lib/walk.h). */
+#include "lib/walk.h"
+
 #include <stdlib.h>
 #include <string.h>
 
-#include "cull/cull.h"
-#include "cull/octree.h"
-#include "lib/frame.h"
-#include "zscan/walk.h"
+#include "lib/frame_camera.h"
 
 struct zs_walk {
   zs_scene *scene;
@@ -17,6 +16,28 @@ struct zs_walk {
   int width, height, step;
   int32_t frames, next; /* walk frames, and the next one to render */
 };
+
+int32_t zs_walk_step_count(const zs_scene *s, int step) {
+  return s->path.frames > 0 ? (s->path.frames + step - 1) / step : 1;
+}
+
+zs_status zs_walk_step_scene(zs_scene *s, zs_octree *tree, int32_t k, int step, int width,
+                             int height, double view[16], double proj[16], zs_error *err) {
+  if (k > 0) {
+    for (int i = 0; i < step; i++) zs_scene_advance(s);
+    zs_status st = zs_octree_update(tree, s, NULL, err);
+    if (st != ZS_OK) return st;
+  }
+  return zs_frame_path_camera(s, k * step, width, height, view, proj, err);
+}
+
+zs_status zs_walk_step_method(zs_culler *c, zs_device *dev, const zs_scene *s,
+                              const zs_octree *tree, const double view[16],
+                              const double proj[16], zs_cull_stats *cs, zs_row_sink sink,
+                              void *user, zs_error *err) {
+  zs_status st = zs_culler_frame(c, dev, s, tree, view, proj, cs, err);
+  return st != ZS_OK ? st : zs_device_finish(dev, sink, user, err);
+}
 
 void zs_walk_destroy(zs_walk *w) {
   if (!w) return;
@@ -42,7 +63,7 @@ zs_status zs_walk_create(zs_scene *scene, const zs_walk_opts *opts, zs_walk **ou
   w->scene = scene;
   zs_frame_size(scene, o->width, o->height, &w->width, &w->height);
   w->step = o->step ? o->step : 1;
-  w->frames = scene->path.frames > 0 ? (scene->path.frames + w->step - 1) / w->step : 1;
+  w->frames = zs_walk_step_count(scene, w->step);
   zs_octree_params tp;
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
   zs_cost_params cost;
@@ -66,19 +87,15 @@ zs_device *zs_walk_device(zs_walk *w) { return w->dev; }
 
 zs_status zs_walk_next(zs_walk *w, zs_walk_frame *out, zs_error *err) {
   memset(out, 0, sizeof *out);
-  if (w->next > 0) {
-    for (int k = 0; k < w->step; k++) zs_scene_advance(w->scene);
-    zs_status st = zs_octree_update(&w->tree, w->scene, NULL, err);
-    if (st != ZS_OK) return st;
-  }
-  int32_t f = w->next * w->step;
   double view[16], proj[16];
   zs_cull_stats cs;
-  zs_status st = zs_frame_path_camera(w->scene, f, w->width, w->height, view, proj, err);
+  zs_status st = zs_walk_step_scene(w->scene, &w->tree, w->next, w->step, w->width, w->height,
+                                    view, proj, err);
   if (st == ZS_OK)
-    st = zs_culler_frame(w->culler, w->dev, w->scene, &w->tree, view, proj, &cs, err);
-  if (st == ZS_OK) st = zs_device_finish(w->dev, NULL, NULL, err);
+    st = zs_walk_step_method(w->culler, w->dev, w->scene, &w->tree, view, proj, &cs, NULL, NULL,
+                             err);
   if (st != ZS_OK) return st;
+  int32_t f = w->next * w->step;
   w->next++;
   *out = (zs_walk_frame){f,
                          zs_device_frame_ps(w->dev) * 1e-9,

@@ -12,6 +12,7 @@
 
 #include "tests/testutil.h"
 #include "tools/clockfile.h"
+#include "tools/commands.h"
 #include "lib/image.h"
 
 static char out[1 << 16], err[1 << 16];
@@ -198,6 +199,24 @@ START_TEST(help_before_anything_else) {
   snprintf(want, sizeof want, "usage: zscan %s%s%s", c[0], c[1] ? " " : "", c[1] ? c[1] : "");
   ck_assert_msg(strncmp(out, want, strlen(want)) == 0, "%s: '%.60s'", c[0], out);
   ck_assert_str_eq(err, "");
+}
+END_TEST
+
+/* Every command of zscan's table answers --help, and `zscan help NAME`
+ * says the same: a command added to the table is covered here. */
+START_TEST(every_command_of_the_table_has_help) {
+  const char *name = zs_commands[_i].name;
+  static char help_out[sizeof out];
+  const char *args[] = {name, "--help", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "%s: exit %d, stderr '%s'", name, rc, err);
+  char want[64];
+  snprintf(want, sizeof want, "usage: zscan %s", name);
+  ck_assert_msg(strncmp(out, want, strlen(want)) == 0, "%s: '%.60s'", name, out);
+  const char *help[] = {"help", name, NULL};
+  rc = zs_test_run_zscan(help, help_out, sizeof help_out, err, sizeof err);
+  ck_assert_int_eq(rc, 0);
+  ck_assert_str_eq(help_out, out);
 }
 END_TEST
 
@@ -1221,6 +1240,7 @@ int main(void) {
   tcase_add_loop_test(tc, bad_option_refused, 0, sizeof bad_options / sizeof bad_options[0]);
   tcase_add_loop_test(tc, help_before_anything_else, 0,
                       sizeof help_commands / sizeof help_commands[0]);
+  tcase_add_loop_test(tc, every_command_of_the_table_has_help, 0, zs_ncommands);
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);

@@ -1,5 +1,5 @@
 /* Tests of lib/image.c (PNG and PFM files, the image hash),
- * tools/diff.c (zs_image_diff and `zscan diff`) and tools/crosscheck.c
+ * tools/cmd_diff.c (zs_image_diff and `zscan diff`) and tools/crosscheck.c
  * (face ids against another renderer's).  Every file is written
  * below the build directory, in test_image_out/. */
 #include "tests/testutil.h"
@@ -19,6 +19,7 @@
 #include "tools/crosscheck.h"
 #include "tools/commands.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
 

@@ -183,6 +183,31 @@ START_TEST(zero_config_renders) {
 }
 END_TEST
 
+/* The library refuses what the command refuses, in its own words: the
+ * fields of zs_render_opts, never the command's flags. */
+START_TEST(library_errors_name_its_options_not_flags) {
+  zs_error err = {0};
+  zs_scene *scene = NULL;
+  ck_assert_int_eq(zs_scene_load("builtin:cubes?n=2", NULL, &scene, &err), ZS_OK);
+  const zs_algo algos[] = {ZS_ALGO_SCANLINE, ZS_ALGO_ZBUFFER};
+  const zs_shade shades[] = {ZS_SHADE_FLAT, ZS_SHADE_ID};
+  for (int k = 0; k < 2; k++) {
+    zs_render_opts o = {0};
+    o.width = 32;
+    o.height = 24;
+    o.hidden_line = 1;
+    o.algo = algos[k];
+    o.shade = shades[k];
+    zs_image im = {0};
+    zs_error_clear(&err);
+    ck_assert_int_eq(zs_render(scene, &o, &im, NULL, NULL, &err), ZS_ERR_ARG);
+    ck_assert_str_eq(err.msg, "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT");
+    ck_assert_ptr_null(im.rgb);
+  }
+  zs_scene_destroy(scene);
+}
+END_TEST
+
 /* The last line of text, into line. */
 static void last_line(const char *text, char *line, size_t cap) {
   const char *end = text + strlen(text);
@@ -458,6 +483,7 @@ int main(void) {
   tcase_add_test(tc, headers_include_nothing_private);
   tcase_add_test(tc, shared_library_exports_the_api_only);
   tcase_add_test(tc, zero_config_renders);
+  tcase_add_test(tc, library_errors_name_its_options_not_flags);
   tcase_add_test(tc, render_hash_equals_the_command);
   tcase_add_test(tc, cxx_example_queries);
   tcase_add_test(tc, query_objects_equal_the_command);

@@ -27,7 +27,7 @@
 
 #include "scene/scene.h"
 #include "tests/testutil.h"
-#include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "tools/crosscheck.h"
 #include "lib/input.h"
 #include "tools/mesa.h"

@@ -20,6 +20,7 @@
 #include "scene/scene.h"
 #include "tools/cli.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
 
@@ -33,15 +34,6 @@ static const char *const motions[4] = {"translate", "roll", "yaw", "fast"};
 typedef struct motion_row {
   double faces, reused_pct, full_ms, coherent_ms, full_cmp, coherent_cmp, diff;
 } motion_row;
-
-/* One frame on dev; returns the ids in ids (width * height). */
-static zs_status frame(zs_device *dev, const zs_scene *s, const double view[16],
-                       const double proj[16], zs_error *err) {
-  zs_device_clear(dev);
-  zs_device_set_camera(dev, view, proj);
-  if (zs_frame_draw_scene(dev, s, err)) return err->code;
-  return ZS_OK;
-}
 
 typedef struct id_sink {
   uint32_t *ids;
@@ -92,12 +84,13 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
     if ((st = zs_camera_matrices(&cam, (double)w / h, view, proj, err))) break;
     /* from scratch */
     zs_device_depthsort_reset(full);
-    if ((st = frame(full, s, view, proj, err)) || (st = zs_device_finish(full, NULL, NULL, err)))
+    if ((st = zs_frame_draw_all(full, s, view, proj, err)) ||
+        (st = zs_device_finish(full, NULL, NULL, err)))
       break;
     full_ms[f] = zs_device_depthsort_ms(full);
     if (f > 0) out->full_cmp += (double)zs_device_depthsort_stats(full)->comparisons;
     /* with coherence, and its picture */
-    if ((st = frame(coherent, s, view, proj, err)) ||
+    if ((st = zs_frame_draw_all(coherent, s, view, proj, err)) ||
         (st = zs_device_finish(coherent, keep_ids, &sink, err)))
       break;
     const zs_depthsort_stats *ds = zs_device_depthsort_stats(coherent);
@@ -109,7 +102,8 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
     /* the first frame has nothing to reuse: the table counts the others */
     if (f > 0) out->reused_pct += ds->faces ? 100.0 * (double)ds->reused / (double)ds->faces : 0;
     /* the z-buffer's picture */
-    if ((st = frame(zbuf, s, view, proj, err)) || (st = zs_device_finish(zbuf, NULL, NULL, err)))
+    if ((st = zs_frame_draw_all(zbuf, s, view, proj, err)) ||
+        (st = zs_device_finish(zbuf, NULL, NULL, err)))
       break;
     const uint32_t *zids = zs_device_id_buffer(zbuf);
     for (size_t i = 0; i < npx; i++) out->diff += ids[i] != zids[i];

@@ -37,6 +37,7 @@
 #include "tools/cli.h"
 #include "tools/crosscheck.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/input.h"
 #include "tools/mesa.h"
 #include "lib/outfile.h"

@@ -11,7 +11,7 @@
 #include "lib/outfile.h"
 
 #define FIELD(name) {#name, offsetof(zs_clock_params, name)}
-const zs_clock_field zs_clock_fields[] = {
+const zs_clockfile_field zs_clockfile_fields[] = {
     FIELD(per_call_ns),      FIELD(per_vertex_ns),    FIELD(per_polygon_ns),
     FIELD(per_span_ns),      FIELD(per_pixel_ns),
     FIELD(per_write_ns),     FIELD(per_query_pixel_ns), FIELD(switch_ns),
@@ -21,12 +21,12 @@ const zs_clock_field zs_clock_fields[] = {
     FIELD(hzb_per_read_ns),
 };
 #undef FIELD
-const int zs_clock_nfields = (int)(sizeof zs_clock_fields / sizeof zs_clock_fields[0]);
+const int zs_clockfile_nfields = (int)(sizeof zs_clockfile_fields / sizeof zs_clockfile_fields[0]);
 
 static double *field(zs_clock_params *p, const char *name) {
-  for (int i = 0; i < zs_clock_nfields; i++)
-    if (strcmp(zs_clock_fields[i].name, name) == 0)
-      return (double *)((char *)p + zs_clock_fields[i].offset);
+  for (int i = 0; i < zs_clockfile_nfields; i++)
+    if (strcmp(zs_clockfile_fields[i].name, name) == 0)
+      return (double *)((char *)p + zs_clockfile_fields[i].offset);
   return NULL;
 }
 
@@ -41,7 +41,7 @@ static zs_status set_value(const char *where, const char *name, double v, zs_clo
   return ZS_OK;
 }
 
-zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err) {
+zs_status zs_clockfile_set(const char *assignment, zs_clock_params *p, zs_error *err) {
   char name[64];
   double v;
   if (zs_cli_assignment("--clock-set", assignment, name, sizeof name, &v, err)) return err->code;
@@ -97,15 +97,15 @@ zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err)
   return st;
 }
 
-void zs_clock_print(FILE *f, const zs_clock_params *p, const unsigned char *measured) {
+void zs_clockfile_print(FILE *f, const zs_clock_params *p, const unsigned char *measured) {
   fputs("{", f);
-  for (int i = 0; i < zs_clock_nfields; i++)
-    fprintf(f, "%s\"%s\":%.6g", i ? "," : "", zs_clock_fields[i].name,
-            *(const double *)((const char *)p + zs_clock_fields[i].offset));
+  for (int i = 0; i < zs_clockfile_nfields; i++)
+    fprintf(f, "%s\"%s\":%.6g", i ? "," : "", zs_clockfile_fields[i].name,
+            *(const double *)((const char *)p + zs_clockfile_fields[i].offset));
   if (measured) {
     fputs(",\"source\":{", f);
-    for (int i = 0; i < zs_clock_nfields; i++)
-      fprintf(f, "%s\"%s\":\"%s\"", i ? "," : "", zs_clock_fields[i].name,
+    for (int i = 0; i < zs_clockfile_nfields; i++)
+      fprintf(f, "%s\"%s\":\"%s\"", i ? "," : "", zs_clockfile_fields[i].name,
               measured[i] ? "measured" : "default");
     fputs("}", f);
   }
@@ -116,6 +116,6 @@ zs_status zs_clockfile_write(const char *path, const zs_clock_params *p,
                              const unsigned char *measured, zs_error *err) {
   zs_out out;
   if (zs_out_open(&out, path, err)) return err->code;
-  zs_clock_print(out.fp, p, measured);
+  zs_clockfile_print(out.fp, p, measured);
   return zs_out_commit(&out, err);
 }

@@ -19,21 +19,21 @@
 #include "raster/raster.h"
 
 /* Names and addresses of the parameters, in the order of the struct. */
-typedef struct zs_clock_field {
+typedef struct zs_clockfile_field {
   const char *name;
   size_t offset;
-} zs_clock_field;
-extern const zs_clock_field zs_clock_fields[];
-extern const int zs_clock_nfields;
+} zs_clockfile_field;
+extern const zs_clockfile_field zs_clockfile_fields[];
+extern const int zs_clockfile_nfields;
 
 zs_status zs_clockfile_load(const char *path, zs_clock_params *p, zs_error *err);
 /* KEY=VALUE */
-zs_status zs_clock_set(const char *assignment, zs_clock_params *p, zs_error *err);
+zs_status zs_clockfile_set(const char *assignment, zs_clock_params *p, zs_error *err);
 /* Writes p as a clock file (through lib/outfile.h); measured: NULL, or
- * one flag per field of zs_clock_fields, written as the "source" key. */
+ * one flag per field of zs_clockfile_fields, written as the "source" key. */
 zs_status zs_clockfile_write(const char *path, const zs_clock_params *p,
                              const unsigned char *measured, zs_error *err);
 /* The same JSON to a stream (one object, keys in struct order). */
-void zs_clock_print(FILE *f, const zs_clock_params *p, const unsigned char *measured);
+void zs_clockfile_print(FILE *f, const zs_clock_params *p, const unsigned char *measured);
 
 #endif

@@ -1,8 +1,23 @@
-/* One dispatcher for the command tables (tools/commands.h). */
+/* zscan's table of commands, and the one dispatcher of it and of `zscan
+ * bench`'s table (tools/commands.h). */
 #include "tools/commands.h"
 
 #include <stdio.h>
 #include <string.h>
+
+const zs_command zs_commands[] = {
+    {"render", "[INPUT]", "render one frame to a PNG, with its counters", zs_cmd_render},
+    {"diff", "A.png B.png", "compare two images: pixels differing, faces involved", zs_cmd_diff},
+    {"golden", "update|check M", "golden-image tests over a manifest, with reports",
+     zs_cmd_golden},
+    {"trace", "INPUT", "the scanline z-buffer's tables, scanline by scanline", zs_cmd_trace},
+    {"walk", "SCENE", "culling methods over the scene's camera path", zs_cmd_walk},
+    {"path", "SCENE", "the cameras of the scene's walk, one line per frame", zs_cmd_path},
+    {"query", "INPUT", "per object: pixels owned and bounding-box samples", zs_cmd_query},
+    {"calibrate", "", "measure the device clock's constants on this machine", zs_cmd_calibrate},
+    {"bench", "WHAT", "benchmarks: octree, depthsort, raster, tradeoff, suite", zs_cmd_bench},
+};
+const int zs_ncommands = (int)(sizeof zs_commands / sizeof zs_commands[0]);
 
 static void usage(FILE *f, const char *prog, const zs_command *table, int n) {
   fprintf(f, "usage: %s COMMAND [options]   (%s help COMMAND, or %s COMMAND --help)\ncommands:\n",

@@ -1,8 +1,10 @@
-/* zscan tools — the commands of `zscan` and of `zscan bench`, in one
- * table each: name, arguments, one line of summary, and the function that
- * runs it.  A run function takes argv[0] = its own name and returns the
- * process exit status: 0 success, 1 bad input (or, for diff, images that
- * differ), 2 a usage error. */
+/* zscan tools — the commands of `zscan` (zs_commands, in commands.c) and
+ * of `zscan bench` (in cmd_bench.c), in one table each: name, arguments,
+ * one line of summary, and the function that runs it (zscan's: zs_cmd_NAME
+ * in tools/cmd_NAME.c; the benchmarks': in tools/bench_NAME.c).  A run
+ * function takes argv[0] = its own name and returns the process exit
+ * status: 0 success, 1 bad input (or, for diff, images that differ), 2 a
+ * usage error. */
 #ifndef ZS_TOOLS_COMMANDS_H
 #define ZS_TOOLS_COMMANDS_H
 
@@ -12,6 +14,10 @@ typedef struct zs_command {
   const char *summary;
   int (*run)(int argc, char **argv);
 } zs_command;
+
+/* zscan's commands, in the order its usage lists them. */
+extern const zs_command zs_commands[];
+extern const int zs_ncommands;
 
 int zs_cmd_render(int argc, char **argv);
 int zs_cmd_diff(int argc, char **argv);

@@ -64,7 +64,7 @@ int zs_cull_option(int argc, char **argv, int *i, zs_clock_params *clock, zs_cos
     return 1;
   }
   zs_status st = load  ? zs_clockfile_load(v, clock, err)
-                 : set ? zs_clock_set(v, clock, err)
+                 : set ? zs_clockfile_set(v, clock, err)
                        : zs_cost_set(v, cost, err);
   return st ? -1 : 1;
 }

@@ -16,7 +16,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # What each package is for:
 #   cmake gcc make pkg-config   the build
 #   g++                         the C++ example and the test that the headers compile as C++
-#   libpng-dev                  PNG output (tools/image.c)
+#   libpng-dev                  PNG output (lib/image.c)
 #   check                       the unit-test framework (tests/)
 #   clang                       the second compiler CI builds and sanitizes with
 #   libcjson-dev                scene files (JSON) and statistics

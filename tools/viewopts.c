@@ -1,6 +1,6 @@
 #include "tools/viewopts.h"
 
-#include "lib/frame.h"
+#include "lib/frame_camera.h"
 
 #include <errno.h>
 #include <math.h>

@@ -10,7 +10,7 @@
 
 #include "scene/paths.h"
 #include "scene/scene.h"
-#include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "tools/cli.h"
 #include "lib/input.h"
 

@@ -21,7 +21,7 @@
 #include "scene/scene.h"
 #include "tools/cli.h"
 #include "lib/input.h"
-#include "lib/query.h"
+#include "lib/object_visibility.h"
 #include "tools/viewopts.h"
 
 static const char usage[] =

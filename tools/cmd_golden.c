@@ -27,7 +27,7 @@
 #include "lib/outfile.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
-#include "tools/render.h"
+#include "tools/cmd_render.h"
 
 static const char usage[] =
     "usage: zscan golden update MANIFEST [--dir DIR]\n"
@@ -51,7 +51,7 @@ enum { MAX_ARGS = 128 };
 
 typedef struct golden_case {
   char *name;
-  render_opts opts;
+  zs_cmd_render_opts opts;
   char *argv_text;      /* the render options' strings, owned */
   char *argv[MAX_ARGS]; /* render's argv, pointing into argv_text */
   int argc;
@@ -172,7 +172,7 @@ static zs_status parse_case(const char *manifest, const char *mdir, const cJSON 
   /* render's own parser, so every option means what it means there */
   zs_error perr;
   zs_error_clear(&perr);
-  if (zs_render_parse(c->argc, c->argv, 1, &c->opts, &perr))
+  if (zs_cmd_render_parse(c->argc, c->argv, 1, &c->opts, &perr))
     return zs_error_set(err, perr.code, "%s (%s): %s", where, c->name, perr.msg);
   return ZS_OK;
 }
@@ -247,7 +247,7 @@ static void golden_path(const golden_run *r, const golden_case *c, char *buf, si
 static void run_case(golden_run *r, golden_case *c) {
   zs_error_clear(&c->err);
   double t0 = zs_wall_ms();
-  if (zs_render_image(&c->opts, &c->actual, &c->err)) {
+  if (zs_cmd_render_image(&c->opts, &c->actual, &c->err)) {
     c->failed = 1;
     c->ms = zs_wall_ms() - t0;
     return;

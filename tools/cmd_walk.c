@@ -4,6 +4,8 @@
  * The methods run in lockstep: each frame the scene moves once, the octree
  * is brought up to date once, and then every method draws that frame on a
  * device of its own (each keeps its culler's state from frame to frame).
+ * Both are the library's frame step (lib/walk.h), the one zs_walk_next
+ * takes for a single method.
  * Each method's face ids are compared with those of `none` in the same
  * frame: diff_pixels.  The modelled times come from the device clock and
  * are the same on every run; wall times are measured and are not.
@@ -22,10 +24,12 @@
 #include "tools/cli.h"
 #include "tools/costset.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
-#include "tools/walk.h"
+#include "lib/walk.h"
+#include "tools/cmd_walk.h"
 
 static const char usage[] =
     "usage: zscan walk SCENE --cull M1,M2,... [options]\n"
@@ -251,8 +255,8 @@ static void keep_rows(void *user, const zs_row *row) {
          (size_t)row->width * sizeof *row->rgb);
 }
 
-static zs_status write_frame(const walk_opts *o, const zs_walk_method *r, const zs_image *im, int f,
-                             zs_error *err) {
+static zs_status write_frame(const walk_opts *o, const zs_cmd_walk_method *r, const zs_image *im,
+                             int f, zs_error *err) {
   char path[4200];
   snprintf(path, sizeof path, "%s/%s-%05d.png", o->frames_dir, zs_cull_method_name(r->m), f);
   zs_status st = zs_png_write_shaded(path, im, o->frames_shade, err);
@@ -271,8 +275,8 @@ typedef struct walk {
   zs_scene s;
   zs_octree tree;
   int w, h, frames;
-  zs_walk_method runs[ZS_CULL_METHODS];
-  zs_walk_algo algos[2];
+  zs_cmd_walk_method runs[ZS_CULL_METHODS];
+  zs_cmd_walk_algo algos[2];
   uint32_t *ref_ids, *algo_ids;
   zs_image frame_image; /* a method's frame, for --frames-dir */
   double *frame_ms;     /* per frame and method, for the plot */
@@ -286,10 +290,10 @@ typedef struct walk {
 static zs_status set_latency(const walk_opts *o, walk *wk, zs_clock_params *clock, zs_error *err) {
   double view[16], proj[16];
   zs_cull_stats cs;
-  const zs_walk_method *none = &wk->runs[0];
-  if (zs_frame_path_camera(&wk->s, 0, wk->w, wk->h, view, proj, err) ||
-      zs_culler_frame(none->culler, none->dev, &wk->s, &wk->tree, view, proj, &cs, err) ||
-      zs_device_finish(none->dev, NULL, NULL, err))
+  const zs_cmd_walk_method *none = &wk->runs[0];
+  if (zs_walk_step_scene(&wk->s, &wk->tree, 0, o->step, wk->w, wk->h, view, proj, err) ||
+      zs_walk_step_method(none->culler, none->dev, &wk->s, &wk->tree, view, proj, &cs, NULL,
+                          NULL, err))
     return err->code;
   clock->query_latency_ns = o->latency_frames * (double)zs_device_frame_ps(none->dev) * 1e-3;
   for (int k = 0; k < o->nmethods; k++)
@@ -303,7 +307,7 @@ static zs_status set_latency(const walk_opts *o, walk *wk, zs_clock_params *cloc
 static zs_status make_devices(const walk_opts *o, walk *wk, zs_error *err) {
   zs_clock_params clock = o->clock;
   for (int k = 0; k < o->nmethods; k++) {
-    zs_walk_method *r = &wk->runs[k];
+    zs_cmd_walk_method *r = &wk->runs[k];
     r->m = (zs_cull_method)o->methods[k];
     /* id shading, which the comparisons read; flat when --frames-dir shows
      * the frames shaded (the ids are kept either way, the clock the same) */
@@ -335,8 +339,7 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
   if (o->named &&
       zs_frame_named_path(&wk->s, o->named, o->frames ? o->frames : 100, wk->w, wk->h, err))
     return err->code;
-  wk->frames = o->frames ? o->frames
-               : s->path.frames > 0 ? (s->path.frames + o->step - 1) / o->step : 1;
+  wk->frames = o->frames ? o->frames : zs_walk_step_count(s, o->step);
   zs_octree_params tp;
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
   tp.max_depth = o->depth;
@@ -352,7 +355,7 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
   if (o->csv) {
     if (zs_out_open(&wk->csv_out, o->csv, err)) return zs_out_error_option(err, "--csv");
     wk->csv = wk->csv_out.fp;
-    zs_walk_csv_header(wk->csv);
+    zs_cmd_walk_csv_header(wk->csv);
   }
   return ZS_OK;
 }
@@ -360,17 +363,17 @@ static zs_status start(const walk_opts *o, walk *wk, zs_error *err) {
 /* Method k's draw of frame f, added to its sums, compared with none's. */
 static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const double *view,
                               const double *proj, zs_error *err) {
-  zs_walk_method *r = &wk->runs[k];
+  zs_cmd_walk_method *r = &wk->runs[k];
   zs_cull_stats cs;
   double t0 = zs_wall_ms();
-  if (zs_culler_frame(r->culler, r->dev, &wk->s, &wk->tree, view, proj, &cs, err) ||
-      zs_device_finish(r->dev, o->frames_dir ? keep_rows : NULL, &wk->frame_image, err))
+  if (zs_walk_step_method(r->culler, r->dev, &wk->s, &wk->tree, view, proj, &cs,
+                          o->frames_dir ? keep_rows : NULL, &wk->frame_image, err))
     return err->code;
   double wall = zs_wall_ms() - t0;
   const zs_clock_stats *ck = zs_device_clock(r->dev);
   double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
   double split[4];
-  zs_walk_gpu_split_ms(r->dev, split);
+  zs_cmd_walk_gpu_split_ms(r->dev, split);
   for (int i = 0; i < 4; i++) r->gpu_ms[i] += split[i];
   const uint32_t *ids = zs_device_id_buffer(r->dev);
   const size_t pixels = (size_t)wk->w * (size_t)wk->h;
@@ -404,19 +407,17 @@ static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const 
   wk->frame_ms[(size_t)f * (size_t)o->nmethods + (size_t)k] = modelled;
   wk->frame_wall[(size_t)k * (size_t)wk->frames + (size_t)f] = wall;
   if (wk->csv)
-    zs_walk_csv_method(wk->csv, f * o->step, r, &cs, modelled, stall, wall, split,
-                       !o->no_reference, diff);
+    zs_cmd_walk_csv_method(wk->csv, f * o->step, r, &cs, modelled, stall, wall, split,
+                           !o->no_reference, diff);
   return o->frames_dir ? write_frame(o, r, &wk->frame_image, f, err) : ZS_OK;
 }
 
 /* Mode k's draw of everything in frame f, against none's. */
 static zs_status algo_frame(const walk_opts *o, walk *wk, int k, int f, const double *view,
                             const double *proj, zs_error *err) {
-  zs_walk_algo *r = &wk->algos[k];
+  zs_cmd_walk_algo *r = &wk->algos[k];
   double t0 = zs_wall_ms();
-  zs_device_clear(r->dev);
-  zs_device_set_camera(r->dev, view, proj);
-  if (zs_frame_draw_scene(r->dev, &wk->s, err) ||
+  if (zs_frame_draw_all(r->dev, &wk->s, view, proj, err) ||
       zs_device_finish(r->dev, keep_ids, wk->algo_ids, err))
     return err->code;
   double wall = zs_wall_ms() - t0, modelled = zs_device_frame_ps(r->dev) * 1e-9;
@@ -431,7 +432,8 @@ static zs_status algo_frame(const walk_opts *o, walk *wk, int k, int f, const do
   r->wall_ms += wall;
   r->diff_pixels += diff;
   wk->frame_wall[(size_t)(o->nmethods + k) * (size_t)wk->frames + (size_t)f] = wall;
-  if (wk->csv) zs_walk_csv_algo(wk->csv, f * o->step, r, modelled, wall, faces, (int)wk->s.ninst, diff);
+  if (wk->csv)
+    zs_cmd_walk_csv_algo(wk->csv, f * o->step, r, modelled, wall, faces, (int)wk->s.ninst, diff);
   return ZS_OK;
 }
 
@@ -441,12 +443,9 @@ static zs_status walk_frames(const walk_opts *o, walk *wk, zs_error *err) {
   zs_progress progress;
   zs_progress_start(&progress, "walk", "frame", wk->frames, o->quiet);
   for (int f = 0; f < wk->frames; f++) {
-    if (f > 0) {
-      for (int k = 0; k < o->step; k++) zs_scene_advance(&wk->s);
-      if (zs_octree_update(&wk->tree, &wk->s, NULL, err)) return err->code;
-    }
     double view[16], proj[16];
-    if (zs_frame_path_camera(&wk->s, f * o->step, wk->w, wk->h, view, proj, err)) return err->code;
+    if (zs_walk_step_scene(&wk->s, &wk->tree, f, o->step, wk->w, wk->h, view, proj, err))
+      return err->code;
     for (int k = 0; k < o->nmethods; k++)
       if (method_frame(o, wk, k, f, view, proj, err)) return err->code;
     for (int k = 0; k < o->nalgos; k++) /* everything, in another mode */
@@ -482,12 +481,12 @@ static zs_status run(const walk_opts *o, zs_error *err) {
     if ((st = zs_out_commit(&wk->csv_out, err))) zs_out_error_option(err, "--csv");
   }
   if (!st) {
-    zs_walk_result res = {o->scene,    wk->w,         wk->h,         wk->frames,
-                          o->step,     (int)wk->s.ninst, zs_scene_faces(&wk->s),
-                          !o->no_reference, wk->runs, o->nmethods, wk->algos, o->nalgos,
-                          wk->frame_ms, wk->frame_wall};
-    zs_walk_report(o->report, &res);
-    st = zs_walk_outputs(&res, o->md, o->tradeoff, o->plot, err);
+    zs_cmd_walk_result res = {o->scene,    wk->w,         wk->h,         wk->frames,
+                              o->step,     (int)wk->s.ninst, zs_scene_faces(&wk->s),
+                              !o->no_reference, wk->runs, o->nmethods, wk->algos, o->nalgos,
+                              wk->frame_ms, wk->frame_wall};
+    zs_cmd_walk_report(o->report, &res);
+    st = zs_cmd_walk_outputs(&res, o->md, o->tradeoff, o->plot, err);
   }
   walk_free(wk);
   free(wk);

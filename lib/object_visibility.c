@@ -1,10 +1,11 @@
 /* Per-object visibility, as `zscan query` prints it (zscan/zscan.h,
- * zs_query_objects; lib/query.h). */
-#include "lib/query.h"
+ * zs_query_objects; lib/object_visibility.h). */
+#include "lib/object_visibility.h"
 
 #include <stdlib.h>
 
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 
 static int by_first_face(const void *a, const void *b) {
   const zs_object_visibility *x = a, *y = b;
@@ -26,11 +27,7 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
   if (st == ZS_OK) st = zs_frame_camera(s, cam, width, height, view, proj, err);
   zs_device_config cfg = {width, height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, cull_back, 1, 0, 0};
   if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);
-  if (st == ZS_OK) {
-    zs_device_clear(dev);
-    zs_device_set_camera(dev, view, proj);
-    st = zs_frame_draw_scene(dev, s, err);
-  }
+  if (st == ZS_OK) st = zs_frame_draw_all(dev, s, view, proj, err);
   if (st == ZS_OK) st = zs_device_finish(dev, NULL, NULL, err);
   /* the instance of every face id, and each instance's first face */
   uint32_t nids = 0;

@@ -1,7 +1,7 @@
 /* `zscan walk`'s reports: the CSV's rows, the summary (the paper's Table 2
  * per frame on average, the GPU's share, ideal-box's churn), and the
  * Markdown table and plots asked for. */
-#include "tools/walk.h"
+#include "tools/cmd_walk.h"
 
 #include <string.h>
 
@@ -11,7 +11,7 @@
 
 _Static_assert(ZS_CULL_METHODS + 2 <= ZS_PLOT_TRADEOFF_MAX, "a walk's rows fit the tradeoff plot");
 
-void zs_walk_gpu_split_ms(const zs_device *d, double ms[4]) {
+void zs_cmd_walk_gpu_split_ms(const zs_device *d, double ms[4]) {
   const zs_gpu_split g = zs_clock_gpu_split(d);
   ms[0] = g.draw_ps * 1e-9;
   ms[1] = g.query_ps * 1e-9;
@@ -19,16 +19,16 @@ void zs_walk_gpu_split_ms(const zs_device *d, double ms[4]) {
   ms[3] = g.idle_ps * 1e-9;
 }
 
-void zs_walk_csv_header(FILE *f) {
+void zs_cmd_walk_csv_header(FILE *f) {
   fprintf(f, "frame,method,chosen,modelled_ms,stall_ms,wall_ms,queries,queries_hidden,"
              "faces_drawn,objects_drawn,nodes_visited,diff_pixels,"
              "gpu_draw_ms,gpu_query_ms,gpu_switch_ms,gpu_idle_ms,"
              "hzb_phase1,hzb_phase2,hzb_stale,hzb_boxes,hzb_texels,hzb_reads\n");
 }
 
-void zs_walk_csv_method(FILE *f, int frame, const zs_walk_method *r, const zs_cull_stats *cs,
-                        double modelled, double stall, double wall, const double split[4],
-                        int has_reference, uint64_t diff) {
+void zs_cmd_walk_csv_method(FILE *f, int frame, const zs_cmd_walk_method *r,
+                            const zs_cull_stats *cs, double modelled, double stall, double wall,
+                            const double split[4], int has_reference, uint64_t diff) {
   char diff_text[32] = ""; /* empty without a reference */
   if (has_reference) snprintf(diff_text, sizeof diff_text, "%llu", (unsigned long long)diff);
   const zs_clock_stats *clock = zs_device_clock(r->dev);
@@ -44,10 +44,10 @@ void zs_walk_csv_method(FILE *f, int frame, const zs_walk_method *r, const zs_cu
           (unsigned long long)clock->hzb_texels, (unsigned long long)clock->hzb_reads);
 }
 
-void zs_walk_csv_algo(FILE *f, int frame, const zs_walk_algo *r, double modelled, double wall,
-                      uint64_t faces, int objects, uint64_t diff) {
+void zs_cmd_walk_csv_algo(FILE *f, int frame, const zs_cmd_walk_algo *r, double modelled,
+                          double wall, uint64_t faces, int objects, uint64_t diff) {
   double split[4];
-  zs_walk_gpu_split_ms(r->dev, split);
+  zs_cmd_walk_gpu_split_ms(r->dev, split);
   fprintf(f, "%d,%s,-,%.6f,0,%.3f,0,0,%llu,%d,0,%llu,%.6f,%.6f,%.6f,%.6f,0,0,0,0,0,0\n", frame,
           zs_algo_name(r->a), modelled, wall, (unsigned long long)faces, objects,
           (unsigned long long)diff, split[0], split[1], split[2], split[3]);
@@ -62,18 +62,18 @@ typedef struct summary_row {
 
 /* The rows of the summary: the methods, then the modes; the ideal's
  * modelled ms a frame into *ideal_ms (0 when it did not run). */
-static int summary_rows(const zs_walk_result *w, summary_row *rows, double *ideal_ms) {
+static int summary_rows(const zs_cmd_walk_result *w, summary_row *rows, double *ideal_ms) {
   const double frames = w->frames;
   *ideal_ms = 0.0;
   for (int k = 0; k < w->nmethods; k++) {
-    const zs_walk_method *r = &w->runs[k];
+    const zs_cmd_walk_method *r = &w->runs[k];
     rows[k] = (summary_row){zs_cull_method_name(r->m), r->queries / frames, r->faces / frames,
                             r->objects / frames, r->modelled_ms / frames, r->stall_ms / frames,
                             r->wall_ms / frames, r->diff_pixels};
     if (r->m == ZS_CULL_IDEAL) *ideal_ms = r->modelled_ms / frames;
   }
   for (int k = 0; k < w->nalgos; k++) {
-    const zs_walk_algo *r = &w->algos[k];
+    const zs_cmd_walk_algo *r = &w->algos[k];
     rows[w->nmethods + k] = (summary_row){zs_algo_name(r->a), 0.0, r->faces / frames,
                                           (double)w->objects, r->modelled_ms / frames, 0.0,
                                           r->wall_ms / frames, r->diff_pixels};
@@ -114,7 +114,7 @@ static void write_summary(FILE *f, int md, const summary_row *rows, int n, doubl
 
 /* What carrying visibility over from the last frame must cost at the
  * least a method that finds each change with a query (cull/churn.h). */
-static void write_churn(FILE *f, const zs_walk_method *r, int frames) {
+static void write_churn(FILE *f, const zs_cmd_walk_method *r, int frames) {
   const double n = frames - 1;
   fprintf(f, "\nideal-box's set against the frame before, objects a frame (frames 2 to %d)\n"
              "  in the set %.1f; entered %.1f (%.1f from outside the frustum); "
@@ -127,7 +127,7 @@ static void write_churn(FILE *f, const zs_walk_method *r, int frames) {
           r->left_outside / n, r->known_ms / n, r->ranked_ms / n);
 }
 
-void zs_walk_report(FILE *f, const zs_walk_result *w) {
+void zs_cmd_walk_report(FILE *f, const zs_cmd_walk_result *w) {
   summary_row rows[ZS_CULL_METHODS + 2];
   double ideal_ms;
   const int n = summary_rows(w, rows, &ideal_ms);
@@ -149,7 +149,7 @@ void zs_walk_report(FILE *f, const zs_walk_result *w) {
     if (w->runs[k].m == ZS_CULL_IDEAL_BOX) write_churn(f, &w->runs[k], frames);
 }
 
-static zs_status write_md(const char *path, const zs_walk_result *w, zs_error *err) {
+static zs_status write_md(const char *path, const zs_cmd_walk_result *w, zs_error *err) {
   summary_row rows[ZS_CULL_METHODS + 2];
   double ideal_ms;
   const int n = summary_rows(w, rows, &ideal_ms);
@@ -162,12 +162,12 @@ static zs_status write_md(const char *path, const zs_walk_result *w, zs_error *e
 /* Time against pixels wrong, one point per method and mode: wall
  * (median) and modelled ms per frame against the mean pixels wrong per
  * frame. */
-static zs_status write_tradeoff(const char *path, const zs_walk_result *w, zs_error *err) {
+static zs_status write_tradeoff(const char *path, const zs_cmd_walk_result *w, zs_error *err) {
   const char *names[ZS_CULL_METHODS + 2];
   double wall[ZS_CULL_METHODS + 2], model[ZS_CULL_METHODS + 2], wrong[ZS_CULL_METHODS + 2];
   const int frames = w->frames, nrows = w->nmethods + w->nalgos;
   for (int k = 0; k < nrows; k++) {
-    const zs_walk_algo *al = k >= w->nmethods ? &w->algos[k - w->nmethods] : NULL;
+    const zs_cmd_walk_algo *al = k >= w->nmethods ? &w->algos[k - w->nmethods] : NULL;
     names[k] = al ? zs_algo_name(al->a) : zs_cull_method_name(w->runs[k].m);
     wall[k] = zs_median(w->frame_wall + (size_t)k * (size_t)frames, frames);
     model[k] = (al ? al->modelled_ms : w->runs[k].modelled_ms) / frames;
@@ -176,7 +176,7 @@ static zs_status write_tradeoff(const char *path, const zs_walk_result *w, zs_er
   return zs_plot_tradeoff(path, w->scene, names, wall, model, wrong, nrows, err);
 }
 
-static zs_status write_plot(const char *path, const zs_walk_result *w, zs_error *err) {
+static zs_status write_plot(const char *path, const zs_cmd_walk_result *w, zs_error *err) {
   const char *names[ZS_CULL_METHODS];
   for (int k = 0; k < w->nmethods; k++) names[k] = zs_cull_method_name(w->runs[k].m);
   char title[512];
@@ -185,8 +185,8 @@ static zs_status write_plot(const char *path, const zs_walk_result *w, zs_error 
                         w->nmethods, names, 0, w->step, 1, err);
 }
 
-zs_status zs_walk_outputs(const zs_walk_result *w, const char *md, const char *tradeoff,
-                          const char *plot, zs_error *err) {
+zs_status zs_cmd_walk_outputs(const zs_cmd_walk_result *w, const char *md, const char *tradeoff,
+                              const char *plot, zs_error *err) {
   if (md && write_md(md, w, err)) return zs_out_error_option(err, "--md");
   if (tradeoff && write_tradeoff(tradeoff, w, err))
     return zs_out_error_option(err, "--tradeoff");

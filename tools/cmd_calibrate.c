@@ -41,6 +41,7 @@
 #include "lib/outfile.h"
 #include "tools/cli.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 
 enum { NTERMS = 7, SIDE = 512 };
 static const char *term_names[NTERMS] = {"per_call_ns",  "per_vertex_ns", "per_polygon_ns",
@@ -288,9 +289,7 @@ static zs_status time_hzb(const zs_scene *sc, const double view[16], const doubl
   zs_status st = times && maybe ? ZS_OK
                                 : zs_error_set(err, ZS_ERR_NOMEM, "calibrate: out of memory");
   for (int r = 0; r < repeat && st == ZS_OK; r++) {
-    zs_device_clear(d);
-    zs_device_set_camera(d, view, proj);
-    st = zs_frame_draw_scene(d, sc, err);
+    st = zs_frame_draw_all(d, sc, view, proj, err);
     if (st == ZS_OK) st = zs_device_hzb_build(d, err);
     const zs_clock_stats before = *zs_device_clock(d);
     double t0 = zs_wall_ms();
@@ -568,15 +567,15 @@ int zs_cmd_calibrate(int argc, char **argv) {
   p.hzb_per_box_ns = hx[2] * 1e6;
   p.hzb_per_read_ns = hx[3] * 1e6;
   unsigned char measured[sizeof(zs_clock_params) / sizeof(double)] = {0};
-  for (int f = 0; f < zs_clock_nfields; f++) {
+  for (int f = 0; f < zs_clockfile_nfields; f++) {
     for (int i = 0; i < NTERMS; i++)
-      measured[f] |= strcmp(zs_clock_fields[f].name, term_names[i]) == 0;
+      measured[f] |= strcmp(zs_clockfile_fields[f].name, term_names[i]) == 0;
     for (int i = 0; i < NHZB_TERMS; i++)
-      measured[f] |= strcmp(zs_clock_fields[f].name, hzb_term_names[i]) == 0;
+      measured[f] |= strcmp(zs_clockfile_fields[f].name, hzb_term_names[i]) == 0;
   }
-  for (int f = 0; f < zs_clock_nfields; f++)
-    printf("%-22s %12.4f ns  %s\n", zs_clock_fields[f].name,
-           *(const double *)((const char *)&p + zs_clock_fields[f].offset),
+  for (int f = 0; f < zs_clockfile_nfields; f++)
+    printf("%-22s %12.4f ns  %s\n", zs_clockfile_fields[f].name,
+           *(const double *)((const char *)&p + zs_clockfile_fields[f].offset),
            measured[f] ? "measured" : "default (modelled: this device cannot show it)");
   if (zs_clockfile_write(out, &p, measured, &err)) {
     zs_out_error_option(&err, "-o");

@@ -1,12 +1,12 @@
-/* The page `zscan trace --html` writes (tools/trace.c): everything inline,
- * so it opens from a file:// address with nothing loaded from elsewhere.
+/* The page `zscan trace --html` writes (tools/cmd_trace.c): everything
+ * inline, so it opens from a file:// address with nothing loaded from elsewhere.
  * The trace's JSON lines go between the two halves, as the array the
  * script reads; the script draws the grid and the tables of one scanline
  * at a time, from #row=N (or, for --algo zbuffer, the depth and frame
- * buffers after one polygon, from #step=N).  tools/trace.c writes it. */
-#include "tools/trace_page.h"
+ * buffers after one polygon, from #step=N).  tools/cmd_trace.c writes it. */
+#include "tools/cmd_trace_page.h"
 
-const char zs_trace_page_head[] =
+const char zs_cmd_trace_page_head[] =
     "<!DOCTYPE html>\n"
     "<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
     "<title>zscan trace</title>\n"
@@ -31,7 +31,7 @@ const char zs_trace_page_head[] =
     "<div id=\"main\"><div><svg id=\"grid\"></svg></div><div id=\"tables\"></div></div>\n"
     "<script id=\"trace\" type=\"application/json\">\n";
 
-const char zs_trace_page_tail[] =
+const char zs_cmd_trace_page_tail[] =
     "</script>\n"
     "<script>\n"
     "\"use strict\";\n"

@@ -1,7 +1,7 @@
 /* zscan lib — per-object visibility (zs_query_objects of zscan/zscan.h)
  * with a camera and size already chosen, for zscan query's options. */
-#ifndef ZS_LIB_QUERY_H
-#define ZS_LIB_QUERY_H
+#ifndef ZS_LIB_OBJECT_VISIBILITY_H
+#define ZS_LIB_OBJECT_VISIBILITY_H
 
 #include "scene/camera.h"
 #include "scene/scene.h"

@@ -1,14 +1,14 @@
 /* zscan tools — `zscan render`'s options and frame, for the command and
  * for the golden runner, which renders its cases as render would. */
-#ifndef ZS_TOOLS_RENDER_H
-#define ZS_TOOLS_RENDER_H
+#ifndef ZS_TOOLS_CMD_RENDER_H
+#define ZS_TOOLS_CMD_RENDER_H
 
 #include "cull/cull.h"
 #include "raster/raster.h"
 #include "tools/viewopts.h"
 #include "zscan/zscan.h"
 
-typedef struct render_opts {
+typedef struct zs_cmd_render_opts {
   const char *input, *out_png, *out_pfm;
   int out_given; /* -o was given */
   int svg;       /* -o FILE.svg: the hidden lines as vectors */
@@ -24,14 +24,15 @@ typedef struct render_opts {
   zs_query_bounds bounds;
   zs_clock_params clock;
   zs_cost_params cost;
-} render_opts;
+} zs_cmd_render_opts;
 
 /* Parses render's argv (argv[0] "render"); in_memory: for an image kept in
  * memory, so -o, --depth and --stats are refused and no path is checked. */
-zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, zs_error *err);
+zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_render_opts *o,
+                              zs_error *err);
 
 /* The frame o asks for, exactly as `zscan render` draws it, into *out
  * (allocated here). */
-zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err);
+zs_status zs_cmd_render_image(const zs_cmd_render_opts *o, zs_image *out, zs_error *err);
 
 #endif

@@ -1,7 +1,7 @@
 /* `zscan render [INPUT] [options]`: one frame of INPUT to a PNG, with its
  * counters.  See `zscan render --help` (usage below) for the options. */
 #include "tools/commands.h"
-#include "tools/render.h"
+#include "tools/cmd_render.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +19,7 @@
 #include "tools/clockfile.h"
 #include "tools/costset.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
@@ -70,8 +71,8 @@ static const char usage_tail[] =
 
 /* What the options ask together, and of the outputs: their formats,
  * their folders, the one stream standard output carries. */
-static zs_status check_options(render_opts *o, int in_memory, zs_error *err) {
-  if (o->hidden_line && (o->algo != ZS_ALGO_ZBUFFER || o->shade != ZS_SHADE_FLAT))
+static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *err) {
+  if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
   if (o->overlay && o->cull < 0)
     return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
@@ -100,7 +101,8 @@ static zs_status check_options(render_opts *o, int in_memory, zs_error *err) {
   return ZS_OK;
 }
 
-zs_status zs_render_parse(int argc, char **argv, int in_memory, render_opts *o, zs_error *err) {
+zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_render_opts *o,
+                              zs_error *err) {
   memset(o, 0, sizeof *o);
   o->out_png = "zscan.png";
   zs_view_opts_default(&o->view, 1024, 768);
@@ -228,10 +230,9 @@ static void print_camera_json(const zs_camera *c, const zs_scene *sc) {
          c->znear, c->zfar, sc->lo[0], sc->lo[1], sc->lo[2], sc->hi[0], sc->hi[1], sc->hi[2]);
 }
 
-static void print_stats(const render_opts *o, const zs_scene *sc,
-                        const zs_raster_stats *s, const zs_device *dev, uint64_t hash,
-                        double ms, double load_ms, int64_t diff_pixels, const cull_report *cr,
-                        const zs_camera *used) {
+static void print_stats(const zs_cmd_render_opts *o, const zs_scene *sc, const zs_raster_stats *s,
+                        const zs_device *dev, uint64_t hash, double ms, double load_ms,
+                        int64_t diff_pixels, const cull_report *cr, const zs_camera *used) {
   printf("{\"input\":\"%s\",\"width\":%d,\"height\":%d,\"algo\":\"%s\",",
          o->input ? o->input : "builtin:default", o->view.width, o->view.height,
          zs_algo_name(o->algo));
@@ -305,7 +306,7 @@ static zs_status draw_overlay(zs_device *dev, const zs_culler *c, const zs_octre
 /* --camera and --list-cameras: the cameras stored in the model file.  The
  * chosen one replaces the view's eye, target, up, lens and planes; its
  * horizontal angle spans the image's width (aspect: width / height). */
-static zs_status file_camera(const render_opts *o, double aspect, zs_view_opts *v,
+static zs_status file_camera(const zs_cmd_render_opts *o, double aspect, zs_view_opts *v,
                              zs_error *err) {
   if (!o->input || strncmp(o->input, "builtin:", 8) == 0)
     return zs_error_set(err, ZS_ERR_ARG, "--camera: a generated scene stores no cameras");
@@ -365,7 +366,7 @@ static zs_status file_camera(const render_opts *o, double aspect, zs_view_opts *
 }
 
 /* The last frame's hidden lines as vectors (lib/svg.h). */
-static zs_status write_svg(const render_opts *o, const zs_device *dev, zs_error *err) {
+static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs_error *err) {
   int32_t n;
   const zs_line_run *runs = zs_device_line_runs(dev, &n);
   if (n < 0) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory for the lines", o->out_png);
@@ -374,8 +375,8 @@ static zs_status write_svg(const render_opts *o, const zs_device *dev, zs_error 
 }
 
 /* The painter's error: pixels whose face differs from the z-buffer's. */
-static zs_status painter_error(const render_opts *o, const zs_scene *model, int64_t *diff_pixels,
-                               zs_error *err) {
+static zs_status painter_error(const zs_cmd_render_opts *o, const zs_scene *model,
+                               int64_t *diff_pixels, zs_error *err) {
   zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
                        o->view.cull_back, 1, 0};
   zs_frame_opts mine = ref;
@@ -394,7 +395,7 @@ static zs_status painter_error(const render_opts *o, const zs_scene *model, int6
 
 /* Renders the frame o asks for; keep == NULL: as the command does (the
  * PNG, the depth map, the counters); else the image goes into *keep. */
-static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
+static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err) {
   /* a file of cameras alone (no meshes) is listed too */
   if (o->list_cameras) return file_camera(o, 1.0, NULL, err);
   zs_scene model;
@@ -402,7 +403,7 @@ static zs_status run(const render_opts *o, zs_image *keep, zs_error *err) {
   if (zs_input_load(o->input, o->allow_empty, &model, err)) return err->code;
   double load_ms = zs_wall_ms() - t0;
   /* the scene's own camera and size, where the options say nothing */
-  render_opts eff = *o;
+  zs_cmd_render_opts eff = *o;
   zs_view_opts user = o->view;
   zs_view_opts_for_scene(&user, &model, &eff.view.cam, &eff.view.width, &eff.view.height);
   if (o->camera) { /* a camera of the file, for this size */
@@ -512,13 +513,13 @@ done:
 
 int zs_cmd_render(int argc, char **argv) {
   if (zs_cli_help(argc, argv, usage_head, zs_view_opts_usage, usage_tail, NULL)) return 0;
-  render_opts o;
+  zs_cmd_render_opts o;
   zs_error err;
   zs_error_clear(&err);
-  if (zs_render_parse(argc, argv, 0, &o, &err)) return zs_cli_fail("zscan render", &err, 1);
+  if (zs_cmd_render_parse(argc, argv, 0, &o, &err)) return zs_cli_fail("zscan render", &err, 1);
   return run(&o, NULL, &err) ? zs_cli_fail("zscan render", &err, 0) : 0;
 }
 
-zs_status zs_render_image(const render_opts *o, zs_image *out, zs_error *err) {
+zs_status zs_cmd_render_image(const zs_cmd_render_opts *o, zs_image *out, zs_error *err) {
   return run(o, out, err);
 }

@@ -22,10 +22,11 @@
 #include "tools/cli.h"
 #include "tools/glyphs.h"
 #include "lib/frame.h"
+#include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
-#include "tools/trace_page.h"
+#include "tools/cmd_trace_page.h"
 #include "tools/viewopts.h"
 
 static const char usage[] =
@@ -728,7 +729,7 @@ int zs_cmd_trace(int argc, char **argv) {
       zs_out_error_option(&err, "--html");
       goto fail;
     }
-    fprintf(page.fp, "%s[%s]%s", zs_trace_page_head, page_data, zs_trace_page_tail);
+    fprintf(page.fp, "%s[%s]%s", zs_cmd_trace_page_head, page_data, zs_cmd_trace_page_tail);
     if (zs_out_commit(&page, &err)) {
       zs_out_error_option(&err, "--html");
       goto fail;
