@@ -52,7 +52,7 @@ static int32_t group_size(frame_ctx *f, int32_t i) {
 }
 
 /* One query over the boxes of the k held elements from the i-th on; its
- * members wait in gm for the answer (query.c). */
+ * members wait in gm for the answer (query_queue.c). */
 static void issue_multiquery(frame_ctx *f, int32_t i, int32_t k) {
   zs_culler *c = f->c;
   if (!zs_grow((void **)&c->gm, &c->cap_gm, c->ngm + k, sizeof *c->gm)) {

@@ -117,7 +117,7 @@
  *             time against it (a pass a level), what may be visible
  *             drawn; the final depth's pyramid tests the objects drawn
  *             for the next frame's set.  No query; the results stay on
- *             the GPU (cull/hzb.c, raster/hzb.c).
+ *             the GPU (cull/two_phase_hzb.c, raster/hzb.c).
  *
  * Exactness.  Every method but vfc-box gives the image of none: a node is
  * skipped only when its tight box, or an object's parts' boxes (which

@@ -1,6 +1,6 @@
 /* hsw: hierarchical stop-and-wait.  Front to back, every element in the
  * frustum is queried and its answer waited for before going on; a visible
- * one is opened or drawn (query.c). */
+ * one is opened or drawn (query_queue.c). */
 #include "cull/internal.h"
 
 static void visit(frame_ctx *f, elem e, unsigned mask) {

@@ -5,8 +5,8 @@
  *
  * A culler's method is a table of hooks (cull_ops), picked once, when the
  * culler is created (cull.c).  The methods that walk the octree share one
- * walk (walk.c), which calls the hooks; the shared steps
- * (hierarchy.c: elements, drawing, the traversal queue; query.c: queries
+ * walk (traverse.c), which calls the hooks; the shared steps
+ * (hierarchy.c: elements, drawing, the traversal queue; query_queue.c: queries
  * and their answers; batch.c: queries held back and issued together;
  * cost.c: the cost-model paper's formulas) name no method.  Each method is
  * in its own file: none.c, vfc_box.c, vfc.c, hsw.c, chc.c (chc, chc-prob),
@@ -86,7 +86,7 @@ typedef struct query_entry {
 
 typedef struct frame_ctx frame_ctx;
 
-/* What the walk (walk.c) and the shared steps call during a frame: per
+/* What the walk (traverse.c) and the shared steps call during a frame: per
  * element, per draw, per answer.  A NULL hook does nothing. */
 typedef struct cull_hooks {
   /* An element taken from the traversal queue, inside the frustum. */
@@ -198,7 +198,7 @@ extern const cull_hooks cull_vfc_hooks, cull_chc_prob_hooks, cull_chc_prob_measu
 /* Sets f->status to out of memory. */
 void cull_out_of_memory(frame_ctx *f);
 
-/* ---- walk.c: the walk of the octree, front to back ---- */
+/* ---- traverse.c: the walk of the octree, front to back ---- */
 
 /* The frame of every method that walks the octree. */
 void cull_walk(frame_ctx *f);
@@ -238,7 +238,7 @@ int cull_enter(frame_ctx *f, elem e, unsigned mask, int *was_visible, int *seen_
 /* Draws e as if visible without asking; its P(V) goes to the next frame. */
 void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv);
 
-/* ---- query.c: occlusion queries and their answers ---- */
+/* ---- query_queue.c: occlusion queries and their answers ---- */
 
 /* Appends the boxes a query over e draws to the culler's query boxes. */
 int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n);
