@@ -68,7 +68,7 @@ static inline void visit(frame_ctx *f, elem e, unsigned mask, ask_fn *ask_hidden
     return;
   }
   if (is_object(e)) ask_visible(f, e, mask); /* a visible leaf: drawn now, asked when due */
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
 }
 
 static void visit_chcpp(frame_ctx *f, elem e, unsigned m) { visit(f, e, m, ask_in_batch, ask_visible_when_due); }
@@ -123,8 +123,8 @@ static const cull_hooks prob_measured = {.visit = visit_prob,
 
 static void begin_prob(frame_ctx *f) { cull_cost_frame(f, &prob_measured); }
 
-const cull_ops cull_chcpp = {.frame = cull_walk, .hooks = &chcpp};
-const cull_ops cull_chcpp_nobatch = {.frame = cull_walk, .hooks = &nobatch};
-const cull_ops cull_chcpp_nodefer = {.frame = cull_walk, .hooks = &nodefer};
-const cull_ops cull_chcpp_nomulti = {.frame = cull_walk, .hooks = &nomulti};
-const cull_ops cull_chcpp_prob = {.frame = cull_walk, .begin = begin_prob, .hooks = &prob};
+const cull_ops cull_chcpp = {.frame = cull_traverse_octree, .hooks = &chcpp};
+const cull_ops cull_chcpp_nobatch = {.frame = cull_traverse_octree, .hooks = &nobatch};
+const cull_ops cull_chcpp_nodefer = {.frame = cull_traverse_octree, .hooks = &nodefer};
+const cull_ops cull_chcpp_nomulti = {.frame = cull_traverse_octree, .hooks = &nomulti};
+const cull_ops cull_chcpp_prob = {.frame = cull_traverse_octree, .begin = begin_prob, .hooks = &prob};

@@ -128,5 +128,5 @@ void cull_measured_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written
  * a node's goes up the tree as without measured draws. */
 void cull_draw_visible_measured(frame_ctx *f, elem e, unsigned mask) {
   if (!is_object(e)) cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
 }

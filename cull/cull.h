@@ -1,6 +1,6 @@
 /* zscan cull — visibility culling methods over the loose octree.
  *
- * Every method walks the same octree of the scene's instances, draws on
+ * Every method traverses the same octree of the scene's instances, draws on
  * the same device and reports the same counters, so their costs can be
  * compared in the device's modelled time:
  *
@@ -113,7 +113,7 @@
  *             2015; Karis et al., Nanite, SIGGRAPH 2021): last frame's set
  *             in the frustum drawn front to back in passes, each pass
  *             after the first tested against the pyramid of those before;
- *             its depth pyramid built, the octree walked a level at a
+ *             its depth pyramid built, the octree traversed a level at a
  *             time against it (a pass a level), what may be visible
  *             drawn; the final depth's pyramid tests the objects drawn
  *             for the next frame's set.  No query; the results stay on
@@ -225,7 +225,7 @@ typedef struct zs_culler zs_culler;
 /* What a method decided for an octree node in the last frame (for
  * pictures: zscan render --overlay culling). */
 typedef enum zs_node_decision {
-  ZS_NODE_NOT_REACHED = 0,  /* below a node culled, or not walked */
+  ZS_NODE_NOT_REACHED = 0,  /* below a node culled, or not traversed */
   ZS_NODE_OUTSIDE,          /* outside the frustum */
   ZS_NODE_QUERIED_HIDDEN,   /* queried, no sample */
   ZS_NODE_QUERIED_VISIBLE,  /* queried, visible */

@@ -1,4 +1,4 @@
-/* The steps every method that walks the octree takes (internal.h): the
+/* The steps every method that traverses the octree takes (internal.h): the
  * elements and their state, drawing, the traversal queue (a binary heap on
  * the distance from the eye to an element's box: front to back, ties by
  * element), and what is done to an element visited. */
@@ -151,7 +151,7 @@ void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw) {
 
 /* TraverseNode of the paper, once per frame per element: an object is
  * rendered; a node pushes its children and its objects. */
-void cull_traverse(frame_ctx *f, elem e, unsigned mask) {
+void cull_traverse_node(frame_ctx *f, elem e, unsigned mask) {
   elem_state *es = cull_state(f, e);
   if (es->done == f->c->frame) return;
   es->done = f->c->frame;
@@ -180,7 +180,7 @@ void cull_pull_up_visibility(frame_ctx *f, elem e) {
 /* An element found visible, or drawn unasked, is visible up the tree. */
 void cull_draw_visible(frame_ctx *f, elem e, unsigned mask) {
   cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
 }
 
 /* A box that the near plane could cut, or that holds the eye, once grown
@@ -207,7 +207,7 @@ int cull_enter(frame_ctx *f, elem e, unsigned mask, int *was_visible, int *seen_
   if (!cull_too_close(f, e)) return 1;
   es->pv = 1.0;
   cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
   return 0;
 }
 

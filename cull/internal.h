@@ -1,11 +1,11 @@
-/* zscan cull — what the culling methods share: the elements they walk,
+/* zscan cull — what the culling methods share: the elements they traverse,
  * the culler's state, the frame's context, the hooks a method gives the
  * shared code, and the steps every method takes.  Not for use outside
  * cull/.
  *
  * A culler's method is a table of hooks (cull_ops), picked once, when the
- * culler is created (cull.c).  The methods that walk the octree share one
- * walk (traverse.c), which calls the hooks; the shared steps
+ * culler is created (cull.c).  The methods that traverse the octree share
+ * one traversal (traverse.c), which calls the hooks; the shared steps
  * (hierarchy.c: elements, drawing, the traversal queue; query_queue.c: queries
  * and their answers; batch.c: queries held back and issued together;
  * cost.c: the cost-model paper's formulas) name no method.  Each method is
@@ -22,7 +22,7 @@
 #include "cull/parts.h"
 #include "util/rng.h"
 
-/* The hierarchy the methods walk: the octree's nodes, with each object as
+/* The hierarchy the methods traverse: the octree's nodes, with each object as
  * a leaf of the node that holds it (so a visible object does not drag its
  * neighbours in, and a hidden one is culled on its own).  An element is a
  * node n >= 0 or an object i, encoded as -(i + 2). */
@@ -86,7 +86,7 @@ typedef struct query_entry {
 
 typedef struct frame_ctx frame_ctx;
 
-/* What the walk (traverse.c) and the shared steps call during a frame: per
+/* What the traversal (traverse.c) and the shared steps call during a frame: per
  * element, per draw, per answer.  A NULL hook does nothing. */
 typedef struct cull_hooks {
   /* An element taken from the traversal queue, inside the frustum. */
@@ -110,9 +110,9 @@ typedef struct cull_hooks {
 
 /* A culling method. */
 typedef struct cull_ops {
-  /* Draws a frame: cull_walk for the methods that walk the octree. */
+  /* Draws a frame: cull_traverse_octree for the methods that traverse the octree. */
   void (*frame)(frame_ctx *f);
-  /* The walk's: the method's own set-up of a frame (it may choose the
+  /* The traversal's: the method's own set-up of a frame (it may choose the
    * frame's hooks: auto), and what it learns after the frame. */
   void (*begin)(frame_ctx *f);
   void (*end)(frame_ctx *f);
@@ -198,14 +198,14 @@ extern const cull_hooks cull_vfc_hooks, cull_chc_prob_hooks, cull_chc_prob_measu
 /* Sets f->status to out of memory. */
 void cull_out_of_memory(frame_ctx *f);
 
-/* ---- traverse.c: the walk of the octree, front to back ---- */
+/* ---- traverse.c: the traversal of the octree, front to back ---- */
 
-/* The frame of every method that walks the octree. */
-void cull_walk(frame_ctx *f);
+/* The frame of every method that traverses the octree. */
+void cull_traverse_octree(frame_ctx *f);
 /* Its set-up, for a method with a frame of its own over the tree (hzb):
  * the per-element state for the frame's tree and scene; 0 when out of
  * memory. */
-int cull_walk_begin(frame_ctx *f);
+int cull_traversal_begin(frame_ctx *f);
 
 /* ---- hierarchy.c: elements, drawing, the traversal queue ---- */
 
@@ -226,7 +226,7 @@ void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw);
 /* Pops the nearest element and tests it against the frustum; 0: outside. */
 int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);
 /* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
-void cull_traverse(frame_ctx *f, elem e, unsigned mask);
+void cull_traverse_node(frame_ctx *f, elem e, unsigned mask);
 void cull_pull_up_visibility(frame_ctx *f, elem e);
 /* An element found visible: visible up the tree, then traversed. */
 void cull_draw_visible(frame_ctx *f, elem e, unsigned mask);

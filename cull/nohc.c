@@ -38,7 +38,7 @@ static void drawn(frame_ctx *f, int32_t i, int measured, uint64_t written) {
   add_coverage(f, i);
 }
 
-/* The history of an element: 0 unseen (not in last frame's walk), 1 .. 8
+/* The history of an element: 0 unseen (not in last frame's traversal), 1 .. 8
  * hidden that many frames in a row, then an object visible that wrote s
  * pixels in its class log2(s + 1). */
 static int32_t history_of(const elem_state *es, int was_visible, int seen_last, int object) {
@@ -82,7 +82,7 @@ static void decide(frame_ctx *f, elem e, unsigned mask, int was_visible, int see
     return;
   }
   cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
 }
 
 /* Every termination element (an object, visible or not, or a node that
@@ -91,7 +91,7 @@ static void visit(frame_ctx *f, elem e, unsigned mask) {
   int was_visible, seen_last;
   if (!cull_enter(f, e, mask, &was_visible, &seen_last)) return;
   if (is_object(e) || !was_visible) decide(f, e, mask, was_visible, seen_last);
-  else cull_traverse(f, e, mask);
+  else cull_traverse_node(f, e, mask);
 }
 
 /* Nothing left to traverse: the batch goes out, part-full. */
@@ -130,4 +130,4 @@ static const cull_hooks hooks = {.visit = visit,
                                  .answered = answered,
                                  .measure_due = measure_due,
                                  .drawn = drawn};
-const cull_ops cull_nohc = {.frame = cull_walk, .begin = begin, .hooks = &hooks};
+const cull_ops cull_nohc = {.frame = cull_traverse_octree, .begin = begin, .hooks = &hooks};

@@ -1,4 +1,4 @@
-/* The walk of the octree that every method but none, vfc-box and the
+/* The traversal of the octree that every method but none, vfc-box and the
  * oracles takes (internal.h).  The traversal queue (front to back) and the
  * query queue (a FIFO) are the same for all; the method's hooks decide
  * what is done to an element taken from the traversal queue, and which
@@ -15,7 +15,7 @@
 
 /* The culler's state for the frame's tree and scene, the near plane's
  * reach and the decisions' overlay; 0 when out of memory. */
-int cull_walk_begin(frame_ctx *f) {
+int cull_traversal_begin(frame_ctx *f) {
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
   if (!zs_grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns) ||
@@ -51,7 +51,7 @@ int cull_walk_begin(frame_ctx *f) {
  * ready are taken first; with nothing to traverse, the method may issue a
  * query it holds back rather than wait; then the nearest element waiting
  * is visited. */
-static void walk(frame_ctx *f) {
+static void traverse(frame_ctx *f) {
   zs_culler *c = f->c;
   const cull_hooks *h = f->hooks;
   if (!f->t->node[ZS_OCTREE_ROOT].empty && !cull_heap_push(f, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES))
@@ -74,11 +74,11 @@ static void walk(frame_ctx *f) {
   }
 }
 
-void cull_walk(frame_ctx *f) {
+void cull_traverse_octree(frame_ctx *f) {
   const cull_ops *ops = f->c->ops;
-  if (!cull_walk_begin(f)) return;
+  if (!cull_traversal_begin(f)) return;
   if (ops->begin) ops->begin(f);
   if (f->status != ZS_OK) return;
-  walk(f);
+  traverse(f);
   if (ops->end) ops->end(f);
 }

@@ -9,7 +9,7 @@
  *      tested against the pyramid of the passes before it, so that what
  *      has been hidden since the last frame is left out (phase_one);
  *   2. the pyramid of that depth is built (raster/hzb.c);
- *   3. the octree is walked a level at a time from the root, each level's
+ *   3. the octree is traversed a level at a time from the root, each level's
  *      elements in the frustum tested against the pyramid in one pass; a
  *      node that fails is skipped whole, one that may be visible opens,
  *      and an object that may be visible and was not drawn in 1 is drawn;
@@ -239,7 +239,7 @@ static void next_set(frame_ctx *f, const uint8_t *draw1, const uint8_t *draw2, l
 
 static void frame(frame_ctx *f) {
   zs_culler *c = f->c;
-  if (!cull_walk_begin(f)) return;
+  if (!cull_traversal_begin(f)) return;
   const int32_t n = f->s->ninst;
   if (!zs_grow((void **)&c->hzb_draw, &c->cap_hzb_draw, 2 * (int64_t)n + 1, 1)) {
     cull_out_of_memory(f);
