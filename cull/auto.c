@@ -23,4 +23,7 @@ static void end(frame_ctx *f) {
                                   : f->hidden_objects > 0;
 }
 
-const cull_ops cull_auto = {.frame = cull_traverse_octree, .begin = begin, .end = end};
+const cull_ops cull_auto = {.name = "auto",
+                            .frame = cull_traverse_octree,
+                            .begin = begin,
+                            .end = end};

@@ -56,5 +56,8 @@ const cull_hooks cull_chc_prob_measured_hooks = {.visit = chc_prob_visit,
 
 static void chc_prob_begin(frame_ctx *f) { cull_cost_frame(f, &cull_chc_prob_measured_hooks); }
 
-const cull_ops cull_chc = {.frame = cull_traverse_octree, .hooks = &chc_hooks};
-const cull_ops cull_chc_prob = {.frame = cull_traverse_octree, .begin = chc_prob_begin, .hooks = &cull_chc_prob_hooks};
+const cull_ops cull_chc = {.name = "chc", .frame = cull_traverse_octree, .hooks = &chc_hooks};
+const cull_ops cull_chc_prob = {.name = "chc-prob",
+                                .frame = cull_traverse_octree,
+                                .begin = chc_prob_begin,
+                                .hooks = &cull_chc_prob_hooks};

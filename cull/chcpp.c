@@ -123,8 +123,17 @@ static const cull_hooks prob_measured = {.visit = visit_prob,
 
 static void begin_prob(frame_ctx *f) { cull_cost_frame(f, &prob_measured); }
 
-const cull_ops cull_chcpp = {.frame = cull_traverse_octree, .hooks = &chcpp};
-const cull_ops cull_chcpp_nobatch = {.frame = cull_traverse_octree, .hooks = &nobatch};
-const cull_ops cull_chcpp_nodefer = {.frame = cull_traverse_octree, .hooks = &nodefer};
-const cull_ops cull_chcpp_nomulti = {.frame = cull_traverse_octree, .hooks = &nomulti};
-const cull_ops cull_chcpp_prob = {.frame = cull_traverse_octree, .begin = begin_prob, .hooks = &prob};
+const cull_ops cull_chcpp = {.name = "chcpp", .frame = cull_traverse_octree, .hooks = &chcpp};
+const cull_ops cull_chcpp_nobatch = {.name = "chcpp-nobatch",
+                                     .frame = cull_traverse_octree,
+                                     .hooks = &nobatch};
+const cull_ops cull_chcpp_nodefer = {.name = "chcpp-nodefer",
+                                     .frame = cull_traverse_octree,
+                                     .hooks = &nodefer};
+const cull_ops cull_chcpp_nomulti = {.name = "chcpp-nomulti",
+                                     .frame = cull_traverse_octree,
+                                     .hooks = &nomulti};
+const cull_ops cull_chcpp_prob = {.name = "chcpp-prob",
+                                  .frame = cull_traverse_octree,
+                                  .begin = begin_prob,
+                                  .hooks = &prob};

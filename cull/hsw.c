@@ -13,4 +13,4 @@ static void visit(frame_ctx *f, elem e, unsigned mask) {
 }
 
 static const cull_hooks hooks = {.visit = visit, .draw_visible = cull_draw_visible};
-const cull_ops cull_hsw = {.frame = cull_traverse_octree, .hooks = &hooks};
+const cull_ops cull_hsw = {.name = "hsw", .frame = cull_traverse_octree, .hooks = &hooks};

@@ -145,5 +145,5 @@ static void ideal_box_frame(frame_ctx *f) {
   cull_draw_front_to_back(f, f->c->owns_pixel);
 }
 
-const cull_ops cull_ideal = {.frame = ideal_frame};
-const cull_ops cull_ideal_box = {.frame = ideal_box_frame};
+const cull_ops cull_ideal = {.name = "ideal", .frame = ideal_frame};
+const cull_ops cull_ideal_box = {.name = "ideal-box", .frame = ideal_box_frame};

@@ -108,9 +108,16 @@ typedef struct cull_hooks {
   void (*drawn)(frame_ctx *f, int32_t i, int measured, uint64_t written);
 } cull_hooks;
 
-/* A culling method. */
+/* A culling method: one row of the table of methods (cull.c). */
 typedef struct cull_ops {
-  /* Draws a frame: cull_traverse_octree for the methods that traverse the octree. */
+  const char *name;        /* as zscan --cull spells it (zs_cull_method_name) */
+  /* The method's own state, kept from frame to frame: made when the
+   * culler is (NULL when out of memory), reached through c->own, freed
+   * with the culler.  NULL hooks: the method keeps none. */
+  void *(*create)(void);
+  void (*destroy)(void *own);
+  /* Draws a frame: cull_traverse_octree for the methods that traverse
+   * the octree. */
   void (*frame)(frame_ctx *f);
   /* The traversal's: the method's own set-up of a frame (it may choose the
    * frame's hooks: auto), and what it learns after the frame. */
@@ -122,6 +129,7 @@ typedef struct cull_ops {
 struct zs_culler {
   zs_cull_method method;
   const cull_ops *ops;
+  void *own;               /* the method's own state (ops->create's), or NULL */
   zs_cost_params cost;
   uint32_t frame;
   elem_state *ns, *os;     /* nodes, objects */

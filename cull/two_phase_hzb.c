@@ -264,4 +264,4 @@ static void frame(frame_ctx *f) {
   free(maybe);
 }
 
-const cull_ops cull_hzb = {.frame = frame};
+const cull_ops cull_hzb = {.name = "hzb", .frame = frame};

@@ -11,4 +11,4 @@ static void visit(frame_ctx *f, elem e, unsigned mask) {
 }
 
 const cull_hooks cull_vfc_hooks = {.visit = visit};
-const cull_ops cull_vfc = {.frame = cull_traverse_octree, .hooks = &cull_vfc_hooks};
+const cull_ops cull_vfc = {.name = "vfc", .frame = cull_traverse_octree, .hooks = &cull_vfc_hooks};
