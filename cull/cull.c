@@ -92,14 +92,10 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->iq);
   free(c->vq);
   free(c->gm);
-  free(c->owns_pixel);
-  free(c->owner);
-  cull_churn_free(&c->churn);
   zs_coverage_free(&c->cov);
   free(c->qlo);
   free(c->qhi);
   zs_parts_destroy(c->parts);
-  zs_device_destroy(c->oracle);
   free(c);
 }
 

@@ -15,7 +15,6 @@
 #ifndef ZS_CULL_INTERNAL_H
 #define ZS_CULL_INTERNAL_H
 
-#include "cull/churn.h"
 #include "cull/coverage.h"
 #include "cull/cull.h"
 #include "cull/frustum.h"
@@ -142,13 +141,6 @@ struct zs_culler {
   int32_t cap_polys;
   uint8_t *decision;       /* zs_node_decision per node, this frame */
   int32_t cap_decision, ndecision;
-  /* ideal */
-  zs_device *oracle;
-  uint8_t *owns_pixel;
-  int32_t cap_inst;
-  int32_t *owner;          /* face id -> instance */
-  uint32_t nowner;
-  zs_churn churn;          /* ideal-box: its set from frame to frame */
   /* the transitions the queries saw (visible or hidden when asked, then
    * visible or hidden): the cost model's w1 and w2 are learnt from them;
    * auto's mode of the next frame */
