@@ -87,7 +87,6 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->qq);
   free(c->polys);
   free(c->decision);
-  free(c->hzb_draw);
   free(c->order);
   free(c->iq);
   free(c->vq);

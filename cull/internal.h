@@ -160,9 +160,6 @@ struct zs_culler {
   int32_t cap_qlo, cap_qhi;
   zs_parts *parts;
   uint32_t class_visible[NOHC_CLASSES], class_hidden[NOHC_CLASSES];
-  /* hzb: the objects drawn in its two phases, this frame */
-  uint8_t *hzb_draw;
-  int32_t cap_hzb_draw;
   /* objects in the order they are drawn (cull_order_front_to_back) */
   int32_t *order;
   int32_t cap_order;
