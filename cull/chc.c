@@ -54,10 +54,14 @@ const cull_hooks cull_chc_prob_measured_hooks = {.visit = chc_prob_visit,
                                                  .measure_due = cull_measure_every_draw,
                                                  .drawn = cull_measured_drawn};
 
-static void chc_prob_begin(frame_ctx *f) { cull_cost_frame(f, &cull_chc_prob_measured_hooks); }
+static void chc_prob_begin(frame_ctx *f) {
+  cull_cost_frame(f, f->c->own, &cull_chc_prob_measured_hooks);
+}
 
 const cull_ops cull_chc = {.name = "chc", .frame = cull_traverse_octree, .hooks = &chc_hooks};
 const cull_ops cull_chc_prob = {.name = "chc-prob",
+                                .create = cull_cost_model_create,
+                                .destroy = cull_cost_model_destroy,
                                 .frame = cull_traverse_octree,
                                 .begin = chc_prob_begin,
                                 .hooks = &cull_chc_prob_hooks};

@@ -121,7 +121,7 @@ static const cull_hooks prob_measured = {.visit = visit_prob,
                                          .measure_due = cull_measure_every_draw,
                                          .drawn = cull_measured_drawn};
 
-static void begin_prob(frame_ctx *f) { cull_cost_frame(f, &prob_measured); }
+static void begin_prob(frame_ctx *f) { cull_cost_frame(f, f->c->own, &prob_measured); }
 
 const cull_ops cull_chcpp = {.name = "chcpp", .frame = cull_traverse_octree, .hooks = &chcpp};
 const cull_ops cull_chcpp_nobatch = {.name = "chcpp-nobatch",
@@ -134,6 +134,8 @@ const cull_ops cull_chcpp_nomulti = {.name = "chcpp-nomulti",
                                      .frame = cull_traverse_octree,
                                      .hooks = &nomulti};
 const cull_ops cull_chcpp_prob = {.name = "chcpp-prob",
+                                  .create = cull_cost_model_create,
+                                  .destroy = cull_cost_model_destroy,
                                   .frame = cull_traverse_octree,
                                   .begin = begin_prob,
                                   .hooks = &prob};

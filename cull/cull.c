@@ -85,7 +85,6 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->os);
   free(c->heap);
   free(c->qq);
-  free(c->polys);
   free(c->decision);
   free(c->order);
   free(c->iq);

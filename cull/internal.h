@@ -85,6 +85,17 @@ typedef struct query_entry {
 
 typedef struct frame_ctx frame_ctx;
 
+/* What the cost model (cost.c) keeps from frame to frame, in the state of
+ * each method that decides by it (chc-prob, auto, chcpp-prob, nohc): the
+ * polygons under each node, this frame (N of (6)), and the transitions its
+ * queries saw (visible or hidden when asked, then visible or hidden), from
+ * which (11)'s w1 and w2 are learnt. */
+typedef struct cull_cost_model {
+  int64_t *polys;
+  int32_t cap_polys;
+  uint64_t vv, vh, hv, hh;
+} cull_cost_model;
+
 /* What the traversal (traverse.c) and the shared steps call during a frame: per
  * element, per draw, per answer.  A NULL hook does nothing. */
 typedef struct cull_hooks {
@@ -137,15 +148,8 @@ struct zs_culler {
   int32_t nheap, cap_heap;
   query_entry *qq;
   int32_t qhead, qtail, cap_qq;
-  int64_t *polys;          /* polygons under each node, this frame */
-  int32_t cap_polys;
   uint8_t *decision;       /* zs_node_decision per node, this frame */
   int32_t cap_decision, ndecision;
-  /* the transitions the queries saw (visible or hidden when asked, then
-   * visible or hidden): the cost model's w1 and w2 are learnt from them;
-   * auto's mode of the next frame */
-  uint64_t vv, vh, hv, hh;
-  int use_queries;
   /* the queries held back (batch.c): the batch of invisible elements, the
    * visible objects whose query is due (chcpp); the members of this
    * frame's multiqueries; the rng of the first visible intervals */
@@ -179,6 +183,7 @@ struct frame_ctx {
   double tan_half_fovy, height;
   double ttri, tcall, tq, tquery; /* cost model constants, ns */
   double w1, w2;           /* (11)'s weights, this frame */
+  cull_cost_model *model;  /* the method's, from cull_cost_begin; NULL: none */
   zs_cull_stats *st;
   uint64_t hidden_objects; /* objects drawn that wrote no pixel (auto) */
   zs_error *err;
@@ -261,9 +266,16 @@ void cull_ask_again_later(frame_ctx *f, elem e, int was_visible);
 
 /* ---- cost.c: the cost model of the cost-model paper ---- */
 
-/* The frame's constants and the polygons under every node (0 when out of
- * memory). */
-int cull_cost_begin(frame_ctx *f);
+/* The state of a method whose own is the cost model's alone (chc-prob),
+ * and its parts for a method that keeps more. */
+void *cull_cost_model_create(void);
+void cull_cost_model_destroy(void *own);
+void cull_cost_model_free(cull_cost_model *m);
+/* The frame's constants and the polygons under every node, in the
+ * method's model (0 when out of memory). */
+int cull_cost_begin(frame_ctx *f, cull_cost_model *model);
+/* A query's outcome, counted for the learnt weights (with a model). */
+void cull_cost_outcome(frame_ctx *f, int was_visible, int visible);
 /* (11)'s w1 and w2 of this frame: as given, or learnt (cost.learn > 0);
  * learnt from the queries' outcomes, starting from w1 and w2 as if weight
  * outcomes had borne each out. */
@@ -271,7 +283,7 @@ void cull_cost_weights(frame_ctx *f);
 /* The frame of a method that decides by the cost model (chc-prob,
  * chcpp-prob): its constants and weights, and its hooks with measured
  * draws (below) when cost.measure is on. */
-void cull_cost_frame(frame_ctx *f, const cull_hooks *measured);
+void cull_cost_frame(frame_ctx *f, cull_cost_model *model, const cull_hooks *measured);
 void cull_learn_weights(frame_ctx *f, double w1, double w2, double weight);
 /* Cr (6), whether a query pays (2, 3, 6, 9, 10), P(V) (11). */
 double cull_render_cost(const frame_ctx *f, elem e);

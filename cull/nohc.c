@@ -115,7 +115,7 @@ static void answered(frame_ctx *f, const query_entry *q, int visible) {
 /* The cost model's constants, with T counting 2/32 of a switch (a batch
  * pays its two switches once), and an empty coverage grid. */
 static void begin(frame_ctx *f) {
-  if (!cull_cost_begin(f)) return;
+  if (!cull_cost_begin(f, f->c->own)) return;
   const zs_clock_params *k = zs_device_clock_params(f->dev);
   if (f->c->cost.t_ns < 0)
     f->tquery = k->per_call_ns + 2.0 * k->cpu_per_query_ns + 2.0 * k->switch_ns / NOHC_BATCH;
@@ -131,6 +131,8 @@ static const cull_hooks hooks = {.visit = visit,
                                  .measure_due = measure_due,
                                  .drawn = drawn};
 const cull_ops cull_nohc = {.name = "nohc",
+                            .create = cull_cost_model_create,
+                            .destroy = cull_cost_model_destroy,
                             .frame = cull_traverse_octree,
                             .begin = begin,
                             .hooks = &hooks};

@@ -84,8 +84,7 @@ void cull_take_result(frame_ctx *f) {
   elem_state *es = cull_state(f, q.e);
   es->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
   if (f->hooks->answered) f->hooks->answered(f, &q, visible);
-  if (q.was_visible) visible ? c->vv++ : c->vh++;
-  else visible ? c->hv++ : c->hh++;
+  cull_cost_outcome(f, q.was_visible, visible);
   cull_decide(f, q.e, visible ? ZS_NODE_QUERIED_VISIBLE : ZS_NODE_QUERIED_HIDDEN);
   if (!visible) {
     es->hidden_frames++;
