@@ -87,9 +87,6 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->qq);
   free(c->decision);
   free(c->order);
-  free(c->iq);
-  free(c->vq);
-  free(c->gm);
   zs_coverage_free(&c->cov);
   free(c->qlo);
   free(c->qhi);

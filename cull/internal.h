@@ -54,6 +54,14 @@ typedef struct pending {
   uint8_t was_visible;
 } pending;
 
+/* Elements whose queries are held back, in the order they came: CHC++'s
+ * i-queue and v-queue, nohc's batch, the members of CHC++'s multiqueries;
+ * each kept in the state of the method that holds it. */
+typedef struct cull_held {
+  pending *p;
+  int32_t n, cap;
+} cull_held;
+
 /* nohc: the share of its box's rectangle a mesh fills, for the coverage
  * it adds (cull/coverage.h); draws measured every NOHC_MEASURE frames;
  * queries in batches of NOHC_BATCH; the classes of
@@ -80,7 +88,8 @@ typedef struct query_entry {
   zs_query q;
   unsigned mask;           /* frustum planes its content still tests */
   uint8_t was_visible;     /* its state before this frame (auto's learning) */
-  int32_t group, ngroup;   /* a multiquery: members gm[group ..]; 0: single */
+  int32_t group, ngroup;   /* a multiquery: its ngroup members from the
+                            * group-th in its method's list; 0: one element */
 } query_entry;
 
 typedef struct frame_ctx frame_ctx;
@@ -104,7 +113,9 @@ typedef struct cull_hooks {
   /* The traversal queue is empty, before any answer is taken. */
   void (*empty)(frame_ctx *f);
   /* Nothing to traverse and no answer ready (waiting: some query is out):
-   * issues a query held back rather than wait; 1 when it did. */
+   * issues a query held back rather than wait; 1 when it did, 0 when it
+   * holds none.  A method that holds queries back issues them here or in
+   * empty, or the traversal ends without them. */
   int (*idle)(frame_ctx *f, int waiting);
   /* An element found visible by its query, or drawn unasked: visibility
    * up the tree, then drawn or opened (cull_draw_visible; with measured
@@ -112,6 +123,9 @@ typedef struct cull_hooks {
   void (*draw_visible)(frame_ctx *f, elem e, unsigned mask);
   /* The answer to a query about one element (q->e). */
   void (*answered)(frame_ctx *f, const query_entry *q, int visible);
+  /* The answer to a multiquery (q->ngroup > 0): all that the method does
+   * with it.  Not NULL for a method that issues multiqueries. */
+  void (*multiquery_answered)(frame_ctx *f, const query_entry *q, int visible);
   /* Whether instance i's draw goes inside a query; after the draw, what
    * it wrote. */
   int (*measure_due)(const frame_ctx *f, int32_t i);
@@ -150,12 +164,7 @@ struct zs_culler {
   int32_t qhead, qtail, cap_qq;
   uint8_t *decision;       /* zs_node_decision per node, this frame */
   int32_t cap_decision, ndecision;
-  /* the queries held back (batch.c): the batch of invisible elements, the
-   * visible objects whose query is due (chcpp); the members of this
-   * frame's multiqueries; the rng of the first visible intervals */
-  pending *iq, *vq, *gm;
-  int32_t ni, nv, ngm, cap_iq, cap_vq, cap_gm;
-  zs_rng rng;
+  zs_rng rng;              /* the first intervals of chcpp's and nohc's asking again */
   /* nohc: the coverage grid of this frame; per history class, how often an
    * object asked about was found visible and hidden */
   zs_coverage cov;
@@ -252,13 +261,11 @@ void cull_take_result(frame_ctx *f);
 
 /* ---- batch.c: queries held back, issued together ---- */
 
-int cull_push_pending(frame_ctx *f, pending **q, int32_t *n, int32_t *cap, elem e, unsigned mask,
-                      uint8_t was_visible);
-/* Holds e's query back in the batch of invisible elements. */
-int cull_hold(frame_ctx *f, elem e, unsigned mask, uint8_t was_visible);
-/* Issues the batch: each query on its own; in multiqueries. */
-void cull_issue_held(frame_ctx *f);
-void cull_issue_held_grouped(frame_ctx *f);
+/* Holds e's query back at the end of h (0 when out of memory). */
+int cull_hold(frame_ctx *f, cull_held *h, elem e, unsigned mask, uint8_t was_visible);
+/* Issues h's queries, each on its own, in order, and empties h. */
+void cull_issue_held(frame_ctx *f, cull_held *h);
+void cull_held_free(cull_held *h);
 /* The chance that an element hidden i frames in a row stays hidden. */
 double cull_keep_hidden(uint32_t i);
 /* An object found visible: the frame it is asked about again. */

@@ -3,8 +3,24 @@
  * coverage drawn so far this frame (coverage.h), learnt per class from
  * nohc's own queries; Cq from the box's projected rectangle. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "cull/internal.h"
+
+/* What nohc keeps: its cost model and its batch of held queries. */
+typedef struct nohc_state {
+  cull_cost_model model;
+  cull_held batch;
+} nohc_state;
+
+static void *create(void) { return calloc(1, sizeof(nohc_state)); }
+
+static void destroy(void *own) {
+  nohc_state *s = own;
+  cull_cost_model_free(&s->model);
+  cull_held_free(&s->batch);
+  free(s);
+}
 
 /* A mesh fills about this share of its box's rectangle. */
 static const double nohc_fill = 0.5;
@@ -78,7 +94,9 @@ static void decide(frame_ctx *f, elem e, unsigned mask, int was_visible, int see
   if (cr > pv * cr + cq) {                                    /* (2), (3) */
     es->asked_class = k;
     /* its batch: issued when full or when nothing else is left to do */
-    if (cull_hold(f, e, mask, (uint8_t)was_visible) && c->ni >= NOHC_BATCH) cull_issue_held(f);
+    nohc_state *s = c->own;
+    if (cull_hold(f, &s->batch, e, mask, (uint8_t)was_visible) && s->batch.n >= NOHC_BATCH)
+      cull_issue_held(f, &s->batch);
     return;
   }
   cull_pull_up_visibility(f, e);
@@ -96,7 +114,8 @@ static void visit(frame_ctx *f, elem e, unsigned mask) {
 
 /* Nothing left to traverse: the batch goes out, part-full. */
 static void empty(frame_ctx *f) {
-  if (f->c->ni > 0) cull_issue_held(f);
+  nohc_state *s = f->c->own;
+  if (s->batch.n > 0) cull_issue_held(f, &s->batch);
 }
 
 /* How the element's history class turned out; a visible object's next
@@ -115,7 +134,9 @@ static void answered(frame_ctx *f, const query_entry *q, int visible) {
 /* The cost model's constants, with T counting 2/32 of a switch (a batch
  * pays its two switches once), and an empty coverage grid. */
 static void begin(frame_ctx *f) {
-  if (!cull_cost_begin(f, f->c->own)) return;
+  nohc_state *s = f->c->own;
+  s->batch.n = 0;
+  if (!cull_cost_begin(f, &s->model)) return;
   const zs_clock_params *k = zs_device_clock_params(f->dev);
   if (f->c->cost.t_ns < 0)
     f->tquery = k->per_call_ns + 2.0 * k->cpu_per_query_ns + 2.0 * k->switch_ns / NOHC_BATCH;
@@ -131,8 +152,8 @@ static const cull_hooks hooks = {.visit = visit,
                                  .measure_due = measure_due,
                                  .drawn = drawn};
 const cull_ops cull_nohc = {.name = "nohc",
-                            .create = cull_cost_model_create,
-                            .destroy = cull_cost_model_destroy,
+                            .create = create,
+                            .destroy = destroy,
                             .frame = cull_traverse_octree,
                             .begin = begin,
                             .hooks = &hooks};

@@ -55,22 +55,6 @@ void cull_issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_vis
   cull_query_elements(f, &one, 1, (query_entry){e, 0, mask, was_visible, 0, 0});
 }
 
-/* The answer to a multiquery (batch.c): with a sample, each member is
- * asked again on its own; without, all are hidden, with one query. */
-static void take_group_result(frame_ctx *f, const query_entry *q, int visible) {
-  const pending *gm = f->c->gm + q->group;
-  for (int32_t i = 0; i < q->ngroup && f->status == ZS_OK; i++) {
-    if (visible) {
-      cull_issue_query(f, gm[i].e, gm[i].mask, gm[i].was_visible);
-      continue;
-    }
-    cull_state(f, gm[i].e)->pv = 0.0;
-    cull_state(f, gm[i].e)->hidden_frames++;
-    cull_decide(f, gm[i].e, ZS_NODE_QUERIED_HIDDEN);
-    f->st->queries_hidden++;
-  }
-}
-
 /* Takes the answer of the query at the head of the queue (waiting for it
  * if need be) and acts on it: a visible element is drawn or opened. */
 void cull_take_result(frame_ctx *f) {
@@ -78,7 +62,7 @@ void cull_take_result(frame_ctx *f) {
   query_entry q = c->qq[c->qhead++];
   int visible = zs_device_query_result(f->dev, q.q) > 0;
   if (q.ngroup > 0) {
-    take_group_result(f, &q, visible);
+    f->hooks->multiquery_answered(f, &q, visible);
     return;
   }
   elem_state *es = cull_state(f, q.e);

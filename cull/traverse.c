@@ -43,20 +43,19 @@ int cull_traversal_begin(frame_ctx *f) {
   f->height = zs_device_config_of(f->dev)->height;
   c->nheap = 0;
   c->qhead = c->qtail = 0;
-  c->ni = c->nv = c->ngm = 0;
   return 1;
 }
 
-/* Until nothing is left to traverse, to ask or to take: answers that are
- * ready are taken first; with nothing to traverse, the method may issue a
- * query it holds back rather than wait; then the nearest element waiting
- * is visited. */
+/* Until nothing is left to traverse, to take or to ask: answers that are
+ * ready are taken first; with nothing to traverse, the method issues a
+ * query it holds back rather than wait, and the traversal ends when it
+ * holds none; else the nearest element waiting is visited. */
 static void traverse(frame_ctx *f) {
   zs_culler *c = f->c;
   const cull_hooks *h = f->hooks;
   if (!f->t->node[ZS_OCTREE_ROOT].empty && !cull_heap_push(f, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES))
     cull_out_of_memory(f);
-  while (f->status == ZS_OK && (c->nheap > 0 || c->qhead < c->qtail || c->ni > 0 || c->nv > 0)) {
+  while (f->status == ZS_OK) {
     if (c->nheap == 0 && h->empty) h->empty(f);
     while (f->status == ZS_OK && c->qhead < c->qtail) {
       if (zs_device_query_ready(f->dev, c->qq[c->qhead].q)) cull_take_result(f);
@@ -64,9 +63,9 @@ static void traverse(frame_ctx *f) {
       else if (!(h->idle && h->idle(f, 1))) cull_take_result(f); /* wait */
     }
     if (f->status != ZS_OK) break;
-    if (c->nheap == 0) {
-      if (h->idle) h->idle(f, 0);
-      continue;
+    if (c->nheap == 0) { /* and no query out */
+      if (h->idle && h->idle(f, 0)) continue;
+      break;
     }
     elem e;
     unsigned mask;
