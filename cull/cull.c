@@ -87,7 +87,6 @@ void zs_culler_destroy(zs_culler *c) {
   free(c->qq);
   free(c->decision);
   free(c->order);
-  zs_coverage_free(&c->cov);
   free(c->qlo);
   free(c->qhi);
   zs_parts_destroy(c->parts);

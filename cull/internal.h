@@ -15,7 +15,6 @@
 #ifndef ZS_CULL_INTERNAL_H
 #define ZS_CULL_INTERNAL_H
 
-#include "cull/coverage.h"
 #include "cull/cull.h"
 #include "cull/frustum.h"
 #include "cull/parts.h"
@@ -42,8 +41,6 @@ typedef struct elem_state {
                             * (batch.c); nohc: the frame its draw is measured
                             * again, which a visible answer sets as chcpp's */
   uint32_t hidden_frames;  /* frames found hidden in a row (chcpp's p(i), nohc) */
-  uint32_t samples;        /* nohc: pixels its last draw wrote */
-  int32_t asked_class;     /* nohc: history class its query was decided on, or -1 */
 } elem_state;
 
 /* An element whose query is held back (batch.c), or a member of a
@@ -61,21 +58,6 @@ typedef struct cull_held {
   pending *p;
   int32_t n, cap;
 } cull_held;
-
-/* nohc: the share of its box's rectangle a mesh fills, for the coverage
- * it adds (cull/coverage.h); draws measured every NOHC_MEASURE frames;
- * queries in batches of NOHC_BATCH; the classes of
- * history (unseen; hidden 1 .. NOHC_HIDDEN frames in a row; visible, by
- * log2(s + 1) of the pixels s it wrote) times NOHC_BUCKETS of coverage. */
-enum {
-  NOHC_MEASURE = 4,
-  NOHC_BATCH = 32,
-  NOHC_HIDDEN = 8,
-  NOHC_WROTE = 24,
-  NOHC_HISTORIES = 1 + NOHC_HIDDEN + NOHC_WROTE,
-  NOHC_BUCKETS = 10,
-  NOHC_CLASSES = NOHC_HISTORIES * NOHC_BUCKETS
-};
 
 typedef struct heap_entry {
   double key;
@@ -165,14 +147,10 @@ struct zs_culler {
   uint8_t *decision;       /* zs_node_decision per node, this frame */
   int32_t cap_decision, ndecision;
   zs_rng rng;              /* the first intervals of chcpp's and nohc's asking again */
-  /* nohc: the coverage grid of this frame; per history class, how often an
-   * object asked about was found visible and hidden */
-  zs_coverage cov;
   /* the boxes of the query being issued; the objects' parts (NULL: boxes) */
   double (*qlo)[3], (*qhi)[3];
   int32_t cap_qlo, cap_qhi;
   zs_parts *parts;
-  uint32_t class_visible[NOHC_CLASSES], class_hidden[NOHC_CLASSES];
   /* objects in the order they are drawn (cull_order_front_to_back) */
   int32_t *order;
   int32_t cap_order;
@@ -217,6 +195,12 @@ void cull_traverse_octree(frame_ctx *f);
  * the per-element state for the frame's tree and scene; 0 when out of
  * memory. */
 int cull_traversal_begin(frame_ctx *f);
+/* Grows an array of per-element state of size bytes an entry (nodes by
+ * slot, or objects by instance) to n entries, each that is new a copy of
+ * fresh: the first *init have been made before and keep theirs.  0 when
+ * out of memory. */
+int cull_grow_elements(void **a, int32_t *cap, int32_t *init, int32_t n, size_t size,
+                       const void *fresh);
 
 /* ---- hierarchy.c: elements, drawing, the traversal queue ---- */
 

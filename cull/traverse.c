@@ -15,20 +15,28 @@
 
 /* The culler's state for the frame's tree and scene, the near plane's
  * reach and the decisions' overlay; 0 when out of memory. */
+int cull_grow_elements(void **a, int32_t *cap, int32_t *init, int32_t n, size_t size,
+                       const void *fresh) {
+  if (!zs_grow(a, cap, n, size)) return 0;
+  for (; *init < n; (*init)++) memcpy((char *)*a + (size_t)*init * size, fresh, size);
+  return 1;
+}
+
 int cull_traversal_begin(frame_ctx *f) {
+  /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
+   * octree frees and reuses keeps its state: at worst a node is opened
+   * without a query once, which costs time, never pixels.) */
+  static const elem_state fresh = {.pv = 0.5};
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
-  if (!zs_grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns) ||
-      !zs_grow((void **)&c->os, &c->cap_os, f->s->ninst, sizeof *c->os) ||
+  if (!cull_grow_elements((void **)&c->ns, &c->cap_ns, &c->init_ns, t->nslots, sizeof *c->ns,
+                          &fresh) ||
+      !cull_grow_elements((void **)&c->os, &c->cap_os, &c->init_os, f->s->ninst, sizeof *c->os,
+                          &fresh) ||
       !zs_grow((void **)&c->decision, &c->cap_decision, t->nslots, 1)) {
     cull_out_of_memory(f);
     return 0;
   }
-  /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
-   * octree frees and reuses keeps its state: at worst a node is opened
-   * without a query once, which costs time, never pixels.) */
-  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){.pv = 0.5, .asked_class = -1};
-  for (; c->init_os < f->s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){.pv = 0.5, .asked_class = -1};
   c->ndecision = t->nslots;
   memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
   /* The near plane's corners lie at most near * sqrt(1 + tx^2 + ty^2) from
