@@ -40,9 +40,5 @@ static void end(frame_ctx *f) {
                                   : f->hidden_objects > 0;
 }
 
-const cull_ops cull_auto = {.name = "auto",
-                            .create = create,
-                            .destroy = destroy,
-                            .frame = cull_traverse_octree,
-                            .begin = begin,
-                            .end = end};
+const cull_ops cull_auto = {.name = "auto", .create = create, .destroy = destroy,
+                            .frame = cull_traverse_octree, .begin = begin, .end = end};

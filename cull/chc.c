@@ -59,9 +59,6 @@ static void chc_prob_begin(frame_ctx *f) {
 }
 
 const cull_ops cull_chc = {.name = "chc", .frame = cull_traverse_octree, .hooks = &chc_hooks};
-const cull_ops cull_chc_prob = {.name = "chc-prob",
-                                .create = cull_cost_model_create,
-                                .destroy = cull_cost_model_destroy,
-                                .frame = cull_traverse_octree,
-                                .begin = chc_prob_begin,
-                                .hooks = &cull_chc_prob_hooks};
+const cull_ops cull_chc_prob = {.name = "chc-prob", .create = cull_cost_model_create,
+                                .destroy = cull_cost_model_destroy, .frame = cull_traverse_octree,
+                                .begin = chc_prob_begin, .hooks = &cull_chc_prob_hooks};

@@ -117,7 +117,6 @@ static int find_owners(frame_ctx *f, oracle *o, void (*draw)(frame_ctx *f, oracl
  * full image's depth buffer (a box holds its instance, so every owner is
  * one of them); 0 when it fails. */
 static int find_sampled(frame_ctx *f, oracle *o) {
-  zs_culler *c = f->c;
   for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) {
     zs_query q;
     if (o->owns_pixel[i]) continue;
@@ -126,11 +125,7 @@ static int find_sampled(frame_ctx *f, oracle *o) {
       cull_out_of_memory(f);
       return 0;
     }
-    if ((f->status = zs_device_query_begin(o->dev, &q, f->err)) ||
-        (f->status = zs_device_query_boxes(o->dev, (const double(*)[3])c->qlo,
-                                           (const double(*)[3])c->qhi, nbox, f->err)) ||
-        (f->status = zs_device_query_end(o->dev, f->err)))
-      return 0;
+    if ((f->status = cull_query_boxes(f, o->dev, nbox, &q))) return 0;
     o->owns_pixel[i] = zs_device_query_result(o->dev, q) > 0;
   }
   return f->status == ZS_OK;
@@ -167,11 +162,7 @@ static void ideal_box_frame(frame_ctx *f) {
   cull_draw_front_to_back(f, o->owns_pixel);
 }
 
-const cull_ops cull_ideal = {.name = "ideal",
-                             .create = oracle_create,
-                             .destroy = oracle_destroy,
+const cull_ops cull_ideal = {.name = "ideal", .create = oracle_create, .destroy = oracle_destroy,
                              .frame = ideal_frame};
-const cull_ops cull_ideal_box = {.name = "ideal-box",
-                                 .create = oracle_create,
-                                 .destroy = oracle_destroy,
-                                 .frame = ideal_box_frame};
+const cull_ops cull_ideal_box = {.name = "ideal-box", .create = oracle_create,
+                                 .destroy = oracle_destroy, .frame = ideal_box_frame};

@@ -218,8 +218,16 @@ int cull_heap_push(frame_ctx *f, elem e, unsigned mask);
  * of them; -1 when out of memory), and drawn so. */
 int32_t cull_order_front_to_back(frame_ctx *f, const uint8_t *draw);
 void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw);
+/* e's box against the frustum planes left in *mask, charged to the CPU. */
+zs_frustum_result cull_frustum_test(frame_ctx *f, elem e, unsigned *mask);
+/* An element visited (counted, charged) and tested so; 0: outside. */
+int cull_visit_in_frustum(frame_ctx *f, elem e, unsigned *mask);
 /* Pops the nearest element and tests it against the frustum; 0: outside. */
 int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask);
+/* Hands what node n holds to push, each with mask, in the traversal's
+ * order, until push fails (0 then: out of memory). */
+typedef int cull_push_fn(frame_ctx *f, void *to, elem e, unsigned mask);
+int cull_open_node(frame_ctx *f, elem n, unsigned mask, cull_push_fn *push, void *to);
 /* TraverseNode of the paper: an object is drawn, a node pushes what it holds. */
 void cull_traverse_node(frame_ctx *f, elem e, unsigned mask);
 void cull_pull_up_visibility(frame_ctx *f, elem e);
@@ -237,6 +245,9 @@ void cull_draw_unasked(frame_ctx *f, elem e, unsigned mask, double pv);
 
 /* Appends the boxes a query over e draws to the culler's query boxes. */
 int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n);
+/* The first nbox of those as query q on dev (the frame's device, or an
+ * oracle's); the status. */
+zs_status cull_query_boxes(frame_ctx *f, zs_device *dev, int32_t nbox, zs_query *q);
 /* One query over the boxes of members[0 .. n-1], queued as qe. */
 void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_entry qe);
 void cull_issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_visible);

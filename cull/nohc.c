@@ -201,9 +201,5 @@ static const cull_hooks hooks = {.visit = visit,
                                  .answered = answered,
                                  .measure_due = measure_due,
                                  .drawn = drawn};
-const cull_ops cull_nohc = {.name = "nohc",
-                            .create = create,
-                            .destroy = destroy,
-                            .frame = cull_traverse_octree,
-                            .begin = begin,
-                            .hooks = &hooks};
+const cull_ops cull_nohc = {.name = "nohc", .create = create, .destroy = destroy,
+                            .frame = cull_traverse_octree, .begin = begin, .hooks = &hooks};

@@ -30,6 +30,17 @@ int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n) {
   return 1;
 }
 
+zs_status cull_query_boxes(frame_ctx *f, zs_device *dev, int32_t nbox, zs_query *q) {
+  const zs_culler *c = f->c;
+  zs_status st;
+  if ((st = zs_device_query_begin(dev, q, f->err)) ||
+      (st = zs_device_query_boxes(dev, (const double(*)[3])c->qlo, (const double(*)[3])c->qhi, nbox,
+                                  f->err)) ||
+      (st = zs_device_query_end(dev, f->err)))
+    return st;
+  return ZS_OK;
+}
+
 /* One query over the boxes of members[0 .. n-1], as one draw call, queued
  * as entry qe. */
 void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_entry qe) {
@@ -41,11 +52,7 @@ void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_
     cull_out_of_memory(f);
     return;
   }
-  if ((f->status = zs_device_query_begin(f->dev, &qe.q, f->err)) ||
-      (f->status = zs_device_query_boxes(f->dev, (const double(*)[3])c->qlo,
-                                         (const double(*)[3])c->qhi, nbox, f->err)) ||
-      (f->status = zs_device_query_end(f->dev, f->err)))
-    return;
+  if ((f->status = cull_query_boxes(f, f->dev, nbox, &qe.q))) return;
   f->st->queries++;
   c->qq[c->qtail++] = qe;
 }

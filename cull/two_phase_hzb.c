@@ -75,19 +75,35 @@ static void hzb_destroy(void *own) {
   free(h);
 }
 
+static int push_on_level(frame_ctx *f, void *to, elem e, unsigned mask) {
+  (void)f;
+  return level_push(to, e, mask);
+}
+
+/* The pyramid of the depth drawn so far; 0 when it fails. */
+static int build_pyramid(frame_ctx *f) {
+  return (f->status = zs_device_hzb_build(f->dev, f->err)) == ZS_OK;
+}
+
 /* Tests the boxes of elements [0, n) of l (their parts' boxes for
  * objects) against the pyramid in one pass; h->maybe[k]: any may be
- * visible.  0 when out of memory. */
+ * visible.  0 when it fails. */
 static int test_level(frame_ctx *f, hzb_state *h, level *l) {
   zs_culler *c = f->c;
   if (l->n == 0) return 1;
   int32_t nbox = 0;
   for (int32_t k = 0; k < l->n; k++) {
     l->box0[k] = nbox;
-    if (!cull_add_query_boxes(f, l->e[k], &nbox)) return 0;
+    if (!cull_add_query_boxes(f, l->e[k], &nbox)) {
+      cull_out_of_memory(f);
+      return 0;
+    }
   }
   l->box0[l->n] = nbox;
-  if (!zs_grow((void **)&h->maybe, &h->cap_maybe, nbox > 0 ? nbox : 1, 1)) return 0;
+  if (!zs_grow((void **)&h->maybe, &h->cap_maybe, nbox > 0 ? nbox : 1, 1)) {
+    cull_out_of_memory(f);
+    return 0;
+  }
   if (nbox > 0) {
     zs_status st = zs_device_hzb_test(f->dev, (const double(*)[3])c->qlo,
                                       (const double(*)[3])c->qhi, nbox, h->maybe, f->err);
@@ -107,13 +123,8 @@ static int test_level(frame_ctx *f, hzb_state *h, level *l) {
 
 /* Whether object i lies in the frustum (the CPU's test, charged). */
 static int in_frustum(frame_ctx *f, int32_t i) {
-  const double *lo, *hi;
-  cull_elem_box(f, object_elem(i), &lo, &hi);
   unsigned mask = ZS_FRUSTUM_ALL_PLANES;
-  uint64_t tests = f->st->frustum_tests;
-  zs_frustum_result fr = zs_frustum_test_box(&f->frustum, lo, hi, &mask, &f->st->frustum_tests);
-  zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
-  return fr != ZS_FRUSTUM_OUTSIDE;
+  return cull_frustum_test(f, object_elem(i), &mask) != ZS_FRUSTUM_OUTSIDE;
 }
 
 /* Phase 1 in passes: a pass for each HZB_PASS_OBJECTS objects of last
@@ -152,15 +163,7 @@ static void phase_one(frame_ctx *f, hzb_state *h, uint8_t *draw1) {
         cull_out_of_memory(f);
         return;
       }
-    zs_status st = zs_device_hzb_build(f->dev, f->err);
-    if (st != ZS_OK) {
-      f->status = st;
-      return;
-    }
-    if (!test_level(f, h, l)) {
-      if (f->status == ZS_OK) cull_out_of_memory(f);
-      return;
-    }
+    if (!build_pyramid(f) || !test_level(f, h, l)) return;
     for (int32_t k = 0; k < l->n && f->status == ZS_OK; k++) {
       const int32_t i = object_of(l->e[k]);
       if ((draw1[i] = h->maybe[k])) cull_draw_instance(f, i);
@@ -184,17 +187,8 @@ static void phase_two(frame_ctx *f, hzb_state *h, const uint8_t *draw1, uint8_t 
     for (int32_t k = 0; k < cur->n; k++) {
       const elem e = cur->e[k];
       if (is_object(e) && draw1[object_of(e)]) continue; /* drawn in phase 1 */
-      f->st->nodes_visited++;
-      zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
-      const double *lo, *hi;
-      cull_elem_box(f, e, &lo, &hi);
       unsigned mask = cur->mask[k];
-      uint64_t tests = f->st->frustum_tests;
-      zs_frustum_result fr = mask ? zs_frustum_test_box(&f->frustum, lo, hi, &mask,
-                                                        &f->st->frustum_tests)
-                                  : ZS_FRUSTUM_INSIDE;
-      zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
-      if (fr == ZS_FRUSTUM_OUTSIDE) {
+      if (!cull_visit_in_frustum(f, e, &mask)) {
         cull_decide(f, e, ZS_NODE_OUTSIDE);
         continue;
       }
@@ -202,10 +196,7 @@ static void phase_two(frame_ctx *f, hzb_state *h, const uint8_t *draw1, uint8_t 
       cur->mask[kept++] = mask;
     }
     cur->n = kept;
-    if (!test_level(f, h, cur)) {
-      if (f->status == ZS_OK) cull_out_of_memory(f);
-      return;
-    }
+    if (!test_level(f, h, cur)) return;
     next->n = 0;
     for (int32_t k = 0; k < cur->n; k++) {
       const elem e = cur->e[k];
@@ -215,14 +206,7 @@ static void phase_two(frame_ctx *f, hzb_state *h, const uint8_t *draw1, uint8_t 
         draw2[object_of(e)] = 1;
         continue;
       }
-      const zs_octnode *nd = &t->node[e];
-      int ok = 1;
-      for (int o = 0; o < 8 && ok; o++)
-        if (nd->child[o] != ZS_OCTREE_NONE && !t->node[nd->child[o]].empty)
-          ok = level_push(next, nd->child[o], cur->mask[k]);
-      for (int32_t i = nd->first; i != ZS_OCTREE_NONE && ok; i = t->next[i])
-        ok = level_push(next, object_elem(i), cur->mask[k]);
-      if (!ok) {
+      if (!cull_open_node(f, e, cur->mask[k], push_on_level, next)) {
         cull_out_of_memory(f);
         return;
       }
@@ -236,11 +220,7 @@ static void phase_two(frame_ctx *f, hzb_state *h, const uint8_t *draw1, uint8_t 
 /* Phase 4: next frame's set, from the final depth. */
 static void next_set(frame_ctx *f, hzb_state *h, const uint8_t *draw1, const uint8_t *draw2) {
   level *l = &h->cur;
-  zs_status st = zs_device_hzb_build(f->dev, f->err);
-  if (st != ZS_OK) {
-    f->status = st;
-    return;
-  }
+  if (!build_pyramid(f)) return;
   l->n = 0;
   for (int32_t i = 0; i < f->s->ninst; i++) {
     f->c->os[i].visible = 0;
@@ -249,10 +229,7 @@ static void next_set(frame_ctx *f, hzb_state *h, const uint8_t *draw1, const uin
       return;
     }
   }
-  if (!test_level(f, h, l)) {
-    if (f->status == ZS_OK) cull_out_of_memory(f);
-    return;
-  }
+  if (!test_level(f, h, l)) return;
   for (int32_t k = 0; k < l->n; k++) {
     const int32_t i = object_of(l->e[k]);
     f->c->os[i].visible = h->maybe[k];
@@ -271,9 +248,7 @@ static void frame(frame_ctx *f) {
   uint8_t *draw1 = h->drawn, *draw2 = h->drawn + n;
   memset(draw2, 0, (size_t)n);
   phase_one(f, h, draw1);
-  zs_status st = f->status == ZS_OK ? zs_device_hzb_build(f->dev, f->err) : f->status;
-  if (st != ZS_OK) f->status = st;
-  if (f->status == ZS_OK) phase_two(f, h, draw1, draw2);
+  if (f->status == ZS_OK && build_pyramid(f)) phase_two(f, h, draw1, draw2);
   if (f->status == ZS_OK) {
     cull_draw_front_to_back(f, draw2);
     f->st->hzb_phase2 = f->st->objects_drawn - f->st->hzb_phase1;
@@ -281,4 +256,5 @@ static void frame(frame_ctx *f) {
   if (f->status == ZS_OK) next_set(f, h, draw1, draw2);
 }
 
-const cull_ops cull_hzb = {.name = "hzb", .create = hzb_create, .destroy = hzb_destroy, .frame = frame};
+const cull_ops cull_hzb = {.name = "hzb", .create = hzb_create, .destroy = hzb_destroy,
+                           .frame = frame};
