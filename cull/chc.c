@@ -10,10 +10,14 @@
  * once); a leaf found hidden is not drawn this frame. */
 #include "cull/internal.h"
 
+/* The paper's loop body for a node in the frustum: IssueOcclusionQuery
+ * when leafOrWasInvisible, TraverseNode at once when wasVisible (a leaf's
+ * query then only tells the next frame). */
 static void chc_visit(frame_ctx *f, elem e, unsigned mask) {
   int was_visible, seen_last;
   if (!cull_enter(f, e, mask, &was_visible, &seen_last)) return;
-  if (is_object(e) || !was_visible) cull_issue_query(f, e, mask, (unsigned char)was_visible);
+  const int leaf_or_was_invisible = is_object(e) || !was_visible;
+  if (leaf_or_was_invisible) cull_issue_query(f, e, mask, (unsigned char)was_visible);
   if (was_visible) cull_traverse_node(f, e, mask);
 }
 

@@ -144,7 +144,7 @@ static void ask_visible_when_due_if_it_pays(frame_ctx *f, elem e, unsigned mask)
   double pv = cull_predict(f, es);
   if (es->next_query > f->c->frame) {
     cull_pull_up_visibility(f, e);
-  } else if (!cull_query_pays(f, e, pv)) { /* due, but not worth asking */
+  } else if (!cull_query_pays(f, e, pv)) { /* due, but not worth asking (2, 3) */
     es->pv = pv;
     cull_pull_up_visibility(f, e);
   } else {

@@ -105,9 +105,10 @@
  *             bounds (parts or box) have a sample against the full image's
  *             depth buffer: the lower bound of every method that asks.
  *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
- *             queries, and plain vfc for frames after which a whole frame
- *             of queries found nothing hidden (probing again every 8th
- *             frame): a scene without occlusion pays no query cost.
+ *             queries, and plain vfc for the frames after one whose queries
+ *             found nothing hidden; a vfc frame whose draws show a hidden
+ *             object (one that wrote no pixel) turns the queries back on:
+ *             a scene without occlusion pays no query cost.
  *   hzb       two-phase culling against a hierarchical depth buffer
  *             (Greene et al., SIGGRAPH 93; Haar and Aaltonen, SIGGRAPH
  *             2015; Karis et al., Nanite, SIGGRAPH 2021): last frame's set

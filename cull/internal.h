@@ -3,15 +3,18 @@
  * shared code, and the steps every method takes.  Not for use outside
  * cull/.
  *
- * A culler's method is a table of hooks (cull_ops), picked once, when the
- * culler is created (cull.c).  The methods that traverse the octree share
- * one traversal (traverse.c), which calls the hooks; the shared steps
- * (hierarchy.c: elements, drawing, the traversal queue; query_queue.c: queries
- * and their answers; batch.c: queries held back and issued together;
- * cost.c: the cost-model paper's formulas) name no method.  Each method is
- * in its own file: none.c, vfc_box.c, vfc.c, hsw.c, chc.c (chc, chc-prob),
- * auto.c, chcpp.c (chcpp and its variants), nohc.c, ideal.c (ideal,
- * ideal-box). */
+ * A method is one row of the table of methods (cull.c): its name and its
+ * hooks (cull_ops), picked once, when the culler is created.  What a
+ * method keeps from frame to frame beyond what the shared steps keep is
+ * its own, a struct defined in its file, made and freed by its create and
+ * destroy hooks and reached through c->own.  The methods that traverse
+ * the octree share one traversal (traverse.c), which calls the hooks; the
+ * shared steps (hierarchy.c: elements, drawing, the traversal queue, the
+ * frustum; query_queue.c: queries and their answers; batch.c: queries
+ * held back and issued together; cost.c: the cost-model paper's formulas)
+ * name no method.  Each method is in its own file: none.c, vfc_box.c,
+ * vfc.c, hsw.c, chc.c (chc, chc-prob), auto.c, chcpp.c (chcpp and its
+ * variants), nohc.c, ideal.c (ideal, ideal-box), two_phase_hzb.c (hzb). */
 #ifndef ZS_CULL_INTERNAL_H
 #define ZS_CULL_INTERNAL_H
 
@@ -29,13 +32,15 @@ static inline int is_object(elem e) { return e <= -2; }
 static inline int32_t object_of(elem e) { return -e - 2; }
 static inline elem object_elem(int32_t i) { return -i - 2; }
 
-/* Across frames, per element. */
+/* Across frames, per element: CHC's visible and lastVisited, what the
+ * cost model predicts from (P(V), and whether it was hidden the frame
+ * before), CHC++'s count for p(i) and its next query. */
 typedef struct elem_state {
   uint32_t last_visited;   /* frame (frames count from 1) */
   uint32_t done;           /* frame it was rendered (object) or opened (node) */
   uint8_t visible;
-  uint8_t hidden_before;   /* chc-prob: hidden in the frame before: found so,
-                            * or under a node found so */
+  uint8_t hidden_before;   /* chc-prob, auto: hidden in the frame before:
+                            * found so, or under a node found so */
   double pv;               /* P(V) for the next frame */
   uint32_t next_query;     /* chcpp: the frame a visible object is asked again
                             * (batch.c); nohc: the frame its draw is measured
@@ -132,6 +137,7 @@ typedef struct cull_ops {
   const cull_hooks *hooks;
 } cull_ops;
 
+/* The culler: what the shared steps keep for every method. */
 struct zs_culler {
   zs_cull_method method;
   const cull_ops *ops;

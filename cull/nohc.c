@@ -131,7 +131,7 @@ static void decide(frame_ctx *f, elem e, unsigned mask, int was_visible, int see
   double pv = (s->class_visible[k] + 2.0 * prior) / (seen + 2.0);
   double area = fmax(r[2] - r[0], 0.0) * fmax(r[3] - r[1], 0.0);
   double cr = cull_render_cost(f, e);
-  double cq = f->tquery + area * f->tq;                       /* (10), S measured */
+  double cq = f->tquery + area * f->tq;                       /* (10), S the rectangle's */
   if (cr > pv * cr + cq) {                                    /* (2), (3) */
     ne->asked_class = k;
     /* its batch: issued when full or when nothing else is left to do */

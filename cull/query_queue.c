@@ -1,7 +1,8 @@
-/* Occlusion queries (internal.h): the boxes a query over an element
- * draws, issuing queries into the query queue (a FIFO), and taking their
- * answers.  What a method does on an answer beyond the shared steps is its
- * answered hook. */
+/* The query queue (internal.h): the boxes a query over an element draws,
+ * issuing queries into the queue (a FIFO, the paper's QueryQueue), and
+ * taking their answers.  What a method does on an answer beyond the
+ * shared steps is its answered hook; a multiquery's answer is all its
+ * method's (multiquery_answered). */
 #include <string.h>
 
 #include "cull/internal.h"

@@ -1,5 +1,5 @@
-/* The traversal of the octree that every method but none, vfc-box and the
- * oracles takes (internal.h).  The traversal queue (front to back) and the
+/* The traversal of the octree that every method but none, vfc-box, the
+ * oracles and hzb (which takes only its set-up) takes (internal.h).  The traversal queue (front to back) and the
  * query queue (a FIFO) are the same for all; the method's hooks decide
  * what is done to an element taken from the traversal queue, and which
  * queries it holds back and when it issues them.  Per element the culler
