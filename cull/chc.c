@@ -10,11 +10,15 @@
  * once); a leaf found hidden is not drawn this frame. */
 #include "cull/internal.h"
 
+/* The paper's loop body for a node in the frustum: IssueOcclusionQuery
+ * when leafOrWasInvisible, TraverseNode at once when wasVisible (a leaf's
+ * query then only tells the next frame). */
 static void chc_visit(frame_ctx *f, elem e, unsigned mask) {
   int was_visible, seen_last;
   if (!cull_enter(f, e, mask, &was_visible, &seen_last)) return;
-  if (is_object(e) || !was_visible) cull_issue_query(f, e, mask, (unsigned char)was_visible);
-  if (was_visible) cull_traverse(f, e, mask);
+  const int leaf_or_was_invisible = is_object(e) || !was_visible;
+  if (leaf_or_was_invisible) cull_issue_query(f, e, mask, (unsigned char)was_visible);
+  if (was_visible) cull_traverse_node(f, e, mask);
 }
 
 /* Hidden in the frame before: found so, or not reached because a node
@@ -33,7 +37,7 @@ static void chc_prob_visit(frame_ctx *f, elem e, unsigned mask) {
   note_hidden_before(f, e);
   if (!cull_enter(f, e, mask, &was_visible, &seen_last)) return;
   if (!is_object(e) && was_visible) {
-    cull_traverse(f, e, mask);
+    cull_traverse_node(f, e, mask);
     return;
   }
   /* (11) from last frame's P(V): es->pv is unchanged so far, but an
@@ -54,7 +58,11 @@ const cull_hooks cull_chc_prob_measured_hooks = {.visit = chc_prob_visit,
                                                  .measure_due = cull_measure_every_draw,
                                                  .drawn = cull_measured_drawn};
 
-static void chc_prob_begin(frame_ctx *f) { cull_cost_frame(f, &cull_chc_prob_measured_hooks); }
+static void chc_prob_begin(frame_ctx *f) {
+  cull_cost_frame(f, f->c->own, &cull_chc_prob_measured_hooks);
+}
 
-const cull_ops cull_chc = {.frame = cull_walk, .hooks = &chc_hooks};
-const cull_ops cull_chc_prob = {.frame = cull_walk, .begin = chc_prob_begin, .hooks = &cull_chc_prob_hooks};
+const cull_ops cull_chc = {.name = "chc", .frame = cull_traverse_octree, .hooks = &chc_hooks};
+const cull_ops cull_chc_prob = {.name = "chc-prob", .create = cull_cost_model_create,
+                                .destroy = cull_cost_model_destroy, .frame = cull_traverse_octree,
+                                .begin = chc_prob_begin, .hooks = &cull_chc_prob_hooks};

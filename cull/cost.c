@@ -6,13 +6,23 @@
  * wrote.  chc-prob, auto, chcpp-prob and nohc (its own P(V) and S) decide
  * by it. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "cull/internal.h"
 #include "util/grow.h"
 
+void *cull_cost_model_create(void) { return calloc(1, sizeof(cull_cost_model)); }
+
+void cull_cost_model_free(cull_cost_model *m) { free(m->polys); }
+
+void cull_cost_model_destroy(void *own) {
+  cull_cost_model_free(own);
+  free(own);
+}
+
 /* Polygons under every node: its objects' faces plus its children's. */
 static int count_polygons(frame_ctx *f) {
-  zs_culler *c = f->c;
+  cull_cost_model *c = f->model;
   const zs_octree *t = f->t;
   if (!zs_grow((void **)&c->polys, &c->cap_polys, t->nslots, sizeof *c->polys)) return 0;
   /* children have larger levels: sum level by level, deepest first */
@@ -32,8 +42,9 @@ static int count_polygons(frame_ctx *f) {
 }
 
 /* The constants: as given, or (negative) the device clock's. */
-int cull_cost_begin(frame_ctx *f) {
+int cull_cost_begin(frame_ctx *f, cull_cost_model *model) {
   const zs_cost_params *p = &f->c->cost;
+  f->model = model;
   const zs_clock_params *k = zs_device_clock_params(f->dev);
   f->ttri = p->ttri_ns >= 0 ? p->ttri_ns : k->per_polygon_ns;
   f->tcall = p->tcall_ns >= 0 ? p->tcall_ns : k->per_call_ns + k->cpu_per_call_ns;
@@ -53,9 +64,16 @@ static double learnt_rate(uint64_t stay, uint64_t change, double prior, double w
 }
 
 void cull_learn_weights(frame_ctx *f, double w1, double w2, double weight) {
-  const zs_culler *c = f->c;
-  f->w1 = learnt_rate(c->vv, c->vh, w1, weight);
-  f->w2 = learnt_rate(c->hh, c->hv, w2, weight);
+  const cull_cost_model *m = f->model;
+  f->w1 = learnt_rate(m->vv, m->vh, w1, weight);
+  f->w2 = learnt_rate(m->hh, m->hv, w2, weight);
+}
+
+void cull_cost_outcome(frame_ctx *f, int was_visible, int visible) {
+  cull_cost_model *m = f->model;
+  if (!m) return;
+  if (was_visible) visible ? m->vv++ : m->vh++;
+  else visible ? m->hv++ : m->hh++;
 }
 
 void cull_cost_weights(frame_ctx *f) {
@@ -68,8 +86,8 @@ void cull_cost_weights(frame_ctx *f) {
   }
 }
 
-void cull_cost_frame(frame_ctx *f, const cull_hooks *measured) {
-  if (!cull_cost_begin(f)) return;
+void cull_cost_frame(frame_ctx *f, cull_cost_model *model, const cull_hooks *measured) {
+  if (!cull_cost_begin(f, model)) return;
   cull_cost_weights(f);
   if (f->c->cost.measure != 0.0) f->hooks = measured;
 }
@@ -83,7 +101,7 @@ double cull_predict(const frame_ctx *f, const elem_state *es) {
  * under e. */
 double cull_render_cost(const frame_ctx *f, elem e) {
   int64_t n = is_object(e) ? f->s->meshes[f->s->inst[object_of(e)].mesh].mesh.nfaces
-                           : f->c->polys[e];
+                           : f->model->polys[e];
   int64_t calls = is_object(e) ? 1 : f->t->node[e].count;
   return (double)n * f->ttri + (double)calls * f->tcall;
 }
@@ -128,5 +146,5 @@ void cull_measured_drawn(frame_ctx *f, int32_t i, int measured, uint64_t written
  * a node's goes up the tree as without measured draws. */
 void cull_draw_visible_measured(frame_ctx *f, elem e, unsigned mask) {
   if (!is_object(e)) cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
 }

@@ -1,22 +1,14 @@
-/* The culler (cull.h): the methods' names, creating a culler with its
- * method's hooks (internal.h), and a frame's shared set-up before the
- * method draws it. */
+/* The culler (cull.h): the table of methods, creating a culler with its
+ * method's hooks and state (internal.h), and a frame's shared set-up
+ * before the method draws it. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "cull/internal.h"
 
-static const char *const method_names[ZS_CULL_METHODS] = {
-    "none", "vfc", "vfc-box", "hsw", "chc", "chc-prob", "ideal", "auto",
-    "chcpp", "chcpp-nobatch", "chcpp-nodefer", "chcpp-nomulti", "chcpp-prob", "nohc",
-    "ideal-box", "hzb"};
-
-const char *zs_cull_method_name(zs_cull_method m) {
-  return (unsigned)m < ZS_CULL_METHODS ? method_names[m] : "?";
-}
-
-/* The hooks of each method: the one place a method is looked up. */
-static const cull_ops *const method_ops[ZS_CULL_METHODS] = {
+/* Every method, by zs_cull_method: its name and hooks, one row each; the
+ * one place a method is looked up, by number or by name. */
+static const cull_ops *const methods[ZS_CULL_METHODS] = {
     [ZS_CULL_NONE] = &cull_none,
     [ZS_CULL_VFC] = &cull_vfc,
     [ZS_CULL_VFC_BOX] = &cull_vfc_box,
@@ -34,9 +26,13 @@ static const cull_ops *const method_ops[ZS_CULL_METHODS] = {
     [ZS_CULL_IDEAL_BOX] = &cull_ideal_box,
     [ZS_CULL_HZB] = &cull_hzb};
 
+const char *zs_cull_method_name(zs_cull_method m) {
+  return (unsigned)m < ZS_CULL_METHODS ? methods[m]->name : "?";
+}
+
 int zs_cull_method_parse(const char *name) {
   for (int i = 0; i < ZS_CULL_METHODS; i++)
-    if (strcmp(name, method_names[i]) == 0) return i;
+    if (strcmp(name, methods[i]->name) == 0) return i;
   return -1;
 }
 
@@ -53,12 +49,12 @@ zs_status zs_culler_create(zs_cull_method m, const zs_cost_params *cost, zs_cull
   zs_culler *c = calloc(1, sizeof *c);
   if (!c) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   c->method = m;
-  c->ops = method_ops[m];
+  c->ops = methods[m];
   zs_rng_seed(&c->rng, 0xC4C); /* chcpp's first visible intervals: a fixed seed */
   if (cost) c->cost = *cost;
   else zs_cost_params_default(&c->cost);
-  if (!(c->parts = zs_parts_create())) {
-    free(c);
+  if (!(c->parts = zs_parts_create()) || (c->ops->create && !(c->own = c->ops->create()))) {
+    zs_culler_destroy(c);
     return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   }
   *out = c;
@@ -84,25 +80,16 @@ zs_status zs_culler_set_bounds(zs_culler *c, zs_query_bounds b, zs_error *err) {
 
 void zs_culler_destroy(zs_culler *c) {
   if (!c) return;
+  if (c->own) c->ops->destroy(c->own);
   free(c->ns);
   free(c->os);
   free(c->heap);
   free(c->qq);
-  free(c->polys);
   free(c->decision);
-  free(c->hzb_draw);
   free(c->order);
-  free(c->iq);
-  free(c->vq);
-  free(c->gm);
-  free(c->owns_pixel);
-  free(c->owner);
-  cull_churn_free(&c->churn);
-  zs_coverage_free(&c->cov);
   free(c->qlo);
   free(c->qhi);
   zs_parts_destroy(c->parts);
-  zs_device_destroy(c->oracle);
   free(c);
 }
 

@@ -1,6 +1,6 @@
 /* zscan cull — visibility culling methods over the loose octree.
  *
- * Every method walks the same octree of the scene's instances, draws on
+ * Every method traverses the same octree of the scene's instances, draws on
  * the same device and reports the same counters, so their costs can be
  * compared in the device's modelled time:
  *
@@ -105,19 +105,20 @@
  *             bounds (parts or box) have a sample against the full image's
  *             depth buffer: the lower bound of every method that asks.
  *   auto      chc-prob with w1 and w2 learnt from the outcomes of its own
- *             queries, and plain vfc for frames after which a whole frame
- *             of queries found nothing hidden (probing again every 8th
- *             frame): a scene without occlusion pays no query cost.
+ *             queries, and plain vfc for the frames after one whose queries
+ *             found nothing hidden; a vfc frame whose draws show a hidden
+ *             object (one that wrote no pixel) turns the queries back on:
+ *             a scene without occlusion pays no query cost.
  *   hzb       two-phase culling against a hierarchical depth buffer
  *             (Greene et al., SIGGRAPH 93; Haar and Aaltonen, SIGGRAPH
  *             2015; Karis et al., Nanite, SIGGRAPH 2021): last frame's set
  *             in the frustum drawn front to back in passes, each pass
  *             after the first tested against the pyramid of those before;
- *             its depth pyramid built, the octree walked a level at a
+ *             its depth pyramid built, the octree traversed a level at a
  *             time against it (a pass a level), what may be visible
  *             drawn; the final depth's pyramid tests the objects drawn
  *             for the next frame's set.  No query; the results stay on
- *             the GPU (cull/hzb.c, raster/hzb.c).
+ *             the GPU (cull/two_phase_hzb.c, raster/hzb.c).
  *
  * Exactness.  Every method but vfc-box gives the image of none: a node is
  * skipped only when its tight box, or an object's parts' boxes (which
@@ -225,7 +226,7 @@ typedef struct zs_culler zs_culler;
 /* What a method decided for an octree node in the last frame (for
  * pictures: zscan render --overlay culling). */
 typedef enum zs_node_decision {
-  ZS_NODE_NOT_REACHED = 0,  /* below a node culled, or not walked */
+  ZS_NODE_NOT_REACHED = 0,  /* below a node culled, or not traversed */
   ZS_NODE_OUTSIDE,          /* outside the frustum */
   ZS_NODE_QUERIED_HIDDEN,   /* queried, no sample */
   ZS_NODE_QUERIED_VISIBLE,  /* queried, visible */

@@ -1,4 +1,4 @@
-/* The steps every method that walks the octree takes (internal.h): the
+/* The steps every method that traverses the octree takes (internal.h): the
  * elements and their state, drawing, the traversal queue (a binary heap on
  * the distance from the eye to an element's box: front to back, ties by
  * element), and what is done to an element visited. */
@@ -103,23 +103,36 @@ static heap_entry heap_pop(zs_culler *c) {
   return top;
 }
 
+/* ---- the frustum ---- */
+
+/* e's box against the planes left in *mask (none left: inside, untested),
+ * each plane test charged to the CPU. */
+zs_frustum_result cull_frustum_test(frame_ctx *f, elem e, unsigned *mask) {
+  const double *lo, *hi;
+  cull_elem_box(f, e, &lo, &hi);
+  uint64_t tests = f->st->frustum_tests;
+  zs_frustum_result fr =
+      *mask ? zs_frustum_test_box(&f->frustum, lo, hi, mask, &f->st->frustum_tests)
+            : ZS_FRUSTUM_INSIDE;
+  zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
+  return fr;
+}
+
+int cull_visit_in_frustum(frame_ctx *f, elem e, unsigned *mask) {
+  f->st->nodes_visited++;
+  zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
+  return cull_frustum_test(f, e, mask) != ZS_FRUSTUM_OUTSIDE;
+}
+
 /* Takes the nearest element of the traversal queue and tests it against
  * the frustum (the planes its parent left in its mask); 0 when outside. */
 int cull_next_in_frustum(frame_ctx *f, elem *e, unsigned *mask) {
   heap_entry h = heap_pop(f->c);
   *e = h.e;
   *mask = h.mask;
-  f->st->nodes_visited++;
-  zs_device_cpu_work(f->dev, ZS_CPU_NODE, 1);
-  const double *lo, *hi;
-  cull_elem_box(f, *e, &lo, &hi);
-  uint64_t tests = f->st->frustum_tests;
-  zs_frustum_result fr =
-      *mask ? zs_frustum_test_box(&f->frustum, lo, hi, mask, &f->st->frustum_tests)
-            : ZS_FRUSTUM_INSIDE;
-  zs_device_cpu_work(f->dev, ZS_CPU_FRUSTUM_TEST, f->st->frustum_tests - tests);
-  cull_decide(f, *e, fr == ZS_FRUSTUM_OUTSIDE ? ZS_NODE_OUTSIDE : ZS_NODE_NO_QUERY);
-  return fr != ZS_FRUSTUM_OUTSIDE;
+  const int inside = cull_visit_in_frustum(f, *e, mask);
+  cull_decide(f, *e, inside ? ZS_NODE_NO_QUERY : ZS_NODE_OUTSIDE);
+  return inside;
 }
 
 /* The objects flagged in draw[], in order front to back as the traversal
@@ -149,9 +162,29 @@ void cull_draw_front_to_back(frame_ctx *f, const uint8_t *draw) {
   for (int32_t k = 0; k < n && f->status == ZS_OK; k++) cull_draw_instance(f, f->c->order[k]);
 }
 
+/* What node n holds, in the order every traversal takes it: its children
+ * that hold anything, by octant, then its objects, in its list. */
+int cull_open_node(frame_ctx *f, elem n, unsigned mask, cull_push_fn *push, void *to) {
+  const zs_octnode *nd = &f->t->node[n];
+  int ok = 1;
+  for (int o = 0; o < 8 && ok; o++) {
+    int32_t ch = nd->child[o];
+    if (ch != ZS_OCTREE_NONE && !f->t->node[ch].empty) ok = push(f, to, ch, mask);
+  }
+  for (int32_t i = nd->first; i != ZS_OCTREE_NONE && ok; i = f->t->next[i])
+    ok = push(f, to, object_elem(i), mask);
+  return ok;
+}
+
+static int push_on_heap(frame_ctx *f, void *to, elem e, unsigned mask) {
+  (void)to;
+  return cull_heap_push(f, e, mask);
+}
+
 /* TraverseNode of the paper, once per frame per element: an object is
- * rendered; a node pushes its children and its objects. */
-void cull_traverse(frame_ctx *f, elem e, unsigned mask) {
+ * rendered; a node pushes its children and its objects on the traversal
+ * queue. */
+void cull_traverse_node(frame_ctx *f, elem e, unsigned mask) {
   elem_state *es = cull_state(f, e);
   if (es->done == f->c->frame) return;
   es->done = f->c->frame;
@@ -159,15 +192,7 @@ void cull_traverse(frame_ctx *f, elem e, unsigned mask) {
     cull_draw_instance(f, object_of(e));
     return;
   }
-  const zs_octnode *nd = &f->t->node[e];
-  int ok = 1;
-  for (int o = 0; o < 8 && ok; o++) {
-    int32_t ch = nd->child[o];
-    if (ch != ZS_OCTREE_NONE && !f->t->node[ch].empty) ok = cull_heap_push(f, ch, mask);
-  }
-  for (int32_t i = nd->first; i != ZS_OCTREE_NONE && ok; i = f->t->next[i])
-    ok = cull_heap_push(f, object_elem(i), mask);
-  if (!ok) cull_out_of_memory(f);
+  if (!cull_open_node(f, e, mask, push_on_heap, NULL)) cull_out_of_memory(f);
 }
 
 void cull_pull_up_visibility(frame_ctx *f, elem e) {
@@ -180,7 +205,7 @@ void cull_pull_up_visibility(frame_ctx *f, elem e) {
 /* An element found visible, or drawn unasked, is visible up the tree. */
 void cull_draw_visible(frame_ctx *f, elem e, unsigned mask) {
   cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
 }
 
 /* A box that the near plane could cut, or that holds the eye, once grown
@@ -207,7 +232,7 @@ int cull_enter(frame_ctx *f, elem e, unsigned mask, int *was_visible, int *seen_
   if (!cull_too_close(f, e)) return 1;
   es->pv = 1.0;
   cull_pull_up_visibility(f, e);
-  cull_traverse(f, e, mask);
+  cull_traverse_node(f, e, mask);
   return 0;
 }
 

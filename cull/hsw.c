@@ -1,11 +1,11 @@
 /* hsw: hierarchical stop-and-wait.  Front to back, every element in the
  * frustum is queried and its answer waited for before going on; a visible
- * one is opened or drawn (query.c). */
+ * one is opened or drawn (query_queue.c). */
 #include "cull/internal.h"
 
 static void visit(frame_ctx *f, elem e, unsigned mask) {
   if (cull_too_close(f, e)) { /* cannot be asked: taken as visible */
-    cull_traverse(f, e, mask);
+    cull_traverse_node(f, e, mask);
     return;
   }
   cull_issue_query(f, e, mask, 0);
@@ -13,4 +13,4 @@ static void visit(frame_ctx *f, elem e, unsigned mask) {
 }
 
 static const cull_hooks hooks = {.visit = visit, .draw_visible = cull_draw_visible};
-const cull_ops cull_hsw = {.frame = cull_walk, .hooks = &hooks};
+const cull_ops cull_hsw = {.name = "hsw", .frame = cull_traverse_octree, .hooks = &hooks};

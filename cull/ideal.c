@@ -6,45 +6,67 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "cull/churn.h"
 #include "cull/internal.h"
 #include "util/grow.h"
 
-/* The oracle device (ids, z-buffer), the culler's flags and the churn's
- * arrays (which hold the pixels each instance owns, for both), cleared
- * and set to the camera; 0 when it fails. */
-static int oracle_begin(frame_ctx *f) {
-  zs_culler *c = f->c;
-  if (!c->oracle) {
+/* What the oracles keep from frame to frame: their device, which draws
+ * the full image, the instances they draw, the instance of each face id
+ * (made in the first frame), and ideal-box's set from frame to frame. */
+typedef struct oracle {
+  zs_device *dev;
+  uint8_t *owns_pixel;     /* per instance: drawn this frame */
+  int32_t cap_owns_pixel;
+  int32_t *owner;          /* face id -> instance */
+  uint32_t nowner;
+  zs_churn churn;          /* its pixels[0] count the pixels each instance owns, for both */
+} oracle;
+
+static void *oracle_create(void) { return calloc(1, sizeof(oracle)); }
+
+static void oracle_destroy(void *own) {
+  oracle *o = own;
+  zs_device_destroy(o->dev);
+  free(o->owns_pixel);
+  free(o->owner);
+  cull_churn_free(&o->churn);
+  free(o);
+}
+
+/* The oracle device (ids, z-buffer), the flags and the churn's arrays,
+ * cleared and set to the camera; 0 when it fails. */
+static int oracle_begin(frame_ctx *f, oracle *o) {
+  if (!o->dev) {
     zs_device_config oc = *zs_device_config_of(f->dev);
     oc.algo = ZS_ALGO_ZBUFFER;
     oc.shade = ZS_SHADE_ID;
-    if ((f->status = zs_device_create(&oc, &c->oracle, f->err))) return 0;
+    if ((f->status = zs_device_create(&oc, &o->dev, f->err))) return 0;
   }
-  if (!zs_grow((void **)&c->owns_pixel, &c->cap_inst, f->s->ninst, 1) ||
-      !cull_churn_begin(&c->churn, f->s->ninst)) {
+  if (!zs_grow((void **)&o->owns_pixel, &o->cap_owns_pixel, f->s->ninst, 1) ||
+      !cull_churn_begin(&o->churn, f->s->ninst)) {
     cull_out_of_memory(f);
     return 0;
   }
-  zs_device_clear(c->oracle);
-  zs_device_set_camera(c->oracle, f->view, f->proj);
+  zs_device_clear(o->dev);
+  zs_device_set_camera(o->dev, f->view, f->proj);
   return 1;
 }
 
-static void oracle_draw(frame_ctx *f, int32_t i) {
+static void oracle_draw(frame_ctx *f, oracle *o, int32_t i) {
   const zs_instance *in = &f->s->inst[i];
-  f->status = zs_device_draw(f->c->oracle, &f->s->meshes[in->mesh].mesh, in->model, in->id_base,
-                             in->rgb, f->err);
+  f->status = zs_device_draw(o->dev, &f->s->meshes[in->mesh].mesh, in->model, in->id_base, in->rgb,
+                             f->err);
 }
 
 /* ideal-box's churn needs the floor of each object's draw at this camera,
  * in the method's clock (churn.h); what it sets up and tests does not
  * depend on the order of drawing. */
-static void oracle_draw_timed(frame_ctx *f, int32_t i) {
+static void oracle_draw_timed(frame_ctx *f, oracle *o, int32_t i) {
   const zs_clock_params *ck = zs_device_clock_params(f->dev);
-  const zs_raster_stats before = *zs_device_stats(f->c->oracle);
-  oracle_draw(f, i);
-  const zs_raster_stats *after = zs_device_stats(f->c->oracle);
-  f->c->churn.draw_ps[i] =
+  const zs_raster_stats before = *zs_device_stats(o->dev);
+  oracle_draw(f, o, i);
+  const zs_raster_stats *after = zs_device_stats(o->dev);
+  o->churn.draw_ps[i] =
       llround(ck->per_call_ns * 1000.0) +
       llround(ck->per_polygon_ns * 1000.0) *
           (int64_t)(zs_polygons_set_up(after) - zs_polygons_set_up(&before)) +
@@ -52,8 +74,7 @@ static void oracle_draw_timed(frame_ctx *f, int32_t i) {
 }
 
 /* The instance each face id belongs to (ids are id_base + face id). */
-static int make_owners(frame_ctx *f) {
-  zs_culler *c = f->c;
+static int make_owners(frame_ctx *f, oracle *o) {
   uint32_t n = 0;
   for (int32_t i = 0; i < f->s->ninst; i++) {
     const zs_mesh *m = &f->s->meshes[f->s->inst[i].mesh].mesh;
@@ -62,71 +83,65 @@ static int make_owners(frame_ctx *f) {
       if (id + 1 > n) n = id + 1;
     }
   }
-  if (!(c->owner = malloc((size_t)(n ? n : 1) * sizeof *c->owner))) return 0;
-  c->nowner = n;
+  if (!(o->owner = malloc((size_t)(n ? n : 1) * sizeof *o->owner))) return 0;
+  o->nowner = n;
   for (int32_t i = 0; i < f->s->ninst; i++) {
     const zs_mesh *m = &f->s->meshes[f->s->inst[i].mesh].mesh;
     for (int32_t k = 0; k < m->nfaces; k++)
-      c->owner[f->s->inst[i].id_base + (uint32_t)(m->face_id ? m->face_id[k] : k)] = i;
+      o->owner[f->s->inst[i].id_base + (uint32_t)(m->face_id ? m->face_id[k] : k)] = i;
   }
   return 1;
 }
 
 /* Draws the full image on the oracle and flags the instances that own a
  * pixel of it; 0 when it fails. */
-static int find_owners(frame_ctx *f, void (*draw)(frame_ctx *f, int32_t i)) {
-  zs_culler *c = f->c;
-  if (!oracle_begin(f)) return 0;
-  for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) draw(f, i);
+static int find_owners(frame_ctx *f, oracle *o, void (*draw)(frame_ctx *f, oracle *o, int32_t i)) {
+  if (!oracle_begin(f, o)) return 0;
+  for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) draw(f, o, i);
   if (f->status) return 0;
-  if (!c->owner && !make_owners(f)) {
+  if (!o->owner && !make_owners(f, o)) {
     cull_out_of_memory(f);
     return 0;
   }
   const zs_device_config *cfg = zs_device_config_of(f->dev);
-  const uint32_t *ids = zs_device_id_buffer(c->oracle);
+  const uint32_t *ids = zs_device_id_buffer(o->dev);
   size_t npx = (size_t)cfg->width * (size_t)cfg->height;
-  uint32_t *owned = c->churn.pixels[0]; /* zeroed by cull_churn_begin */
+  uint32_t *owned = o->churn.pixels[0]; /* zeroed by cull_churn_begin */
   for (size_t p = 0; p < npx; p++)
-    if (ids[p] < c->nowner) owned[c->owner[ids[p]]]++;
-  for (int32_t i = 0; i < f->s->ninst; i++) c->owns_pixel[i] = owned[i] > 0;
+    if (ids[p] < o->nowner) owned[o->owner[ids[p]]]++;
+  for (int32_t i = 0; i < f->s->ninst; i++) o->owns_pixel[i] = owned[i] > 0;
   return 1;
 }
 
 /* Flags also the instances whose query bounds have a sample against the
  * full image's depth buffer (a box holds its instance, so every owner is
  * one of them); 0 when it fails. */
-static int find_sampled(frame_ctx *f) {
-  zs_culler *c = f->c;
+static int find_sampled(frame_ctx *f, oracle *o) {
   for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) {
     zs_query q;
-    if (c->owns_pixel[i]) continue;
+    if (o->owns_pixel[i]) continue;
     int32_t nbox = 0;
     if (!cull_add_query_boxes(f, object_elem(i), &nbox)) {
       cull_out_of_memory(f);
       return 0;
     }
-    if ((f->status = zs_device_query_begin(c->oracle, &q, f->err)) ||
-        (f->status = zs_device_query_boxes(c->oracle, (const double(*)[3])c->qlo,
-                                           (const double(*)[3])c->qhi, nbox, f->err)) ||
-        (f->status = zs_device_query_end(c->oracle, f->err)))
-      return 0;
-    c->owns_pixel[i] = zs_device_query_result(c->oracle, q) > 0;
+    if ((f->status = cull_query_boxes(f, o->dev, nbox, &q))) return 0;
+    o->owns_pixel[i] = zs_device_query_result(o->dev, q) > 0;
   }
   return f->status == ZS_OK;
 }
 
 /* ideal-box's set against the last frame's (churn.h). */
-static void compare_sets(frame_ctx *f) {
-  zs_culler *c = f->c;
+static void compare_sets(frame_ctx *f, oracle *o) {
   for (int32_t i = 0; i < f->s->ninst; i++) {
     unsigned mask = ZS_FRUSTUM_ALL_PLANES;
     uint64_t tests = 0;
-    c->churn.visible[0][i] = c->owns_pixel[i];
-    c->churn.inside[0][i] = zs_frustum_test_box(&f->frustum, f->s->inst[i].lo, f->s->inst[i].hi,
+    o->churn.visible[0][i] = o->owns_pixel[i];
+    o->churn.inside[0][i] = zs_frustum_test_box(&f->frustum, f->s->inst[i].lo, f->s->inst[i].hi,
                                                 &mask, &tests) != ZS_FRUSTUM_OUTSIDE;
   }
-  cull_churn_compare(&c->churn, llround(zs_device_clock_params(f->dev)->per_call_ns * 1000.0), f->st);
+  const int64_t query_ps = llround(zs_device_clock_params(f->dev)->per_call_ns * 1000.0);
+  cull_churn_compare(&o->churn, query_ps, f->st);
 }
 
 /* Front to back, as every method that traverses draws: drawn in the
@@ -136,14 +151,18 @@ static void compare_sets(frame_ctx *f) {
  * builtin:cubes --cull vfc,ideal measures).  With no instance, nothing is
  * drawn and nothing owns a pixel. */
 static void ideal_frame(frame_ctx *f) {
-  if (f->s->ninst > 0 && find_owners(f, oracle_draw)) cull_draw_front_to_back(f, f->c->owns_pixel);
+  oracle *o = f->c->own;
+  if (f->s->ninst > 0 && find_owners(f, o, oracle_draw)) cull_draw_front_to_back(f, o->owns_pixel);
 }
 
 static void ideal_box_frame(frame_ctx *f) {
-  if (f->s->ninst == 0 || !find_owners(f, oracle_draw_timed) || !find_sampled(f)) return;
-  compare_sets(f);
-  cull_draw_front_to_back(f, f->c->owns_pixel);
+  oracle *o = f->c->own;
+  if (f->s->ninst == 0 || !find_owners(f, o, oracle_draw_timed) || !find_sampled(f, o)) return;
+  compare_sets(f, o);
+  cull_draw_front_to_back(f, o->owns_pixel);
 }
 
-const cull_ops cull_ideal = {.frame = ideal_frame};
-const cull_ops cull_ideal_box = {.frame = ideal_box_frame};
+const cull_ops cull_ideal = {.name = "ideal", .create = oracle_create, .destroy = oracle_destroy,
+                             .frame = ideal_frame};
+const cull_ops cull_ideal_box = {.name = "ideal-box", .create = oracle_create,
+                                 .destroy = oracle_destroy, .frame = ideal_box_frame};

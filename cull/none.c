@@ -6,4 +6,4 @@ static void draw_all(frame_ctx *f) {
   for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) cull_draw_instance(f, i);
 }
 
-const cull_ops cull_none = {.frame = draw_all};
+const cull_ops cull_none = {.name = "none", .frame = draw_all};

@@ -108,7 +108,7 @@ typedef struct zs_octree_params {
   int split;        /* N >= 0: see SPLIT POLICY (default 0) */
   int flat;         /* a scene of at most this many objects gets no hierarchy:
                      * the tree is built with depth 0, the root alone holding
-                     * every object, and a culler walking it tests the objects
+                     * every object, and a culler traversing it tests the objects
                      * one by one (default 16; 0: always the hierarchy) */
 } zs_octree_params;
 

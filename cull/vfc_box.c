@@ -16,4 +16,4 @@ static void draw_centres_inside(frame_ctx *f) {
   }
 }
 
-const cull_ops cull_vfc_box = {.frame = draw_centres_inside};
+const cull_ops cull_vfc_box = {.name = "vfc-box", .frame = draw_centres_inside};

@@ -444,7 +444,7 @@ static void check_hzb(int f, int k, const zs_cull_stats *st) {
 }
 
 START_TEST(hzb_phase_one_in_passes) {
-  /* A set of thousands of objects is drawn in passes (cull/hzb.c), each
+  /* A set of thousands of objects is drawn in passes (cull/two_phase_hzb.c), each
    * after the first tested against the pyramid of those before: every
    * frame still the image of none, at an image size where thousands of
    * small teapots stay in the set. */

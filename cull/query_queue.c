@@ -1,7 +1,8 @@
-/* Occlusion queries (internal.h): the boxes a query over an element
- * draws, issuing queries into the query queue (a FIFO), and taking their
- * answers.  What a method does on an answer beyond the shared steps is its
- * answered hook. */
+/* The query queue (internal.h): the boxes a query over an element draws,
+ * issuing queries into the queue (a FIFO, the paper's QueryQueue), and
+ * taking their answers.  What a method does on an answer beyond the
+ * shared steps is its answered hook; a multiquery's answer is all its
+ * method's (multiquery_answered). */
 #include <string.h>
 
 #include "cull/internal.h"
@@ -30,6 +31,17 @@ int cull_add_query_boxes(frame_ctx *f, elem e, int32_t *n) {
   return 1;
 }
 
+zs_status cull_query_boxes(frame_ctx *f, zs_device *dev, int32_t nbox, zs_query *q) {
+  const zs_culler *c = f->c;
+  zs_status st;
+  if ((st = zs_device_query_begin(dev, q, f->err)) ||
+      (st = zs_device_query_boxes(dev, (const double(*)[3])c->qlo, (const double(*)[3])c->qhi, nbox,
+                                  f->err)) ||
+      (st = zs_device_query_end(dev, f->err)))
+    return st;
+  return ZS_OK;
+}
+
 /* One query over the boxes of members[0 .. n-1], as one draw call, queued
  * as entry qe. */
 void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_entry qe) {
@@ -41,11 +53,7 @@ void cull_query_elements(frame_ctx *f, const pending *members, int32_t n, query_
     cull_out_of_memory(f);
     return;
   }
-  if ((f->status = zs_device_query_begin(f->dev, &qe.q, f->err)) ||
-      (f->status = zs_device_query_boxes(f->dev, (const double(*)[3])c->qlo,
-                                         (const double(*)[3])c->qhi, nbox, f->err)) ||
-      (f->status = zs_device_query_end(f->dev, f->err)))
-    return;
+  if ((f->status = cull_query_boxes(f, f->dev, nbox, &qe.q))) return;
   f->st->queries++;
   c->qq[c->qtail++] = qe;
 }
@@ -55,22 +63,6 @@ void cull_issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_vis
   cull_query_elements(f, &one, 1, (query_entry){e, 0, mask, was_visible, 0, 0});
 }
 
-/* The answer to a multiquery (batch.c): with a sample, each member is
- * asked again on its own; without, all are hidden, with one query. */
-static void take_group_result(frame_ctx *f, const query_entry *q, int visible) {
-  const pending *gm = f->c->gm + q->group;
-  for (int32_t i = 0; i < q->ngroup && f->status == ZS_OK; i++) {
-    if (visible) {
-      cull_issue_query(f, gm[i].e, gm[i].mask, gm[i].was_visible);
-      continue;
-    }
-    cull_state(f, gm[i].e)->pv = 0.0;
-    cull_state(f, gm[i].e)->hidden_frames++;
-    cull_decide(f, gm[i].e, ZS_NODE_QUERIED_HIDDEN);
-    f->st->queries_hidden++;
-  }
-}
-
 /* Takes the answer of the query at the head of the queue (waiting for it
  * if need be) and acts on it: a visible element is drawn or opened. */
 void cull_take_result(frame_ctx *f) {
@@ -78,14 +70,13 @@ void cull_take_result(frame_ctx *f) {
   query_entry q = c->qq[c->qhead++];
   int visible = zs_device_query_result(f->dev, q.q) > 0;
   if (q.ngroup > 0) {
-    take_group_result(f, &q, visible);
+    f->hooks->multiquery_answered(f, &q, visible);
     return;
   }
   elem_state *es = cull_state(f, q.e);
   es->pv = visible ? 1.0 : 0.0; /* observed: the next frame predicts from it */
   if (f->hooks->answered) f->hooks->answered(f, &q, visible);
-  if (q.was_visible) visible ? c->vv++ : c->vh++;
-  else visible ? c->hv++ : c->hh++;
+  cull_cost_outcome(f, q.was_visible, visible);
   cull_decide(f, q.e, visible ? ZS_NODE_QUERIED_VISIBLE : ZS_NODE_QUERIED_HIDDEN);
   if (!visible) {
     es->hidden_frames++;

@@ -1,5 +1,5 @@
-/* The walk of the octree that every method but none, vfc-box and the
- * oracles takes (internal.h).  The traversal queue (front to back) and the
+/* The traversal of the octree that every method but none, vfc-box, the
+ * oracles and hzb (which takes only its set-up) takes (internal.h).  The traversal queue (front to back) and the
  * query queue (a FIFO) are the same for all; the method's hooks decide
  * what is done to an element taken from the traversal queue, and which
  * queries it holds back and when it issues them.  Per element the culler
@@ -15,20 +15,28 @@
 
 /* The culler's state for the frame's tree and scene, the near plane's
  * reach and the decisions' overlay; 0 when out of memory. */
-int cull_walk_begin(frame_ctx *f) {
+int cull_grow_elements(void **a, int32_t *cap, int32_t *init, int32_t n, size_t size,
+                       const void *fresh) {
+  if (!zs_grow(a, cap, n, size)) return 0;
+  for (; *init < n; (*init)++) memcpy((char *)*a + (size_t)*init * size, fresh, size);
+  return 1;
+}
+
+int cull_traversal_begin(frame_ctx *f) {
+  /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
+   * octree frees and reuses keeps its state: at worst a node is opened
+   * without a query once, which costs time, never pixels.) */
+  static const elem_state fresh = {.pv = 0.5};
   zs_culler *c = f->c;
   const zs_octree *t = f->t;
-  if (!zs_grow((void **)&c->ns, &c->cap_ns, t->nslots, sizeof *c->ns) ||
-      !zs_grow((void **)&c->os, &c->cap_os, f->s->ninst, sizeof *c->os) ||
+  if (!cull_grow_elements((void **)&c->ns, &c->cap_ns, &c->init_ns, t->nslots, sizeof *c->ns,
+                          &fresh) ||
+      !cull_grow_elements((void **)&c->os, &c->cap_os, &c->init_os, f->s->ninst, sizeof *c->os,
+                          &fresh) ||
       !zs_grow((void **)&c->decision, &c->cap_decision, t->nslots, 1)) {
     cull_out_of_memory(f);
     return 0;
   }
-  /* Elements new to the culler start unseen, P(V) 1/2.  (A node slot the
-   * octree frees and reuses keeps its state: at worst a node is opened
-   * without a query once, which costs time, never pixels.) */
-  for (; c->init_ns < t->nslots; c->init_ns++) c->ns[c->init_ns] = (elem_state){.pv = 0.5, .asked_class = -1};
-  for (; c->init_os < f->s->ninst; c->init_os++) c->os[c->init_os] = (elem_state){.pv = 0.5, .asked_class = -1};
   c->ndecision = t->nslots;
   memset(c->decision, ZS_NODE_NOT_REACHED, (size_t)t->nslots);
   /* The near plane's corners lie at most near * sqrt(1 + tx^2 + ty^2) from
@@ -43,20 +51,19 @@ int cull_walk_begin(frame_ctx *f) {
   f->height = zs_device_config_of(f->dev)->height;
   c->nheap = 0;
   c->qhead = c->qtail = 0;
-  c->ni = c->nv = c->ngm = 0;
   return 1;
 }
 
-/* Until nothing is left to traverse, to ask or to take: answers that are
- * ready are taken first; with nothing to traverse, the method may issue a
- * query it holds back rather than wait; then the nearest element waiting
- * is visited. */
-static void walk(frame_ctx *f) {
+/* Until nothing is left to traverse, to take or to ask: answers that are
+ * ready are taken first; with nothing to traverse, the method issues a
+ * query it holds back rather than wait, and the traversal ends when it
+ * holds none; else the nearest element waiting is visited. */
+static void traverse(frame_ctx *f) {
   zs_culler *c = f->c;
   const cull_hooks *h = f->hooks;
   if (!f->t->node[ZS_OCTREE_ROOT].empty && !cull_heap_push(f, ZS_OCTREE_ROOT, ZS_FRUSTUM_ALL_PLANES))
     cull_out_of_memory(f);
-  while (f->status == ZS_OK && (c->nheap > 0 || c->qhead < c->qtail || c->ni > 0 || c->nv > 0)) {
+  while (f->status == ZS_OK) {
     if (c->nheap == 0 && h->empty) h->empty(f);
     while (f->status == ZS_OK && c->qhead < c->qtail) {
       if (zs_device_query_ready(f->dev, c->qq[c->qhead].q)) cull_take_result(f);
@@ -64,9 +71,9 @@ static void walk(frame_ctx *f) {
       else if (!(h->idle && h->idle(f, 1))) cull_take_result(f); /* wait */
     }
     if (f->status != ZS_OK) break;
-    if (c->nheap == 0) {
-      if (h->idle) h->idle(f, 0);
-      continue;
+    if (c->nheap == 0) { /* and no query out */
+      if (h->idle && h->idle(f, 0)) continue;
+      break;
     }
     elem e;
     unsigned mask;
@@ -74,11 +81,11 @@ static void walk(frame_ctx *f) {
   }
 }
 
-void cull_walk(frame_ctx *f) {
+void cull_traverse_octree(frame_ctx *f) {
   const cull_ops *ops = f->c->ops;
-  if (!cull_walk_begin(f)) return;
+  if (!cull_traversal_begin(f)) return;
   if (ops->begin) ops->begin(f);
   if (f->status != ZS_OK) return;
-  walk(f);
+  traverse(f);
   if (ops->end) ops->end(f);
 }
