@@ -10,7 +10,7 @@
  * destroy hooks and reached through c->own.  The methods that traverse
  * the octree share one traversal (traverse.c), which calls the hooks; the
  * shared steps (hierarchy.c: elements, drawing, the traversal queue, the
- * frustum; query_queue.c: queries and their answers; batch.c: queries
+ * frustum; query_queue.c: queries and their answers; query_batch.c: queries
  * held back and issued together; cost.c: the cost-model paper's formulas)
  * name no method.  Each method is in its own file: none.c, vfc_box.c,
  * vfc.c, hsw.c, chc.c (chc, chc-prob), auto.c, chcpp.c (chcpp and its
@@ -43,12 +43,12 @@ typedef struct elem_state {
                             * found so, or under a node found so */
   double pv;               /* P(V) for the next frame */
   uint32_t next_query;     /* chcpp: the frame a visible object is asked again
-                            * (batch.c); nohc: the frame its draw is measured
+                            * (query_batch.c); nohc: the frame its draw is measured
                             * again, which a visible answer sets as chcpp's */
   uint32_t hidden_frames;  /* frames found hidden in a row (chcpp's p(i), nohc) */
 } elem_state;
 
-/* An element whose query is held back (batch.c), or a member of a
+/* An element whose query is held back (query_batch.c), or a member of a
  * multiquery. */
 typedef struct pending {
   elem e;
@@ -260,7 +260,7 @@ void cull_issue_query(frame_ctx *f, elem e, unsigned mask, unsigned char was_vis
 /* Takes the answer at the head of the query queue and acts on it. */
 void cull_take_result(frame_ctx *f);
 
-/* ---- batch.c: queries held back, issued together ---- */
+/* ---- query_batch.c: queries held back, issued together ---- */
 
 /* Holds e's query back at the end of h (0 when out of memory). */
 int cull_hold(frame_ctx *f, cull_held *h, elem e, unsigned mask, uint8_t was_visible);

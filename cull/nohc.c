@@ -159,7 +159,7 @@ static void empty(frame_ctx *f) {
 }
 
 /* How the element's history class turned out; a visible object's next
- * measured draw falls when chcpp would ask about it again (batch.c). */
+ * measured draw falls when chcpp would ask about it again (query_batch.c). */
 static void answered(frame_ctx *f, const query_entry *q, int visible) {
   nohc_state *s = f->c->own;
   nohc_elem *ne = nohc_elem_of(f, q->e);
