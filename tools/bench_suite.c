@@ -38,9 +38,10 @@
  * run for --docs needs OSMesa, valgrind, gnuplot and two CPUs, so that
  * the page is never written with a table missing.
  *
- * --quick: one frame per raster case and no scenes or instruction counts,
- * small walks at a small size, fewer frames elsewhere, neither llvmpipe
- * nor the threads: a check that it all runs and renders. */
+ * --quick: one frame per raster case at 500x500 and no scenes or
+ * instruction counts, two frames of small walks at 160x120, fewer frames
+ * elsewhere, neither llvmpipe nor the threads: a check that it all runs
+ * and renders, in seconds (minutes under the sanitizers at -O0). */
 #include "tools/bench_suite.h"
 
 #include <dirent.h>
@@ -92,7 +93,7 @@ static const char *const hzb_rows[] = {"none", "hzb", "chcpp-prob", "ideal-box",
 /* The two large walks at every frame: name, scene, quick scene. */
 static const char *const walks[2][3] = {
     {"plant", "builtin:plant,detail=1", "builtin:plant,detail=0.05"},
-    {"teapots", "builtin:teapots,count=6000", "builtin:teapots,count=300"},
+    {"teapots", "builtin:teapots,count=6000", "builtin:teapots,count=60"},
 };
 /* The walks of bench tradeoff, in its order. */
 static const char *const tradeoff_walks[3] = {"teapots", "city", "plant"};
@@ -102,8 +103,9 @@ static const char *const mem_sizes[2][4] = {
     {"1024x768", "4096x768", "1024x3072", "4096x3072"},
     {"256x192", "1024x192", "256x768", "1024x768"}, /* --quick */
 };
-/* The walks', tradeoff's and depthsort's size under --quick without --size. */
-static const char quick_size[] = "160x120";
+/* The sizes under --quick without --size: the walks', tradeoff's and
+ * depthsort's, and raster's (the least its tilings take). */
+static const char quick_size[] = "160x120", quick_raster_size[] = "500x500";
 
 /* The plots the page may show: the name in the output directory and in
  * DIR/images of --docs. */
@@ -281,11 +283,10 @@ typedef struct how {
 static how as_run(const suite *s) { return (how){s->quick, s->mesa, s->callgrind, 1}; }
 static const how as_shown = {0, 1, 1, 0};
 
-/* --size: the user's, else under --quick the small one where small is
- * allowed. */
-static void size_arg(const suite *s, how h, int small, arglist *a) {
+/* --size: the user's, else under --quick the small one, when given. */
+static void size_arg(const suite *s, how h, const char *small, arglist *a) {
   if (s->size) arg2(a, "--size", s->size);
-  else if (h.quick && small) arg2(a, "--size", quick_size);
+  else if (h.quick && small) arg2(a, "--size", small);
 }
 
 /* The output files of the benchmarks run in this process. */
@@ -314,7 +315,7 @@ static void raster_args(const suite *s, const files *fs, how h, arglist *a) {
     arg2(a, "--repeat", "1");
     arg(a, "--no-scenes");
   }
-  size_arg(s, h, 0, a);
+  size_arg(s, h, quick_raster_size, a);
 }
 
 static void threads_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -328,7 +329,7 @@ static void threads_args(const suite *s, const files *fs, how h, arglist *a) {
     arg2(a, "--md", fs->path[F_THREADS_MD]);
     arg2(a, "--plot", fs->path[F_THREADS_PNG]);
   }
-  size_arg(s, h, 0, a);
+  size_arg(s, h, NULL, a);
 }
 
 static void calibrate_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -342,8 +343,8 @@ static void walk_args(const suite *s, const files *fs, int w, how h, arglist *a)
   arg(a, "walk");
   arg(a, walks[w][h.quick ? 2 : 1]);
   arg2(a, "--cull", all_methods);
-  if (h.quick) arg2(a, "--frames", "4");
-  size_arg(s, h, 1, a);
+  if (h.quick) arg2(a, "--frames", "2"); /* the least that shows ideal-box's set change */
+  size_arg(s, h, quick_size, a);
   if (h.files) {
     arg2(a, "--csv", fs->walk[w][0]);
     arg2(a, "--md", fs->walk[w][1]);
@@ -356,14 +357,14 @@ static void tradeoff_args(const suite *s, how h, arglist *a) {
   if (h.files) arg2(a, "--out", s->dir);
   if (h.quick) arg(a, "--quick");
   if (h.files && s->quiet) arg(a, "--quiet");
-  size_arg(s, h, 1, a);
+  size_arg(s, h, quick_size, a);
 }
 
 static void depthsort_args(const suite *s, const files *fs, how h, arglist *a) {
   arg(a, "depthsort");
   arg2(a, "--frames", h.quick ? "4" : "40");
   if (h.files) arg2(a, "--csv", fs->path[F_DEPTHSORT]);
-  size_arg(s, h, 1, a);
+  size_arg(s, h, quick_size, a);
 }
 
 static void octree_args(const suite *s, const files *fs, how h, arglist *a) {
