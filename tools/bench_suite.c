@@ -1028,11 +1028,13 @@ static int is_image(const char *text, const char *p) {
   return *p == '[' && p > text && p[-1] == '!';
 }
 
-/* Writes text (template t, from its line `line`) to out with each
- * placeholder replaced by its value; with out NULL, only checks it,
- * marking in used the placeholders it names. */
-static zs_status expand(FILE *out, const suite *s, const template_file *t, const char *text,
-                        int line, int *used, zs_error *err) {
+/* Writes template t to out with each placeholder replaced by its value;
+ * with out NULL, only checks it, marking in used the placeholders it
+ * names. */
+static zs_status expand(FILE *out, const suite *s, const template_file *t, int *used,
+                        zs_error *err) {
+  const char *text = t->text;
+  int line = 1;
   for (const char *p = text; *p; p++) {
     if (*p == '\n') line++;
     if (!out && strncmp(p, "](images/", 9) == 0 && is_image(text, p) && !is_plot(p + 9))
@@ -1066,7 +1068,7 @@ static zs_status expand(FILE *out, const suite *s, const template_file *t, const
 static zs_status check_templates(const suite *s, zs_error *err) {
   int used[NPLACEHOLDERS] = {0};
   for (int k = 0; k < s->ntmpl; k++)
-    if (expand(NULL, s, &s->tmpl[k], s->tmpl[k].text, 1, used, err)) return err->code;
+    if (expand(NULL, s, &s->tmpl[k], used, err)) return err->code;
   for (int i = 0; i < NPLACEHOLDERS; i++)
     if (placeholders[i].shown && !used[i])
       return zs_error_set(err, ZS_ERR_PARSE, "%s/results: no template shows {%s}", s->docs,
@@ -1102,7 +1104,7 @@ static zs_status write_docs(suite *s, zs_error *err) {
   if (zs_out_open(&out, page, err)) return err->code;
   for (int k = 0; k < s->ntmpl; k++) {
     if (k) fputc('\n', out.fp);
-    if (expand(out.fp, s, &s->tmpl[k], s->tmpl[k].text, 1, NULL, err)) {
+    if (expand(out.fp, s, &s->tmpl[k], NULL, err)) {
       zs_out_discard(&out);
       return err->code;
     }
@@ -1190,8 +1192,8 @@ int zs_cmd_bench_suite(int argc, char **argv) {
     return zs_cli_fail("zscan bench suite", &err, 1); /* a usage error exits 2 (tools/cli.h) */
   }
   int rc = 1;
-  /* the templates first: a fault in one is found before the hours of
-   * measuring, not after */
+  /* the templates first: a fault in one is found before the measuring,
+   * not after it */
   if (s.docs && (read_templates(&s, &err) || check_templates(&s, &err))) goto fail;
   if (probe(&s, &err)) goto fail;
   for (int k = 0; k < NFILES; k++) in_dir(fs.path[k], &s, file_names[k]);
