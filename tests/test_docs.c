@@ -14,6 +14,13 @@
  * Every page: each relative link names a file that exists, and no page
  * tells the project's history: no working period by name, no tracker
  * number.
+ * A block that shows a file is that file's bytes.  The convention: the
+ * last line before the block's opening fence ends with the file's path
+ * from the root of the source tree in backquotes and a colon
+ * ("`docs/examples/golden.json`:"); the block must then hold exactly the
+ * file's bytes.  So that none is missed, a block of a file type (```json,
+ * ```c, ```cmake, ...) whose paragraph names a file of that type that
+ * exists must carry the mark (README.md and every page below docs/).
  *
  * The commands run in a scratch directory of the build tree that reaches
  * the source's scene/, tests/ and docs/ through symbolic links, so that
@@ -238,6 +245,124 @@ START_TEST(links_lead_somewhere) {
 }
 END_TEST
 
+/* The file types of a fence's info string, and the names a file of that
+ * type ends with. */
+static const struct {
+  const char *info, *ends[3];
+} file_types[] = {
+    {"json", {".json", NULL, NULL}},          {"c", {".c", ".h", NULL}},
+    {"cpp", {".cpp", ".hpp", ".h"}},          {"cmake", {"CMakeLists.txt", ".cmake", NULL}},
+    {"python", {".py", NULL, NULL}},          {"sh", {".sh", NULL, NULL}},
+    {"toml", {".toml", NULL, NULL}},          {"yaml", {".yml", ".yaml", NULL}},
+};
+
+static int ends_with(const char *s, size_t n, const char *end) {
+  size_t k = strlen(end);
+  return n >= k && memcmp(s + n - k, end, k) == 0;
+}
+
+/* The path that line marks ("... `PATH`:" at its end, PATH with a '/'
+ * or a '.' and not an option), into path; 0 when it marks none. */
+static int marked_path(const char *line, size_t n, char *path, size_t cap) {
+  if (n < 4 || line[n - 1] != ':' || line[n - 2] != '`') return 0;
+  const char *open = line + n - 3;
+  while (open > line && *open != '`') open--;
+  size_t k = (size_t)(line + n - 2 - open) - 1;
+  if (*open != '`' || k == 0 || k >= cap || memchr(open + 1, ' ', k)) return 0;
+  memcpy(path, open + 1, k);
+  path[k] = '\0';
+  return path[0] != '-' && strpbrk(path, "/.") != NULL;
+}
+
+/* Whether the text [p, end) names in backquotes a file of the source tree
+ * whose name ends in one of ends; its name into name. */
+static int names_file_of_type(const char *p, const char *end, const char *const *ends,
+                              char *name, size_t cap) {
+  for (const char *q = memchr(p, '`', (size_t)(end - p)); q && q < end;) {
+    const char *close = memchr(q + 1, '`', (size_t)(end - q - 1));
+    if (!close) break;
+    size_t k = (size_t)(close - q - 1);
+    for (int e = 0; e < 3 && ends[e]; e++)
+      if (k > 0 && k < cap && ends_with(q + 1, k, ends[e])) {
+        memcpy(name, q + 1, k);
+        name[k] = '\0';
+        if (!strchr(name, ' ') && zs_test_exists(zs_test_src(name))) return 1;
+      }
+    q = memchr(close + 1, '`', (size_t)(end - close - 1));
+  }
+  return 0;
+}
+
+/* Every fenced block of the page at path (absolute) that shows a file. */
+static void check_blocks(const char *path, void *shown) {
+  size_t size;
+  char *doc = (char *)zs_test_slurp(path, &size);
+  /* the last paragraph before this line, and its last line */
+  const char *para = doc, *para_end = doc, *last = NULL;
+  size_t last_len = 0;
+  int blank = 1;
+  for (const char *line = doc; *line;) {
+    const char *nl = strchr(line, '\n');
+    size_t len = nl ? (size_t)(nl - line) : strlen(line);
+    const char *next = nl ? nl + 1 : line + len;
+    if (len == 0) {
+      blank = 1;
+    } else if (strncmp(line, "```", 3) == 0) {
+      const char *body = next, *close = body;
+      while (*close && strncmp(close, "```", 3) != 0) {
+        const char *e = strchr(close, '\n');
+        close = e ? e + 1 : close + strlen(close);
+      }
+      char file[1024], named[1024], info[32];
+      snprintf(info, sizeof info, "%.*s", (int)(len - 3 < 31 ? len - 3 : 31), line + 3);
+      if (last && marked_path(last, last_len, file, sizeof file)) {
+        ck_assert_msg(zs_test_exists(zs_test_src(file)),
+                      "%s: a block marked as %s, which is no file", path, file);
+        size_t n;
+        char *bytes = (char *)zs_test_slurp(zs_test_src(file), &n);
+        ck_assert_msg((size_t)(close - body) == n && memcmp(body, bytes, n) == 0,
+                      "%s: the block marked as %s is not that file's bytes", path, file);
+        free(bytes);
+        ++*(int *)shown;
+      } else {
+        for (size_t t = 0; t < sizeof file_types / sizeof file_types[0]; t++)
+          if (strcmp(info, file_types[t].info) == 0 &&
+              names_file_of_type(para, para_end, file_types[t].ends, named, sizeof named))
+            ck_abort_msg("%s: a ```%s block after a paragraph naming %s, without the mark "
+                         "(\"`%s`:\" ending the line before it) that says it shows that file",
+                         path, info, named, named);
+      }
+      next = *close ? (strchr(close, '\n') ? strchr(close, '\n') + 1 : close + strlen(close))
+                    : close;
+      para = para_end = next;
+      last = NULL;
+      blank = 1;
+      line = next;
+      continue;
+    } else {
+      if (blank) para = line;
+      blank = 0;
+      para_end = next;
+      last = line;
+      last_len = len;
+    }
+    line = next;
+  }
+  free(doc);
+}
+
+START_TEST(every_file_shown_is_that_file) {
+  int shown = 0;
+  check_blocks(zs_test_src("README.md"), &shown);
+  static const char *const md[] = {".md"};
+  char docs[4096];
+  snprintf(docs, sizeof docs, "%s", zs_test_src("docs"));
+  zs_test_each_file(docs, md, 1, check_blocks, &shown);
+  /* docs/GOLDEN.md's manifest, docs/SCENES.md's scene file */
+  ck_assert_msg(shown >= 2, "%d blocks shown as files, expected 2 or more", shown);
+}
+END_TEST
+
 int main(void) {
   Suite *s = suite_create("docs");
   TCase *tc = tcase_create("docs");
@@ -245,6 +370,7 @@ int main(void) {
   tcase_add_test(tc, every_command_of_the_readme);
   tcase_add_loop_test(tc, every_command_of_every_page, 0, NPAGES);
   tcase_add_test(tc, links_lead_somewhere);
+  tcase_add_test(tc, every_file_shown_is_that_file);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

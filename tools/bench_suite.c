@@ -1,15 +1,15 @@
-/* `zscan bench suite [--out DIR] [--quick] [--size WxH] [--docs DIR]`:
- * the documented suite, one command, every file in DIR:
+/* `zscan bench suite [--out DIR] [--quick] [--size WxH] [--threads N]
+ * [--docs DIR] [--quiet]`: the documented suite, one command, every file
+ * in the --out directory:
  *   raster.csv, .md, .png   bench raster: triangles of 4 to 500 pixels and
  *                           the whole scenes in both modes, one thread,
- *                           beside Mesa's llvmpipe on one thread when zscan
- *                           has it (--mesa), with the instructions per
- *                           frame when valgrind is there (--callgrind);
- *   raster-threads.csv, .md, .png, .txt   the same on every thread of the
- *                           machine (2 or more), zscan's speed-up over one
- *                           thread, frames in turn (--speedup), and
- *                           llvmpipe on as many threads (a child process,
- *                           as llvmpipe reads LP_NUM_THREADS when it starts);
+ *                           beside Mesa's llvmpipe on one thread (--mesa),
+ *                           with the instructions per frame (--callgrind);
+ *   raster-threads.csv, .md, .png, .txt   the same on N threads (every CPU
+ *                           by default), zscan's speed-up over one thread
+ *                           (--speedup), and llvmpipe on as many threads (a
+ *                           child process, as llvmpipe reads LP_NUM_THREADS
+ *                           when it starts);
  *   memory.md, memory.txt   what the device holds (render --stats) in
  *                           both modes at four image sizes;
  *   calibrate.txt, clock.json   zscan calibrate: the clock's constants;
@@ -17,20 +17,34 @@
  *                           every frame of the two large walks (.csv, .md,
  *                           .txt, and -every.png: a few methods' modelled
  *                           frame time along the walk);
- *   tradeoff*.csv, .md, .png  bench tradeoff: run time against error, every
- *                           method and mode on every walk (walk-plant.png
- *                           and walk-teapots.png: a few methods along two
- *                           of them);
+ *   tradeoff*.csv, .md, .png  bench tradeoff: run time against error
+ *                           (walk-plant.png and walk-teapots.png: a few
+ *                           methods along two of its walks);
  *   depthsort.csv           bench depthsort: the depth-sort paper's Table 1;
- *   octree.csv, .png        bench octree: loose against plain octree updates;
- *   RESULTS.md              all of the above as one page.
- * --docs DIR writes that page to DIR/RESULTS.md as well, its plots to
- * DIR/images/: `zscan bench suite --docs docs` refreshes the project's
- * docs/RESULTS.md.
- * --quick: one frame per raster case and no scenes or instruction counts,
- * the quick walks, fewer frames elsewhere: a check that it all runs. */
+ *   octree.csv, .png        bench octree: loose against plain octree updates.
+ *
+ * --docs DIR writes the results page, DIR/RESULTS.md, its plots in
+ * DIR/images/: `zscan bench suite --docs docs` rewrites docs/RESULTS.md.
+ * The page holds no word of this file: its templates, the .md files of
+ * DIR/results/ in the order of their names, are Markdown in which {NAME}
+ * stands for what the suite measured (placeholders[] below: a table, a
+ * command, a figure); a brace opens nothing else.  The templates are
+ * read and checked before anything runs: an unknown or malformed
+ * placeholder, an image the suite does not draw, or a measurement no
+ * template shows is a one-line error naming the file (and line), exit 1.
+ * The page shows each benchmark's command as the full run runs it,
+ * without the files it writes, so that a --quick page shows the same
+ * headings and commands as the full one (tests/test_results.c).  A full
+ * run for --docs needs OSMesa, valgrind, gnuplot and two CPUs, so that
+ * the page is never written with a table missing.
+ *
+ * --quick: one frame per raster case at 500x500 and no scenes or
+ * instruction counts, two frames of small walks at 160x120, fewer frames
+ * elsewhere, neither llvmpipe nor the threads: a check that it all runs
+ * and renders, in seconds (minutes under the sanitizers at -O0). */
 #include "tools/bench_suite.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,32 +65,37 @@
 #include "tools/spawn.h"
 
 static const char usage[] =
-    "usage: zscan bench suite [--out DIR] [--quick] [--size WxH] [--docs DIR] [--quiet]\n"
-    "  --out DIR   where every benchmark's files go (default bench-suite), with\n"
-    "              RESULTS.md, the page of them all\n"
-    "  --quick     a few frames of each: a check that it all runs\n"
-    "  --size WxH  the image size of raster, tradeoff, depthsort and the walks (raster\n"
-    "              needs 500x500 or more; default each one's own, 1024x768)\n"
-    "  --docs DIR  also that page as DIR/RESULTS.md, its plots in DIR/images\n"
-    "              (zscan bench suite --docs docs refreshes docs/RESULTS.md)\n"
-    "  --quiet     no progress on stderr (else a line after each benchmark, and\n"
-    "              the walks of tradeoff as bench tradeoff shows them)\n";
+    "usage: zscan bench suite [--out DIR] [--quick] [--size WxH] [--threads N] [--docs DIR]\n"
+    "                         [--quiet]\n"
+    "  --out DIR    where every benchmark's files go (default bench-suite)\n"
+    "  --quick      a few frames of each, small scenes: a check that it all runs\n"
+    "  --size WxH   the image size of raster, tradeoff, depthsort and the walks (raster\n"
+    "               needs 500x500 or more; default each one's own, 1024x768)\n"
+    "  --threads N  the second raster pass and llvmpipe's on N threads (default: every\n"
+    "               CPU, 2 or more)\n"
+    "  --docs DIR   also the results page, DIR/RESULTS.md, from the templates\n"
+    "               DIR/results/*.md, its plots in DIR/images (zscan bench suite\n"
+    "               --docs docs rewrites docs/RESULTS.md)\n"
+    "  --quiet      no progress on stderr (else a line after each benchmark, and\n"
+    "               the walks of tradeoff as bench tradeoff shows them)\n";
 
-/* Every culling method, and the few whose lines a plot can tell apart
- * (hsw, which waits for every answer, would flatten them). */
+/* Every culling method; the few whose lines a plot can tell apart (hsw,
+ * which waits for every answer, would flatten them); the rows of the
+ * depth pyramid's comparison. */
 static const char all_methods[] =
     "vfc,vfc-box,hsw,chc,chc-prob,chcpp,chcpp-nobatch,chcpp-nodefer,chcpp-nomulti,chcpp-prob,"
     "nohc,hzb,ideal-box,ideal,auto";
 static const char *const plotted[] = {"vfc", "chc", "chc-prob", "chcpp", "nohc", "hzb", "ideal-box",
                                       "ideal"};
 enum { NPLOTTED = sizeof plotted / sizeof plotted[0] };
+static const char *const hzb_rows[] = {"none", "hzb", "chcpp-prob", "ideal-box", "ideal"};
 
 /* The two large walks at every frame: name, scene, quick scene. */
 static const char *const walks[2][3] = {
     {"plant", "builtin:plant,detail=1", "builtin:plant,detail=0.05"},
-    {"teapots", "builtin:teapots,count=6000", "builtin:teapots,count=300"},
+    {"teapots", "builtin:teapots,count=6000", "builtin:teapots,count=60"},
 };
-/* The walks of bench tradeoff, in its order, and their steps (full run). */
+/* The walks of bench tradeoff, in its order. */
 static const char *const tradeoff_walks[3] = {"teapots", "city", "plant"};
 
 /* Memory: the default scene at four sizes, in both modes. */
@@ -84,8 +103,12 @@ static const char *const mem_sizes[2][4] = {
     {"1024x768", "4096x768", "1024x3072", "4096x3072"},
     {"256x192", "1024x192", "256x768", "1024x768"}, /* --quick */
 };
+/* The sizes under --quick without --size: the walks', tradeoff's and
+ * depthsort's, and raster's (the least its tilings take). */
+static const char quick_size[] = "160x120", quick_raster_size[] = "500x500";
 
-/* Plots: the name in the output directory and in DIR/images of --docs. */
+/* The plots the page may show: the name in the output directory and in
+ * DIR/images of --docs. */
 typedef struct plot_file {
   const char *out, *doc;
 } plot_file;
@@ -93,8 +116,6 @@ static const plot_file plots[] = {
     {"raster.png", "bench-raster.png"},
     {"walk-plant-every.png", "walk-plant-every.png"},
     {"walk-teapots-every.png", "walk-teapots-every.png"},
-    {"walk-teapots.png", "walk-teapots.png"},
-    {"walk-plant.png", "walk-plant.png"},
     {"tradeoff-teapots.png", "tradeoff-teapots.png"},
     {"tradeoff-city.png", "tradeoff-city.png"},
     {"tradeoff-plant.png", "tradeoff-plant.png"},
@@ -102,19 +123,73 @@ static const plot_file plots[] = {
 };
 enum { NPLOTS = sizeof plots / sizeof plots[0] };
 
-enum { CMD = 2048, PATH = 4200 };
+/* What the templates may name.  shown: some template must show it (the
+ * measurements and their commands), so that a template gone missing is
+ * an error, not a section quietly dropped. */
+static const struct placeholder {
+  const char *name;
+  int shown;
+} placeholders[] = {
+    {"machine", 0},
+    {"suite.command", 0},
+    {"raster.command", 1},
+    {"raster.table", 1},
+    {"llvmpipe.table", 1},
+    {"threads.command", 1},
+    {"threads.llvmpipe.table", 1},
+    {"threads.speedup.table", 1},
+    {"memory.command", 1},
+    {"memory.table", 1},
+    {"calibrate.command", 1},
+    {"calibrate.output", 1},
+    {"walk.plant.scene", 0},
+    {"walk.plant.command", 1},
+    {"walk.plant.extent", 0},
+    {"walk.plant.table", 1},
+    {"walk.plant.churn", 1},
+    {"walk.plant.hzb", 1},
+    {"walk.teapots.scene", 0},
+    {"walk.teapots.command", 1},
+    {"walk.teapots.extent", 0},
+    {"walk.teapots.table", 1},
+    {"walk.teapots.churn", 1},
+    {"walk.teapots.hzb", 1},
+    {"tradeoff.command", 1},
+    {"tradeoff.teapots.walk", 0},
+    {"tradeoff.teapots.table", 1},
+    {"tradeoff.city.walk", 0},
+    {"tradeoff.city.table", 1},
+    {"tradeoff.plant.walk", 0},
+    {"tradeoff.plant.table", 1},
+    {"depthsort.command", 1},
+    {"depthsort.table", 1},
+    {"octree.command", 1},
+    {"octree.table", 1},
+};
+enum { NPLACEHOLDERS = sizeof placeholders / sizeof placeholders[0] };
 
-/* What one run of the suite did, for the page. */
+enum { CMD = 2048, PATH = 4200, MAX_TEMPLATES = 64 };
+
+/* One template: its path (as the user named the folder) and its text. */
+typedef struct template_file {
+  char path[PATH + 256];
+  char *text;
+} template_file;
+
+/* What one run of the suite does, and what it measured, for the page. */
 typedef struct suite {
-  const char *dir, *size;
-  int quick, mesa, callgrind, threads; /* threads: of the second raster pass, 0: none */
-  int quiet;                           /* --quiet */
-  int have_mesa;                       /* built with OSMesa (mesa: and used) */
-  int plots;                           /* gnuplot is there */
+  const char *dir, *size, *docs;
+  int quick, quiet;
+  int threads;                     /* N of the second raster pass, as its command shows */
+  char threads_arg[16], lp_env[48]; /* "N", "LP_NUM_THREADS=N" */
+  int mesa, callgrind, run_threads; /* what this run does */
+  int have_mesa, plots, ncpu;
   char self[4096];
   char machine[512];
-  char cmd_raster[CMD], cmd_threads[CMD], cmd_memory[CMD], cmd_calibrate[CMD];
-  char cmd_walk[2][CMD], cmd_depthsort[CMD], cmd_octree[CMD];
+  char command[CMD]; /* this run's own command line */
+  template_file tmpl[MAX_TEMPLATES];
+  int ntmpl;
+  char *value[NPLACEHOLDERS]; /* each placeholder's text, once measured */
 } suite;
 
 static void in_dir(char *buf, const suite *s, const char *name) {
@@ -181,15 +256,137 @@ static void describe_machine(char *buf, size_t cap) {
            model[0] ? " (" : "", model, model[0] ? ")" : "", compiler, build);
 }
 
+/* ---- the benchmarks' arguments ----------------------------------------- */
+
+/* A NULL-terminated argument list. */
+typedef struct arglist {
+  char *v[40];
+  int n;
+} arglist;
+
+static void arg(arglist *a, const char *word) {
+  if (a->n < 39) a->v[a->n++] = (char *)word;
+  a->v[a->n] = NULL;
+}
+
+static void arg2(arglist *a, const char *opt, const char *value) {
+  arg(a, opt);
+  arg(a, value);
+}
+
+/* How a benchmark's arguments are built: as this run runs it, or as the
+ * page shows it (the full run's, without the files it writes). */
+typedef struct how {
+  int quick, mesa, callgrind, files;
+} how;
+
+static how as_run(const suite *s) { return (how){s->quick, s->mesa, s->callgrind, 1}; }
+static const how as_shown = {0, 1, 1, 0};
+
+/* --size: the user's, else under --quick the small one, when given. */
+static void size_arg(const suite *s, how h, const char *small, arglist *a) {
+  if (s->size) arg2(a, "--size", s->size);
+  else if (h.quick && small) arg2(a, "--size", small);
+}
+
+/* The output files of the benchmarks run in this process. */
+enum { F_RASTER_CSV, F_RASTER_MD, F_RASTER_PNG, F_DEPTHSORT, F_OCTREE_CSV, F_OCTREE_PNG,
+       F_CLOCK, F_THREADS_CSV, F_THREADS_MD, F_THREADS_PNG, NFILES };
+static const char *const file_names[NFILES] = {
+    "raster.csv", "raster.md",          "raster.png",         "depthsort.csv",
+    "octree.csv", "octree.png",         "clock.json",         "raster-threads.csv",
+    "raster-threads.md", "raster-threads.png"};
+
+typedef struct files {
+  char path[NFILES][PATH];
+  char walk[2][3][PATH]; /* each large walk's csv, md, txt */
+} files;
+
+static void raster_args(const suite *s, const files *fs, how h, arglist *a) {
+  arg(a, "raster");
+  if (h.files) {
+    arg2(a, "--csv", fs->path[F_RASTER_CSV]);
+    arg2(a, "--md", fs->path[F_RASTER_MD]);
+    arg2(a, "--plot", fs->path[F_RASTER_PNG]);
+  }
+  if (h.mesa) arg(a, "--mesa");
+  if (h.callgrind) arg(a, "--callgrind");
+  if (h.quick) {
+    arg2(a, "--repeat", "1");
+    arg(a, "--no-scenes");
+  }
+  size_arg(s, h, quick_raster_size, a);
+}
+
+static void threads_args(const suite *s, const files *fs, how h, arglist *a) {
+  arg(a, "bench");
+  arg(a, "raster");
+  arg2(a, "--threads", s->threads_arg);
+  arg(a, "--speedup");
+  if (h.mesa) arg(a, "--mesa");
+  if (h.files) {
+    arg2(a, "--csv", fs->path[F_THREADS_CSV]);
+    arg2(a, "--md", fs->path[F_THREADS_MD]);
+    arg2(a, "--plot", fs->path[F_THREADS_PNG]);
+  }
+  size_arg(s, h, NULL, a);
+}
+
+static void calibrate_args(const suite *s, const files *fs, how h, arglist *a) {
+  (void)s;
+  arg(a, "calibrate");
+  arg2(a, "--repeat", h.quick ? "1" : "9");
+  if (h.files) arg2(a, "-o", fs->path[F_CLOCK]);
+}
+
+static void walk_args(const suite *s, const files *fs, int w, how h, arglist *a) {
+  arg(a, "walk");
+  arg(a, walks[w][h.quick ? 2 : 1]);
+  arg2(a, "--cull", all_methods);
+  if (h.quick) arg2(a, "--frames", "2"); /* the least that shows ideal-box's set change */
+  size_arg(s, h, quick_size, a);
+  if (h.files) {
+    arg2(a, "--csv", fs->walk[w][0]);
+    arg2(a, "--md", fs->walk[w][1]);
+    arg(a, "--quiet");
+  }
+}
+
+static void tradeoff_args(const suite *s, how h, arglist *a) {
+  arg(a, "tradeoff");
+  if (h.files) arg2(a, "--out", s->dir);
+  if (h.quick) arg(a, "--quick");
+  if (h.files && s->quiet) arg(a, "--quiet");
+  size_arg(s, h, quick_size, a);
+}
+
+static void depthsort_args(const suite *s, const files *fs, how h, arglist *a) {
+  arg(a, "depthsort");
+  arg2(a, "--frames", h.quick ? "4" : "40");
+  if (h.files) arg2(a, "--csv", fs->path[F_DEPTHSORT]);
+  size_arg(s, h, quick_size, a);
+}
+
+static void octree_args(const suite *s, const files *fs, how h, arglist *a) {
+  (void)s;
+  arg(a, "octree");
+  arg2(a, "--count", h.quick ? "500" : "5000");
+  arg2(a, "--frames", h.quick ? "3" : "50");
+  if (h.files) {
+    arg2(a, "--csv", fs->path[F_OCTREE_CSV]);
+    arg2(a, "--plot", fs->path[F_OCTREE_PNG]);
+  }
+}
+
+/* ---- running them ------------------------------------------------------ */
+
 /* Runs one benchmark's command with args (NULL-terminated, the command's
- * name first), its command line kept in cmd (when not NULL); returns its
- * exit status. */
-static int run(int (*fn)(int, char **), char **args, char *cmd) {
+ * name first); returns its exit status. */
+static int run(int (*fn)(int, char **), char **args) {
   int n = 0;
   while (args[n]) n++;
   char line[CMD];
   join_cmd(line, "zscan bench", args);
-  if (cmd) snprintf(cmd, CMD, "%s", line);
   printf("\n$ %s\n", line);
   fflush(stdout);
   return fn(n, args);
@@ -198,7 +395,7 @@ static int run(int (*fn)(int, char **), char **args, char *cmd) {
 /* Runs this zscan again as a child with args (NULL-terminated, without
  * the program), its output into the file txt and then here too. */
 static zs_status run_child(const suite *s, char **args, const char *txt, const char *env,
-                           char *cmd, zs_error *err) {
+                           zs_error *err) {
   char *argv[48];
   int n = 0;
   argv[n++] = (char *)s->self;
@@ -207,7 +404,6 @@ static zs_status run_child(const suite *s, char **args, const char *txt, const c
   char prefix[96], line[CMD];
   snprintf(prefix, sizeof prefix, "%s%szscan", env ? env : "", env ? " " : "");
   join_cmd(line, prefix, args);
-  if (cmd) snprintf(cmd, CMD, "%s", line);
   printf("\n$ %s\n", line);
   fflush(stdout);
   /* the child writes into a scratch file, which then reaches txt through
@@ -230,32 +426,15 @@ static zs_status run_child(const suite *s, char **args, const char *txt, const c
   return st;
 }
 
-/* bench raster on n threads beside llvmpipe on n (when zscan has it), and
- * the speed-up over one thread. */
-static zs_status run_threads(suite *s, zs_error *err) {
-  char threads[16], csv[PATH], md[PATH], png[PATH], txt[PATH], env[64];
-  snprintf(threads, sizeof threads, "%d", s->threads);
-  in_dir(csv, s, "raster-threads.csv");
-  in_dir(md, s, "raster-threads.md");
-  in_dir(png, s, "raster-threads.png");
+/* bench raster on N threads beside llvmpipe on N, and the speed-up over
+ * one thread. */
+static zs_status run_threads(suite *s, const files *fs, zs_error *err) {
+  char txt[PATH];
   in_dir(txt, s, "raster-threads.txt");
-  char *args[24] = {"bench", "raster", "--threads", threads, "--speedup"};
-  int k = 5;
-  if (s->mesa) args[k++] = "--mesa";
-  args[k++] = "--csv";
-  args[k++] = csv;
-  args[k++] = "--md";
-  args[k++] = md;
-  args[k++] = "--plot";
-  args[k++] = png;
-  if (s->size) {
-    args[k++] = "--size";
-    args[k++] = (char *)s->size;
-  }
-  args[k] = NULL;
-  snprintf(env, sizeof env, "LP_NUM_THREADS=%s", threads);
-  setenv("LP_NUM_THREADS", threads, 1);
-  zs_status st = run_child(s, args, txt, s->mesa ? env : NULL, s->cmd_threads, err);
+  arglist a = {0};
+  threads_args(s, fs, as_run(s), &a);
+  setenv("LP_NUM_THREADS", s->threads_arg, 1);
+  zs_status st = run_child(s, a.v, txt, s->mesa ? s->lp_env : NULL, err);
   setenv("LP_NUM_THREADS", "1", 1);
   return st;
 }
@@ -282,7 +461,7 @@ static void grouped(char *buf, size_t cap, long long v) {
 
 /* render --stats in both modes at four sizes: the buffers and tables the
  * device holds, into memory.md. */
-static zs_status run_memory(suite *s, zs_error *err) {
+static zs_status run_memory(const suite *s, zs_error *err) {
   char txt[PATH], png[PATH], md[PATH];
   in_dir(txt, s, "memory.txt");
   in_dir(png, s, "memory.png");
@@ -293,7 +472,7 @@ static zs_status run_memory(suite *s, zs_error *err) {
     for (int a = 0; a < 2; a++) {
       char *args[] = {"render", "--algo", (char *)algos[a], "--size",
                       (char *)mem_sizes[s->quick][i], "--stats", "-o", png, NULL};
-      zs_status st = run_child(s, args, txt, NULL, NULL, err);
+      zs_status st = run_child(s, args, txt, NULL, err);
       if (st) return st;
       FILE *f = fopen(txt, "r");
       char line[8192] = "";
@@ -306,7 +485,6 @@ static zs_status run_memory(suite *s, zs_error *err) {
       bytes[i][a][1] = json_int(line, "table_bytes");
     }
   remove(png);
-  snprintf(s->cmd_memory, CMD, "zscan render --algo MODE --size SIZE --stats");
   zs_out out;
   if (zs_out_open(&out, md, err)) return err->code;
   fprintf(out.fp, "| size | zbuffer: buffers | zbuffer: tables | scanline: buffers | scanline: "
@@ -321,32 +499,10 @@ static zs_status run_memory(suite *s, zs_error *err) {
 }
 
 /* One of the large walks at every frame, every method. */
-static zs_status run_walk(suite *s, int w, zs_error *err) {
-  char csv[PATH], md[PATH], txt[PATH];
-  in_dir_named(csv, s, "walk-%s.csv", walks[w][0]);
-  in_dir_named(md, s, "walk-%s.md", walks[w][0]);
-  in_dir_named(txt, s, "walk-%s.txt", walks[w][0]);
-  char *args[24] = {"walk", (char *)walks[w][s->quick ? 2 : 1], "--cull", (char *)all_methods};
-  int k = 4;
-  if (s->quick) {
-    args[k++] = "--frames";
-    args[k++] = "4";
-  }
-  if (s->size) {
-    args[k++] = "--size";
-    args[k++] = (char *)s->size;
-  }
-  const int shown = k; /* the page shows the command without its files */
-  args[k++] = "--csv";
-  args[k++] = csv;
-  args[k++] = "--md";
-  args[k++] = md;
-  args[k++] = "--quiet";
-  args[k] = NULL;
-  zs_status st = run_child(s, args, txt, NULL, NULL, err);
-  args[shown] = NULL;
-  join_cmd(s->cmd_walk[w], "zscan", args);
-  return st;
+static zs_status run_walk(const suite *s, const files *fs, int w, zs_error *err) {
+  arglist a = {0};
+  walk_args(s, fs, w, as_run(s), &a);
+  return run_child(s, a.v, fs->walk[w][2], NULL, err);
 }
 
 /* Modelled ms along a walk from its CSV (frame,method,chosen,modelled_ms,
@@ -395,65 +551,6 @@ static zs_status plot_walk(const char *csv, const char *png, const char *title, 
   return st;
 }
 
-/* ---- the page ------------------------------------------------------- */
-
-/* Copies block k (0 from the top) of the Markdown tables in path: blocks
- * of consecutive lines that begin with '|'. */
-static zs_status append_table(FILE *out, const char *path, int k, zs_error *err) {
-  FILE *f = fopen(path, "r");
-  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open", path);
-  char line[8192];
-  int block = -1, in = 0, copied = 0;
-  while (fgets(line, sizeof line, f)) {
-    const int row = line[0] == '|';
-    if (row && !in) block++;
-    in = row;
-    if (row && block == k) {
-      fputs(line, out);
-      copied++;
-    }
-  }
-  fclose(f);
-  return copied ? ZS_OK : zs_error_set(err, ZS_ERR_IO, "%s: no table %d", path, k + 1);
-}
-
-/* The lines of the text file path from the first that begins with from,
- * up to the first blank line or "wrote " line after it. */
-static zs_status append_lines(FILE *out, const char *path, const char *from, zs_error *err) {
-  FILE *f = fopen(path, "r");
-  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open", path);
-  char line[8192];
-  int on = 0, copied = 0;
-  while (fgets(line, sizeof line, f)) {
-    if (!on && strncmp(line, from, strlen(from)) == 0) on = 1;
-    if (on && copied && (line[0] == '\n' || strncmp(line, "wrote ", 6) == 0)) break;
-    if (on) {
-      fputs(line, out);
-      copied++;
-    }
-  }
-  fclose(f);
-  return copied ? ZS_OK : zs_error_set(err, ZS_ERR_IO, "%s: no '%s'", path, from);
-}
-
-/* The first line of a walk's output, "SCENE: 400 frames at ...", without
- * the scene: "400 frames at 1024x768, 1223 objects, 1998586 faces". */
-static void walk_extent(const char *txt, char *buf, size_t cap) {
-  buf[0] = '\0';
-  FILE *f = fopen(txt, "r");
-  char line[1024];
-  if (f && fgets(line, sizeof line, f)) {
-    char *p = strstr(line, ": ");
-    line[strcspn(line, "\n")] = '\0';
-    const char *from = p ? p + 2 : line;
-    size_t len = strlen(from);
-    if (len >= cap) len = cap - 1;
-    memcpy(buf, from, len);
-    buf[len] = '\0';
-  }
-  if (f) fclose(f);
-}
-
 /* The i-th "$ zscan walk ..." line of tradeoff.md, without the "$ ". */
 static void tradeoff_cmd(const suite *s, int i, char *buf) {
   char path[PATH], line[CMD];
@@ -491,6 +588,146 @@ static void walk_of(const char *cmd, char *scene, size_t cap, char *every, size_
                                                       : "th";
   if (k <= 1) snprintf(every, ecap, "every frame");
   else snprintf(every, ecap, "every %d%s frame", k, suffix);
+}
+
+/* The two large walks' modelled time along every frame, and along
+ * bench tradeoff's steps. */
+static zs_status plot_walks(const suite *s, const files *fs, zs_error *err) {
+  static const char *const walk_name[2][2] = {{"walk-plant", "tradeoff-plant"},
+                                              {"walk-teapots", "tradeoff-teapots"}};
+  for (int k = 0; k < 2; k++) {
+    char csv[PATH], png[PATH], title[400];
+    in_dir_named(png, s, "%s-every.png", walk_name[k][0]);
+    snprintf(title, sizeof title, "%s, every frame", walks[k][s->quick ? 2 : 1]);
+    if (plot_walk(fs->walk[k][0], png, title, err)) return err->code;
+    in_dir_named(csv, s, "%s.csv", walk_name[k][1]);
+    in_dir_named(png, s, "%s.png", walk_name[k][0]);
+    char cmd[CMD], scene[256], every[64];
+    tradeoff_cmd(s, k ? 0 : 2, cmd); /* its walks: teapots, city, plant */
+    walk_of(cmd, scene, sizeof scene, every, sizeof every);
+    snprintf(title, sizeof title, "%s, %s", scene, every);
+    if (plot_walk(csv, png, title, err)) return err->code;
+  }
+  return ZS_OK;
+}
+
+/* The benchmarks in turn: raster, on N threads, memory, calibrate, two
+ * walks, tradeoff, depthsort, octree.  1: a benchmark run here failed
+ * (it said why); -1: an error in err. */
+static int run_all(suite *s, const files *fs, zs_error *err) {
+  zs_progress progress;
+  int done = 0;
+  zs_progress_start(&progress, "bench suite", "benchmark", 8 + s->run_threads, s->quiet);
+  const how h = as_run(s);
+  arglist a = {0};
+  /* llvmpipe on one thread beside zscan's one */
+  if (s->mesa) setenv("LP_NUM_THREADS", "1", 1);
+  raster_args(s, fs, h, &a);
+  if (run(zs_cmd_bench_raster, a.v)) return 1;
+  zs_progress_step(&progress, ++done);
+  if (s->run_threads) {
+    if (run_threads(s, fs, err)) return -1;
+    zs_progress_step(&progress, ++done);
+  }
+  if (run_memory(s, err)) return -1;
+  zs_progress_step(&progress, ++done);
+  char calibrate_txt[PATH];
+  in_dir(calibrate_txt, s, "calibrate.txt");
+  a = (arglist){0};
+  calibrate_args(s, fs, h, &a);
+  if (run_child(s, a.v, calibrate_txt, NULL, err)) return -1;
+  zs_progress_step(&progress, ++done);
+  for (int k = 0; k < 2; k++) {
+    if (run_walk(s, fs, k, err)) return -1;
+    zs_progress_step(&progress, ++done);
+  }
+  a = (arglist){0};
+  tradeoff_args(s, h, &a);
+  if (run(zs_cmd_bench_tradeoff, a.v)) return 1;
+  zs_progress_step(&progress, ++done);
+  a = (arglist){0};
+  depthsort_args(s, fs, h, &a);
+  if (run(zs_cmd_bench_depthsort, a.v)) return 1;
+  zs_progress_step(&progress, ++done);
+  a = (arglist){0};
+  octree_args(s, fs, h, &a);
+  if (run(zs_cmd_bench_octree, a.v)) return 1;
+  zs_progress_step(&progress, ++done);
+  return 0;
+}
+
+/* ---- what the page shows ------------------------------------------------ */
+
+/* Copies block k (0 from the top) of the Markdown tables in path: blocks
+ * of consecutive lines that begin with '|'.  With rows, only the header,
+ * its rule and the rows whose first cell is one of rows[0..nrows-1]. */
+static zs_status append_table(FILE *out, const char *path, int k, const char *const *rows,
+                              int nrows, zs_error *err) {
+  FILE *f = fopen(path, "r");
+  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open", path);
+  char line[8192];
+  int block = -1, in = 0, copied = 0, row = 0;
+  while (fgets(line, sizeof line, f)) {
+    const int is_row = line[0] == '|';
+    if (is_row && !in) {
+      block++;
+      row = 0;
+    }
+    in = is_row;
+    if (!is_row || block != k) continue;
+    int keep = row++ < 2 || !rows;
+    for (int r = 0; r < nrows && !keep; r++) {
+      const size_t len = strlen(rows[r]);
+      keep = strncmp(line, "| ", 2) == 0 && strncmp(line + 2, rows[r], len) == 0 &&
+             line[2 + len] == ' ';
+    }
+    if (keep) {
+      fputs(line, out);
+      copied++;
+    }
+  }
+  fclose(f);
+  return copied ? ZS_OK : zs_error_set(err, ZS_ERR_IO, "%s: no table %d", path, k + 1);
+}
+
+/* The first n paragraphs (runs of lines up to a blank line) of the text
+ * file path from the first line that begins with from, and not past a
+ * "wrote " line. */
+static zs_status append_lines(FILE *out, const char *path, const char *from, int n,
+                              zs_error *err) {
+  FILE *f = fopen(path, "r");
+  if (!f) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open", path);
+  char line[8192];
+  int on = 0, copied = 0;
+  while (fgets(line, sizeof line, f)) {
+    if (!on && strncmp(line, from, strlen(from)) == 0) on = 1;
+    if (on && copied && ((line[0] == '\n' && --n == 0) || strncmp(line, "wrote ", 6) == 0))
+      break;
+    if (on) {
+      fputs(line, out);
+      copied++;
+    }
+  }
+  fclose(f);
+  return copied ? ZS_OK : zs_error_set(err, ZS_ERR_IO, "%s: no '%s'", path, from);
+}
+
+/* The first line of a walk's output, "SCENE: 400 frames at ...", without
+ * the scene: "400 frames at 1024x768, 1223 objects, 1998586 faces". */
+static void walk_extent(const char *txt, char *buf, size_t cap) {
+  buf[0] = '\0';
+  FILE *f = fopen(txt, "r");
+  char line[1024];
+  if (f && fgets(line, sizeof line, f)) {
+    char *p = strstr(line, ": ");
+    line[strcspn(line, "\n")] = '\0';
+    const char *from = p ? p + 2 : line;
+    size_t len = strlen(from);
+    if (len >= cap) len = cap - 1;
+    memcpy(buf, from, len);
+    buf[len] = '\0';
+  }
+  if (f) fclose(f);
 }
 
 /* The CSV at path (a header, then rows) as a Markdown table: the columns
@@ -537,492 +774,306 @@ static zs_status csv_table(FILE *out, const char *path, int n, const int *col,
   return ZS_OK;
 }
 
-/* The image line of plot k, when the plot was made. */
-static void image(FILE *f, const suite *s, int k, const char *alt, int docs) {
-  char path[PATH];
-  in_dir(path, s, plots[k].out);
-  if (!s->plots || access(path, R_OK) != 0) return;
-  fprintf(f, "\n![%s](%s%s)\n", alt, docs ? "images/" : "", docs ? plots[k].doc : plots[k].out);
+static int placeholder_index(const char *name, size_t len) {
+  for (int i = 0; i < NPLACEHOLDERS; i++)
+    if (strlen(placeholders[i].name) == len && memcmp(placeholders[i].name, name, len) == 0)
+      return i;
+  return -1;
 }
 
-static void command(FILE *f, const suite *s, const char *cmd) {
-  fprintf(f, "\nOn the %s:\n\n```\n$ %s\n```\n\n", s->machine, cmd);
+/* A text written through a stream, to become a placeholder's value. */
+typedef struct capture {
+  FILE *f;
+  char *buf;
+  size_t len;
+} capture;
+
+static zs_status capture_open(capture *c, zs_error *err) {
+  *c = (capture){NULL, NULL, 0};
+  c->f = open_memstream(&c->buf, &c->len);
+  return c->f ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
 }
 
-/* The command, then table k of the output directory's file name. */
-static zs_status command_table(FILE *f, const suite *s, const char *cmd, const char *name, int k,
-                               zs_error *err) {
-  char path[PATH];
-  in_dir(path, s, name);
-  command(f, s, cmd);
-  return append_table(f, path, k, err);
-}
-
-/* The page's title, how to read it, and its contents. */
-static void page_head(FILE *f, const suite *s) {
-  fprintf(f,
-          "# Results\n\n"
-          "Every table on this page names the command that produced it and the\n"
-          "machine it ran on. `zscan bench suite --docs docs` runs them all again\n"
-          "and rewrites this page and its plots (its other files go to\n"
-          "`bench-suite/`); `zscan bench suite --quick` checks in seconds that\n"
-          "everything runs, with figures not worth quoting.\n\n"
-          "%s"
-          "How to read the figures. Counts (triangles, pixels, queries, faces\n"
-          "drawn, pixels wrong) and modelled times (the device clock,\n"
-          "`raster/clock.c`) are exact: every run on every machine gives the same.\n"
-          "Instruction counts (valgrind's callgrind) repeat to a few in a million.\n"
-          "Wall times are the machine's and move between runs by 10 %% or more on\n"
-          "a shared virtual machine: read them as faster or slower, compare the\n"
-          "figures of one table (one run) rather than across tables, and prefer\n"
-          "the instruction counts. The figures of each table come from one run.\n\n"
-          "- [Raster throughput](#raster-throughput)\n"
-          "- [Against Mesa's llvmpipe](#against-mesas-llvmpipe)\n"
-          "- [Threads: the speed-up and its ceiling](#threads-the-speed-up-and-its-ceiling)\n"
-          "- [Memory](#memory)\n"
-          "- [The device clock, calibrated](#the-device-clock-calibrated)\n"
-          "- [Culling walks, every frame](#culling-walks-every-frame)\n"
-          "- [Run time against error](#run-time-against-error)\n"
-          "- [Depth sort with frame coherence](#depth-sort-with-frame-coherence)\n"
-          "- [Loose against plain octree](#loose-against-plain-octree)\n"
-          "- [Things that did not pay](#things-that-did-not-pay)\n",
-          s->quick ? "**These figures are from `--quick`: a check that the suite runs, "
-                     "not figures to quote.**\n\n"
-                   : "");
-}
-
-/* The prose of the page's sections: each begins with its heading. */
-static const char prose_raster[] =
-          "\n## Raster throughput\n\n"
-          "Screens tiled with triangles (the two halves of S x S pixel squares) in\n"
-          "layers drawn back to front, so that every pixel of every layer is tested\n"
-          "and written, and four whole scenes from their own cameras; one thread,\n"
-          "both hidden-surface modes, the median frame. The instructions per frame\n"
-          "come from valgrind's callgrind: each case and mode runs alone for 1 and\n"
-          "for 3 frames, and half the difference is one frame. Spans of 10 pixels\n"
-          "or more are filled with AVX-512 (`--simd` caps the level; every level\n"
-          "gives the same pixels).\n";
-static const char prose_llvmpipe[] =
-          "\n## Against Mesa's llvmpipe\n\n"
-          "The same cases drawn through Mesa's llvmpipe (OSMesa) with the same\n"
-          "matrices: vertex arrays, each face fanned into triangles, one colour per\n"
-          "object, a \"less\" depth test; frames taken in turn with zscan's zbuffer\n"
-          "mode, so that both see the same machine. A ratio under 1: zscan is faster.\n"
-          "The last three columns compare the face each renderer shows at every\n"
-          "pixel. A differing pixel is a depth tie when both renderers cover it with\n"
-          "both faces and differ only in which is nearer, below the resolution of\n"
-          "llvmpipe's 24-bit depth buffer (`tools/crosscheck.c`); everything else\n"
-          "counts as coverage. `tests/test_mesa.c` bounds the coverage differences\n"
-          "at 1 in 10,000 pixels.\n\n### One thread each\n";
-static const char prose_speedup[] =
-          "\n## Threads: the speed-up and its ceiling\n\n"
-          "A whole scene on N threads is drawn deferred: set up in chunks, walked in\n"
-          "bands of rows, with the same bytes and counters as on one thread.\n"
-          "`--speedup` renders each scene on one thread and on N frame by frame in\n"
-          "turn and reports the pairs' ratios; then one single-thread device per\n"
-          "CPU, all at once, each pinned to its CPU (Linux): with t_one the\n"
-          "one-thread frame and t_i each CPU's, the ceiling t_one x sum(1 / t_i) is\n"
-          "what a perfect split would give in that round, the CPUs' interference\n"
-          "with each other included (two virtual CPUs are not always equal).\n";
-static const char prose_memory[] =
-          "\n## Memory\n\n"
-          "What the device holds, from `zscan render --stats`: `buffer_bytes`\n"
-          "(the pixel buffers) and `table_bytes` (the polygon and edge tables and\n"
-          "the walk's scratch), in bytes, for the default scene. Scanline mode\n"
-          "keeps rows: its buffers grow with the width, not the area; its tables\n"
-          "hold the whole frame's polygons, zbuffer mode's one draw's.\n";
-static const char prose_calibrate[] =
-          "\n## The device clock, calibrated\n\n"
-          "The clock models each command's GPU time from counts (calls, vertices,\n"
-          "polygons, spans, pixels tested and written, query pixels). `zscan\n"
-          "calibrate` times synthetic workloads, each dominated by one count, and\n"
-          "whole scenes on zscan's own raster code, fits the constants by least\n"
-          "squares on relative error, and prints each workload's measured time\n"
-          "against the model's. The culling walks below use the default clock,\n"
-          "which describes a GPU, not these constants.\n";
-static const char prose_walks[] =
-          "\n## Culling walks, every frame\n\n"
-          "`zscan walk` runs every method in lockstep over the scene's camera path,\n"
-          "each on its own device with the default clock, and compares every frame\n"
-          "with drawing everything (none). Figures are per frame on average; `x\n"
-          "ideal` is the modelled time over the ideal's; pixels wrong are summed\n"
-          "over all frames. The oracles' wall time includes the full render they\n"
-          "make, which their modelled time does not see. Every column and method:\n"
-          "[CULLING.md](CULLING.md#reading-a-walk). Below each table: how\n"
-          "ideal-box's set changes from frame to frame, and the least that change\n"
-          "costs a method that learns visibility from the last frame.\n";
-static const char prose_walk_plots[] =
-    "\nModelled frame time along the two walks, a few methods (hsw, which\n"
-    "waits for every answer, left out: it would flatten the others):\n";
-static const char prose_tradeoff[] =
-          "\n## Run time against error\n\n"
-          "`zscan bench tradeoff` walks the teapots, the city and the plant at every\n"
-          "10th, 8th and 8th frame with every method and, beside the z-buffer, the\n"
-          "scanline and depth-sort modes, which draw everything. Pixels wrong are\n"
-          "counted against none in zbuffer mode: scanline mode draws its image\n"
-          "exactly, depth sort and vfc-box do not. Each plot puts every method and\n"
-          "mode at its pixels wrong per frame against its median wall time (left)\n"
-          "and its modelled time (right).\n";
-static const char prose_tradeoff_plots[] =
-    "\nModelled frame time along the teapots and plant walks above, a few\n"
-    "methods:\n";
-static const char prose_depthsort[] =
-          "\n## Depth sort with frame coherence\n\n"
-          "The depth-sort paper's Table 1 on the city at street level. The sorter\n"
-          "tells the camera's motion between two frames from the view matrices:\n"
-          "`translate` moves sideways, `roll` turns about the view axis, `yaw` turns\n"
-          "slowly, `fast` moves far enough that most faces are new. Reused: faces\n"
-          "kept from the last frame's order. Times are medians of the frames after\n"
-          "the first; comparisons are exact; diff pixels are the pixels a frame\n"
-          "that differ from the z-buffer's image.\n";
-static const char prose_octree[] =
-          "\n## Loose against plain octree\n\n"
-          "The cost-model paper's experiment 1: spheres of 576 faces moving in a\n"
-          "1,000-unit cube, the time to update each tree per frame (median). The\n"
-          "loose octree places an object in constant time, its level from its\n"
-          "radius and its cell from its centre; the plain one deletes, descends\n"
-          "from the root and inserts.\n";
-static const char prose_not_paid[] =
-          "\n## Things that did not pay\n\n"
-          "Tried, measured, and not kept (the measurements are in the history of\n"
-          "the code that was dropped):\n\n"
-          "- Filling spans under 16 pixels with AVX2: masked stores for the last\n"
-          "  pixels are slow on AMD CPUs, and full-width stores that write back what\n"
-          "  lies past the span were no faster than the scalar loop.\n"
-          "- SSE2 from 8 pixels instead of 16: more instructions a triangle.\n"
-          "- AVX-512 for every span, or from 8 pixels: slower on meshes, as a\n"
-          "  masked load of a row's next span cannot take its bytes from the masked\n"
-          "  store of the span before it, which neighbouring faces of a mesh always\n"
-          "  have (the plant 8 % slower from 1 pixel, the 10x10 tiling 3 % from\n"
-          "  8); it takes spans from 10 pixels.\n"
-          "- A branchless scalar span loop: where every pixel tested is written the\n"
-          "  branch is always predicted, and the selects only add loads.\n"
-          "- Unrolling the scalar span loop, indexing it from the span's end, writing\n"
-          "  a polygon's edges through a local pointer: more instructions (the walk\n"
-          "  has no register to spare).\n"
-          "- Painting a polygon at a time in zbuffer mode: fewer instructions, but\n"
-          "  slower, as a polygon's rows stride across pages where the walk's stream.\n"
-          "- The edge step as a subtraction whose borrow is the carry (inline\n"
-          "  assembly): fewer instructions, no faster.\n"
-          "- A branch-free depth test: slower.\n"
-          "- For the deferred walk on threads: more or fewer bands or chunks a\n"
-          "  thread, more batches, balancing bands by polygons, the heaviest band\n"
-          "  first, walking a task's bands in one pass, insertion sort for the\n"
-          "  polygons begun above a band, per-worker vertex scratch, and the sorted\n"
-          "  polygon table as an array sorted once a draw: none faster, several\n"
-          "  slower.\n"
-          "- The scanline mode on threads in rounds of bands, four a thread: each\n"
-          "  band sorts the whole frame's batch into its rows' buckets, so on the\n"
-          "  plant, two threads, eight bands in four rounds gave 1.41x one thread's\n"
-          "  speed and four bands in two rounds 1.31x, where one band a thread gives\n"
-          "  1.75x (`zscan bench raster --case builtin:plant --algo scanline\n"
-          "  --threads 2 --speedup --repeat 21`).\n"
-          "- hzb's box test at the classic level alone (the box's nearest corner\n"
-          "  against the farthest texels over its rectangle, at most 3x3 texels):\n"
-          "  on the first 40 frames of the plant at 512x384 it draws 541 objects a\n"
-          "  frame, against 291 with the fine stage (each texel, up to 17x17,\n"
-          "  against the faces that reach it) and 358 reading every pixel of the\n"
-          "  rectangle with the classic test; the ideal draws 144 (`zscan walk\n"
-          "  builtin:plant --cull hzb,ideal --frames 40 --size 512x384`).\n"
-          "- Painting every batch of the z-buffer mode a polygon at a time: the\n"
-          "  tilings slower (25x25 80.6 ms a frame against 60.3 walked, 4x4 116\n"
-          "  against 104), as each polygon's rows are fetched a row apart where the\n"
-          "  walk streams them; so a mesh laid out in order over a quarter of the\n"
-          "  frame or more is still walked. Walking each bucket of the sorted table\n"
-          "  with an active list of its own instead of painting: random 10x10\n"
-          "  triangles 72 ms against 64 painted, the tilings as walked (`zscan\n"
-          "  bench raster --algo zbuffer`, the variants in turn).\n"
-          "- Inlining set-up's polygon emit into each face shape (triangle, quad)\n"
-          "  by force: more instructions, not fewer (the 4x4 tiling, 1,639.4 M a\n"
-          "  frame against 1,613.5 M where gcc chooses: `zscan bench raster --case\n"
-          "  \"triangles 4x4\" --algo zbuffer --callgrind`).\n"
-          "  A triangle's two chains written with no branch on its shape (each of\n"
-          "  its three edges stored where it goes either way, an edge between two\n"
-          "  rows of centres overwritten or left past the polygon's): slower, the\n"
-          "  4x4 tiling 106.5 -> 116.3 ms a frame, random 10x10 back to front 56.8\n"
-          "  -> 59.3, the teapots 45.0 -> 47.2 (medians of 6 rounds in turn,\n"
-          "  `zscan bench raster --algo zbuffer --case C --repeat 9`).\n"
-          "- Balancing the scanline mode's two bands by the last frame's modelled\n"
-          "  work: on the plant the two bands already took the same time (5.2 and\n"
-          "  5.1 ms a frame, measured inside the walk), where their counters, priced\n"
-          "  by the device clock, differ (0.54 and 0.92 ms), so that split would\n"
-          "  have unbalanced them. What the bands lost was clearing a band's buffers\n"
-          "  at once before walking them, now done a row at a time as the walk\n"
-          "  reaches it (1.70x -> 1.75x).\n"
-          "- Leaving out of the tables, at set-up, a polygon whose box holds at most\n"
-          "  four pixel centres and that covers none of them (an exact half-plane\n"
-          "  test of each): the teapot field as fast (31.6 against 31.6 ms a frame)\n"
-          "  and the teapots 5 % slower (48.9 against 46.7): the test cost what the\n"
-          "  painter saved.\n"
-          "- The depth planes of a run of 64 faces at once, eight in the lanes of\n"
-          "  a vector with AVX-512 (as the flat levels are), each polygon given\n"
-          "  its plane in a second pass: slower, the 4x4 tiling 97.3 -> 100.0 ms a\n"
-          "  frame, the teapots 41.8 -> 42.8, the plant 18.0 -> 18.6 (medians of\n"
-          "  12, 10 and 8 rounds in turn, `zscan bench raster --algo zbuffer --case\n"
-          "  C --repeat 9`): the run's stores and the second pass over the\n"
-          "  polygons cost more than the chain of divisions they hid.\n"
-          "  Measured again with all of set-up's work before a polygon's records\n"
-          "  in the lanes (eight triangles or quads at once: their corners\n"
-          "  gathered, the area, the box, the tests for faces turned away, off the\n"
-          "  window or between pixel centres, the fan triangle, the plane and the\n"
-          "  convexity), each face then written in order: slower, the 4x4 tiling\n"
-          "  94.4 -> 105.1 ms a frame, random 10x10 back to front 52.0 -> 55.1,\n"
-          "  the teapots 44.7 -> 47.0 (medians of 4, 4 and 6 rounds in turn).\n"
-          "  Under perf the lanes took 15 % of the 4x4 tiling's frame, about what\n"
-          "  the same work had taken a face at a time (set-up was 42 %, of which\n"
-          "  18 % writes the polygon and its edges and 10 % is the flat normal),\n"
-          "  most of it waiting on the gathers; the corners read a face at a time\n"
-          "  instead, and the records' writer inlined, the 4x4 tiling still took\n"
-          "  1.10 and 1.15 of the time.\n"
-          "- A branch-free floor division in the edge DDA (truncate, then correct\n"
-          "  where the quotient was rounded up): slower, the teapots 42.4 -> 43.9 ms\n"
-          "  and the plant 17.7 -> 18.3 (`zscan bench raster --case C`, the two in\n"
-          "  turn). The form now in the code, one division and the quotient less\n"
-          "  one where the remainder is negative, measured faster: the teapots 41.7\n"
-          "  -> 40.2 ms and the plant 19.3 -> 18.7 (medians of 16 and 12 rounds in\n"
-          "  turn, `zscan bench raster --algo zbuffer --case C --repeat 9`).\n"
-          "  Two ways round the DDA's division, both slower (medians of 6 rounds\n"
-          "  in turn, the same command): its quotient from a division in double\n"
-          "  precision, truncated and corrected the same way (exact, as the\n"
-          "  numerator has under 53 bits): the teapots 41.5 -> 42.5 ms, random\n"
-          "  10x10 back to front 52.4 -> 55.8; and, for an edge whose ends span at\n"
-          "  most four pixel centres, its first column as the first of those\n"
-          "  centres plus the number of them left of the edge: the teapots 43.9 ->\n"
-          "  44.4, random 10x10 back to front 65.5 -> 79.7.\n"
-          "- Painting every small polygon of a soup by its edge functions, with no\n"
-          "  limit on its rows: the random 10x10 triangles a tenth slower (55.3\n"
-          "  against 61.0 ms a frame), where 8 rows at most leaves them as fast and\n"
-          "  takes the 4x4 ones a sixth faster; measured again with the edges'\n"
-          "  lanes in registers, 12 rows at most 56.9 -> 58.9 ms and 16 rows 61.1;\n"
-          "  and again with its rows' pointers stepped, not read through the\n"
-          "  target after each store, and an inner polygon's depths not clamped:\n"
-          "  at 8 rows as fast (random 4x4 back to front 0.99 of the time, random\n"
-          "  10x10 1.01, 10 rounds in turn), at 16 rows random 10x10 1.02 (6).\n"
-          "  And a mesh's small polygons so (the span from the mask of centres\n"
-          "  inside, filled by the span kernel): the teapots 43.9 -> 47.2 ms, the\n"
-          "  teapot field 27.7 -> 29.7 (`zscan bench raster --algo zbuffer --case C\n"
-          "  --repeat 15`, the builds in turn); measured again with a face's whole\n"
-          "  box of up to sixteen centres (4x4, 8x2, 2x8 or 16x1) in one vector,\n"
-          "  its rows' spans read from the mask, no division: the teapots 1.04 to\n"
-          "  1.08 of the time (8 and 10 rounds in turn).\n"
-          "- A soup's polygons past the small painter filled without a call a row\n"
-          "  (the DDA's spans in AVX-512 steps inline, the lanes' depth offsets,\n"
-          "  colour and id set once a polygon): random 10x10 back to front 55.2 ->\n"
-          "  53.4 ms a frame, but random 25x25 29.7 -> 30.9 and random 4x4 33.0 ->\n"
-          "  34.7 (medians of 6 to 8 rounds in turn, `zscan bench raster --algo\n"
-          "  zbuffer --case C --repeat 9`).\n"
-          "- Beginning the next polygon's edges (their DDA's divisions) before\n"
-          "  painting the rows of the one before, so that the divisions run beside\n"
-          "  those rows: slower, the teapots 41.2 -> 44.5 ms a frame and random\n"
-          "  10x10 back to front 55.4 -> 56.4 (medians of 8 rounds in turn, `zscan\n"
-          "  bench raster --algo zbuffer --case C --repeat 9`): the polygon begun\n"
-          "  ahead is copied through memory, where begun in place its edges stay\n"
-          "  in registers.\n"
-          "- Painting a soup in bands of rows, each band's polygons in the\n"
-          "  table's order (those begun above it first), each polygon's rows\n"
-          "  painted in every band they reach: no faster, as the table's order\n"
-          "  already keeps the pixels a soup touches within a polygon's height of\n"
-          "  the row it has reached: random 10x10 back to front 1.10 of the time\n"
-          "  in bands of 32 rows, 0.99 in bands of 128 (medians of 4 rounds in\n"
-          "  turn, `zscan bench raster --algo zbuffer --case C --repeat 9`).\n"
-          "- Fetching ahead the pixels a polygon will test (its column's depth, id\n"
-          "  and colour on each row), 4, 8 or 16 polygons ahead: none faster, some\n"
-          "  runs far slower (random 10x10 back to front 62 ms against 64 to 90).\n"
-          "- The frame buffers in huge pages (madvise): as fast (random 10x10 back\n"
-          "  to front 61.4, 60.7, 61.5 against 62.1, 61.4, 61.0 ms); and every\n"
-          "  block malloc gives, the tables' too\n"
-          "  (`GLIBC_TUNABLES=glibc.malloc.hugetlb=1`, 45 MB of huge pages in\n"
-          "  use): random 4x4 back to front as fast (31.8 to 33.4 ms against 31.5\n"
-          "  to 32.2, 3 rounds in turn). Nor do the\n"
-          "  pixels' loads hold that case up: a build that neither loads nor stores\n"
-          "  a pixel (for timing only) takes 43 ms against 56, so three quarters of\n"
-          "  its frame is set-up and each polygon's own work; 10 M triangles a second\n"
-          "  would need set-up and painting across polygons in vectors.\n"
-          "- Flat shading before set-up, so that set-up's work hides its root and\n"
-          "  division: slower (the teapots 43.4 -> 44.2 ms, the plant 17.6 -> 19.0).\n"
-          "- The three frame buffers in one block, each a third of a page further\n"
-          "  into its page than the one before, so that a pixel's depth, id and\n"
-          "  colour no longer share a set of the L1 cache (apart, each buffer\n"
-          "  starts at the same place in its page, and at 1024 pixels a row is a\n"
-          "  page): random 10x10 back to front 0.96 of the time, but random 4x4\n"
-          "  1.09 back to front and 1.07 front to back (8 rounds in turn each).\n"
-          "  Rows padded so that a row is not a whole page, tried as a wider image\n"
-          "  (1040 against 1024 pixels, the same binary, 6 rounds in turn): random\n"
-          "  10x10 back to front 0.97, random 4x4 1.05, random 25x25 within noise;\n"
-          "  not made.\n"
-          "- Fetching the table's records ahead for a soup only, leaving a mesh's\n"
-          "  to the caches' own prefetch: the teapots 0.98 of the time, but the\n"
-          "  teapot field 1.06 (`builtin:default?level=42`, 29.9 -> 31.6 ms, the\n"
-          "  medians of 10 rounds in turn, `zscan bench raster --algo zbuffer\n"
-          "  --case C --repeat 9`): its draws are a thousand specks each, whose\n"
-          "  records the fetch ahead still finds.\n"
-          "- The AVX-512 span kernel forced inline into the painter's copy under gcc\n"
-          "  (paint.c built for AVX-512 throughout): the random 4x4 triangles 0.98\n"
-          "  of the time before, whole process, within the noise.\n"
-          "- Split sort and natural merge sort for depth sort under slow yaw on the\n"
-          "  large city: more comparisons than the insertion sort.\n"
-          "- Learning w1 and w2 of the cost model from a walk's own queries\n"
-          "  (`--cost-set learn=K`) as the default: slower on both large walks.\n";
-
-/* Raster throughput: the table. */
-static zs_status page_raster(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  return command_table(f, s, s->cmd_raster, "raster.md", 0, err);
-}
-
-/* zscan against llvmpipe, on one thread and on all. */
-static zs_status page_llvmpipe(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  if (s->mesa) {
-    if (command_table(f, s, s->cmd_raster, "raster.md", 1, err)) return err->code;
-  } else {
-    fprintf(f, "\nNot measured: %s.\n",
-            s->have_mesa ? "--quick" : "this zscan was built without OSMesa");
+/* Closes the capture; on st == ZS_OK its text, without its last line
+ * breaks, becomes the value of name (one of placeholders[]). */
+static zs_status capture_keep(suite *s, const char *name, capture *c, zs_status st,
+                              zs_error *err) {
+  if (fclose(c->f) != 0 && st == ZS_OK) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  const int i = placeholder_index(name, strlen(name));
+  if (st == ZS_OK && i < 0) st = zs_error_set(err, ZS_ERR_ARG, "no placeholder {%s}", name);
+  if (st != ZS_OK) {
+    free(c->buf);
+    return st;
   }
-  fprintf(f, "\n### Every thread of the machine, each\n");
-  if (s->mesa && s->threads)
-    return command_table(f, s, s->cmd_threads, "raster-threads.md", 1, err);
-  fprintf(f, "\nNot measured: %s.\n",
-          !s->have_mesa ? "this zscan was built without OSMesa"
-          : s->quick    ? "--quick"
-                        : "the machine has one thread");
+  while (c->len && c->buf[c->len - 1] == '\n') c->buf[--c->len] = '\0';
+  free(s->value[i]);
+  s->value[i] = c->buf;
   return ZS_OK;
 }
 
-/* zscan on every thread against one. */
-static zs_status page_speedup(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  if (s->threads)
-    return command_table(f, s, s->cmd_threads, "raster-threads.md", s->mesa ? 2 : 1, err);
-  fprintf(f, "\nNot measured: %s.\n", s->quick ? "--quick" : "the machine has one thread");
+/* name's value: the text text. */
+static zs_status set_text(suite *s, const char *name, const char *text, zs_error *err) {
+  capture c;
+  if (capture_open(&c, err)) return err->code;
+  fputs(text, c.f);
+  return capture_keep(s, name, &c, ZS_OK, err);
+}
+
+/* name's value: a command line, args joined after prefix. */
+static zs_status set_command(suite *s, const char *name, const char *prefix, char *const *args,
+                             zs_error *err) {
+  char line[CMD];
+  join_cmd(line, prefix, args);
+  return set_text(s, name, line, err);
+}
+
+/* name's value: table k of the output directory's file md (rows: only
+ * those of hzb_rows). */
+static zs_status set_table(suite *s, const char *name, const char *md, int k, int rows,
+                           zs_error *err) {
+  char path[PATH];
+  in_dir(path, s, md);
+  capture c;
+  if (capture_open(&c, err)) return err->code;
+  zs_status st = append_table(c.f, path, k, rows ? hzb_rows : NULL,
+                              rows ? (int)(sizeof hzb_rows / sizeof hzb_rows[0]) : 0, err);
+  return capture_keep(s, name, &c, st, err);
+}
+
+/* name's value: the first n paragraphs of the text file path from the
+ * line that begins with from (append_lines). */
+static zs_status set_lines(suite *s, const char *name, const char *path, const char *from, int n,
+                           zs_error *err) {
+  capture c;
+  if (capture_open(&c, err)) return err->code;
+  return capture_keep(s, name, &c, append_lines(c.f, path, from, n, err), err);
+}
+
+/* name's value: the CSV at path as a Markdown table (csv_table). */
+static zs_status set_csv(suite *s, const char *name, const char *path, int n, const int *col,
+                         const char *const *head, const char *const *fmt, zs_error *err) {
+  capture c;
+  if (capture_open(&c, err)) return err->code;
+  return capture_keep(s, name, &c, csv_table(c.f, path, n, col, head, fmt, err), err);
+}
+
+/* The value of a table this run did not measure. */
+static const char not_measured[] = "Not measured with `--quick`.";
+
+/* The raster tables on one thread and on N, beside llvmpipe; memory; the
+ * clock. */
+static zs_status fill_device(suite *s, const files *fs, zs_error *err) {
+  arglist a = {0};
+  char lpn[96], path[PATH];
+  snprintf(lpn, sizeof lpn, "%s zscan", s->lp_env);
+  raster_args(s, fs, as_shown, &a);
+  if (set_command(s, "raster.command", "LP_NUM_THREADS=1 zscan bench", a.v, err) ||
+      set_table(s, "raster.table", "raster.md", 0, 0, err))
+    return err->code;
+  zs_status st = s->mesa ? set_table(s, "llvmpipe.table", "raster.md", 1, 0, err)
+                         : set_text(s, "llvmpipe.table", not_measured, err);
+  if (st) return st;
+  a = (arglist){0};
+  threads_args(s, fs, as_shown, &a);
+  if (set_command(s, "threads.command", lpn, a.v, err)) return err->code;
+  st = s->run_threads && s->mesa
+           ? set_table(s, "threads.llvmpipe.table", "raster-threads.md", 1, 0, err)
+           : set_text(s, "threads.llvmpipe.table", not_measured, err);
+  if (!st)
+    st = s->run_threads
+             ? set_table(s, "threads.speedup.table", "raster-threads.md", s->mesa ? 2 : 1, 0, err)
+             : set_text(s, "threads.speedup.table", not_measured, err);
+  if (st) return st;
+  if (set_text(s, "memory.command", "zscan render --algo MODE --size SIZE --stats", err) ||
+      set_table(s, "memory.table", "memory.md", 0, 0, err))
+    return err->code;
+  a = (arglist){0};
+  calibrate_args(s, fs, as_shown, &a);
+  in_dir(path, s, "calibrate.txt");
+  if (set_command(s, "calibrate.command", "zscan", a.v, err) ||
+      set_lines(s, "calibrate.output", path, "workload", 2, err))
+    return err->code;
   return ZS_OK;
 }
 
-/* What the device holds. */
-static zs_status page_memory(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  return command_table(f, s, s->cmd_memory, "memory.md", 0, err);
+/* The two large walks, and bench tradeoff's. */
+static zs_status fill_walks(suite *s, const files *fs, zs_error *err) {
+  for (int w = 0; w < 2; w++) {
+    char name[64], extent[256], md[64];
+    const char *key = walks[w][0];
+    arglist a = {0};
+    walk_args(s, fs, w, as_shown, &a);
+    walk_extent(fs->walk[w][2], extent, sizeof extent);
+    snprintf(md, sizeof md, "walk-%s.md", key);
+#define NAME(field) (snprintf(name, sizeof name, "walk.%s." field, key), name)
+    if (set_command(s, NAME("command"), "zscan", a.v, err) ||
+        set_text(s, NAME("scene"), walks[w][1], err) ||
+        set_text(s, NAME("extent"), extent, err) || set_table(s, NAME("table"), md, 0, 0, err) ||
+        set_table(s, NAME("hzb"), md, 0, 1, err) ||
+        set_lines(s, NAME("churn"), fs->walk[w][2], "ideal-box's set", 1, err))
+      return err->code;
+#undef NAME
+  }
+  arglist a = {0};
+  tradeoff_args(s, as_shown, &a);
+  if (set_command(s, "tradeoff.command", "zscan bench", a.v, err)) return err->code;
+  for (int w = 0; w < 3; w++) {
+    char name[64], md[64], cmd[CMD], scene[256], every[64], walk[400];
+    tradeoff_cmd(s, w, cmd);
+    walk_of(cmd, scene, sizeof scene, every, sizeof every);
+    snprintf(walk, sizeof walk, "`%s`, %s", scene, every);
+    snprintf(name, sizeof name, "tradeoff.%s.walk", tradeoff_walks[w]);
+    if (set_text(s, name, walk, err)) return err->code;
+    snprintf(name, sizeof name, "tradeoff.%s.table", tradeoff_walks[w]);
+    snprintf(md, sizeof md, "tradeoff-%s.md", tradeoff_walks[w]);
+    if (set_table(s, name, md, 0, 0, err)) return err->code;
+  }
+  return ZS_OK;
 }
 
-/* The clock's constants, as zscan calibrate fitted them. */
-static zs_status page_calibrate(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  char p[PATH];
-  in_dir(p, s, "calibrate.txt");
-  command(f, s, s->cmd_calibrate);
-  fputs("```\n", f);
-  zs_status st = append_lines(f, p, "workload", err);
-  fputs("```\n", f);
+/* bench depthsort's and bench octree's tables, from their CSVs. */
+static zs_status fill_sorts(suite *s, const files *fs, zs_error *err) {
+  static const int ds_col[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  static const char *const ds_head[8] = {"motion",
+                                         "faces",
+                                         "reused %",
+                                         "full sort ms",
+                                         "coherent sort ms",
+                                         "full comparisons",
+                                         "coherent comparisons",
+                                         "diff pixels"};
+  static const char *const ds_fmt[8] = {NULL,   "%.0f", "%.2f", "%.3f",
+                                        "%.3f", "%.0f", "%.0f", "%.1f"};
+  static const int oc_col[5] = {0, 1, 2, 3, 4};
+  static const char *const oc_head[5] = {"moving", "loose ms/frame", "plain ms/frame",
+                                         "loose us/object", "plain us/object"};
+  static const char *const oc_fmt[5] = {"%.0f", "%.3f", "%.3f", "%.3f", "%.3f"};
+  arglist a = {0}, b = {0};
+  depthsort_args(s, fs, as_shown, &a);
+  octree_args(s, fs, as_shown, &b);
+  if (set_command(s, "depthsort.command", "zscan bench", a.v, err) ||
+      set_csv(s, "depthsort.table", fs->path[F_DEPTHSORT], 8, ds_col, ds_head, ds_fmt, err) ||
+      set_command(s, "octree.command", "zscan bench", b.v, err) ||
+      set_csv(s, "octree.table", fs->path[F_OCTREE_CSV], 5, oc_col, oc_head, oc_fmt, err))
+    return err->code;
+  return ZS_OK;
+}
+
+/* Every placeholder's value, from the files the benchmarks wrote. */
+static zs_status fill_values(suite *s, const files *fs, zs_error *err) {
+  if (set_text(s, "machine", s->machine, err) || set_text(s, "suite.command", s->command, err) ||
+      fill_device(s, fs, err) || fill_walks(s, fs, err) || fill_sorts(s, fs, err))
+    return err->code;
+  return ZS_OK;
+}
+
+/* ---- the templates and the page --------------------------------------- */
+
+static int by_name(const void *a, const void *b) {
+  return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* Reads the .md files of DIR/results/, in the order of their names. */
+static zs_status read_templates(suite *s, zs_error *err) {
+  char dir[PATH];
+  snprintf(dir, sizeof dir, "%s/results", s->docs);
+  DIR *d = opendir(dir);
+  if (!d) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", dir, strerror(errno));
+  char *names[MAX_TEMPLATES];
+  int n = 0;
+  zs_status st = ZS_OK;
+  for (struct dirent *e; (e = readdir(d)) != NULL && !st;) {
+    const size_t len = strlen(e->d_name);
+    if (e->d_name[0] == '.' || len < 4 || strcmp(e->d_name + len - 3, ".md") != 0) continue;
+    if (n == MAX_TEMPLATES)
+      st = zs_error_set(err, ZS_ERR_LIMIT, "%s: more than %d templates", dir, MAX_TEMPLATES);
+    else if (!(names[n++] = strdup(e->d_name)))
+      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  }
+  closedir(d);
+  if (!st && n == 0) st = zs_error_set(err, ZS_ERR_IO, "%s: no templates (*.md)", dir);
+  if (!st) qsort(names, (size_t)n, sizeof names[0], by_name);
+  for (int i = 0; i < n; i++) {
+    if (!st && names[i]) {
+      template_file *t = &s->tmpl[s->ntmpl];
+      snprintf(t->path, sizeof t->path, "%s/%s", dir, names[i]);
+      capture c;
+      if (!(st = capture_open(&c, err))) {
+        st = zs_append_file(c.f, t->path, err);
+        if (fclose(c.f) != 0 && !st) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+        if (st) free(c.buf);
+        else t->text = c.buf, s->ntmpl++;
+      }
+    }
+    free(names[i]);
+  }
   return st;
 }
 
-/* The two large walks at every frame. */
-static zs_status page_walks(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  for (int w = 0; w < 2; w++) {
-    char p[PATH], q[PATH], extent[256];
-    in_dir_named(p, s, "walk-%s.txt", walks[w][0]);
-    in_dir_named(q, s, "walk-%s.md", walks[w][0]);
-    walk_extent(p, extent, sizeof extent);
-    fprintf(f, "\n### `%s`, every frame (%s)\n", walks[w][s->quick ? 2 : 1], extent);
-    command(f, s, s->cmd_walk[w]);
-    if (append_table(f, q, 0, err)) return err->code;
-    fputs("\n```\n", f);
-    zs_status st = append_lines(f, p, "ideal-box's set", err);
-    fputs("```\n", f);
-    if (st) return st;
-  }
-  return ZS_OK;
+static int is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' || c == '-' || c == '_';
 }
 
-/* bench tradeoff's walks: a table and a plot each. */
-static zs_status page_tradeoff(FILE *f, const suite *s, int docs, zs_error *err) {
-  for (int w = 0; w < 3; w++) {
-    char cmd[CMD], name[64];
-    tradeoff_cmd(s, w, cmd);
-    snprintf(name, sizeof name, "tradeoff-%s.md", tradeoff_walks[w]);
-    char scene[256], every[64];
-    walk_of(cmd, scene, sizeof scene, every, sizeof every);
-    fprintf(f, "\n### `%s`, %s\n", scene, every);
-    if (command_table(f, s, cmd, name, 0, err)) return err->code;
-    char alt[96];
-    snprintf(alt, sizeof alt, "run time against error: %s", tradeoff_walks[w]);
-    image(f, s, 5 + w, alt, docs);
-  }
-  return ZS_OK;
+/* Whether the suite draws the plot DIR/images/NAME (name: up to ')'). */
+static int is_plot(const char *name) {
+  const size_t len = strcspn(name, ")");
+  for (int k = 0; k < NPLOTS; k++)
+    if (strlen(plots[k].doc) == len && strncmp(plots[k].doc, name, len) == 0) return 1;
+  return 0;
 }
 
-/* bench depthsort's table: the depth-sort paper's Table 1. */
-static zs_status page_depthsort(FILE *f, const suite *s, int docs, zs_error *err) {
-  (void)docs;
-  char p[PATH];
-  in_dir(p, s, "depthsort.csv");
-  command(f, s, s->cmd_depthsort);
-  static const int col[8] = {0, 1, 2, 3, 4, 5, 6, 7};
-  static const char *const head[8] = {"motion",
-                                      "faces",
-                                      "reused %",
-                                      "full sort ms",
-                                      "coherent sort ms",
-                                      "full comparisons",
-                                      "coherent comparisons",
-                                      "diff pixels"};
-  static const char *const fmt[8] = {NULL, "%.0f", "%.2f", "%.3f", "%.3f", "%.0f", "%.0f", "%.1f"};
-  return csv_table(f, p, 8, col, head, fmt, err);
+/* Whether the link whose "](" is at p, in text, is an image's: "![". */
+static int is_image(const char *text, const char *p) {
+  while (p > text && *p != '[' && *p != '\n') p--;
+  return *p == '[' && p > text && p[-1] == '!';
 }
 
-/* bench octree's table. */
-static zs_status page_octree(FILE *f, const suite *s, int docs, zs_error *err) {
-  char p[PATH];
-  in_dir(p, s, "octree.csv");
-  command(f, s, s->cmd_octree);
-  static const int col[5] = {0, 1, 2, 3, 4};
-  static const char *const head[5] = {"moving", "loose ms/frame", "plain ms/frame",
-                                      "loose us/object", "plain us/object"};
-  static const char *const fmt[5] = {"%.0f", "%.3f", "%.3f", "%.3f", "%.3f"};
-  (void)docs;
-  return csv_table(f, p, 5, col, head, fmt, err);
-}
-
-/* The page's sections in turn: the prose, then what the benchmark wrote
- * (none: the prose alone), then up to two plots (none: NULL). */
-typedef zs_status (*section_body)(FILE *f, const suite *s, int docs, zs_error *err);
-static const struct {
-  const char *prose;
-  section_body body;
-  int plot[2];
-  const char *alt[2];
-} sections[] = {
-    {prose_raster, page_raster, {0, 0}, {"raster throughput against triangle size", NULL}},
-    {prose_llvmpipe, page_llvmpipe, {0, 0}, {NULL, NULL}},
-    {prose_speedup, page_speedup, {0, 0}, {NULL, NULL}},
-    {prose_memory, page_memory, {0, 0}, {NULL, NULL}},
-    {prose_calibrate, page_calibrate, {0, 0}, {NULL, NULL}},
-    {prose_walks, page_walks, {0, 0}, {NULL, NULL}},
-    {prose_walk_plots, NULL, {2, 1}, {"the teapots walk, every frame", "the plant walk, every frame"}},
-    {prose_tradeoff, page_tradeoff, {0, 0}, {NULL, NULL}},
-    {prose_tradeoff_plots, NULL, {3, 4},
-     {"the teapots walk, every 10th frame", "the plant walk, every 8th frame"}},
-    {prose_depthsort, page_depthsort, {0, 0}, {NULL, NULL}},
-    {prose_octree, page_octree, {8, 0}, {"loose against plain octree updates", NULL}},
-    {prose_not_paid, NULL, {0, 0}, {NULL, NULL}},
-};
-
-static zs_status write_page(const suite *s, const char *path, int docs, zs_error *err) {
-  zs_out out;
-  if (zs_out_open(&out, path, err)) return err->code;
-  FILE *f = out.fp;
-  page_head(f, s);
-  for (size_t k = 0; k < sizeof sections / sizeof sections[0]; k++) {
-    fputs(sections[k].prose, f);
-    if (sections[k].body && sections[k].body(f, s, docs, err)) {
-      zs_out_discard(&out);
-      return err->code;
+/* Writes template t to out with each placeholder replaced by its value;
+ * with out NULL, only checks it, marking in used the placeholders it
+ * names. */
+static zs_status expand(FILE *out, const suite *s, const template_file *t, int *used,
+                        zs_error *err) {
+  const char *text = t->text;
+  int line = 1;
+  for (const char *p = text; *p; p++) {
+    if (*p == '\n') line++;
+    if (!out && strncmp(p, "](images/", 9) == 0 && is_image(text, p) && !is_plot(p + 9))
+      return zs_error_set(err, ZS_ERR_PARSE, "%s:%d: images/%.*s: the suite draws no such plot",
+                          t->path, line, (int)strcspn(p + 9, ")\n"), p + 9);
+    if (*p != '{') {
+      if (out) fputc(*p, out);
+      continue;
     }
-    for (int i = 0; i < 2 && sections[k].alt[i]; i++)
-      image(f, s, sections[k].plot[i], sections[k].alt[i], docs);
+    size_t len = 0;
+    while (is_name_char(p[1 + len])) len++;
+    if (p[1 + len] != '}' || len == 0) {
+      const size_t shown = strcspn(p, "}\n");
+      return zs_error_set(err, ZS_ERR_PARSE,
+                          "%s:%d: malformed placeholder '%.*s' (a brace opens {name})", t->path,
+                          line, (int)(shown > 40 ? 40 : shown + (p[shown] == '}')), p);
+    }
+    const int i = placeholder_index(p + 1, len);
+    if (i < 0)
+      return zs_error_set(err, ZS_ERR_PARSE, "%s:%d: unknown placeholder {%.*s}", t->path, line,
+                          (int)len, p + 1);
+    if (used) used[i] = 1;
+    if (out && s->value[i]) fputs(s->value[i], out);
+    p += len + 1;
   }
-  return zs_out_commit(&out, err);
+  return ZS_OK;
+}
+
+/* Checks every template before anything runs: each placeholder known,
+ * each image drawn, each measurement shown. */
+static zs_status check_templates(const suite *s, zs_error *err) {
+  int used[NPLACEHOLDERS] = {0};
+  for (int k = 0; k < s->ntmpl; k++)
+    if (expand(NULL, s, &s->tmpl[k], used, err)) return err->code;
+  for (int i = 0; i < NPLACEHOLDERS; i++)
+    if (placeholders[i].shown && !used[i])
+      return zs_error_set(err, ZS_ERR_PARSE, "%s/results: no template shows {%s}", s->docs,
+                          placeholders[i].name);
+  return ZS_OK;
 }
 
 /* Copies the file from into to, through the output primitive. */
@@ -1036,9 +1087,11 @@ static zs_status copy_file(const char *from, const char *to, zs_error *err) {
   return zs_out_commit(&out, err);
 }
 
-static zs_status write_docs(const suite *s, const char *docs, zs_error *err) {
+/* DIR/RESULTS.md from the templates, a blank line between two; the plots
+ * into DIR/images. */
+static zs_status write_docs(suite *s, zs_error *err) {
   char page[PATH], images[PATH], from[PATH], to[PATH + 64];
-  snprintf(images, sizeof images, "%s/images", docs);
+  snprintf(images, sizeof images, "%s/images", s->docs);
   if (zs_out_dir("--docs", images, err)) return err->code;
   for (int k = 0; k < NPLOTS && s->plots; k++) {
     in_dir(from, s, plots[k].out);
@@ -1046,14 +1099,25 @@ static zs_status write_docs(const suite *s, const char *docs, zs_error *err) {
     snprintf(to, sizeof to, "%s/%s", images, plots[k].doc);
     if (copy_file(from, to, err)) return err->code;
   }
-  snprintf(page, sizeof page, "%s/RESULTS.md", docs);
-  if (write_page(s, page, 1, err)) return err->code;
+  snprintf(page, sizeof page, "%s/RESULTS.md", s->docs);
+  zs_out out;
+  if (zs_out_open(&out, page, err)) return err->code;
+  for (int k = 0; k < s->ntmpl; k++) {
+    if (k) fputc('\n', out.fp);
+    if (expand(out.fp, s, &s->tmpl[k], NULL, err)) {
+      zs_out_discard(&out);
+      return err->code;
+    }
+  }
+  if (zs_out_commit(&out, err)) return err->code;
   printf("wrote %s and its plots in %s\n", page, images);
   return ZS_OK;
 }
 
+/* ---- the command ------------------------------------------------------- */
+
 /* The options; a usage error is ZS_ERR_ARG (exit 2). */
-static zs_status parse(int argc, char **argv, suite *s, const char **docs, zs_error *err) {
+static zs_status parse(int argc, char **argv, suite *s, zs_error *err) {
   int w, h;
   for (int i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--quick") == 0) {
@@ -1063,7 +1127,9 @@ static zs_status parse(int argc, char **argv, suite *s, const char **docs, zs_er
     } else if (strcmp(argv[i], "--out") == 0) {
       if (zs_cli_value(argc, argv, &i, &s->dir, err)) return err->code;
     } else if (strcmp(argv[i], "--docs") == 0) {
-      if (zs_cli_value(argc, argv, &i, docs, err)) return err->code;
+      if (zs_cli_value(argc, argv, &i, &s->docs, err)) return err->code;
+    } else if (strcmp(argv[i], "--threads") == 0) {
+      if (zs_cli_int_value(argc, argv, &i, 2, 64, &s->threads, err)) return err->code;
     } else if (strcmp(argv[i], "--size") == 0) {
       if (zs_cli_value(argc, argv, &i, &s->size, err) ||
           zs_cli_size(argv[i - 1], s->size, ZS_MAX_IMAGE_SIDE, &w, &h, err))
@@ -1073,171 +1139,84 @@ static zs_status parse(int argc, char **argv, suite *s, const char **docs, zs_er
                           argv[i]);
     }
   }
+  join_cmd(s->command, "zscan bench", argv);
   return ZS_OK;
 }
 
 /* The folders, this program's path, and what the machine offers: the
- * machine's description, llvmpipe, valgrind, gnuplot, its threads. */
-static zs_status probe(suite *s, const char *docs, zs_error *err) {
+ * machine's description, llvmpipe, valgrind, gnuplot, its CPUs.  A full
+ * run for --docs needs them all. */
+static zs_status probe(suite *s, zs_error *err) {
+  zs_error quiet;
+  zs_error_clear(&quiet);
+  s->have_mesa = zs_mesa_available();
+  const int valgrind = zs_callgrind_available(&quiet);
+  s->plots = zs_plot_available();
+  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+  s->ncpu = ncpu > 64 ? 64 : (int)ncpu;
+  if (!s->threads) s->threads = s->ncpu < 2 ? 2 : s->ncpu;
+  snprintf(s->threads_arg, sizeof s->threads_arg, "%d", s->threads);
+  snprintf(s->lp_env, sizeof s->lp_env, "LP_NUM_THREADS=%d", s->threads);
+  s->mesa = s->have_mesa && !s->quick;
+  s->callgrind = valgrind && !s->quick;
+  s->run_threads = !s->quick && s->ncpu >= 2;
+  if (s->docs && !s->quick) {
+    const char *lack = !s->have_mesa ? "OSMesa (the llvmpipe tables): this zscan was built without it"
+                       : !valgrind   ? "valgrind (the instructions per frame)"
+                       : !s->plots   ? "gnuplot (the plots)"
+                       : s->ncpu < 2 ? "two CPUs (the threads' tables)"
+                                     : NULL;
+    if (lack) return zs_error_set(err, ZS_ERR_UNSUPPORTED, "--docs: the page needs %s", lack);
+  }
   if (zs_out_dir("--out", s->dir, err)) return err->code;
-  if (docs && zs_out_dir("--docs", docs, err)) return err->code;
   if (!zs_self_path(s->self, sizeof s->self))
     return zs_error_set(err, ZS_ERR_IO, "cannot find this program's path");
   describe_machine(s->machine, sizeof s->machine);
-  zs_error probe;
-  zs_error_clear(&probe);
-  s->have_mesa = zs_mesa_available();
-  s->mesa = s->have_mesa && !s->quick;
-  s->callgrind = !s->quick && zs_callgrind_available(&probe);
-  s->plots = zs_plot_available();
-  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-  s->threads = !s->quick && ncpu >= 2 ? (int)(ncpu > 64 ? 64 : ncpu) : 0;
   return ZS_OK;
 }
 
-/* The files of the benchmarks run in this process, and their arguments. */
-enum { F_RASTER_CSV, F_RASTER_MD, F_RASTER_PNG, F_DEPTHSORT, F_OCTREE_CSV, F_OCTREE_PNG,
-       F_CALIBRATE, F_CLOCK, NFILES };
-typedef struct bench_args {
-  char path[NFILES][PATH];
-  char *raster[20], *tradeoff[8], *depthsort[8], *octree[10], *calibrate[6];
-} bench_args;
-
-static void bench_arguments(const suite *s, bench_args *b) {
-  static const char *const names[NFILES] = {"raster.csv",    "raster.md",  "raster.png",
-                                            "depthsort.csv", "octree.csv", "octree.png",
-                                            "calibrate.txt", "clock.json"};
-  for (int k = 0; k < NFILES; k++) in_dir(b->path[k], s, names[k]);
-  char **raster = b->raster;
-  int n = 0;
-  raster[n++] = "raster";
-  raster[n++] = "--csv";
-  raster[n++] = b->path[F_RASTER_CSV];
-  raster[n++] = "--md";
-  raster[n++] = b->path[F_RASTER_MD];
-  raster[n++] = "--plot";
-  raster[n++] = b->path[F_RASTER_PNG];
-  if (s->mesa) raster[n++] = "--mesa";
-  if (s->callgrind) raster[n++] = "--callgrind";
-  if (s->quick) {
-    raster[n++] = "--repeat";
-    raster[n++] = "1";
-    raster[n++] = "--no-scenes";
-  }
-  if (s->size) {
-    raster[n++] = "--size";
-    raster[n++] = (char *)s->size;
-  }
-  raster[n] = NULL;
-  char **tradeoff = b->tradeoff, **depthsort = b->depthsort;
-  int nt = 0, nd = 0;
-  tradeoff[nt++] = "tradeoff";
-  tradeoff[nt++] = "--out";
-  tradeoff[nt++] = (char *)s->dir;
-  if (s->quick) tradeoff[nt++] = "--quick";
-  if (s->quiet) tradeoff[nt++] = "--quiet";
-  depthsort[nd++] = "depthsort";
-  depthsort[nd++] = "--frames";
-  depthsort[nd++] = s->quick ? "4" : "40";
-  depthsort[nd++] = "--csv";
-  depthsort[nd++] = b->path[F_DEPTHSORT];
-  if (s->size) {
-    tradeoff[nt++] = "--size";
-    tradeoff[nt++] = (char *)s->size;
-    depthsort[nd++] = "--size";
-    depthsort[nd++] = (char *)s->size;
-  }
-  tradeoff[nt] = depthsort[nd] = NULL;
-  char *octree[] = {"octree", "--count", s->quick ? "500" : "5000", "--frames", s->quick ? "3" : "50",
-                    "--csv", b->path[F_OCTREE_CSV], "--plot", b->path[F_OCTREE_PNG], NULL};
-  char *calibrate[] = {"calibrate", "--repeat", s->quick ? "1" : "9", "-o", b->path[F_CLOCK], NULL};
-  memcpy(b->octree, octree, sizeof octree);
-  memcpy(b->calibrate, calibrate, sizeof calibrate);
-}
-
-/* The two large walks' modelled time along every frame, and along
- * bench tradeoff's steps. */
-static zs_status plot_walks(const suite *s, zs_error *err) {
-  static const char *const walk_name[2][2] = {{"walk-plant", "tradeoff-plant"},
-                                              {"walk-teapots", "tradeoff-teapots"}};
-  for (int k = 0; k < 2; k++) {
-    char csv[PATH], png[PATH], title[400];
-    in_dir_named(csv, s, "%s.csv", walk_name[k][0]);
-    in_dir_named(png, s, "%s-every.png", walk_name[k][0]);
-    snprintf(title, sizeof title, "%s, every frame", walks[k][s->quick ? 2 : 1]);
-    if (plot_walk(csv, png, title, err)) return err->code;
-    in_dir_named(csv, s, "%s.csv", walk_name[k][1]);
-    in_dir_named(png, s, "%s.png", walk_name[k][0]);
-    char cmd[CMD], scene[256], every[64];
-    tradeoff_cmd(s, k ? 0 : 2, cmd); /* its walks: teapots, city, plant */
-    walk_of(cmd, scene, sizeof scene, every, sizeof every);
-    snprintf(title, sizeof title, "%s, %s", scene, every);
-    if (plot_walk(csv, png, title, err)) return err->code;
-  }
-  return ZS_OK;
-}
-
-/* The benchmarks in turn: raster, on all threads, memory, calibrate, two
- * walks, tradeoff, depthsort, octree.  1: a benchmark run here failed
- * (it said why); -1: an error in err. */
-static int run_all(suite *s, bench_args *b, zs_error *err) {
-  zs_progress progress;
-  int done = 0;
-  zs_progress_start(&progress, "bench suite", "benchmark", 8 + (s->threads > 0), s->quiet);
-  /* llvmpipe on one thread beside zscan's one */
-  if (s->mesa) setenv("LP_NUM_THREADS", "1", 1);
-  if (run(zs_cmd_bench_raster, b->raster, NULL)) return 1;
-  zs_progress_step(&progress, ++done);
-  join_cmd(s->cmd_raster, s->mesa ? "LP_NUM_THREADS=1 zscan bench" : "zscan bench", b->raster);
-  if (s->threads) {
-    if (run_threads(s, err)) return -1;
-    zs_progress_step(&progress, ++done);
-  }
-  if (run_memory(s, err)) return -1;
-  zs_progress_step(&progress, ++done);
-  if (run_child(s, b->calibrate, b->path[F_CALIBRATE], NULL, s->cmd_calibrate, err)) return -1;
-  zs_progress_step(&progress, ++done);
-  for (int k = 0; k < 2; k++) {
-    if (run_walk(s, k, err)) return -1;
-    zs_progress_step(&progress, ++done);
-  }
-  if (run(zs_cmd_bench_tradeoff, b->tradeoff, NULL)) return 1;
-  zs_progress_step(&progress, ++done);
-  if (run(zs_cmd_bench_depthsort, b->depthsort, s->cmd_depthsort)) return 1;
-  zs_progress_step(&progress, ++done);
-  if (run(zs_cmd_bench_octree, b->octree, s->cmd_octree)) return 1;
-  zs_progress_step(&progress, ++done);
-  return 0;
+static void free_suite(suite *s) {
+  for (int k = 0; k < s->ntmpl; k++) free(s->tmpl[k].text);
+  for (int i = 0; i < NPLACEHOLDERS; i++) free(s->value[i]);
 }
 
 int zs_cmd_bench_suite(int argc, char **argv) {
   if (zs_cli_help(argc, argv, usage, NULL)) return 0;
-  static suite s; /* large: its command lines */
-  static bench_args b;
+  static suite s; /* large: its templates' paths and command lines */
+  static files fs;
   memset(&s, 0, sizeof s);
   s.dir = "bench-suite";
-  const char *docs = NULL;
   zs_error err;
   zs_error_clear(&err);
-  if (parse(argc, argv, &s, &docs, &err)) {
+  if (parse(argc, argv, &s, &err)) {
     return zs_cli_fail("zscan bench suite", &err, 1); /* a usage error exits 2 (tools/cli.h) */
   }
-  if (probe(&s, docs, &err)) goto fail;
-  bench_arguments(&s, &b);
-  int rc = run_all(&s, &b, &err);
-  if (rc > 0) return 1; /* the benchmark said why */
-  if (rc < 0) goto fail;
-  if (s.plots && plot_walks(&s, &err)) goto fail;
-  char page[PATH];
-  in_dir(page, &s, "RESULTS.md");
-  if (write_page(&s, page, 0, &err)) goto fail;
-  if (docs && write_docs(&s, docs, &err)) goto fail;
+  int rc = 1;
+  /* the templates first: a fault in one is found before the measuring,
+   * not after it */
+  if (s.docs && (read_templates(&s, &err) || check_templates(&s, &err))) goto fail;
+  if (probe(&s, &err)) goto fail;
+  for (int k = 0; k < NFILES; k++) in_dir(fs.path[k], &s, file_names[k]);
+  for (int w = 0; w < 2; w++) {
+    in_dir_named(fs.walk[w][0], &s, "walk-%s.csv", walks[w][0]);
+    in_dir_named(fs.walk[w][1], &s, "walk-%s.md", walks[w][0]);
+    in_dir_named(fs.walk[w][2], &s, "walk-%s.txt", walks[w][0]);
+  }
+  const int ran = run_all(&s, &fs, &err);
+  if (ran > 0) goto done; /* the benchmark said why */
+  if (ran < 0) goto fail;
+  if (s.plots && plot_walks(&s, &fs, &err)) goto fail;
+  if (s.docs && (fill_values(&s, &fs, &err) || write_docs(&s, &err))) goto fail;
   printf("\nwrote %s: raster, memory, calibrate, walks, tradeoff (per walk), depthsort and "
-         "octree files, and RESULTS.md%s%s%s\n",
+         "octree files%s%s%s\n",
          s.dir, s.mesa ? "; llvmpipe beside zscan" : "",
-         s.threads ? ", on one thread and on all" : "",
+         s.run_threads ? ", on one thread and on N" : "",
          s.callgrind ? "; instructions per frame under callgrind" : "");
-  return 0;
+  rc = 0;
+  goto done;
 fail:
-  return zs_cli_fail("zscan bench suite", &err, 0);
+  rc = zs_cli_fail("zscan bench suite", &err, 0);
+done:
+  free_suite(&s);
+  return rc;
 }
