@@ -15,7 +15,7 @@ enum {
 
   /* Drawing at once on threads: a draw from this many faces is set up in
    * parts over the threads; below, handing the work over costs more than
-   * it saves.  zscan bench raster --case 'builtin:default?level=42'
+   * it saves.  zscan bench raster --case 'builtin:default,level=42'
    * --threads 2 */
   ZS_PARALLEL_SETUP_FACES = 4096,
   /* Deferred, draws below this many faces are queued (the queue is shared

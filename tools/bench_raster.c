@@ -69,8 +69,8 @@ static const char usage[] =
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
 static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
-                                     "builtin:default?level=42", "builtin:teapots?count=4",
-                                     "builtin:spheres?count=4"};
+                                     "builtin:default,level=42", "builtin:teapots,count=4",
+                                     "builtin:spheres,count=4"};
 static const int random_sides[] = {4, 10, 25, 100};
 enum { NRANDOM = 2 * sizeof random_sides / sizeof random_sides[0] };
 enum { NSCENES = sizeof scenes / sizeof scenes[0] };
@@ -784,8 +784,8 @@ int zs_cmd_bench_raster(int argc, char **argv) {
                       "--case '%s': no such case (triangles SxS for S = 4, 10, 25, 100, 500; "
                       "random SxS back to front, random SxS front to back for S = 4, 10, 25, "
                       "100; builtin:teapots, builtin:city, builtin:plant, "
-                      "builtin:default?level=42, builtin:teapots?count=4, "
-                      "builtin:spheres?count=4)",
+                      "builtin:default,level=42, builtin:teapots,count=4, "
+                      "builtin:spheres,count=4)",
                       o.only_case ? o.only_case : "");
   FILE *report = stdout;
   const char *outs[] = {o.csv, o.md, o.plot};
