@@ -411,7 +411,7 @@ END_TEST
  * method (wall time aside), moving objects and all. */
 START_TEST(walk_frames_equal_the_command) {
   static char cli[BIG], cerr[4096];
-  const char *input = "builtin:teapots,count=40&level=3&moving=8&frames=16";
+  const char *input = "builtin:teapots?count=40&level=3&moving=8&frames=16";
   const char *args[] = {"walk", input, "--cull", "chc", "--size", "160x120", "--csv", "-",
                         "--quiet", NULL};
   ck_assert_msg(zs_test_run_zscan(args, cli, sizeof cli, cerr, sizeof cerr) == 0, "%s", cerr);
