@@ -108,11 +108,12 @@ static int64_t gpu_command(zs_device *d, int64_t cost, int is_query, int64_t cpu
 /* The GPU time of a draw or query box with these counts. */
 static int64_t command_cost(const zs_clock_costs *k, const zs_command *c, int is_query) {
   const zs_scan_counts *s = &c->scan;
-  int64_t pixels = is_query ? k->per_query_pixel * (int64_t)s->tested
-                            : k->per_pixel * (int64_t)s->tested + k->per_write * (int64_t)s->written;
-  return k->per_call + k->per_vertex * c->vertices +
-         k->per_polygon * (int64_t)zs_face_counts_set_up(&c->faces) + k->per_span * (int64_t)s->spans +
-         pixels;
+  const int64_t pixels =
+      is_query ? k->per_query_pixel * (int64_t)s->tested
+               : k->per_pixel * (int64_t)s->tested + k->per_write * (int64_t)s->written;
+  const int64_t polygons = (int64_t)zs_face_counts_set_up(&c->faces);
+  return k->per_call + k->per_vertex * c->vertices + k->per_polygon * polygons +
+         k->per_span * (int64_t)s->spans + pixels;
 }
 
 static void add_faces(zs_raster_stats *s, const zs_face_counts *fc) {

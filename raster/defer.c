@@ -206,7 +206,7 @@ static void cut_chunks(zs_deferred *q, int nfull, int nsmall) {
  * out to the window's edges: which draw lands in which band changes no
  * pixel and no counter, only how evenly the threads share the scan, and
  * this flush's rows are known only once its draws are set up. */
-static int band_start(const flush_job *j, int b) {
+static int flush_band_first_row(const flush_job *j, int b) {
   if (b == 0) return 0;
   if (b == j->nbands) return j->d->cfg.height;
   return j->row0 + (int)zs_part_start(j->rows, b, j->nbands);
@@ -216,7 +216,7 @@ static int band_start(const flush_job *j, int b) {
  * up (the queue ends there). */
 static int scan_chunk(flush_job *j, int band, int c) {
   zs_deferred *q = j->q;
-  int y0 = band_start(j, band), y1 = band_start(j, band + 1);
+  int y0 = flush_band_first_row(j, band), y1 = flush_band_first_row(j, band + 1);
   zs_scan_counts *counts = &q->counts[(size_t)band * (size_t)q->n];
   for (int32_t i = q->first[c]; i < q->first[c + 1]; i++) {
     const queued_draw *e = &q->q[i];

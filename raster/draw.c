@@ -115,9 +115,10 @@ static void flat_run_finish(flat_run *run, zs_flat_levels_fn flat_levels, zs_bat
 
 /* Faces [f0, f1): trivial reject, clipping where a face crosses a plane,
  * set-up; under flat shading, the faces that became polygons join run. */
-static zs_status setup_faces(const zs_draw_prep *pr, const zs_vert_scratch *v, const zs_mesh *mesh, int32_t f0,
-                             int32_t f1, uint32_t id_base, uint32_t rgb, zs_depthsort *ds,
-                             zs_batch *b, zs_face_counts *fc, flat_run *run, zs_error *err) {
+static zs_status setup_faces(const zs_draw_prep *pr, const zs_vert_scratch *v,
+                             const zs_mesh *mesh, int32_t f0, int32_t f1, uint32_t id_base,
+                             uint32_t rgb, zs_depthsort *ds, zs_batch *b, zs_face_counts *fc,
+                             flat_run *run, zs_error *err) {
   zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
   zs_setup_params sp = pr->sp;
   for (int32_t f = f0; f < f1; f++) {

@@ -92,7 +92,7 @@ static zs_status finish_scan(zs_device *d, zs_row_sink sink, void *user, zs_erro
  * bench raster --case builtin:plant --algo scanline --threads 2 --speedup
  * measures it; docs/RESULTS.md).  So on threads the device holds the
  * frame's rows, in bands, not one row. */
-static int band_count(const zs_device *d) {
+static int finish_band_count(const zs_device *d) {
   const int n = d->cfg.height / ZS_BAND_MIN_ROWS;
   return d->cfg.threads < n ? d->cfg.threads : n;
 }
@@ -103,7 +103,7 @@ size_t zs_finish_bands_bytes(const zs_device *d) {
 }
 
 int zs_finish_bands_alloc(zs_device *d) {
-  const int h = d->cfg.height, nbands = band_count(d);
+  const int h = d->cfg.height, nbands = finish_band_count(d);
   d->band_max_rows = nbands > 1 ? (h + nbands - 1) / nbands : h;
   d->band_rows = malloc(zs_finish_bands_bytes(d));
   return d->band_rows != NULL;
@@ -116,7 +116,7 @@ typedef struct band_round {
   int ok[ZS_MAX_BANDS];
 } band_round;
 
-static int band_start(const band_round *j, int b) {
+static int finish_band_first_row(const band_round *j, int b) {
   return (int)zs_part_start(j->d->cfg.height, b, j->nbands);
 }
 
@@ -153,7 +153,7 @@ static void scan_band_rows(void *ctx, int t) {
   zs_device *d = j->d;
   const int b = j->first + t;
   if (b >= j->nbands) return;
-  const int y0 = band_start(j, b), y1 = band_start(j, b + 1);
+  const int y0 = finish_band_first_row(j, b), y1 = finish_band_first_row(j, b + 1);
   zs_target tg = band_target(d, t, y0);
   band_clear clear = {&tg, d->cfg.background, d->clear_counts};
   const zs_row_hooks hooks = {clear_band_row, NULL, &clear};
@@ -165,14 +165,15 @@ static void scan_band_rows(void *ctx, int t) {
 static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   band_round j;
   j.d = d;
-  j.nbands = band_count(d);
+  j.nbands = finish_band_count(d);
   if (j.nbands < 2) return finish_scan(d, sink, user, err);
   const int threads = d->cfg.threads, w = d->cfg.width;
   zs_command c = {.kind = ZS_CMD_FRAME_SCAN, .issued_ps = -1};
   for (j.first = 0; j.first < j.nbands; j.first += threads) {
     zs_pool_run(d->pool, scan_band_rows, &j, threads);
     for (int t = 0; t < threads && j.first + t < j.nbands; t++) {
-      const int b = j.first + t, y0 = band_start(&j, b), y1 = band_start(&j, b + 1);
+      const int b = j.first + t;
+      const int y0 = finish_band_first_row(&j, b), y1 = finish_band_first_row(&j, b + 1);
       if (!j.ok[b]) return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
       zs_scan_counts_add(&c.scan, &j.counts[b]);
       if (!sink) continue;

@@ -114,8 +114,8 @@ static void setup_part(void *ctx, int part) {
   zs_error_clear(&j->err[part]);
   j->st[part] = zs_draw_setup(j->prep, &j->d->verts, j->mesh,
                               (int32_t)zs_part_start(n, part, j->nparts),
-                              (int32_t)zs_part_start(n, part + 1, j->nparts), j->id_base, j->rgb, NULL,
-                              j->batch[part], &j->fc[part], &j->err[part]);
+                              (int32_t)zs_part_start(n, part + 1, j->nparts), j->id_base, j->rgb,
+                              NULL, j->batch[part], &j->fc[part], &j->err[part]);
 }
 
 zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep *prep,

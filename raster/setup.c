@@ -129,7 +129,7 @@ static uint8_t spans_inner(int width, const zs_poly *p, int32_t xmin, int32_t xm
 /* Appends the polygon (X, Y)[0..n-1] (convex, y-monotone, area2 != 0) with
  * the given plane; [xmin, xmax] holds its corners' X (the whole face's,
  * for a piece of a fan).  Returns 0 when out of memory. */
-static int emit(zs_batch *b, const zs_setup_params *sp, const plane *pl,
+static int append_polygon(zs_batch *b, const zs_setup_params *sp, const plane *pl,
                 const int32_t *X, const int32_t *Y, int n,
                 int64_t area2, int32_t xmin, int32_t xmax) {
   int top = 0, bot = 0;
@@ -307,7 +307,7 @@ setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32
 
   /* (a triangle of non-zero area always is) */
   if (m == 3 || convex_monotone(X, Y, m, area2))
-    return emit(b, sp, &pl, X, Y, m, area2, xmin, xmax) ? ZS_SETUP_DRAWN
+    return append_polygon(b, sp, &pl, X, Y, m, area2, xmin, xmax) ? ZS_SETUP_DRAWN
                                                  : ZS_SETUP_NOMEM;
   /* Snapping bent the polygon: draw it as a fan of triangles that share its
    * plane; their common edges split the pixels between them exactly. */
@@ -315,7 +315,7 @@ setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32
     int64_t a = cross3(X, Y, 0, k, k + 1);
     if (a == 0) continue;
     const int32_t tx[3] = {X[0], X[k], X[k + 1]}, ty[3] = {Y[0], Y[k], Y[k + 1]};
-    if (!emit(b, sp, &pl, tx, ty, 3, a, xmin, xmax)) return ZS_SETUP_NOMEM;
+    if (!append_polygon(b, sp, &pl, tx, ty, 3, a, xmin, xmax)) return ZS_SETUP_NOMEM;
   }
   return ZS_SETUP_DRAWN;
 }

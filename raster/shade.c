@@ -11,9 +11,10 @@
  * takes the levels of a run of faces at once, eight at a time with
  * AVX-512: a face's square root and division wait many cycles each, and
  * one face's at a time held up the faces of a small model (zscan bench
- * raster --case "triangles 4x4" and --case builtin:teapots measure it).  Each lane does zs_flat_level's operations in its order,
- * and IEEE 754 rounds a lane's square root, division, add and multiply
- * as it rounds the scalar's (never fused: -ffp-contract=off); the
+ * raster --case "triangles 4x4" and --case builtin:teapots measure it).
+ * Each lane does zs_flat_level's operations in its order, and IEEE 754
+ * rounds a lane's square root, division, add and multiply as it rounds
+ * the scalar's (never fused: -ffp-contract=off); the
  * conversion to an integer is lrint's, in the default rounding mode; a
  * NaN cosine stays NaN past the clamp to 1 and converts as lrint's does.
  *

@@ -114,7 +114,8 @@ static inline void zs_fill_span(const zs_kernel k, const zs_row_ptrs *row, int x
  * gcc drops its calls where it does not inline it first. */
 __attribute__((always_inline)) static inline void
 zs_table_prefetch(const zs_batch *b, const int32_t *order, int32_t j, int32_t n) {
-  if (j + ZS_TABLE_PREFETCH_POLYS < n) __builtin_prefetch(&b->polys[order[j + ZS_TABLE_PREFETCH_POLYS]]);
+  if (j + ZS_TABLE_PREFETCH_POLYS < n)
+    __builtin_prefetch(&b->polys[order[j + ZS_TABLE_PREFETCH_POLYS]]);
   if (j + ZS_TABLE_PREFETCH_EDGES < n)
     __builtin_prefetch(&b->edges[b->polys[order[j + ZS_TABLE_PREFETCH_EDGES]].edge0]);
 }
@@ -157,8 +158,9 @@ static inline void zs_activate(zs_active *a, int32_t i, const zs_poly *p, const 
 /* a's span on the row, clamped to the target's width, filled with kernel
  * k; [*x0, *x1) is what was filled (empty when *x0 >= *x1). */
 static inline void zs_row_span(const zs_kernel k, const zs_row_ptrs *row, int width,
-                               const zs_active *a, const zs_simd simd, const int vector_from, uint64_t *spans, uint64_t *tested,
-                               uint64_t *written, int64_t *x0_out, int64_t *x1_out) {
+                               const zs_active *a, const zs_simd simd, const int vector_from,
+                               uint64_t *spans, uint64_t *tested, uint64_t *written,
+                               int64_t *x0_out, int64_t *x1_out) {
   int64_t x0 = a->l.x, x1 = a->r.x;
   if (!a->inner) {
     if (x0 < 0) x0 = 0;
