@@ -1,5 +1,5 @@
-/* The modelled clock of the device (raster.h, "clock.c: the modelled
- * clock").
+/* The modelled clock of the device and its counters (clock.h; the
+ * model: zscan/clock.h).
  *
  * Defaults.  The constants describe, to an order of magnitude, a desktop GPU
  * of the cost-model paper's time behind a driver with per-call overhead;

@@ -1,4 +1,4 @@
-/* The painter's algorithm with frame coherence (raster.h, "depthsort.c").
+/* The painter's algorithm with frame coherence (depthsort.h).
  *
  * Faces are identified across frames by id.  Per id the sorter keeps the
  * key and place of the last frame; the list of the last frame's order is

@@ -313,7 +313,8 @@ static void choose_stages(zs_device *d) {
   /* each kernel's draw stage and traversals at the device's SIMD level */
   for (int k = 0; k < ZS_KERNELS; k++) {
     zs_kernel_state *ks = &d->state_of[k];
-    zs_draw_prep_fixed(&d->cfg, d->simd, d->gx, d->gy, d->prefetch_write, (zs_kernel)k, &ks->prep);
+    zs_draw_prep_fixed(&d->cfg, d->simd, d->gx, d->gy, d->prefetch_write, (zs_kernel)k,
+                       &ks->prep);
     zs_scan_choose((zs_kernel)k, d->simd, &ks->traversal);
     zs_polyorder_choose((zs_kernel)k, d->simd, &ks->traversal);
   }

@@ -92,19 +92,18 @@ __attribute__((always_inline)) static inline void newell_of_face(const double *e
 }
 
 /* The faces of a draw whose flat colour waits for the levels of a run of
- * them at once (zs_flat_levels: why, in shade.c): each face's normal, its
+ * them at once (zs_flat_levels_for: why, in shade.c): each face's normal, its
  * colour and its polygons [first, end) in the batch. */
-enum { FLAT_RUN = ZS_FLAT_RUN };
 typedef struct flat_run {
-  double nx[FLAT_RUN], ny[FLAT_RUN], nz[FLAT_RUN];
-  uint32_t rgb[FLAT_RUN];
-  int32_t first[FLAT_RUN], end[FLAT_RUN];
+  double nx[ZS_FLAT_RUN], ny[ZS_FLAT_RUN], nz[ZS_FLAT_RUN];
+  uint32_t rgb[ZS_FLAT_RUN];
+  int32_t first[ZS_FLAT_RUN], end[ZS_FLAT_RUN];
   int n;
 } flat_run;
 
 /* The run's faces' polygons get their flat colours; the run is empty. */
 static void flat_run_finish(flat_run *run, zs_flat_levels_fn flat_levels, zs_batch *b) {
-  uint32_t q[FLAT_RUN];
+  uint32_t q[ZS_FLAT_RUN];
   flat_levels(run->nx, run->ny, run->nz, run->n, q);
   for (int k = 0; k < run->n; k++) {
     const uint32_t shaded = zs_flat_tint(run->rgb[k], q[k]);
@@ -175,7 +174,7 @@ static zs_status setup_faces(const zs_draw_prep *pr, const zs_vert_scratch *v,
       const int k = run->n++;
       run->nx[k] = nrm[0], run->ny[k] = nrm[1], run->nz[k] = nrm[2];
       run->rgb[k] = sp.rgb, run->first[k] = first_poly, run->end[k] = b->npolys;
-      if (run->n == FLAT_RUN) flat_run_finish(run, pr->flat_levels, b);
+      if (run->n == ZS_FLAT_RUN) flat_run_finish(run, pr->flat_levels, b);
     }
     /* The painter orders the faces that meet the circle around the
      * window, drawn or not, turned to the eye or nearly: a roll keeps that

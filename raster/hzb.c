@@ -9,7 +9,7 @@
  *
  * A box is "maybe visible" unless every sample its query box could count
  * lies behind the pyramid.  The pixels: the window rectangle of the box's
- * corners, grown by the query margin (zs_device_query_margin) and one
+ * corners, grown by the query margin (box.h, zs_box_margin) and one
  * more pixel on every side (snapping moves a corner by at most 1/512
  * pixel).  The depth: what a query box is brought nearer by
  * (ZS_QUERY_DEPTH_BIAS units and 1/16 pixel of its face's depth slope),

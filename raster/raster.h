@@ -120,7 +120,7 @@ zs_status zs_device_flush(zs_device *dev, zs_error *err);
 enum { ZS_QUERY_DEPTH_BIAS = 16, ZS_QUERY_SLOPE_SHIFT = 4 };
 typedef uint32_t zs_query;
 
-/* ---- hzb.c: the hierarchical depth buffer ----
+/* ---- hzb.c: the hierarchical depth buffer (its commands: query.c) ----
  *
  * zs_device_hzb_build builds the depth pyramid of what is drawn so far
  * (level k: the farthest depth of each 2x2 texels of level k - 1, level 0

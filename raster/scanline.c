@@ -140,7 +140,6 @@ void zs_scan_choose(zs_kernel k, zs_simd simd, zs_traversal *out) {
       {draw_scalar_sorted, draw_sse2_sorted, draw_avx2_sorted, draw_avx512_sorted},
       {overdraw_sorted, overdraw_sorted, overdraw_sorted, overdraw_sorted},
       {query_sorted, query_sorted, query_sorted, query_sorted}};
-  out->kernel = k;
   out->scan_rows = rows[k][simd];
   out->scan_sorted = sorted[k][simd];
 }

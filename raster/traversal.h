@@ -89,7 +89,6 @@ typedef void (*zs_by_polygon_fn)(const zs_batch *b, const zs_target *t, int row_
 
 /* One kernel's traversals at one SIMD level. */
 typedef struct zs_traversal {
-  zs_kernel kernel;
   zs_scan_rows_fn scan_rows;          /* the row scan, with hooks and observer */
   zs_scan_sorted_fn scan_sorted;      /* the same without: drawing and querying */
   zs_by_polygon_fn by_polygon_mesh;   /* a polygon at a time: a mesh */
