@@ -77,7 +77,7 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
     return zs_error_set(err, ZS_ERR_ARG,
                         "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
-                          o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0};
+                          o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, 0};
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;
   zs_status st = zs_image_alloc(out, o->width, o->height, err);

@@ -25,7 +25,7 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
   double view[16], proj[16];
   if (!lines) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   if (st == ZS_OK) st = zs_frame_camera(s, cam, width, height, view, proj, err);
-  zs_device_config cfg = {width, height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, cull_back, 1, 0, 0};
+  zs_device_config cfg = {width, height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, cull_back, 1, 0, 0, 0};
   if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);
   if (st == ZS_OK) st = zs_frame_draw_all(dev, s, view, proj, err);
   if (st == ZS_OK) st = zs_device_finish(dev, NULL, NULL, err);

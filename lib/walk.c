@@ -68,7 +68,7 @@ zs_status zs_walk_create(zs_scene *scene, const zs_walk_opts *opts, zs_walk **ou
   zs_octree_params_default(&tp, ZS_OCTREE_LOOSE);
   zs_cost_params cost;
   zs_cost_params_default(&cost);
-  zs_device_config cfg = {w->width, w->height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {w->width, w->height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_status st = zs_octree_build(&w->tree, scene, &tp, err);
   w->have_tree = st == ZS_OK;
   if (st == ZS_OK) st = zs_culler_create((zs_cull_method)method, &cost, &w->culler, err);

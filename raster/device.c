@@ -21,6 +21,19 @@
 
 static const char *const algo_names[] = {"zbuffer", "scanline", "depthsort"};
 
+static const char *const shade_names[] = {"auto",     "flat",  "id",      "depth", "overdraw",
+                                         "unlit",    "gouraud", "phong", "normal"};
+
+const char *zs_shade_name(zs_shade sh) {
+  return (unsigned)sh < sizeof shade_names / sizeof *shade_names ? shade_names[sh] : "?";
+}
+
+int zs_shade_parse(const char *name) {
+  for (int i = 0; i < (int)(sizeof shade_names / sizeof *shade_names); i++)
+    if (name && strcmp(name, shade_names[i]) == 0) return i;
+  return -1;
+}
+
 const char *zs_algo_name(zs_algo a) {
   return (unsigned)a < sizeof algo_names / sizeof algo_names[0] ? algo_names[a] : "?";
 }

@@ -38,7 +38,7 @@ size_t zs_vert_scratch_bytes(const zs_vert_scratch *v) {
 void zs_draw_prep_fixed(const zs_device_config *cfg, zs_simd simd, double gx, double gy,
                         int prefetch_write, zs_kernel k, zs_draw_prep *p) {
   memset(p, 0, sizeof *p);
-  p->flat = cfg->shade == ZS_SHADE_FLAT && k == ZS_KERNEL_DRAW;
+  p->flat = zs_shade_is_surface(cfg->shade) && k == ZS_KERNEL_DRAW;
   p->need_eye = p->flat || cfg->algo == ZS_ALGO_DEPTHSORT;
   p->sp = (zs_setup_params){cfg->width, cfg->height, cfg->cull_back && k != ZS_KERNEL_QUERY,
                             0, 0, k == ZS_KERNEL_QUERY ? ZS_QUERY_DEPTH_BIAS : 0,

@@ -228,7 +228,7 @@ void zs_finish_choose(zs_device *d) {
               : d->cfg.algo == ZS_ALGO_DEPTHSORT ? (bands ? finish_painter_bands : finish_painter)
               : bands                            ? finish_bands
                                                  : finish_scan;
-  d->emit = d->cfg.shade == ZS_SHADE_FLAT       ? emit_as_drawn
+  d->emit = zs_shade_is_surface(d->cfg.shade)   ? emit_as_drawn
             : d->cfg.shade == ZS_SHADE_OVERDRAW ? emit_overdraw
                                                 : emit_shaded;
 }

@@ -101,7 +101,7 @@ zs_status zs_device_query_boxes(zs_device *d, const double (*lo)[3], const doubl
     }
   }
   start[nf] = 4 * nf;
-  zs_mesh boxes = {pos, 8 * n, start, vert, nf, NULL, NULL};
+  zs_mesh boxes = {.pos = pos, .nverts = 8 * n, .face_start = start, .face_vert = vert, .nfaces = nf};
   zs_command c = {.kind = ZS_CMD_QUERY_BOXES, .issued_ps = -1};
   zs_status st =
       zs_draw_at_once(d, &boxes, NULL, 0, 0, &d->state_of[ZS_KERNEL_QUERY], &c, err);

@@ -10,6 +10,17 @@
 
 #include "raster/raster.h"
 
+/* The shadings whose colours come from the surfaces drawn (flat, and
+ * those that read attributes), as against those made from the buffers
+ * (id, depth, overdraw). */
+static inline int zs_shade_is_surface(zs_shade s) {
+  return s == ZS_SHADE_AUTO || s == ZS_SHADE_FLAT || s >= ZS_SHADE_UNLIT;
+}
+/* The shadings that read a mesh's attributes (auto: when it has any). */
+static inline int zs_shade_reads_attrs(zs_shade s) {
+  return s == ZS_SHADE_AUTO || s >= ZS_SHADE_UNLIT;
+}
+
 /* The flat level of a face, q = round(255 I) (shade.c), from its
  * eye-space normal n (need not be unit) against the fixed light. */
 static inline uint32_t zs_flat_level(const double n[3]) {

@@ -37,6 +37,14 @@ void zs_model_free(zs_model *m) {
   free(m->face_object);
   for (int32_t i = 0; i < m->nobjects; i++) free(m->object_names[i]);
   free(m->object_names);
+  free(m->mesh.corner_attr);
+  free(m->mesh.normal);
+  free(m->mesh.color);
+  free(m->mesh.uv);
+  free(m->mesh.face_material);
+  free(m->materials);
+  for (int32_t i = 0; i < m->ntextures; i++) zs_texture_destroy(m->textures[i]);
+  free(m->textures);
   zs_model_init(m);
 }
 
@@ -54,10 +62,12 @@ static int reserve_faces(zs_model *m, int64_t nfaces, int64_t nface_verts) {
     /* Each array grows from cap_faces by the same rule to the same
      * capacity cap; face_start has one entry more, the end of the last
      * face. */
-    int32_t cap = m->cap_faces, c_id = cap, c_obj = cap;
+    int32_t cap = m->cap_faces, c_id = cap, c_obj = cap, c_mat = cap;
     if (!zs_grow((void **)&mesh->face_rgb, &cap, nfaces, sizeof *mesh->face_rgb) ||
         !zs_grow((void **)&mesh->face_id, &c_id, nfaces, sizeof *mesh->face_id) ||
-        !zs_grow((void **)&m->face_object, &c_obj, nfaces, sizeof *m->face_object))
+        !zs_grow((void **)&m->face_object, &c_obj, nfaces, sizeof *m->face_object) ||
+        (mesh->face_material &&
+         !zs_grow((void **)&mesh->face_material, &c_mat, nfaces, sizeof *mesh->face_material)))
       return 0;
     int32_t *start = realloc(mesh->face_start, ((size_t)cap + 1) * sizeof *start);
     if (!start) return 0;
@@ -65,8 +75,20 @@ static int reserve_faces(zs_model *m, int64_t nfaces, int64_t nface_verts) {
     mesh->face_start = start;
     m->cap_faces = cap;
   }
+  int32_t c_attr = m->cap_face_verts;
+  if (mesh->corner_attr &&
+      !zs_grow((void **)&mesh->corner_attr, &c_attr, nface_verts, sizeof *mesh->corner_attr))
+    return 0;
   return zs_grow((void **)&mesh->face_vert, &m->cap_face_verts, nface_verts,
                  sizeof *mesh->face_vert);
+}
+
+/* The attribute vertex of the polygon being added at position v. */
+static int32_t corner_attr_of(const zs_model *m, int32_t v) {
+  if (!m->cur_attr) return -1;
+  for (int i = 0; i < m->cur_n; i++)
+    if (m->cur_idx[i] == v) return m->cur_attr[i];
+  return -1;
 }
 
 /* The number of vertex indices the faces use so far. */
@@ -81,6 +103,9 @@ static void append_face(zs_model *m, const int32_t *v, int n, uint32_t rgb,
   int32_t f = mesh->nfaces;
   int32_t start = face_vert_count(m);
   memcpy(mesh->face_vert + start, v, (size_t)n * sizeof *v);
+  if (mesh->corner_attr)
+    for (int i = 0; i < n; i++) mesh->corner_attr[start + i] = corner_attr_of(m, v[i]);
+  if (mesh->face_material) mesh->face_material[f] = m->cur_material;
   mesh->face_start[f] = start;
   mesh->face_start[f + 1] = start + n;
   mesh->face_rgb[f] = rgb;
@@ -362,12 +387,39 @@ static void add_split(zs_model *m, const int32_t *v, int n, split_scratch *sc, u
     add_ear_clipped(m, v, q, sc->prev, sc->next, n, rgb, id, obj);
 }
 
+/* The per-corner or per-face array *p made for the first time, cap
+ * entries, those before `used` set to -1. */
+static int make_index_array(int32_t **p, int32_t cap, int32_t used) {
+  if (*p) return 1;
+  *p = malloc((size_t)(cap > 0 ? cap : 1) * sizeof **p);
+  if (!*p) return 0;
+  for (int32_t i = 0; i < used; i++) (*p)[i] = -1;
+  return 1;
+}
+
 zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
                                uint32_t rgb, int32_t obj) {
+  return zs_model_add_face(m, idx, NULL, n, rgb, -1, obj);
+}
+
+zs_status zs_model_add_face(zs_model *m, const int32_t *idx, const int32_t *attr, int n,
+                            uint32_t rgb, int32_t material, int32_t obj) {
   if (!idx || n < 3) return ZS_ERR_ARG;
   if (obj < -1 || obj >= m->nobjects) return ZS_ERR_ARG;
+  if (material < -1 || material >= m->mesh.nmaterials) return ZS_ERR_ARG;
   for (int i = 0; i < n; i++)
     if (idx[i] < 0 || idx[i] >= m->mesh.nverts) return ZS_ERR_ARG;
+  if (attr)
+    for (int i = 0; i < n; i++)
+      if (attr[i] < -1 || attr[i] >= m->mesh.nattrs) return ZS_ERR_ARG;
+  if ((attr && !make_index_array(&m->mesh.corner_attr, m->cap_face_verts, face_vert_count(m))) ||
+      (material >= 0 &&
+       !make_index_array(&m->mesh.face_material, m->cap_faces, m->mesh.nfaces)))
+    return ZS_ERR_NOMEM;
+  m->cur_idx = idx;
+  m->cur_attr = attr;
+  m->cur_n = n;
+  m->cur_material = material;
   /* Face ids are int32_t: one more face cannot be numbered. */
   if (m->nsource_faces == INT32_MAX) return ZS_ERR_NOMEM;
 
@@ -392,6 +444,65 @@ zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
   else
     add_split(m, v, k, &sc, rgb, id, obj);
   free(sc.heap);
+  m->cur_idx = m->cur_attr = NULL;
+  m->cur_n = 0;
   m->nsource_faces++;
   return ZS_OK;
+}
+
+/* ---- attributes and materials ----------------------------------------- */
+
+/* Grows the attribute array *p (of `per` elements of `size` bytes a
+ * vertex) to cap vertices; made when need_it and missing, the vertices
+ * before n set to def. */
+static int grow_attr_array(void **p, int32_t cap, int32_t n, int need_it, size_t per,
+                           size_t size, const void *def) {
+  if (!*p && !need_it) return 1;
+  const int fresh = *p == NULL;
+  void *q = realloc(*p, (size_t)cap * per * size);
+  if (!q) return 0;
+  *p = q;
+  if (fresh)
+    for (int32_t i = 0; i < n; i++) memcpy((char *)q + (size_t)i * per * size, def, per * size);
+  return 1;
+}
+
+int32_t zs_model_add_attr(zs_model *m, const float *normal, const uint8_t *rgba, const float *uv) {
+  static const float no_normal[3] = {0.0f, 0.0f, 0.0f}, no_uv[2] = {0.0f, 0.0f};
+  static const uint8_t white[4] = {255, 255, 255, 255};
+  zs_mesh *mesh = &m->mesh;
+  const int32_t n = mesh->nattrs;
+  if (n == INT32_MAX) return -1;
+  int32_t cap = m->cap_attrs;
+  if (n + 1 > cap) cap = cap > 0 ? (cap > INT32_MAX / 2 ? INT32_MAX : 2 * cap) : 64;
+  if (!grow_attr_array((void **)&mesh->normal, cap, n, normal != NULL, 3, sizeof(float),
+                       no_normal) ||
+      !grow_attr_array((void **)&mesh->color, cap, n, rgba != NULL, 4, 1, white) ||
+      !grow_attr_array((void **)&mesh->uv, cap, n, uv != NULL, 2, sizeof(float), no_uv))
+    return -1;
+  m->cap_attrs = cap;
+  if (mesh->normal) memcpy(mesh->normal + 3 * (size_t)n, normal ? normal : no_normal, 3 * sizeof(float));
+  if (mesh->color) memcpy(mesh->color + 4 * (size_t)n, rgba ? rgba : white, 4);
+  if (mesh->uv) memcpy(mesh->uv + 2 * (size_t)n, uv ? uv : no_uv, 2 * sizeof(float));
+  mesh->nattrs = n + 1;
+  return n;
+}
+
+int32_t zs_model_add_material(zs_model *m, const zs_material *mat) {
+  if (!zs_grow((void **)&m->materials, &m->cap_materials, (int64_t)m->mesh.nmaterials + 1,
+               sizeof *m->materials))
+    return -1;
+  m->materials[m->mesh.nmaterials] = *mat;
+  m->mesh.materials = m->materials;
+  return m->mesh.nmaterials++;
+}
+
+int zs_model_own_texture(zs_model *m, zs_texture *tex) {
+  if (!zs_grow((void **)&m->textures, &m->cap_textures, (int64_t)m->ntextures + 1,
+               sizeof *m->textures)) {
+    zs_texture_destroy(tex);
+    return 0;
+  }
+  m->textures[m->ntextures++] = tex;
+  return 1;
 }

@@ -24,8 +24,17 @@ typedef struct zs_model {
   char **object_names;    /* nobjects names, owned */
   int32_t nobjects;
   int32_t nsource_faces;  /* faces as numbered in the source (ids 0 .. n-1) */
+  zs_material *materials; /* mesh.materials, owned (mesh.nmaterials of them) */
+  zs_texture **textures;  /* the textures the materials use, owned */
+  int32_t ntextures;
   /* capacities (private) */
   int32_t cap_verts, cap_faces, cap_face_verts, cap_objects;
+  int32_t cap_attrs, cap_materials, cap_textures;
+  /* the polygon being added: its corners' positions and attributes, from
+   * which each piece of it takes its corners' attributes (private) */
+  const int32_t *cur_idx, *cur_attr;
+  int cur_n;
+  int32_t cur_material;
 } zs_model;
 
 void zs_model_init(zs_model *m);
@@ -50,6 +59,40 @@ int32_t zs_model_object(zs_model *m, const char *name);
  * n < 3, ZS_ERR_NOMEM. */
 zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
                                uint32_t rgb, int32_t obj);
+
+/* Appends an attribute vertex (zscan.h, zs_mesh): normal (3 floats),
+ * rgba (4 bytes) and uv (2 floats), each NULL for none ((0, 0, 0), white
+ * and opaque, (0, 0)).  An array is made at the first vertex that has its
+ * attribute, with the defaults for the vertices before.  Returns its
+ * index, or -1 when out of memory. */
+int32_t zs_model_add_attr(zs_model *m, const float *normal, const uint8_t *rgba, const float *uv);
+
+/* Appends a material (copied); returns its index, -1 when out of memory. */
+int32_t zs_model_add_material(zs_model *m, const zs_material *mat);
+
+/* Hands tex to the model, which destroys it with itself; returns 0 (and
+ * destroys tex) when out of memory. */
+int zs_model_own_texture(zs_model *m, zs_texture *tex);
+
+/* zs_model_add_polygon with attributes: corner i takes attribute vertex
+ * attr[i] (-1: none; attr NULL: none for any corner) and the face the
+ * material `material` (-1: none).  Every piece of a split polygon keeps
+ * its corners' attributes.  ZS_ERR_ARG also for an attribute index or a
+ * material out of range. */
+zs_status zs_model_add_face(zs_model *m, const int32_t *idx, const int32_t *attr, int n,
+                            uint32_t rgb, int32_t material, int32_t obj);
+
+/* Gives every corner without a normal (attribute -1, or a normal of (0,
+ * 0, 0)) the normal of its surface there: the sum of the Newell normals
+ * (twice the area times the unit normal, so larger faces weigh more) of
+ * the faces that meet at its position and whose planes turn from its
+ * face's by at most crease_deg degrees (a cube keeps its edges at 60,
+ * a sphere's facets merge).  Corners left as they are when their face has
+ * no area.  Attribute vertices are made or split as needed, and shared
+ * between corners that end with the same attributes.  0 when out of
+ * memory (the model then stays as it was, but for attribute vertices
+ * added at its end). */
+int zs_model_compute_normals(zs_model *m, double crease_deg);
 
 /* Axis-aligned bounds of all vertices; returns 0 when there are none. */
 int zs_model_bounds(const zs_model *m, double lo[3], double hi[3]);

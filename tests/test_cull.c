@@ -62,7 +62,7 @@ static void walk(const char *spec, int frames, int step, const zs_cull_method *m
   zs_clock_params_default(&clock);
   if (latency_ns >= 0) clock.query_latency_ns = latency_ns;
   for (int k = 0; k < n; k++) {
-    zs_device_config cfg = {walk_w, walk_h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+    zs_device_config cfg = {walk_w, walk_h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
     ck_assert_int_eq(zs_device_create(&cfg, &dev[k], &err), ZS_OK);
     ck_assert_int_eq(zs_device_set_clock(dev[k], &clock, &err), ZS_OK);
     ck_assert_int_eq(zs_culler_create(methods[k], walk_costs ? walk_costs[k] : NULL, &cul[k], &err),
@@ -274,7 +274,7 @@ static void walk_cameras(const zs_scene *s, const zs_camera *cams, int n, int w,
   ck_assert_int_eq(zs_octree_build(&t, s, NULL, &err), ZS_OK);
   uint32_t *ref = malloc((size_t)w * h * sizeof *ref);
   for (int k = 0; k < NEXACT; k++) {
-    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+    zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
     zs_device *dev;
     zs_culler *c;
     ck_assert_int_eq(zs_device_create(&cfg, &dev, &err), ZS_OK);
@@ -614,7 +614,7 @@ START_TEST(auto_costs_nothing_without_occlusion) {
   int64_t total[4] = {0, 0, 0, 0};
   uint64_t queries[4] = {0, 0, 0, 0};
   for (int k = 0; k < 4; k++) {
-    zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+    zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
     zs_device *d;
     zs_culler *c;
     ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);

@@ -22,7 +22,7 @@ static void keep_ids(void *user, const zs_row *row) {
 /* A device and camera: perspective, eye at `eye`, looking at the origin,
  * with an up vector rolled by roll degrees. */
 static zs_device *device(zs_algo algo) {
-  zs_device_config cfg = {W, H, algo, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {W, H, algo, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
@@ -139,7 +139,7 @@ START_TEST(roll_keeps_specks_whatever_they_snap_to) {
                      cy + zs_rng_range(&rng, -0.06, 0.06), cz + zs_rng_range(&rng, -0.06, 0.06));
     mb_face(&b, v, 3, 0xFFFFFF);
   }
-  zs_device_config cfg = {W, H, ZS_ALGO_DEPTHSORT, ZS_SHADE_ID, 1, 1, 0, 0};
+  zs_device_config cfg = {W, H, ZS_ALGO_DEPTHSORT, ZS_SHADE_ID, 1, 1, 0, 0, 0};
   zs_device *d = NULL;
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
   double eye[3] = {0, 0, 40};

@@ -13,7 +13,7 @@
 static zs_error err;
 
 static zs_device *device(int w, int h) {
-  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
@@ -319,7 +319,7 @@ START_TEST(test_needs_a_pyramid_of_this_frame) {
                                       &maybe, &err),
                    ZS_ERR_ARG);
   zs_device_destroy(d);
-  zs_device_config cfg = {32, 32, ZS_ALGO_SCANLINE, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {32, 32, ZS_ALGO_SCANLINE, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_hzb_build(d, &err), ZS_ERR_UNSUPPORTED);

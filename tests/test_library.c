@@ -154,7 +154,7 @@ START_TEST(zero_config_renders) {
   ck_assert_int_eq(got->threads, 1);
   double pos[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
   int32_t start[] = {0, 4}, verts[] = {0, 1, 2, 3};
-  zs_mesh quad = {pos, 4, start, verts, 1, NULL, NULL};
+  zs_mesh quad = {.pos = pos, .nverts = 4, .face_start = start, .face_vert = verts, .nfaces = 1};
   double view[16], proj[16];
   const double eye[3] = {0, 0, 4}, target[3] = {0, 0, 0}, up[3] = {0, 1, 0};
   ck_assert(zs_mat_look_at(view, eye, target, up));

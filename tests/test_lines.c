@@ -17,7 +17,7 @@ static void keep(void *user, const zs_row *row) {
 /* Draws m and its edges (ortho camera: window x, y = world x, y) and
  * returns the number of ink pixels. */
 static int ink(const zs_mesh *m) {
-  zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0, 0};
+  zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);

@@ -11,7 +11,7 @@ static zs_error err;
 
 /* Orthographic device: window x, y = world x, y; eye distance = -z. */
 static zs_device *ortho_device(int w, int h, zs_algo algo) {
-  zs_device_config cfg = {w, h, algo, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {w, h, algo, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
@@ -127,7 +127,7 @@ START_TEST(counts_equal_pixels_written) {
   const uint64_t seed = 99;
   zs_rng rng;
   zs_rng_seed(&rng, seed);
-  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
   double view[16], proj[16];

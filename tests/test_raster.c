@@ -59,7 +59,7 @@ static void ortho_camera(zs_device *d, int w, int h, double znear, double zfar) 
 static zs_span_fill spans_for_devices = ZS_SPANS_BEST;
 
 static zs_device *device(int w, int h, zs_algo algo, zs_shade shade, int cull) {
-  zs_device_config cfg = {w, h, algo, shade, cull, 1, 0, spans_for_devices};
+  zs_device_config cfg = {w, h, algo, shade, cull, 1, 0, spans_for_devices, 0};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);
@@ -664,7 +664,8 @@ START_TEST(a_failed_draw_leaves_its_earlier_faces_as_drawn) {
   double pos[] = {4, 4, -1, 40, 6, -2, 38, 36, -3, 5, 30, -1.5};
   int32_t fs[] = {0, 4, 8}, fv[] = {0, 1, 2, 3, 0, 1, 2, 9};
   uint32_t frgb[] = {0xC08040, 0xFFFFFF};
-  const zs_mesh bad = {pos, 4, fs, fv, 2, frgb, NULL}, good = {pos, 4, fs, fv, 1, frgb, NULL};
+  const zs_mesh bad = {.pos = pos, .nverts = 4, .face_start = fs, .face_vert = fv, .nfaces = 2, .face_rgb = frgb},
+                good = {.pos = pos, .nverts = 4, .face_start = fs, .face_vert = fv, .nfaces = 1, .face_rgb = frgb};
   for (int algo = ZS_ALGO_ZBUFFER; algo <= ZS_ALGO_DEPTHSORT; algo++) {
     frame alone = frame_new(S, S), failed = frame_new(S, S);
     render(&good, S, S, (zs_algo)algo, ZS_SHADE_FLAT, 0, NULL, NULL, &alone);
@@ -703,10 +704,10 @@ END_TEST
 static void vertex_stage_both(double *pos, int n, const double view[16], const double proj[16],
                               zs_vert_scratch v[2], double *gx, double *gy) {
   enum { FROM = 5 };
-  zs_mesh m = {pos, n, NULL, NULL, 0, NULL, NULL};
+  zs_mesh m = {.pos = pos, .nverts = n};
   for (int k = 0; k < 2; k++) {
     zs_device_config cfg = {256, 256, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0,
-                            k ? ZS_SPANS_AVX512 : ZS_SPANS_SCALAR};
+                            k ? ZS_SPANS_AVX512 : ZS_SPANS_SCALAR, 0};
     zs_device *d = NULL;
     zs_error err;
     zs_error_clear(&err);
@@ -845,7 +846,7 @@ START_TEST(scanline_bands_start_each_frame_clean) {
     frame f[2];
     zs_raster_stats st[2];
     for (int k = 0; k < 2; k++) {
-      zs_device_config cfg = {W, H, ZS_ALGO_SCANLINE, sh, 0, k ? 3 : 1, 0, ZS_SPANS_BEST};
+      zs_device_config cfg = {W, H, ZS_ALGO_SCANLINE, sh, 0, k ? 3 : 1, 0, ZS_SPANS_BEST, 0};
       zs_device *d = NULL;
       zs_error err;
       zs_error_clear(&err);
@@ -967,7 +968,7 @@ END_TEST
 static zs_algo algo_of_next = ZS_ALGO_ZBUFFER;
 static zs_device *perspective_device(const frame *f, int threads, double ex, double ey,
                                      double ez) {
-  zs_device_config cfg = {f->w, f->h, algo_of_next, ZS_SHADE_FLAT, 0, threads, 0, 0};
+  zs_device_config cfg = {f->w, f->h, algo_of_next, ZS_SHADE_FLAT, 0, threads, 0, 0, 0};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);
@@ -1147,7 +1148,7 @@ START_TEST(deferred_small_draws_land_as_drawn_at_once) {
   deferred_equals_at_once(ZS_ALGO_DEPTHSORT, m);
 
   /* the queue is real: before the flush nothing is written or counted */
-  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 2, 0, 0};
+  zs_device_config cfg = {160, 120, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 2, 0, 0, 0};
   zs_device *d = NULL;
   zs_error err;
   zs_error_clear(&err);

@@ -28,7 +28,7 @@ static void keep(void *user, const zs_row *row) {
 static zs_raster_stats draw(const zs_mesh *m, const double model[16], const double view[16],
                             const double proj[16], zs_algo algo, zs_shade shade, int cull,
                             frame *f) {
-  zs_device_config cfg = {W, H, algo, shade, cull, 1, 0, 0};
+  zs_device_config cfg = {W, H, algo, shade, cull, 1, 0, 0, 0};
   zs_device *d = NULL;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);

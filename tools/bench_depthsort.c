@@ -62,8 +62,8 @@ static zs_status run_motion(const zs_scene *s, const char *motion, int frames, i
   if (zs_path_named(motion, &base, frames, &path, err)) return err->code;
   zs_device *full = NULL, *coherent = NULL, *zbuf = NULL;
   /* back faces culled, as the paper's pipeline does before it sorts */
-  zs_device_config cfg = {w, h, ZS_ALGO_DEPTHSORT, ZS_SHADE_ID, 1, 1, 0, 0};
-  zs_device_config zc = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 1, 1, 0, 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_DEPTHSORT, ZS_SHADE_ID, 1, 1, 0, 0, 0};
+  zs_device_config zc = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 1, 1, 0, 0, 0};
   size_t npx = (size_t)w * (size_t)h;
   uint32_t *ids = malloc(npx * sizeof *ids);
   double *full_ms = malloc((size_t)frames * sizeof *full_ms);

@@ -250,7 +250,7 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
   uint32_t *ids = malloc((size_t)w * h * sizeof *ids);
   zs_mesa *mesa = NULL;
   zs_device *dev = NULL;
-  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0, spans_of(o)};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0, spans_of(o), 0};
   zs_status st = !mms || !ids ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
   if (!st && !(st = zs_mesa_create(w, h, &mesa, err))) st = zs_device_create(&cfg, &dev, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
@@ -438,11 +438,11 @@ static zs_status compare_threads(const bench_opts *o, zs_algo algo, const zs_sce
                      ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory")
                      : ZS_OK;
   for (int d = 0; d < 2 && !st; d++) {
-    zs_device_config cfg = {w, h, algo, ZS_SHADE_FLAT, 0, d ? n : 1, 0, spans_of(o)};
+    zs_device_config cfg = {w, h, algo, ZS_SHADE_FLAT, 0, d ? n : 1, 0, spans_of(o), 0};
     st = zs_device_create(&cfg, &dev[d], err);
   }
   for (int i = 0; i < n && pinned && !st; i++) {
-    zs_device_config cfg = {w, h, algo, ZS_SHADE_FLAT, 0, 1, 0, spans_of(o)};
+    zs_device_config cfg = {w, h, algo, ZS_SHADE_FLAT, 0, 1, 0, spans_of(o), 0};
     st = zs_device_create(&cfg, &pf[i].dev, err);
     pf[i] = (pinned_frame){pf[i].dev, s, view, proj, cpus[i], 0, 0.0, ZS_OK, {0}};
   }
@@ -560,7 +560,7 @@ static zs_status run_case(const bench_opts *o, int a, const char *name, const zs
                           const double view[16], const double proj[16], double *ms, bench_row *r,
                           zs_error *err) {
   zs_device_config cfg = {o->width, o->height, algos[a], ZS_SHADE_FLAT, 0,
-                          algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0, spans_of(o)};
+                          algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0, spans_of(o), 0};
   zs_device *dev;
   zs_status st = zs_device_create(&cfg, &dev, err);
   if (st) return st;

@@ -173,7 +173,7 @@ static zs_status scene_fn(zs_device *d, void *ctx, zs_error *err) {
 }
 
 static zs_status measure_synthetic(synthetic kind, int repeat, workload *w, zs_error *err) {
-  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
   double view[16], proj[16];
@@ -238,7 +238,7 @@ static zs_status measure_synthetic(synthetic kind, int repeat, workload *w, zs_e
 }
 
 static zs_status measure_scene(const zs_scene *m, int repeat, workload *w, zs_error *err) {
-  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {SIDE, SIDE, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
   zs_camera cam;
@@ -281,7 +281,7 @@ static zs_status hzb_fn(zs_device *d, const hzb_run *r, uint8_t *maybe, zs_error
  * counts from the clock. */
 static zs_status time_hzb(const zs_scene *sc, const double view[16], const double proj[16],
                           int side, int repeat, const hzb_run *run, workload *w, zs_error *err) {
-  zs_device_config cfg = {side, side, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {side, side, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *d = NULL;
   if (zs_device_create(&cfg, &d, err)) return err->code;
   double *times = malloc((size_t)repeat * sizeof *times);

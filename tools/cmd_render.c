@@ -133,11 +133,19 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
       o->algo = (zs_algo)al;
     } else if (strcmp(a, "--shade") == 0) {
       VALUE();
-      if (strcmp(v, "flat") == 0) o->shade = ZS_SHADE_FLAT;
-      else if (strcmp(v, "id") == 0) o->shade = ZS_SHADE_ID;
-      else if (strcmp(v, "depth") == 0) o->shade = ZS_SHADE_DEPTH;
-      else if (strcmp(v, "overdraw") == 0) o->shade = ZS_SHADE_OVERDRAW;
-      else return zs_error_set(err, ZS_ERR_ARG, "--shade: expected flat, id, depth or overdraw, got '%s'", v);
+      int sh = zs_shade_parse(v);
+      if (sh < 0)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "--shade: expected auto, flat, unlit, gouraud, phong, normal, id, "
+                            "depth or overdraw, got '%s'", v);
+      o->shade = (zs_shade)sh;
+    } else if (strcmp(a, "--filter") == 0) {
+      VALUE();
+      int f = zs_filter_parse(v);
+      if (f <= 0)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "--filter: expected nearest, bilinear or trilinear, got '%s'", v);
+      o->filter = (zs_filter)f;
     } else if (strcmp(a, "--cull") == 0) {
       VALUE();
       if ((o->cull = zs_cull_method_parse(v)) < 0)
@@ -435,7 +443,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     fputc('\n', stderr);
   }
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
-                          o->view.cull_back, o->threads, o->background, 0};
+                          o->view.cull_back, o->threads, o->background, 0, o->filter};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   zs_device_keep_line_runs(dev, o->svg && !keep);

@@ -20,6 +20,9 @@ typedef struct zs_cmd_render_opts {
   zs_view_opts view;
   zs_algo algo;
   zs_shade shade;
+  zs_filter filter;    /* --filter: every texture's; 0: each material's */
+  zs_light lights[ZS_MAX_LIGHTS]; /* --light, in the order given */
+  int nlights;
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
   zs_query_bounds bounds;
   zs_clock_params clock;

@@ -578,8 +578,12 @@ static zs_status zbuffer_steps(tracer *t, zs_device *dev, const zs_scene *s, zs_
     const zs_mesh *m = &s->meshes[in->mesh].mesh;
     for (int32_t f = 0; f < m->nfaces; f++) {
       /* the one face, over the mesh's own arrays */
-      zs_mesh one = {m->pos, m->nverts, m->face_start + f, m->face_vert, 1,
-                     m->face_rgb ? m->face_rgb + f : NULL, m->face_id ? m->face_id + f : NULL};
+      zs_mesh one = *m;
+      one.face_start = m->face_start + f;
+      one.nfaces = 1;
+      one.face_rgb = m->face_rgb ? m->face_rgb + f : NULL;
+      one.face_id = m->face_id ? m->face_id + f : NULL;
+      one.face_material = m->face_material ? m->face_material + f : NULL;
       if (zs_device_draw(dev, &one, in->model, in->id_base, in->rgb, err)) return err->code;
       uint32_t id = in->id_base + (uint32_t)(m->face_id ? m->face_id[f] : f);
       print_step(t, dev, ++step, id);
@@ -683,7 +687,7 @@ int zs_cmd_trace(int argc, char **argv) {
   if (zs_frame_camera(&model, &o.view.cam, o.view.width, o.view.height, view, proj, &err))
     goto fail;
   zs_device_config cfg = {o.view.width, o.view.height, o.zbuffer ? ZS_ALGO_ZBUFFER : ZS_ALGO_SCANLINE,
-                          ZS_SHADE_ID, o.view.cull_back, 1, ZS_BACKGROUND_RGB, 0};
+                          ZS_SHADE_ID, o.view.cull_back, 1, ZS_BACKGROUND_RGB, 0, 0};
   if (zs_device_create(&cfg, &dev, &err)) goto fail;
   t.o = &o;
   t.out = stdout;

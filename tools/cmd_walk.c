@@ -312,7 +312,7 @@ static zs_status make_devices(const walk_opts *o, walk *wk, zs_error *err) {
     /* id shading, which the comparisons read; flat when --frames-dir shows
      * the frames shaded (the ids are kept either way, the clock the same) */
     zs_shade shade = o->frames_dir ? o->frames_shade : ZS_SHADE_ID;
-    zs_device_config cfg = {wk->w, wk->h, ZS_ALGO_ZBUFFER, shade, 0, 1, ZS_BACKGROUND_RGB, 0};
+    zs_device_config cfg = {wk->w, wk->h, ZS_ALGO_ZBUFFER, shade, 0, 1, ZS_BACKGROUND_RGB, 0, 0};
     if (zs_device_create(&cfg, &r->dev, err) ||
         zs_culler_create(r->m, &o->cost, &r->culler, err) ||
         zs_culler_set_bounds(r->culler, o->bounds, err) ||
@@ -321,7 +321,7 @@ static zs_status make_devices(const walk_opts *o, walk *wk, zs_error *err) {
   }
   if (o->latency_frames >= 0 && set_latency(o, wk, &clock, err)) return err->code;
   for (int k = 0; k < o->nalgos; k++) {
-    zs_device_config cfg = {wk->w, wk->h, o->algos[k], ZS_SHADE_ID, 0, 1, 0, 0};
+    zs_device_config cfg = {wk->w, wk->h, o->algos[k], ZS_SHADE_ID, 0, 1, 0, 0, 0};
     wk->algos[k].a = o->algos[k];
     if (zs_device_create(&cfg, &wk->algos[k].dev, err) ||
         zs_device_set_clock(wk->algos[k].dev, &clock, err))

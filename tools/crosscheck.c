@@ -106,8 +106,8 @@ static zs_status depths_alone(zs_device *dev, const zs_scene *s, const double vi
     if (w->inst >= 0) {
       const zs_instance *in = &s->inst[w->inst];
       const zs_mesh *m = &s->meshes[in->mesh].mesh;
-      zs_mesh alone = {m->pos, m->nverts, fstart + w->first + k, fvert + w->vfirst, w->nfaces,
-                       NULL, NULL};
+      zs_mesh alone = {.pos = m->pos, .nverts = m->nverts, .face_start = fstart + w->first + k,
+                       .face_vert = fvert + w->vfirst, .nfaces = w->nfaces};
       zs_device_clear(dev);
       zs_device_set_camera(dev, view, proj);
       if ((st = zs_device_draw(dev, &alone, in->model, 0, 0, err)) || (st = zs_device_flush(dev, err)))
@@ -133,7 +133,7 @@ zs_status zs_crosscheck_faces(const zs_scene *s, const double view[16], const do
                               int w, int h, const uint32_t *other, FILE *list,
                               zs_crosscheck *out, zs_error *err) {
   *out = (zs_crosscheck){(uint64_t)w * (uint64_t)h, 0, 0, 0};
-  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
   zs_device *dev = NULL, *alone = NULL;
   candidate *cand = NULL;
   zs_status st = zs_device_create(&cfg, &dev, err);

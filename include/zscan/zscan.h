@@ -29,7 +29,8 @@
  * means the default, so a zero-initialised struct is always valid:
  *   zs_device_config.width, .height   0: 1024 x 768; else 1 .. 16384
  *   zs_device_config.algo             0: ZS_ALGO_ZBUFFER
- *   zs_device_config.shade            0: ZS_SHADE_FLAT
+ *   zs_device_config.shade            0: ZS_SHADE_AUTO (flat, or Phong for a
+ *                                     mesh with normals, colours or textures)
  *   zs_device_config.cull_back        0: back faces drawn
  *   zs_device_config.threads          0: 1; else 1 .. 64 (depthsort: its walk only)
  *   zs_device_config.background       0: black (0xRRGGBB)
@@ -41,6 +42,8 @@
  *                                     from its bounds (the automatic camera)
  *   zs_render_opts.fovy               0: the scene's, else 45 degrees
  *   zs_render_opts.znear, .zfar       0: from the scene's bounds
+ *   zs_render_opts.filter             0: each material's own texture filter
+ *   zs_render_opts.lights, .nlights   NULL: the scene's lights, else the headlight
  *   zs_load_opts.allow_empty          0: a model without faces is an error
  *   the device clock (zscan/clock.h)  zs_clock_params_default
  *
@@ -107,6 +110,8 @@ enum {
  * face the id used for the depth tie-break and ZS_SHADE_ID (NULL: the face
  * index); several mesh faces may share an id when a loader split one face.
  * face_rgb is 0xRRGGBB per face (NULL: grey). */
+typedef struct zs_material zs_material;
+
 typedef struct zs_mesh {
   double *pos;          /* x, y, z per vertex */
   int32_t nverts;
@@ -115,6 +120,25 @@ typedef struct zs_mesh {
   int32_t nfaces;
   uint32_t *face_rgb;
   int32_t *face_id;
+  /* Shading attributes, every one optional (NULL: none); only the lit and
+   * unlit shadings read them (ZS_SHADE_AUTO, _UNLIT, _GOURAUD, _PHONG,
+   * _NORMAL).  They belong to attribute vertices, so that a position may
+   * carry a different normal or texture coordinate in each face that
+   * meets there: corner k of the faces (face_vert[k]) takes attribute
+   * vertex corner_attr[k], -1 for none (a normal from the face's plane,
+   * white, (0, 0)); corner_attr NULL: the corner's position index, with
+   * nattrs == nverts. */
+  int32_t nattrs;
+  int32_t *corner_attr;
+  float *normal;        /* x, y, z per attribute vertex, any length; (0, 0, 0):
+                         * none, the face's plane normal instead */
+  uint8_t *color;       /* R, G, B, A per attribute vertex (0 .. 255) */
+  float *uv;            /* u, v per attribute vertex: (0, 0) the bottom left
+                         * of a texture, (1, 1) its top right, as in OpenGL */
+  int32_t *face_material; /* per face, into materials; -1 or NULL: material 0,
+                         * or none when nmaterials is 0 */
+  const zs_material *materials;
+  int32_t nmaterials;
 } zs_mesh;
 
 typedef enum zs_algo {
@@ -128,11 +152,23 @@ const char *zs_algo_name(zs_algo a);
 int zs_algo_parse(const char *name);
 
 typedef enum zs_shade {
-  ZS_SHADE_FLAT,     /* material colour times a Lambert term */
+  ZS_SHADE_AUTO,     /* as the mesh says: flat for a mesh without normals,
+                      * colours or textures, Phong for one with them */
+  ZS_SHADE_FLAT,     /* face colour times a Lambert term, attributes unread */
   ZS_SHADE_ID,       /* RGB = id + 1 as 24 bits, background 0 */
   ZS_SHADE_DEPTH,    /* grey from the linear eye distance, near white */
-  ZS_SHADE_OVERDRAW  /* fragments per pixel as a heat map, no depth test */
+  ZS_SHADE_OVERDRAW, /* fragments per pixel as a heat map, no depth test */
+  ZS_SHADE_UNLIT,    /* base colour x vertex colour x texel, unlit, in the
+                      * values the file gives (no sRGB conversion) */
+  ZS_SHADE_GOURAUD,  /* lit at the corners, colours interpolated */
+  ZS_SHADE_PHONG,    /* normals interpolated, Blinn-Phong at each pixel */
+  ZS_SHADE_NORMAL    /* the eye-space unit normal n as (n + 1) / 2 * 255 */
 } zs_shade;
+
+/* "auto", "flat", "id", "depth", "overdraw", "unlit", "gouraud", "phong",
+ * "normal"; and back (-1 for another name). */
+const char *zs_shade_name(zs_shade s);
+int zs_shade_parse(const char *name);
 
 /* How wide the span fill goes: spans of 10 pixels or more sixteen at a
  * time with AVX-512, of 16 or more eight at a time with AVX2 or four with
@@ -147,6 +183,96 @@ typedef enum zs_span_fill {
   ZS_SPANS_AVX512     /* at most AVX-512 (the same as best on x86-64) */
 } zs_span_fill;
 
+/* ---- Textures and materials ----
+ *
+ * A texture is an immutable grid of RGBA texels, 8 bits a channel (colour
+ * in sRGB, alpha linear), row 0 at the top, with its mip chain made when
+ * it is created, in integers: level k + 1 is max(1, w_k / 2) x max(1,
+ * h_k / 2), each texel the mean of the 2 x 2 texels of level k above it
+ * (the last row or column of an odd side folded into its neighbour's),
+ * rounded to nearest.  Sampling is in integers too (docs/API.md): the
+ * level of detail comes from the exact derivatives of the texture
+ * mapping at the pixel, so a pixel's texel never depends on its
+ * neighbours or the order of drawing. */
+typedef struct zs_texture zs_texture;
+
+enum { ZS_MAX_TEXTURE_SIDE = 8192 }; /* width and height, each */
+
+/* A texture of width x height texels rgba (4 bytes a texel, copied). */
+zs_status zs_texture_create(int width, int height, const uint8_t *rgba, zs_texture **out,
+                            zs_error *err);
+void zs_texture_destroy(zs_texture *tex);
+int zs_texture_width(const zs_texture *tex);
+int zs_texture_height(const zs_texture *tex);
+int zs_texture_levels(const zs_texture *tex);
+/* Level k's texels (RGBA, row 0 at the top) and size. */
+const uint8_t *zs_texture_level(const zs_texture *tex, int k, int *width, int *height);
+
+typedef enum zs_wrap {
+  ZS_WRAP_REPEAT,    /* GL_REPEAT */
+  ZS_WRAP_CLAMP,     /* GL_CLAMP_TO_EDGE */
+  ZS_WRAP_MIRROR     /* GL_MIRRORED_REPEAT */
+} zs_wrap;
+
+typedef enum zs_filter {
+  ZS_FILTER_DEFAULT,   /* the material's own (zs_material.filter) */
+  ZS_FILTER_NEAREST,   /* the nearest texel of level 0 (GL_NEAREST) */
+  ZS_FILTER_BILINEAR,  /* 2 x 2 texels of the nearest level
+                        * (GL_LINEAR_MIPMAP_NEAREST; GL_LINEAR magnified) */
+  ZS_FILTER_TRILINEAR  /* 2 x 2 texels of the two nearest levels, blended
+                        * (GL_LINEAR_MIPMAP_LINEAR) */
+} zs_filter;
+
+/* "default", "nearest", "bilinear", "trilinear"; and back (-1 otherwise). */
+const char *zs_filter_name(zs_filter f);
+int zs_filter_parse(const char *name);
+
+/* A surface's material, as glTF's metallic-free core and OBJ's MTL say
+ * it.  Colours are 8-bit sRGB; zs_material_default gives the grey of a
+ * face without one.  Nothing here has a zero default: fill every field. */
+struct zs_material {
+  uint8_t base[4];          /* base colour and alpha (glTF baseColorFactor, MTL Kd, d) */
+  uint8_t specular[3];      /* the highlight's colour (MTL Ks); 0: none */
+  uint8_t emissive[3];      /* light of its own (MTL Ke, glTF emissiveFactor) */
+  uint16_t shininess;       /* Blinn-Phong exponent 0 .. ZS_MAX_SHININESS (MTL Ns) */
+  uint8_t double_sided;     /* lit on both sides (glTF doubleSided) */
+  const zs_texture *base_texture; /* multiplies the base colour; NULL: none */
+  zs_wrap wrap_s, wrap_t;   /* across and up the texture */
+  zs_filter filter;         /* ZS_FILTER_DEFAULT: trilinear */
+};
+
+enum { ZS_MAX_SHININESS = 4096 };
+
+/* A mid-grey (0xB4B4B4), opaque, no highlight, double-sided, untextured. */
+zs_material zs_material_default(void);
+
+/* ---- Lights (the lit shadings: AUTO, GOURAUD, PHONG) ----
+ *
+ * A light's colour is linear RGB radiance (intensity folded in; 1 is a
+ * white light as bright as the headlight).  Every light and every product
+ * is evaluated in double, with +, -, *, / and sqrt only, in a fixed order
+ * (docs/ALGORITHMS.md gives the formula), so the bytes are the same on
+ * every machine. */
+typedef enum zs_light_kind {
+  ZS_LIGHT_DIRECTIONAL, /* parallel rays along direction */
+  ZS_LIGHT_POINT,       /* from position, falling off as 1 / d^2 */
+  ZS_LIGHT_SPOT,        /* a point light within a cone about direction */
+  ZS_LIGHT_AMBIENT      /* the same from every side, on every surface */
+} zs_light_kind;
+
+typedef struct zs_light {
+  zs_light_kind kind;
+  double color[3];        /* linear RGB, >= 0 */
+  double position[3];     /* point and spot */
+  double direction[3];    /* directional and spot: the way the light travels */
+  double inner_deg, outer_deg; /* spot: full light within inner, none past
+                           * outer (half angles, 0 < inner <= outer < 90) */
+  int eye_space;          /* position and direction in eye coordinates: the
+                           * light moves with the camera (a headlight) */
+} zs_light;
+
+enum { ZS_MAX_LIGHTS = 16 };
+
 typedef struct zs_device_config {
   int width, height;       /* 0: 1024 x 768 */
   zs_algo algo;            /* 0: zbuffer */
@@ -155,6 +281,7 @@ typedef struct zs_device_config {
   int threads;             /* 0: 1; up to 64 (depthsort: its walk only) */
   uint32_t background;     /* 0xRRGGBB for flat shading; 0: black */
   zs_span_fill spans;      /* 0: the widest the CPU has */
+  int filter;              /* a zs_filter for every texture; 0: each material's */
 } zs_device_config;
 
 /* Counters of one frame (since the last zs_device_clear). */
@@ -201,13 +328,24 @@ const zs_device_config *zs_device_config_of(const zs_device *dev);
  * (eye to clip), e.g. from zs_mat_look_at and zs_mat_perspective. */
 void zs_device_set_camera(zs_device *dev, const double view[16], const double proj[16]);
 
+/* The lights of the lit shadings from the next draw on: n of them (0 ..
+ * ZS_MAX_LIGHTS, copied).  A device starts with the headlight: a white
+ * directional light of 0.9 along the view, (0, 0, -1) in eye space, and
+ * an ambient light of 0.1.  Directions need not be unit; a zero
+ * direction, a negative colour, a spot's angles out of range or a value
+ * not finite is refused (ZS_ERR_ARG, naming the light and its field). */
+zs_status zs_device_set_lights(zs_device *dev, const zs_light *lights, int n, zs_error *err);
+
 /* Starts a frame: clears colour, depth and id, and the counters. */
 void zs_device_clear(zs_device *dev);
 
 /* Draws every face of mesh, placed by model (NULL: identity); face f gets
  * id id_base + face_id[f] and the colour rgb, or its mesh colour when rgb
  * is ZS_RGB_MESH.  In zbuffer mode the faces are rasterized now; in scanline
- * mode they are set up and kept for zs_device_finish. */
+ * mode they are set up and kept for zs_device_finish.  Under the shadings
+ * that read attributes, a pixel is shaded once, from the face that owns it
+ * when the frame is finished: the mesh, its materials and textures must
+ * stay valid until zs_device_finish. */
 zs_status zs_device_draw(zs_device *dev, const zs_mesh *mesh, const double model[16],
                          uint32_t id_base, uint32_t rgb, zs_error *err);
 
@@ -367,6 +505,9 @@ typedef struct zs_render_opts {
   double eye[3], target[3], up[3];
   double fovy;             /* degrees; 0: the scene's (45 unless it says) */
   double znear, zfar;      /* the clip planes' distances; 0: from the bounds */
+  zs_filter filter;        /* every texture's filter; 0: each material's */
+  const zs_light *lights;  /* NULL: the scene's lights, or the headlight */
+  int nlights;
 } zs_render_opts;
 
 /* Renders scene into out (allocated here; free it with zs_image_free):

@@ -33,7 +33,7 @@ STATUS_NAMES = (
 
 # zs_algo and zs_shade, in the header's enum order
 ALGOS = ("zbuffer", "scanline", "depthsort")
-SHADES = ("flat", "id", "depth", "overdraw")
+SHADES = ("auto", "flat", "id", "depth", "overdraw", "unlit", "gouraud", "phong", "normal")
 STYLES = ("solid", "hidden-line")
 
 
@@ -82,6 +82,9 @@ class zs_render_opts(ctypes.Structure):
         ("fovy", ctypes.c_double),
         ("znear", ctypes.c_double),
         ("zfar", ctypes.c_double),
+        ("filter", ctypes.c_int),  # zs_filter
+        ("lights", ctypes.c_void_p),  # const zs_light *
+        ("nlights", ctypes.c_int),
     ]
 
 

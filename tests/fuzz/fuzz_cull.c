@@ -54,7 +54,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (!ref || zs_octree_build(&t, &s, NULL, &err) != ZS_OK) goto done;
   have_tree = 1;
   for (int k = 0; k < NM; k++) {
-    zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0};
+    zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, 0};
     if (zs_device_create(&cfg, &dev[k], &err) != ZS_OK ||
         zs_culler_create(methods[k], NULL, &cul[k], &err) != ZS_OK)
       goto done;
