@@ -65,7 +65,7 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
 }
 
 int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
-  return algo == ZS_ALGO_ZBUFFER && shade == ZS_SHADE_FLAT;
+  return algo == ZS_ALGO_ZBUFFER && (shade == ZS_SHADE_FLAT || shade == ZS_SHADE_AUTO);
 }
 
 zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
@@ -75,7 +75,7 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (zs_frame_camera(scene, cam, o->width, o->height, view, proj, err)) return err->code;
   if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG,
-                        "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT");
+                        "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT or ZS_SHADE_AUTO");
   zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, 0};
   zs_device *dev = NULL;

@@ -115,6 +115,8 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
       return zs_error_set(err, ZS_ERR_NOMEM, "threads: cannot start %d threads", cfg->threads);
     }
   }
+  zs_surfaces_init(&d->surf, cfg->width, cfg->height, (zs_filter)cfg->filter);
+  d->reads_attrs = zs_shade_reads_attrs(cfg->shade);
   d->gx = 1.0 + (double)(1 << 15) / cfg->width;
   d->gy = 1.0 + (double)(1 << 15) / cfg->height;
   zs_mat_identity(d->view);
@@ -132,6 +134,7 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
 
 void zs_device_destroy(zs_device *d) {
   if (!d) return;
+  zs_surfaces_free(&d->surf);
   free(d->depth);
   free(d->id);
   free(d->rgb);
@@ -192,6 +195,17 @@ void zs_device_set_camera(zs_device *d, const double view[16],
   }
   d->shade_row = zs_row_shader_for(d->cfg.shade, d->perspective);
   zs_depthsort_set_projection(d->depthsort, proj, d->perspective);
+  d->surf.sets_stale = 1;
+}
+
+zs_status zs_device_set_lights(zs_device *d, const zs_light *lights, int n, zs_error *err) {
+  if (n > 0 && !lights) return zs_error_set(err, ZS_ERR_ARG, "lights: NULL with n = %d", n);
+  zs_status st = zs_lights_check(lights, n, err);
+  if (st != ZS_OK) return st;
+  if (n > 0) memcpy(d->surf.lights, lights, (size_t)n * sizeof *lights);
+  d->surf.nlights = n;
+  d->surf.sets_stale = 1;
+  return ZS_OK;
 }
 
 /* ---- clear ---- */
@@ -273,6 +287,7 @@ void zs_device_clear(zs_device *d) {
   zs_batch_reset(&d->batch);
   zs_depthsort_clear(d->depthsort);
   if (d->hzb) zs_hzb_invalidate(d->hzb);
+  zs_surfaces_clear(&d->surf);
   d->clear_buffers(d);
 }
 
@@ -297,7 +312,8 @@ static zs_status draw_now(zs_device *d, const zs_mesh *mesh, const double model[
  * is large enough to be set up in parallel on its own (defer.c). */
 static zs_status draw_queued(zs_device *d, const zs_mesh *mesh, const double model[16],
                              uint32_t id_base, uint32_t rgb, zs_error *err) {
-  if (d->query_open || mesh->nfaces >= ZS_DEFER_MAX_FACES)
+  if (d->query_open || mesh->nfaces >= ZS_DEFER_MAX_FACES ||
+      (d->reads_attrs && zs_surface_reads(d->cfg.shade, mesh)))
     return draw_now(d, mesh, model, id_base, rgb, err);
   return zs_defer_push(d, mesh, model, id_base, rgb, err);
 }

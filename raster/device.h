@@ -7,6 +7,7 @@
 
 #include "raster/clock.h"
 #include "raster/hzb.h"
+#include "raster/surface.h"
 #include "raster/tuning.h"
 
 typedef struct zs_deferred zs_deferred; /* defer.c */
@@ -77,6 +78,9 @@ struct zs_device {
   void (*emit)(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
                const uint32_t *rgb, const uint32_t *count, zs_row_sink sink, void *user);
   zs_deferred *deferred;          /* zs_device_defer_draws: the queued draws */
+  /* the shadings that read attributes (surface.h): the frame's records */
+  int reads_attrs;
+  zs_surfaces surf;
   /* zs_device_keep_line_runs: the hidden lines as vectors (lines.c) */
   int keep_runs;
   int nomem_runs;                 /* a run could not be kept */

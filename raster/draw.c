@@ -203,9 +203,116 @@ static zs_status setup_faces(const zs_draw_prep *pr, const zs_vert_scratch *v,
   return ZS_OK;
 }
 
+/* What became of one triangle of a face that reads attributes: a set-up
+ * result, or outside a clip plane. */
+enum { TRIANGLE_OUTSIDE = -1 };
+
+/* One triangle of a face that reads attributes (surface.h): its record
+ * noted, then the triangle set up (clipped first when it crosses a
+ * plane) with the record's number for its colour; the record is dropped
+ * when the triangle became no polygon. */
+static int setup_surface_triangle(const zs_draw_prep *pr, const zs_vert_scratch *v,
+                                  const int32_t tri[3], const int32_t corner[3], int32_t f,
+                                  zs_setup_params *sp, zs_batch *b, zs_face_counts *fc) {
+  unsigned and_code = ~0u, or_code = 0;
+  for (int i = 0; i < 3; i++) {
+    and_code &= v->outcode[tri[i]];
+    or_code |= v->outcode[tri[i]];
+  }
+  if (and_code) return TRIANGLE_OUTSIDE;
+  const int32_t rec = zs_surface_add_rec(pr->surf, pr->surf_draw, f, corner[0], corner[1],
+                                         corner[2]);
+  if (rec < 0) return ZS_SETUP_NOMEM;
+  sp->rgb = ZS_SURFACE_BIT | (uint32_t)rec;
+  const int32_t first_poly = b->npolys;
+  int r;
+  if (or_code) {
+    zs_clip_vert in[3], clipped[ZS_CLIP_MAX_VERTS];
+    for (int i = 0; i < 3; i++) in[i] = v->clip[tri[i]];
+    fc->clipped++;
+    const int n = zs_clip_polygon(in, 3, or_code, pr->gx, pr->gy, clipped);
+    r = n == 0 ? TRIANGLE_OUTSIDE : (int)zs_setup_polygon(b, sp, clipped, n);
+  } else {
+    r = (int)zs_setup_snapped(b, sp, v->snap, tri, 3);
+  }
+  if (b->npolys == first_poly) zs_surface_drop_rec(pr->surf);
+  return r;
+}
+
+/* The painter's key of a face drawn as triangles, noted as the flat
+ * draws note theirs (setup_faces), from the face whole. */
+static int note_surface_face(const zs_draw_prep *pr, const zs_vert_scratch *v, const int32_t *fv,
+                             int nv, const zs_setup_params *sp, zs_setup_result r,
+                             zs_depthsort *ds) {
+  zs_clip_vert in[ZS_MAX_POLY_VERTS], clipped[ZS_CLIP_MAX_VERTS];
+  unsigned and_code = ~0u, or_code = 0;
+  for (int i = 0; i < nv; i++) {
+    and_code &= v->outcode[fv[i]];
+    or_code |= v->outcode[fv[i]];
+  }
+  if (and_code) return 1;
+  int n = nv;
+  if (or_code) {
+    for (int i = 0; i < nv; i++) in[i] = v->clip[fv[i]];
+    if ((n = zs_clip_polygon(in, nv, or_code, pr->gx, pr->gy, clipped)) == 0) return 1;
+  }
+  if (!zs_depthsort_selects(ds, sp, r, v->clip, v->snap, fv, or_code ? clipped : NULL, n, in))
+    return 1;
+  double zsum = 0.0;
+  for (int i = 0; i < nv; i++) zsum += v->eyepos[3 * fv[i] + 2];
+  return zs_depthsort_note(ds, sp->id, -zsum / nv);
+}
+
+/* Faces [f0, f1) of a draw that reads attributes, each as the fan of
+ * triangles from its first corner (surface.h).  A face counts once: as
+ * rasterized when any of its triangles is, else as its first triangle
+ * fared (outside, back, degenerate, off the window); crossing a plane,
+ * once for each triangle that does. */
+static zs_status setup_surface_faces(const zs_draw_prep *pr, const zs_vert_scratch *v,
+                                     const zs_mesh *mesh, int32_t f0, int32_t f1,
+                                     uint32_t id_base, zs_depthsort *ds, zs_batch *b,
+                                     zs_face_counts *fc, zs_error *err) {
+  zs_setup_params sp = pr->sp;
+  for (int32_t f = f0; f < f1; f++) {
+    const int32_t s = mesh->face_start[f], nv = mesh->face_start[f + 1] - s;
+    fc->in++;
+    if (nv < 3 || nv > ZS_MAX_POLY_VERTS) {
+      fc->degenerate++;
+      continue;
+    }
+    const int32_t *fv = &mesh->face_vert[s];
+    for (int i = 0; i < nv; i++)
+      if (fv[i] < 0 || fv[i] >= mesh->nverts)
+        return zs_error_set(err, ZS_ERR_ARG, "draw: face %d uses vertex %d of %d", (int)f,
+                            (int)fv[i], (int)mesh->nverts);
+    sp.id = id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f);
+    int drawn = 0, first = ZS_SETUP_DEGENERATE;
+    for (int k = 1; k + 1 < nv; k++) {
+      const int32_t tri[3] = {fv[0], fv[k], fv[k + 1]}, corner[3] = {s, s + k, s + k + 1};
+      const int r = setup_surface_triangle(pr, v, tri, corner, f, &sp, b, fc);
+      if (r == ZS_SETUP_NOMEM) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+      if (r == ZS_SETUP_DRAWN) drawn = 1;
+      if (k == 1) first = r;
+    }
+    if (drawn) fc->rasterized++;
+    else if (first == TRIANGLE_OUTSIDE) fc->outside++;
+    else if (first == ZS_SETUP_BACK) fc->culled_back++;
+    else if (first == ZS_SETUP_OFFSCREEN) fc->offscreen++;
+    else fc->degenerate++;
+    if (__builtin_expect(ds != NULL, 0) &&
+        !note_surface_face(pr, v, fv, nv, &sp,
+                           drawn ? ZS_SETUP_DRAWN
+                                 : first < 0 ? ZS_SETUP_OFFSCREEN : (zs_setup_result)first,
+                           ds))
+      return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  }
+  return ZS_OK;
+}
+
 zs_status zs_draw_setup(const zs_draw_prep *pr, const zs_vert_scratch *v, const zs_mesh *mesh,
                         int32_t f0, int32_t f1, uint32_t id_base, uint32_t rgb, zs_depthsort *ds,
                         zs_batch *b, zs_face_counts *fc, zs_error *err) {
+  if (pr->surf) return setup_surface_faces(pr, v, mesh, f0, f1, id_base, ds, b, fc, err);
   flat_run run;
   run.n = 0;
   const zs_status st = setup_faces(pr, v, mesh, f0, f1, id_base, rgb, ds, b, fc, &run, err);

@@ -9,6 +9,7 @@
 
 #include "raster/depthsort.h"
 #include "raster/shade.h"
+#include "raster/surface.h"
 #include "raster/traversal.h"
 
 /* A draw's vertices after transformation (draw.c): clip coordinates,
@@ -44,6 +45,10 @@ struct zs_draw_prep {
   int flat, need_eye;
   zs_vertex_stage_fn vertex_stage;  /* the SIMD level's, before draw.c's loop */
   zs_flat_levels_fn flat_levels;
+  /* a draw that reads attributes: where its triangles are noted
+   * (surface.h), and its number there; NULL for any other draw */
+  zs_surfaces *surf;
+  int32_t surf_draw;
 };
 
 /* The counters the set-up of a range of faces adds. */

@@ -38,6 +38,20 @@ static void emit_shaded(zs_device *d, int y, const uint32_t *depth, const uint32
   emit_colours_of(d, y, depth, id, count, NULL, sink, user);
 }
 
+/* The shadings that read attributes: the words naming records shaded
+ * (surface.h); a frame without any goes out as drawn. */
+static void emit_surfaces(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+                          const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
+                          void *user) {
+  if (d->surf.nrecs == 0) {
+    emit_as_drawn(d, y, depth, id, rgb, count, sink, user);
+    return;
+  }
+  zs_surface_shade_row(&d->surf, y, rgb, d->row_out);
+  zs_row row = {y, d->cfg.width, d->row_out, depth, id, NULL};
+  sink(user, &row);
+}
+
 static void emit_overdraw(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
                           const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
                           void *user) {
@@ -228,7 +242,8 @@ void zs_finish_choose(zs_device *d) {
               : d->cfg.algo == ZS_ALGO_DEPTHSORT ? (bands ? finish_painter_bands : finish_painter)
               : bands                            ? finish_bands
                                                  : finish_scan;
-  d->emit = zs_shade_is_surface(d->cfg.shade)   ? emit_as_drawn
+  d->emit = zs_shade_reads_attrs(d->cfg.shade)  ? emit_surfaces
+            : zs_shade_is_surface(d->cfg.shade) ? emit_as_drawn
             : d->cfg.shade == ZS_SHADE_OVERDRAW ? emit_overdraw
                                                 : emit_shaded;
 }

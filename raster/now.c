@@ -157,7 +157,19 @@ zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[
   c->vertices = mesh->nverts;
   zs_draw_prep prep;
   zs_draw_prepare(&ks->prep, d->view, d->proj, model, &prep);
-  zs_status st = d->set_up(d, mesh, &prep, id_base, rgb, &c->faces, err);
+  zs_status st;
+  if (d->reads_attrs && ks == &d->state_of[ZS_KERNEL_DRAW] &&
+      zs_surface_reads(d->cfg.shade, mesh)) {
+    /* its triangles noted for the rows' shading (surface.h), on one
+     * thread, so that the records keep one list */
+    prep.surf = &d->surf;
+    prep.surf_draw = zs_surface_add_draw(&d->surf, mesh, d->view, prep.mv, prep.mvp,
+                                         d->perspective, rgb, d->cfg.shade);
+    if (prep.surf_draw < 0) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    st = zs_set_up_whole(d, mesh, &prep, id_base, rgb, &c->faces, err);
+  } else {
+    st = d->set_up(d, mesh, &prep, id_base, rgb, &c->faces, err);
+  }
   if (st != ZS_OK) return st;
   if (!d->rasterize(d, &ks->traversal, &c->scan))
     return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");

@@ -201,7 +201,7 @@ START_TEST(library_errors_name_its_options_not_flags) {
     zs_image im = {0};
     zs_error_clear(&err);
     ck_assert_int_eq(zs_render(scene, &o, &im, NULL, NULL, &err), ZS_ERR_ARG);
-    ck_assert_str_eq(err.msg, "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT");
+    ck_assert_str_eq(err.msg, "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT or ZS_SHADE_AUTO");
     ck_assert_ptr_null(im.rgb);
   }
   zs_scene_destroy(scene);

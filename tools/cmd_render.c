@@ -73,7 +73,7 @@ static const char usage_tail[] =
  * their folders, the one stream standard output carries. */
 static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *err) {
   if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
-    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade flat");
+    return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade auto or flat");
   if (o->overlay && o->cull < 0)
     return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
   if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))

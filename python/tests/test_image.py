@@ -180,7 +180,7 @@ def test_stats_are_the_frames_counters(image):
 CTYPE_OF = {
     "int": ctypes.c_int, "double": ctypes.c_double, "uint64_t": ctypes.c_uint64,
     "uint32_t": ctypes.c_uint32, "zs_algo": ctypes.c_int, "zs_shade": ctypes.c_int,
-    "zs_status": ctypes.c_int,
+    "zs_status": ctypes.c_int, "zs_filter": ctypes.c_int, "const zs_light": _lib.zs_light,
 }
 
 
@@ -234,10 +234,12 @@ def test_structs_mirror_the_header(name):
 def test_struct_sizes_and_offsets_are_the_c_compilers():
     # as offsetof and sizeof print them on x86-64 Linux (gcc 12)
     o = _lib.zs_render_opts
-    assert ctypes.sizeof(o) == 136
+    assert ctypes.sizeof(o) == 160
     assert [getattr(o, f).offset for f in ("algo", "hidden_line", "has_up", "eye", "target",
-                                           "up", "fovy", "znear", "zfar")] == \
-        [8, 24, 36, 40, 64, 88, 112, 120, 128]
+                                           "up", "fovy", "znear", "zfar", "filter", "lights",
+                                           "nlights")] == \
+        [8, 24, 36, 40, 64, 88, 112, 120, 128, 136, 144, 152]
+    assert ctypes.sizeof(_lib.zs_light) == 104
     assert ctypes.sizeof(_lib.zs_image) == 16 and _lib.zs_image.rgb.offset == 8
     assert ctypes.sizeof(_lib.zs_error) == 516 and _lib.zs_error.msg.offset == 4
     assert ctypes.sizeof(_lib.zs_diff_result) == 24

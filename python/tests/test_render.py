@@ -181,7 +181,7 @@ def test_refused_options(cli, kw, args, same_message):
 
 @pytest.mark.parametrize("kw,exc", [
     (dict(algo="bogus"), ValueError),
-    (dict(shade="phong"), ValueError),
+    (dict(shade="glossy"), ValueError),
     (dict(style="wireframe"), ValueError),
     (dict(size="64x48"), TypeError),
     (dict(size=(64,)), TypeError),

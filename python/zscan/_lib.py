@@ -64,6 +64,18 @@ class zs_load_opts(ctypes.Structure):
     _fields_ = [("allow_empty", ctypes.c_int)]
 
 
+class zs_light(ctypes.Structure):
+    _fields_ = [
+        ("kind", ctypes.c_int),  # zs_light_kind
+        ("color", ctypes.c_double * 3),
+        ("position", ctypes.c_double * 3),
+        ("direction", ctypes.c_double * 3),
+        ("inner_deg", ctypes.c_double),
+        ("outer_deg", ctypes.c_double),
+        ("eye_space", ctypes.c_int),
+    ]
+
+
 class zs_render_opts(ctypes.Structure):
     _fields_ = [
         ("width", ctypes.c_int),
@@ -83,7 +95,7 @@ class zs_render_opts(ctypes.Structure):
         ("znear", ctypes.c_double),
         ("zfar", ctypes.c_double),
         ("filter", ctypes.c_int),  # zs_filter
-        ("lights", ctypes.c_void_p),  # const zs_light *
+        ("lights", ctypes.POINTER(zs_light)),
         ("nlights", ctypes.c_int),
     ]
 

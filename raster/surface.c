@@ -1,0 +1,500 @@
+/* Surface shading (surface.h): the records of a frame's attribute draws,
+ * and the rows' pixels shaded from them after visibility is settled.
+ *
+ * A run of pixels naming one record is shaded by a loop chosen for its
+ * draw's shading and whether its material is textured (once per
+ * triangle, when it is prepared), from the triangle prepared once: its
+ * integer planes and its corners' attributes in fixed point.  The
+ * prepared triangles are kept in a small cache indexed by record, so the
+ * rows below a triangle's first find it ready; what a pixel gets does not
+ * depend on the cache, which only saves the work. */
+#include "raster/surface.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster/texture.h"
+#include "util/exactmath.h"
+#include "util/grow.h"
+#include "util/srgb.h"
+
+enum {
+  BARY_BITS = 24,        /* the weights b_i, in 2^-24 */
+  PLANE_BITS = 37,       /* |lambda_i| below 2^37 over the triangle's box */
+  CACHE_SLOTS = 256,     /* prepared triangles kept (a power of two) */
+  UV_ONE = 1 << 16       /* texture coordinates in 2^-16 */
+};
+#define NORMAL_ONE 1073741824.0 /* normals in 2^-30 */
+
+#define ZS_DEFAULT_RGB 0xB4B4B4u /* as the flat draws' (draw.c) */
+
+/* ---- the records ---- */
+
+void zs_surfaces_init(zs_surfaces *s, int width, int height, zs_filter filter) {
+  memset(s, 0, sizeof *s);
+  s->width = width;
+  s->height = height;
+  s->filter = filter;
+  s->nlights = zs_lights_default(s->lights);
+  s->sets_stale = 1;
+}
+
+void zs_surfaces_clear(zs_surfaces *s) {
+  s->ndraws = s->nrecs = s->nsets = 0;
+  s->sets_stale = 1;
+  if (s->cache) free(s->cache), s->cache = NULL; /* its records' numbers start again */
+}
+
+void zs_surfaces_free(zs_surfaces *s) {
+  free(s->draws);
+  free(s->recs);
+  free(s->sets);
+  free(s->cache);
+  memset(s, 0, sizeof *s);
+}
+
+int zs_surface_grow_recs(zs_surfaces *s) {
+  if (s->nrecs >= (int32_t)(ZS_SURFACE_BIT - 1 > INT32_MAX ? INT32_MAX : ZS_SURFACE_BIT - 1))
+    return 0;
+  return zs_grow((void **)&s->recs, &s->cap_recs, (int64_t)s->nrecs + 1, sizeof *s->recs);
+}
+
+int zs_surface_reads(zs_shade shade, const zs_mesh *mesh) {
+  if (shade == ZS_SHADE_AUTO) return mesh->normal || mesh->color || mesh->uv;
+  return shade >= ZS_SHADE_UNLIT;
+}
+
+/* mv's 3 x 3 cofactors, signed by its determinant: the inverse transpose
+ * up to a positive factor, which the normalisation of each normal drops. */
+static void normal_matrix(const double mv[16], double n[9]) {
+  const double a = mv[0], b = mv[1], c = mv[2], d = mv[4], e = mv[5], f = mv[6], g = mv[8],
+               h = mv[9], i = mv[10];
+  const double co[9] = {e * i - f * h, f * g - d * i, d * h - e * g,
+                        c * h - b * i, a * i - c * g, b * g - a * h,
+                        b * f - c * e, c * d - a * f, a * e - b * d};
+  const double det = a * co[0] + b * co[1] + c * co[2];
+  for (int k = 0; k < 9; k++) n[k] = det < 0 ? -co[k] : co[k];
+}
+
+int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double view[16],
+                            const double mv[16], const double mvp[16], int perspective,
+                            uint32_t rgb, zs_shade shade) {
+  if (s->sets_stale || s->nsets == 0) {
+    if (!zs_grow((void **)&s->sets, &s->cap_sets, (int64_t)s->nsets + 1, sizeof *s->sets))
+      return -1;
+    zs_light_set_make(s->lights, s->nlights, view, perspective, &s->sets[s->nsets++]);
+    s->sets_stale = 0;
+  }
+  if (!zs_grow((void **)&s->draws, &s->cap_draws, (int64_t)s->ndraws + 1, sizeof *s->draws))
+    return -1;
+  zs_surface_draw *d = &s->draws[s->ndraws];
+  d->mesh = mesh;
+  memcpy(d->mv, mv, sizeof d->mv);
+  memcpy(d->mvp, mvp, sizeof d->mvp);
+  normal_matrix(mv, d->nrm);
+  d->rgb = rgb;
+  d->shade = shade == ZS_SHADE_AUTO ? ZS_SHADE_PHONG : shade;
+  d->lights = s->nsets - 1;
+  return s->ndraws++;
+}
+
+size_t zs_surfaces_bytes(const zs_surfaces *s) {
+  return (size_t)s->cap_draws * sizeof *s->draws + (size_t)s->cap_recs * sizeof *s->recs +
+         (size_t)s->cap_sets * sizeof *s->sets;
+}
+
+/* ---- a triangle prepared ---- */
+
+typedef struct tri tri;
+typedef void (*run_fn)(const tri *t, int y, int x0, int x1, uint32_t *out);
+
+struct tri {
+  int32_t rec;                   /* the record it is, -1: an empty slot */
+  run_fn run;
+  int32_t ox, oy;                /* the planes' origin pixel */
+  int64_t A[3], B[3], C[3];      /* lambda_i = A_i (x - ox) + B_i (y - oy) + C_i */
+  int32_t col[3][4];             /* unlit: base x vertex colour, 8 bits; lit:
+                                  * the same in 16-bit linear light */
+  int32_t d16[3][3], s16[3][3];  /* gouraud: each corner's diffuse and specular */
+  int64_t s[3], t[3];            /* texture coordinates, 2^-16 */
+  int32_t n[3][3];               /* eye-space unit normals, 2^-30 */
+  double p[3][3];                /* eye-space positions */
+  zs_sampler sampler;
+  int mipmapped;                 /* the filter needs the level of detail */
+  zs_reflectance refl;
+  const zs_light_set *lights;
+};
+
+/* The perspective-correct planes of a triangle with clip coordinates c
+ * (surface.h, INTERPOLATION), in integers, for a width x height window. */
+static void make_planes(tri *t, const double c[3][4], int width, int height) {
+  double h[3][3]; /* (X, Y, W): image pixels times w */
+  int behind = 0;
+  double lo[2] = {0, 0}, hi[2] = {0, 0};
+  for (int i = 0; i < 3; i++) {
+    h[i][0] = (c[i][0] + c[i][3]) * (0.5 * width);
+    h[i][1] = (c[i][3] - c[i][1]) * (0.5 * height);
+    h[i][2] = c[i][3];
+    if (!(c[i][3] > 0.0)) {
+      behind = 1;
+      continue;
+    }
+    const double px = h[i][0] / h[i][2], py = h[i][1] / h[i][2];
+    if (i == 0 || px < lo[0]) lo[0] = px;
+    if (i == 0 || py < lo[1]) lo[1] = py;
+    if (i == 0 || px > hi[0]) hi[0] = px;
+    if (i == 0 || py > hi[1]) hi[1] = py;
+  }
+  /* the pixels the triangle may own: its projected box, widened by the
+   * snapping, within the window (the window whole when a corner lies
+   * behind the eye and the box is unbounded) */
+  int32_t x0 = 0, y0 = 0, x1 = width - 1, y1 = height - 1;
+  if (!behind) {
+    if (lo[0] - 2 > x0) x0 = (int32_t)(lo[0] - 2);
+    if (lo[1] - 2 > y0) y0 = (int32_t)(lo[1] - 2);
+    if (hi[0] + 2 < x1) x1 = (int32_t)(hi[0] + 2);
+    if (hi[1] + 2 < y1) y1 = (int32_t)(hi[1] + 2);
+    if (x1 < x0) x1 = x0;
+    if (y1 < y0) y1 = y0;
+  }
+  double e[3][3];
+  for (int i = 0; i < 3; i++) {
+    const double *a = h[(i + 1) % 3], *b = h[(i + 2) % 3];
+    e[i][0] = a[1] * b[2] - a[2] * b[1];
+    e[i][1] = a[2] * b[0] - a[0] * b[2];
+    e[i][2] = a[0] * b[1] - a[1] * b[0];
+  }
+  const double det = h[0][0] * e[0][0] + h[0][1] * e[0][1] + h[0][2] * e[0][2];
+  t->ox = x0;
+  t->oy = y0;
+  if (!(det != 0.0) || !isfinite(det)) { /* edge-on: the first corner's values */
+    for (int i = 0; i < 3; i++) t->A[i] = t->B[i] = 0, t->C[i] = i == 0;
+    return;
+  }
+  const double sign = det < 0 ? -1.0 : 1.0;
+  double at0[3], biggest = 0.0;
+  for (int i = 0; i < 3; i++) {
+    for (int k = 0; k < 3; k++) e[i][k] = e[i][k] * sign;
+    at0[i] = e[i][0] * (x0 + 0.5) + e[i][1] * (y0 + 0.5) + e[i][2];
+  }
+  const double dx = (double)(x1 - x0), dy = (double)(y1 - y0);
+  for (int corner = 0; corner < 4; corner++) {
+    double sum = 0.0;
+    for (int i = 0; i < 3; i++)
+      sum += fabs(at0[i] + e[i][0] * (corner & 1 ? dx : 0.0) + e[i][1] * (corner & 2 ? dy : 0.0));
+    if (sum > biggest) biggest = sum;
+  }
+  int ex = 0;
+  frexp(biggest, &ex); /* biggest < 2^ex */
+  const double scale = ldexp(1.0, PLANE_BITS - ex);
+  for (int i = 0; i < 3; i++) {
+    t->A[i] = llrint(e[i][0] * scale);
+    t->B[i] = llrint(e[i][1] * scale);
+    t->C[i] = llrint(at0[i] * scale);
+  }
+}
+
+/* The weights b (2^-24, summing to 2^24) at pixel (x, y); l gets the
+ * planes' values there (negatives as 0). */
+static inline void weights_at(const tri *t, int x, int y, int64_t l[3], int64_t b[3]) {
+  const int64_t dx = x - t->ox, dy = y - t->oy;
+  int64_t sum = 0;
+  for (int i = 0; i < 3; i++) {
+    int64_t v = t->A[i] * dx + t->B[i] * dy + t->C[i];
+    if (v < 0) v = 0;
+    if (v > ((int64_t)1 << (PLANE_BITS + 1))) v = (int64_t)1 << (PLANE_BITS + 1);
+    l[i] = v;
+    sum += v;
+  }
+  if (sum <= 0) {
+    b[0] = (int64_t)1 << BARY_BITS, b[1] = b[2] = 0;
+    return;
+  }
+  b[0] = (l[0] << BARY_BITS) / sum;
+  b[1] = (l[1] << BARY_BITS) / sum;
+  b[2] = ((int64_t)1 << BARY_BITS) - b[0] - b[1];
+}
+
+static inline int64_t interp(const int64_t b[3], int64_t a0, int64_t a1, int64_t a2) {
+  return (b[0] * a0 + b[1] * a1 + b[2] * a2 + ((int64_t)1 << (BARY_BITS - 1))) >> BARY_BITS;
+}
+
+/* The level of detail at the pixel whose plane values are l (texture.h,
+ * LEVEL OF DETAIL), in 1/256 level: from the derivatives of s = N / S
+ * along x, dN/dx S - N dS/dx over S^2, and along y. */
+static inline int32_t lod_at(const tri *t, const int64_t l[3]) {
+  double S = 0, Ns = 0, Nt = 0, Sx = 0, Sy = 0, Nsx = 0, Nsy = 0, Ntx = 0, Nty = 0;
+  for (int i = 0; i < 3; i++) {
+    const double li = (double)l[i], a = (double)t->A[i], b = (double)t->B[i];
+    const double si = (double)t->s[i], ti = (double)t->t[i];
+    S += li, Ns += li * si, Nt += li * ti;
+    Sx += a, Sy += b;
+    Nsx += a * si, Nsy += b * si, Ntx += a * ti, Nty += b * ti;
+  }
+  if (!(S > 0)) return 0;
+  const zs_texlevel *l0 = &t->sampler.tex->level[0];
+  const double ku = l0->width / (S * S * UV_ONE), kv = l0->height / (S * S * UV_ONE);
+  const double sx = (Nsx * S - Ns * Sx) * ku, sy = (Nsy * S - Ns * Sy) * ku;
+  const double tx = (Ntx * S - Nt * Sx) * kv, ty = (Nty * S - Nt * Sy) * kv;
+  const double rx = sx * sx + tx * tx, ry = sy * sy + ty * ty;
+  const double rho2 = rx > ry ? rx : ry;
+  if (!(rho2 > 1.0)) return 0; /* magnified (and NaN) */
+  /* log2(rho) = ln(rho^2) / (2 ln 2), in 1/256 */
+  const double lod = zs_log(rho2) * (128.0 / 0.69314718055994530942);
+  return lod > 256.0 * ZS_TEXTURE_MAX_LEVELS ? 256 * ZS_TEXTURE_MAX_LEVELS : (int32_t)lod;
+}
+
+static inline void texel_at(const tri *t, const int64_t l[3], const int64_t b[3],
+                            uint8_t out[4]) {
+  const int32_t lod = t->mipmapped ? lod_at(t, l) : 0;
+  zs_sample(&t->sampler, interp(b, t->s[0], t->s[1], t->s[2]),
+            interp(b, t->t[0], t->t[1], t->t[2]), lod, out);
+}
+
+static inline uint32_t clamp16(int64_t v) { return v < 0 ? 0 : v > 65535 ? 65535 : (uint32_t)v; }
+
+static inline uint32_t rgb_of(uint32_t r, uint32_t g, uint32_t b) { return r << 16 | g << 8 | b; }
+
+/* A linear value (0 .. 1, clamped) in 1/65535, rounded. */
+static inline uint32_t to16(double v) {
+  if (!(v > 0.0)) return 0;
+  if (v >= 1.0) return 65535;
+  return (uint32_t)(v * 65535.0 + 0.5);
+}
+
+/* The pixels [x0, x1) of row y, one loop per shading and texturing; the
+ * constants fold each copy's branches away. */
+__attribute__((always_inline)) static inline void shade_run(const tri *t, int y, int x0, int x1,
+                                                            uint32_t *out, const zs_shade sh,
+                                                            const int textured) {
+  for (int x = x0; x < x1; x++) {
+    int64_t l[3], b[3];
+    uint8_t tx[4] = {255, 255, 255, 255};
+    weights_at(t, x, y, l, b);
+    if (textured) texel_at(t, l, b, tx);
+    if (sh == ZS_SHADE_UNLIT) {
+      uint32_t c[3];
+      for (int k = 0; k < 3; k++) {
+        c[k] = (uint32_t)interp(b, t->col[0][k], t->col[1][k], t->col[2][k]);
+        if (textured) c[k] = (c[k] * tx[k] + 127) / 255;
+      }
+      out[x] = rgb_of(c[0], c[1], c[2]);
+    } else if (sh == ZS_SHADE_GOURAUD) {
+      uint32_t c[3];
+      for (int k = 0; k < 3; k++) {
+        int64_t d = interp(b, t->d16[0][k], t->d16[1][k], t->d16[2][k]);
+        if (textured) d = (d * zs_srgb_to_linear16[tx[k]] + 32767) / 65535;
+        c[k] = zs_linear16_to_srgb(clamp16(d + interp(b, t->s16[0][k], t->s16[1][k], t->s16[2][k])));
+      }
+      out[x] = rgb_of(c[0], c[1], c[2]);
+    } else if (sh == ZS_SHADE_PHONG) {
+      double n[3], p[3], base[3], d[3], s[3];
+      for (int k = 0; k < 3; k++) {
+        n[k] = (double)interp(b, t->n[0][k], t->n[1][k], t->n[2][k]);
+        p[k] = ((double)b[0] * t->p[0][k] + (double)b[1] * t->p[1][k] +
+                (double)b[2] * t->p[2][k]) * 0x1p-24;
+        int64_t c = interp(b, t->col[0][k], t->col[1][k], t->col[2][k]);
+        if (textured) c = (c * zs_srgb_to_linear16[tx[k]] + 32767) / 65535;
+        base[k] = (double)c / 65535.0;
+      }
+      zs_light_at(t->lights, &t->refl, p, n, base, d, s);
+      out[x] = rgb_of(zs_linear16_to_srgb(to16(d[0] + s[0])), zs_linear16_to_srgb(to16(d[1] + s[1])),
+                      zs_linear16_to_srgb(to16(d[2] + s[2])));
+    } else { /* ZS_SHADE_NORMAL */
+      double n[3], len2 = 0.0;
+      for (int k = 0; k < 3; k++) {
+        n[k] = (double)interp(b, t->n[0][k], t->n[1][k], t->n[2][k]);
+        len2 += n[k] * n[k];
+      }
+      const double len = sqrt(len2);
+      uint32_t c[3];
+      for (int k = 0; k < 3; k++) {
+        const double v = len > 0.0 ? n[k] / len * 127.5 + 128.0 : 128.0;
+        c[k] = v < 0.0 ? 0 : v >= 255.0 ? 255 : (uint32_t)v;
+      }
+      out[x] = rgb_of(c[0], c[1], c[2]);
+    }
+  }
+}
+
+#define RUN(name, sh, tex)                                                    \
+  static void name(const tri *t, int y, int x0, int x1, uint32_t *out) {      \
+    shade_run(t, y, x0, x1, out, sh, tex);                                   \
+  }
+RUN(run_unlit, ZS_SHADE_UNLIT, 0)
+RUN(run_unlit_tex, ZS_SHADE_UNLIT, 1)
+RUN(run_gouraud, ZS_SHADE_GOURAUD, 0)
+RUN(run_gouraud_tex, ZS_SHADE_GOURAUD, 1)
+RUN(run_phong, ZS_SHADE_PHONG, 0)
+RUN(run_phong_tex, ZS_SHADE_PHONG, 1)
+RUN(run_normal, ZS_SHADE_NORMAL, 0)
+#undef RUN
+
+static run_fn run_for(zs_shade sh, int textured) {
+  switch (sh) {
+    case ZS_SHADE_UNLIT: return textured ? run_unlit_tex : run_unlit;
+    case ZS_SHADE_GOURAUD: return textured ? run_gouraud_tex : run_gouraud;
+    case ZS_SHADE_NORMAL: return run_normal;
+    default: return textured ? run_phong_tex : run_phong;
+  }
+}
+
+/* A texture coordinate in 2^-16, finite and within 2^40 so llrint is
+ * defined. */
+static int64_t uv_fixed(double u) {
+  if (!isfinite(u)) return 0;
+  if (u > 1099511627776.0) u = 1099511627776.0;
+  if (u < -1099511627776.0) u = -1099511627776.0;
+  return llrint(u * UV_ONE);
+}
+
+/* The triangle's texture coordinates moved by a whole period of the wrap
+ * (so the texels stay those of the coordinates given) towards 0, and
+ * clamped to +-2^31 (a triangle over 32,768 repeats of its texture is
+ * sampled as if it spanned that many). */
+static void settle_uv(int64_t v[3], zs_wrap w) {
+  int64_t lo = v[0];
+  for (int i = 1; i < 3; i++)
+    if (v[i] < lo) lo = v[i];
+  int64_t period = w == ZS_WRAP_MIRROR ? 2 * (int64_t)UV_ONE : (int64_t)UV_ONE;
+  int64_t off = 0;
+  if (w == ZS_WRAP_CLAMP) off = 0;
+  else off = (lo >= 0 ? lo / period : -((-lo + period - 1) / period)) * period;
+  for (int i = 0; i < 3; i++) {
+    int64_t u = v[i] - off;
+    if (w == ZS_WRAP_CLAMP) u = u < -2 * UV_ONE ? -2 * UV_ONE : u > 3 * UV_ONE ? 3 * UV_ONE : u;
+    v[i] = u > INT32_MAX ? INT32_MAX : u < -INT32_MAX ? -INT32_MAX : u;
+  }
+}
+
+static double lin(uint8_t c) { return zs_srgb_to_linear16[c] / 65535.0; }
+
+static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
+  const zs_surface_rec *r = &s->recs[rec];
+  const zs_surface_draw *dr = &s->draws[r->draw];
+  const zs_mesh *m = dr->mesh;
+  t->rec = rec;
+  double clip[3][4];
+  for (int i = 0; i < 3; i++) {
+    const double *pos = &m->pos[3 * (size_t)m->face_vert[r->corner[i]]];
+    double e[4];
+    zs_mat_apply(dr->mvp, pos, clip[i]);
+    zs_mat_apply(dr->mv, pos, e);
+    memcpy(t->p[i], e, sizeof t->p[i]);
+  }
+  make_planes(t, clip, s->width, s->height);
+
+  /* the face's material and colour */
+  const zs_material *mat = NULL;
+  if (m->materials && m->nmaterials > 0) {
+    int32_t k = m->face_material ? m->face_material[r->face] : 0;
+    mat = &m->materials[k >= 0 && k < m->nmaterials ? k : 0];
+  }
+  uint32_t rgb = dr->rgb != ZS_RGB_MESH ? dr->rgb
+                 : mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
+                 : m->face_rgb ? m->face_rgb[r->face] : ZS_DEFAULT_RGB;
+  const uint8_t base8[3] = {(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb};
+
+  /* the geometric normal, for corners without one */
+  double geo[3];
+  {
+    const double a[3] = {t->p[1][0] - t->p[0][0], t->p[1][1] - t->p[0][1], t->p[1][2] - t->p[0][2]};
+    const double b[3] = {t->p[2][0] - t->p[0][0], t->p[2][1] - t->p[0][1], t->p[2][2] - t->p[0][2]};
+    geo[0] = a[1] * b[2] - a[2] * b[1];
+    geo[1] = a[2] * b[0] - a[0] * b[2];
+    geo[2] = a[0] * b[1] - a[1] * b[0];
+  }
+  const int textured = mat && mat->base_texture && dr->shade != ZS_SHADE_NORMAL;
+  if (textured) {
+    zs_filter f = s->filter != ZS_FILTER_DEFAULT ? s->filter : mat->filter;
+    t->sampler = (zs_sampler){mat->base_texture, mat->wrap_s, mat->wrap_t,
+                              f == ZS_FILTER_DEFAULT ? ZS_FILTER_TRILINEAR : f};
+    t->mipmapped = t->sampler.filter != ZS_FILTER_NEAREST;
+  }
+  t->refl.double_sided = mat ? mat->double_sided : 1;
+  t->refl.shininess = mat ? mat->shininess : 0;
+  for (int k = 0; k < 3; k++) {
+    t->refl.emissive[k] = mat ? lin(mat->emissive[k]) : 0.0;
+    t->refl.specular[k] = mat ? lin(mat->specular[k]) : 0.0;
+  }
+  t->lights = &s->sets[dr->lights];
+
+  double nrm[3][3];
+  for (int i = 0; i < 3; i++) {
+    int32_t a = m->corner_attr ? m->corner_attr[r->corner[i]] : m->face_vert[r->corner[i]];
+    if (a >= m->nattrs) a = -1;
+    /* normal */
+    double n[3] = {0, 0, 0};
+    if (a >= 0 && m->normal) {
+      const float *f = &m->normal[3 * (size_t)a];
+      for (int k = 0; k < 3; k++)
+        n[k] = dr->nrm[3 * k] * f[0] + dr->nrm[3 * k + 1] * f[1] + dr->nrm[3 * k + 2] * f[2];
+    }
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0.0) || !isfinite(len)) {
+      memcpy(n, geo, sizeof n);
+      len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    for (int k = 0; k < 3; k++) {
+      nrm[i][k] = len > 0.0 && isfinite(len) ? n[k] / len : k == 2;
+      t->n[i][k] = (int32_t)llrint(nrm[i][k] * NORMAL_ONE);
+    }
+    /* colour */
+    const uint8_t *vc = a >= 0 && m->color ? &m->color[4 * (size_t)a] : NULL;
+    for (int k = 0; k < 3; k++) {
+      const uint32_t v = vc ? vc[k] : 255;
+      t->col[i][k] = dr->shade == ZS_SHADE_UNLIT
+                         ? (int32_t)((base8[k] * v + 127) / 255)
+                         : (int32_t)(((uint32_t)zs_srgb_to_linear16[base8[k]] *
+                                          zs_srgb_to_linear16[v] + 32767) / 65535);
+    }
+    t->col[i][3] = 255;
+    /* texture coordinates, t down the image */
+    const float *uv = a >= 0 && m->uv ? &m->uv[2 * (size_t)a] : NULL;
+    t->s[i] = uv ? uv_fixed(uv[0]) : 0;
+    t->t[i] = uv ? uv_fixed(1.0 - (double)uv[1]) : 0;
+  }
+  if (textured) {
+    settle_uv(t->s, t->sampler.wrap_s);
+    settle_uv(t->t, t->sampler.wrap_t);
+  }
+  if (dr->shade == ZS_SHADE_GOURAUD) {
+    for (int i = 0; i < 3; i++) {
+      double base[3], d[3], sp[3];
+      for (int k = 0; k < 3; k++) base[k] = t->col[i][k] / 65535.0;
+      zs_light_at(t->lights, &t->refl, t->p[i], nrm[i], base, d, sp);
+      for (int k = 0; k < 3; k++) {
+        t->d16[i][k] = (int32_t)to16(d[k]);
+        t->s16[i][k] = (int32_t)to16(sp[k]);
+      }
+    }
+  }
+  t->run = run_for(dr->shade, textured);
+}
+
+void zs_surface_shade_row(zs_surfaces *s, int y, const uint32_t *rgb, uint32_t *out) {
+  if (!s->cache) {
+    tri *c = malloc(CACHE_SLOTS * sizeof *c);
+    if (c)
+      for (int i = 0; i < CACHE_SLOTS; i++) c[i].rec = -1;
+    s->cache = c;
+  }
+  tri *cache = s->cache, spare;
+  const int w = s->width;
+  int x = 0;
+  while (x < w) {
+    const uint32_t v = rgb[x];
+    int x1 = x + 1;
+    while (x1 < w && rgb[x1] == v) x1++;
+    if (v & ZS_SURFACE_BIT) {
+      const int32_t rec = (int32_t)(v & ~ZS_SURFACE_BIT);
+      tri *t = cache ? &cache[rec & (CACHE_SLOTS - 1)] : &spare;
+      if (!cache || t->rec != rec) prepare(s, rec, t);
+      t->run(t, y, x, x1, out);
+    } else {
+      for (int i = x; i < x1; i++) out[i] = v;
+    }
+    x = x1;
+  }
+}

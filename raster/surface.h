@@ -1,0 +1,119 @@
+/* zscan raster — surface shading (surface.c): the shadings that read a
+ * mesh's attributes (auto on a mesh that has them, unlit, gouraud, phong,
+ * normal), shaded once per pixel after visibility.
+ *
+ * THE RECORDS
+ *   A draw that reads attributes notes itself (zs_surface_draw: its mesh,
+ *   matrices, colour and lights) and each triangle it sets up (a record:
+ *   the draw, the face and the triangle's three corners).  Its polygons
+ *   carry ZS_SURFACE_BIT | record in place of a colour, so the span
+ *   kernels write that word into the colour buffer as they write a
+ *   colour: the depth test, the traversals and their SIMD copies are the
+ *   same code for every shading.  When the frame's rows go out, each
+ *   pixel whose word names a record is shaded from it; a word without the
+ *   bit is a colour (a flat draw's, the background, hidden lines' ink).
+ *   Which triangle owns a pixel is decided by depth and id alone
+ *   (raster.h, DEPTH), so the record a pixel names, and its colour, do
+ *   not depend on the mode, the traversal, the threads or the order of
+ *   the draws; the record's number does, and it never reaches an output.
+ *
+ * POLYGONS OF MORE THAN THREE CORNERS
+ *   are shaded as the fan of triangles (c0, ck, ck+1) from their first
+ *   corner, as Mesa draws GL_POLYGON: each triangle is set up on its own,
+ *   with its own depth plane, and they cover the polygon's pixels, each
+ *   once (the top-left rule gives a centre on a diagonal to one side).
+ *
+ * INTERPOLATION (exact)
+ *   From the triangle's clip coordinates c_i = (X_i, Y_i, W_i), X and Y in
+ *   image pixels times w, the planes lambda_i(x, y) = (c_j x c_k) . (x,
+ *   y, 1), with (i, j, k) cyclic, are proportional to the perspective-
+ *   correct barycentric coordinates at every point of the triangle (w > 0),
+ *   clipped or not (Olano and Greer's 2D homogeneous rasterization).  They
+ *   are scaled by a power of two so that their magnitudes stay below 2^38
+ *   over the triangle's box in the window and rounded to integers once
+ *   per triangle; at pixel (x, y) they are evaluated exactly in 64 bits
+ *   at its centre, negative values (a pixel centre given to the triangle
+ *   by snapping) taken as 0, and the weights b_i = floor(2^24 lambda_i /
+ *   S), S = the sum, b_2 = 2^24 - b_0 - b_1.  An attribute at the pixel
+ *   is (sum b_i a_i + 2^23) >> 24 of the corners' values in fixed point:
+ *   8-bit colours, 16-bit linear light, texture coordinates in 2^-16,
+ *   normals in 2^-30. */
+#ifndef ZS_RASTER_SURFACE_H
+#define ZS_RASTER_SURFACE_H
+
+#include <stdint.h>
+
+#include "raster/light.h"
+#include "raster/raster.h"
+
+#define ZS_SURFACE_BIT 0x80000000u /* a colour word that names a record */
+
+typedef struct zs_surface_draw {
+  const zs_mesh *mesh;
+  double mv[16], mvp[16];
+  double nrm[9];     /* the normal matrix: mv's 3 x 3, inverted and transposed */
+  uint32_t rgb;      /* ZS_RGB_MESH, or the colour of every face */
+  zs_shade shade;    /* UNLIT, GOURAUD, PHONG or NORMAL */
+  int32_t lights;    /* the light set it was drawn under */
+} zs_surface_draw;
+
+typedef struct zs_surface_rec {
+  int32_t draw, face;
+  int32_t corner[3]; /* the triangle's corners, as indices of face_vert */
+} zs_surface_rec;
+
+/* A frame's draws and records, with the light sets they were drawn under. */
+typedef struct zs_surfaces {
+  zs_surface_draw *draws;
+  int32_t ndraws, cap_draws;
+  zs_surface_rec *recs;
+  int32_t nrecs, cap_recs;
+  zs_light_set *sets;
+  int32_t nsets, cap_sets;
+  int sets_stale;      /* the lights or the camera changed since the last set */
+  zs_light lights[ZS_MAX_LIGHTS];
+  int nlights;
+  int width, height;
+  zs_filter filter;    /* the device's override, or ZS_FILTER_DEFAULT */
+  void *cache;         /* prepared triangles, for the rows (surface.c) */
+} zs_surfaces;
+
+void zs_surfaces_init(zs_surfaces *s, int width, int height, zs_filter filter);
+void zs_surfaces_free(zs_surfaces *s);
+/* A new frame: no draws, no records (the lights stay). */
+void zs_surfaces_clear(zs_surfaces *s);
+size_t zs_surfaces_bytes(const zs_surfaces *s);
+
+/* Whether a draw of mesh under shade reads attributes. */
+int zs_surface_reads(zs_shade shade, const zs_mesh *mesh);
+
+/* Notes a draw (its matrices and the lights in force under view);
+ * returns its number, -1 when out of memory. */
+int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double view[16],
+                            const double mv[16], const double mvp[16], int perspective,
+                            uint32_t rgb, zs_shade shade);
+
+/* Notes a triangle; returns its record's number, -1 when out of memory. */
+static inline int32_t zs_surface_add_rec(zs_surfaces *s, int32_t draw, int32_t face,
+                                         int32_t c0, int32_t c1, int32_t c2);
+/* Forgets the last record (its triangle drew nothing). */
+static inline void zs_surface_drop_rec(zs_surfaces *s) { s->nrecs--; }
+
+/* Row y's colour words (rgb) shaded into out, width pixels. */
+void zs_surface_shade_row(zs_surfaces *s, int y, const uint32_t *rgb, uint32_t *out);
+
+int zs_surface_grow_recs(zs_surfaces *s);
+
+static inline int32_t zs_surface_add_rec(zs_surfaces *s, int32_t draw, int32_t face,
+                                         int32_t c0, int32_t c1, int32_t c2) {
+  if (s->nrecs == s->cap_recs && !zs_surface_grow_recs(s)) return -1;
+  zs_surface_rec *r = &s->recs[s->nrecs];
+  r->draw = draw;
+  r->face = face;
+  r->corner[0] = c0;
+  r->corner[1] = c1;
+  r->corner[2] = c2;
+  return s->nrecs++;
+}
+
+#endif
