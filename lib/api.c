@@ -60,8 +60,13 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
   zs_frame_view(scene, &user, o->fovy != 0.0, cam);
   int width, height;
   zs_frame_size(scene, o->width, o->height, &width, &height);
+  if ((unsigned)o->filter > ZS_FILTER_TRILINEAR)
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.filter: unknown filter %d", (int)o->filter);
+  if (o->nlights < 0 || (o->nlights > 0 && !o->lights))
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.lights: %d lights at %s", o->nlights,
+                        o->lights ? "an array" : "NULL");
   *fo = (zs_frame_opts){width,    height,   o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1,
-                        o->hidden_line};
+                        o->hidden_line, o->filter, o->lights, o->nlights};
   return ZS_OK;
 }
 

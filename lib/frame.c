@@ -64,6 +64,13 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
   return zs_device_finish(dev, gather_row, &g, err);
 }
 
+zs_status zs_frame_set_lights(zs_device *dev, const zs_scene *scene, const zs_light *lights,
+                              int n, zs_error *err) {
+  if (n > 0) return zs_device_set_lights(dev, lights, n, err);
+  if (scene->nlights > 0) return zs_device_set_lights(dev, scene->lights, scene->nlights, err);
+  return ZS_OK;
+}
+
 int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
   return algo == ZS_ALGO_ZBUFFER && (shade == ZS_SHADE_FLAT || shade == ZS_SHADE_AUTO);
 }
@@ -76,10 +83,14 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG,
                         "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT or ZS_SHADE_AUTO");
-  zs_device_config cfg = {o->width,     o->height,  o->algo,          o->shade,
-                          o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, 0};
+  zs_device_config cfg = {o->width,     o->height,  o->algo,           o->shade,
+                          o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, (int)o->filter};
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;
+  if (zs_frame_set_lights(dev, scene, o->lights, o->nlights, err)) {
+    zs_device_destroy(dev);
+    return err->code;
+  }
   zs_status st = zs_image_alloc(out, o->width, o->height, err);
   if (st == ZS_OK) st = zs_frame_render_on(dev, scene, view, proj, o->hidden_line, out, depth, err);
   if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);

@@ -19,7 +19,15 @@ typedef struct zs_frame_opts {
   zs_shade shade;
   int cull_back, threads;
   int hidden_line;  /* draw the visible edges of front faces, not the faces */
+  zs_filter filter; /* every texture's filter; 0: each material's */
+  const zs_light *lights; /* NULL: the scene's, else the device's headlight */
+  int nlights;
 } zs_frame_opts;
+
+/* The lights of a frame: lights[0 .. n) when n > 0, else the scene's
+ * when it has any, else the device's default (zs_device_set_lights). */
+zs_status zs_frame_set_lights(zs_device *dev, const zs_scene *scene, const zs_light *lights,
+                              int n, zs_error *err);
 
 /* Whether the hidden-line style can draw with algo and shade: its edges
  * are tested against the faces' full-frame depth buffer, which zbuffer

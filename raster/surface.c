@@ -89,7 +89,7 @@ int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double vi
   if (!zs_grow((void **)&s->draws, &s->cap_draws, (int64_t)s->ndraws + 1, sizeof *s->draws))
     return -1;
   zs_surface_draw *d = &s->draws[s->ndraws];
-  d->mesh = mesh;
+  d->mesh = *mesh;
   memcpy(d->mv, mv, sizeof d->mv);
   memcpy(d->mvp, mvp, sizeof d->mvp);
   normal_matrix(mv, d->nrm);
@@ -373,7 +373,7 @@ static double lin(uint8_t c) { return zs_srgb_to_linear16[c] / 65535.0; }
 static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   const zs_surface_rec *r = &s->recs[rec];
   const zs_surface_draw *dr = &s->draws[r->draw];
-  const zs_mesh *m = dr->mesh;
+  const zs_mesh *m = &dr->mesh;
   t->rec = rec;
   double clip[3][4];
   for (int i = 0; i < 3; i++) {
@@ -391,8 +391,11 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
     int32_t k = m->face_material ? m->face_material[r->face] : 0;
     mat = &m->materials[k >= 0 && k < m->nmaterials ? k : 0];
   }
+  /* the base colour: the draw's, the material's, else white under vertex
+   * colours (they are the colour) or the face's */
   uint32_t rgb = dr->rgb != ZS_RGB_MESH ? dr->rgb
                  : mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
+                 : m->color ? 0xFFFFFFu
                  : m->face_rgb ? m->face_rgb[r->face] : ZS_DEFAULT_RGB;
   const uint8_t base8[3] = {(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb};
 

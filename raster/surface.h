@@ -49,7 +49,7 @@
 #define ZS_SURFACE_BIT 0x80000000u /* a colour word that names a record */
 
 typedef struct zs_surface_draw {
-  const zs_mesh *mesh;
+  zs_mesh mesh;      /* a copy of the caller's: its arrays must outlive the frame */
   double mv[16], mvp[16];
   double nrm[9];     /* the normal matrix: mv's 3 x 3, inverted and transposed */
   uint32_t rgb;      /* ZS_RGB_MESH, or the colour of every face */

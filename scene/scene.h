@@ -75,6 +75,9 @@ typedef struct zs_scene {
   double lo[3], hi[3]; /* the scene's bounds, for bouncing (zs_scene_finish
                           sets them to the instances' union unless given) */
   int has_bounds;
+  zs_light lights[ZS_MAX_LIGHTS]; /* the scene file's lights (nlights 0: none,
+                                   * the device's headlight) */
+  int nlights;
 } zs_scene;
 
 void zs_scene_init(zs_scene *s);

@@ -68,7 +68,7 @@ static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_
     memcpy(cam.target, c->target, sizeof cam.target);
     cam.has_eye = cam.has_target = 1;
   }
-  zs_frame_opts o = {c->width, c->height, algo, c->shade, c->cull_back, threads, c->hidden_line};
+  zs_frame_opts o = {c->width, c->height, algo, c->shade, c->cull_back, threads, c->hidden_line, 0, NULL, 0};
   zs_image im;
   zs_error err;
   zs_error_clear(&err);

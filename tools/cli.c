@@ -1,4 +1,5 @@
 #include "tools/cli.h"
+#include "raster/light.h"
 
 #include <stdarg.h>
 
@@ -69,6 +70,60 @@ zs_status zs_cli_numbers(const char *opt, const char *s, int n, const char *what
 
 zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err) {
   return zs_cli_numbers(opt, s, 3, "x,y,z (three finite numbers)", out, err);
+}
+
+/* The ':'-separated fields of a light's text, in place in buf: at most
+ * max of them; their count. */
+static int light_fields(char *buf, char **field, int max) {
+  int n = 0;
+  for (char *p = buf; n < max; n++) {
+    field[n] = p;
+    char *colon = strchr(p, ':');
+    if (!colon) return n + 1;
+    *colon = '\0';
+    p = colon + 1;
+  }
+  return max + 1; /* too many */
+}
+
+zs_status zs_cli_light(const char *opt, const char *s, zs_light *out, zs_error *err) {
+  static const char usage[] = "dir:DX,DY,DZ, point:X,Y,Z, spot:X,Y,Z:DX,DY,DZ:INNER,OUTER "
+                              "(each with :R,G,B or not) or ambient:R,G,B";
+  char buf[256], *f[6];
+  if (strlen(s) >= sizeof buf)
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected %s, got '%.40s...'", opt, usage, s);
+  strcpy(buf, s);
+  const int n = light_fields(buf, f, 5);
+  memset(out, 0, sizeof *out);
+  out->color[0] = out->color[1] = out->color[2] = 1.0;
+  int places = 0; /* fields before the colour */
+  if (strcmp(f[0], "dir") == 0) out->kind = ZS_LIGHT_DIRECTIONAL, places = 2;
+  else if (strcmp(f[0], "point") == 0) out->kind = ZS_LIGHT_POINT, places = 2;
+  else if (strcmp(f[0], "spot") == 0) out->kind = ZS_LIGHT_SPOT, places = 4;
+  else if (strcmp(f[0], "ambient") == 0) out->kind = ZS_LIGHT_AMBIENT, places = 1;
+  if (places == 0 || n < places || n > places + 1 ||
+      (out->kind == ZS_LIGHT_AMBIENT && n != 2))
+    return zs_error_set(err, ZS_ERR_ARG, "%s: expected %s, got '%s'", opt, usage, s);
+  zs_status st = ZS_OK;
+  const char *three = "x,y,z (three finite numbers)";
+  if (out->kind == ZS_LIGHT_DIRECTIONAL) st = zs_cli_numbers(opt, f[1], 3, three, out->direction, err);
+  if (out->kind == ZS_LIGHT_POINT || out->kind == ZS_LIGHT_SPOT)
+    st = zs_cli_numbers(opt, f[1], 3, three, out->position, err);
+  if (st == ZS_OK && out->kind == ZS_LIGHT_SPOT) {
+    double cone[2] = {0.0, 0.0};
+    st = zs_cli_numbers(opt, f[2], 3, three, out->direction, err);
+    if (st == ZS_OK)
+      st = zs_cli_numbers(opt, f[3], 2, "INNER,OUTER (two angles in degrees)", cone, err);
+    out->inner_deg = cone[0];
+    out->outer_deg = cone[1];
+  }
+  if (st == ZS_OK && n == places + 1)
+    st = zs_cli_numbers(opt, f[places], 3, "R,G,B (three finite numbers)", out->color, err);
+  if (st != ZS_OK) return st;
+  zs_error why = {0};
+  if (zs_lights_check(out, 1, &why) != ZS_OK) /* "lights[0].FIELD: reason" */
+    return zs_error_set(err, ZS_ERR_ARG, "%s: %s: %s", opt, s, strchr(why.msg, ' ') + 1);
+  return ZS_OK;
 }
 
 zs_status zs_cli_size(const char *opt, const char *s, int max, int *w, int *h,

@@ -9,7 +9,7 @@
 
 #include <stddef.h>
 
-#include "zscan/error.h"
+#include "zscan/zscan.h"
 
 zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err);
 zs_status zs_cli_int(const char *opt, const char *s, long lo, long hi, int *out,
@@ -24,6 +24,10 @@ zs_status zs_cli_numbers(const char *opt, const char *s, int n, const char *what
                          zs_error *err);
 /* "x,y,z" */
 zs_status zs_cli_vec3(const char *opt, const char *s, double out[3], zs_error *err);
+/* A light: "dir:DX,DY,DZ", "point:X,Y,Z", "spot:X,Y,Z:DX,DY,DZ:INNER,OUTER"
+ * (each optionally ":R,G,B", linear, default 1,1,1) or "ambient:R,G,B";
+ * directions are the way the light travels, in world coordinates. */
+zs_status zs_cli_light(const char *opt, const char *s, zs_light *out, zs_error *err);
 /* "WxH", each side 1 .. max */
 zs_status zs_cli_size(const char *opt, const char *s, int max, int *w, int *h,
                       zs_error *err);

@@ -35,7 +35,17 @@ static const char usage_head[] =
     "                      FILE.svg with --style hidden-line: the lines as vectors\n";
 static const char usage_tail[] =
     "  --algo zbuffer|scanline|depthsort   hidden-surface mode (default zbuffer)\n"
-    "  --shade flat|id|depth|overdraw   colouring (default flat)\n"
+    "  --shade MODE        auto (default: flat, or phong for a model with normals,\n"
+    "                      colours or textures), flat, unlit, gouraud, phong,\n"
+    "                      normal (the eye-space normal as a colour), id, depth,\n"
+    "                      overdraw\n"
+    "  --filter F          every texture sampled nearest, bilinear or trilinear\n"
+    "                      (default: as the model's samplers say)\n"
+    "  --light L           a light, replacing the scene's and the headlight\n"
+    "                      (repeat for more, up to 16): dir:DX,DY,DZ (the way it\n"
+    "                      shines), point:X,Y,Z, spot:X,Y,Z:DX,DY,DZ:INNER,OUTER,\n"
+    "                      each with :R,G,B (linear, default 1,1,1), or\n"
+    "                      ambient:R,G,B\n"
     "  --style solid|hidden-line   faces (default), or the visible edges of front faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --threads N         render threads, 1 to 64 (default 1; depthsort: its walk only)\n"
@@ -139,6 +149,12 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
                             "--shade: expected auto, flat, unlit, gouraud, phong, normal, id, "
                             "depth or overdraw, got '%s'", v);
       o->shade = (zs_shade)sh;
+    } else if (strcmp(a, "--light") == 0) {
+      VALUE();
+      if (o->nlights == ZS_MAX_LIGHTS)
+        return zs_error_set(err, ZS_ERR_ARG, "--light: at most %d lights", ZS_MAX_LIGHTS);
+      if (zs_cli_light("--light", v, &o->lights[o->nlights], err)) return err->code;
+      o->nlights++;
     } else if (strcmp(a, "--filter") == 0) {
       VALUE();
       int f = zs_filter_parse(v);
@@ -386,7 +402,7 @@ static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs
 static zs_status painter_error(const zs_cmd_render_opts *o, const zs_scene *model,
                                int64_t *diff_pixels, zs_error *err) {
   zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
-                       o->view.cull_back, 1, 0};
+                       o->view.cull_back, 1, 0, 0, NULL, 0};
   zs_frame_opts mine = ref;
   mine.algo = ZS_ALGO_DEPTHSORT;
   zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
@@ -445,6 +461,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
                           o->view.cull_back, o->threads, o->background, 0, o->filter};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
+  if ((st = zs_frame_set_lights(dev, &model, o->lights, o->nlights, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   zs_device_keep_line_runs(dev, o->svg && !keep);
   if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;

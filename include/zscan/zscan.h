@@ -344,8 +344,11 @@ void zs_device_clear(zs_device *dev);
  * is ZS_RGB_MESH.  In zbuffer mode the faces are rasterized now; in scanline
  * mode they are set up and kept for zs_device_finish.  Under the shadings
  * that read attributes, a pixel is shaded once, from the face that owns it
- * when the frame is finished: the mesh, its materials and textures must
- * stay valid until zs_device_finish. */
+ * when the frame is finished: the mesh's arrays, its materials and
+ * textures must stay valid until zs_device_finish (the zs_mesh struct
+ * itself is copied).  A face's base colour there is rgb when it is not
+ * ZS_RGB_MESH, else its material's, else white when the mesh has vertex
+ * colours (they are the colour), else face_rgb's. */
 zs_status zs_device_draw(zs_device *dev, const zs_mesh *mesh, const double model[16],
                          uint32_t id_base, uint32_t rgb, zs_error *err);
 
