@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "raster/device.h"
+#include "util/lights.h"
 
 #include "raster/cpu.h"
 #include "raster/pool.h"

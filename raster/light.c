@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "util/exactmath.h"
+#include "util/lights.h"
 #include "util/matrix.h"
 
 static double dot3(const double a[3], const double b[3]) {
@@ -22,47 +23,6 @@ static int unit3(const double v[3], double out[3]) {
   }
   for (int k = 0; k < 3; k++) out[k] = v[k] / len;
   return 1;
-}
-
-static int finite3(const double v[3]) {
-  return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
-zs_status zs_lights_check(const zs_light *lights, int n, zs_error *err) {
-  if (n < 0 || n > ZS_MAX_LIGHTS)
-    return zs_error_set(err, ZS_ERR_ARG, "lights: %d lights: 0 to %d may be set", n,
-                        ZS_MAX_LIGHTS);
-  for (int i = 0; i < n; i++) {
-    const zs_light *l = &lights[i];
-    if ((unsigned)l->kind > ZS_LIGHT_AMBIENT)
-      return zs_error_set(err, ZS_ERR_ARG, "lights[%d].kind: unknown kind %d", i, (int)l->kind);
-    if (!finite3(l->color) || l->color[0] < 0 || l->color[1] < 0 || l->color[2] < 0)
-      return zs_error_set(err, ZS_ERR_ARG, "lights[%d].color: expected finite values >= 0", i);
-    if ((l->kind == ZS_LIGHT_POINT || l->kind == ZS_LIGHT_SPOT) && !finite3(l->position))
-      return zs_error_set(err, ZS_ERR_ARG, "lights[%d].position: not finite", i);
-    if (l->kind == ZS_LIGHT_DIRECTIONAL || l->kind == ZS_LIGHT_SPOT) {
-      double u[3];
-      if (!finite3(l->direction) || !unit3(l->direction, u))
-        return zs_error_set(err, ZS_ERR_ARG, "lights[%d].direction: expected a finite, "
-                            "non-zero vector", i);
-    }
-    if (l->kind == ZS_LIGHT_SPOT &&
-        !(l->inner_deg > 0 && l->inner_deg <= l->outer_deg && l->outer_deg < 90))
-      return zs_error_set(err, ZS_ERR_ARG, "lights[%d]: a spot's angles need 0 < inner_deg <= "
-                          "outer_deg < 90, got %g and %g", i, l->inner_deg, l->outer_deg);
-  }
-  return ZS_OK;
-}
-
-int zs_lights_default(zs_light out[ZS_MAX_LIGHTS]) {
-  memset(out, 0, 2 * sizeof *out);
-  out[0].kind = ZS_LIGHT_DIRECTIONAL;
-  out[0].color[0] = out[0].color[1] = out[0].color[2] = 0.9;
-  out[0].direction[2] = -1.0;
-  out[0].eye_space = 1;
-  out[1].kind = ZS_LIGHT_AMBIENT;
-  out[1].color[0] = out[1].color[1] = out[1].color[2] = 0.1;
-  return 2;
 }
 
 /* The direction d (a vector: w = 0) in eye space. */

@@ -34,16 +34,10 @@ typedef struct zs_light_set {
   int perspective;     /* the view vector is towards the eye point (else +z) */
 } zs_light_set;
 
-/* Checks lights[0 .. n) (ZS_ERR_ARG: "lights[K].FIELD: reason"). */
-zs_status zs_lights_check(const zs_light *lights, int n, zs_error *err);
-
 /* The lights in the eye space of view; a light marked eye_space is taken
  * as it is. */
 void zs_light_set_make(const zs_light *lights, int n, const double view[16], int perspective,
                        zs_light_set *out);
-
-/* The default lights: zscan.h, zs_device_set_lights. */
-int zs_lights_default(zs_light out[ZS_MAX_LIGHTS]);
 
 /* What a surface reflects, linear, 0 .. 1 a channel (specular may be 0). */
 typedef struct zs_reflectance {

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "raster/texture.h"
+#include "util/lights.h"
 #include "util/exactmath.h"
 #include "util/grow.h"
 #include "util/srgb.h"

@@ -1,5 +1,5 @@
 #include "tools/cli.h"
-#include "raster/light.h"
+#include "util/lights.h"
 
 #include <stdarg.h>
 
