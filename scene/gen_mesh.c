@@ -196,6 +196,9 @@ zs_status zs_gen_sphere(zs_model *m, int slices, int stacks, const double xform[
   profile[0] = profile[2 * stacks] = 0.0; /* exact poles */
   zs_status st = zs_gen_lathe(m, profile, stacks + 1, slices, 0, xform, rgb, obj);
   free(profile);
+  /* a smooth surface: its normals from its faces (model.h), every facet
+   * within the crease of its neighbours from 8 slices and 4 stacks on */
+  if (st == ZS_OK && !zs_model_compute_normals(m, ZS_GEN_SMOOTH_CREASE_DEG)) st = ZS_ERR_NOMEM;
   return st;
 }
 

@@ -189,6 +189,10 @@ zs_status zs_gen_box(zs_model *m, const double lo[3], const double hi[3],
 zs_status zs_gen_lathe(zs_model *m, const double *profile, int n, int segments,
                        int caps, const double xform[16], uint32_t rgb, int32_t obj);
 
+/* The crease angle of the smooth generated surfaces' normals (the
+ * sphere's; model.h, zs_model_compute_normals). */
+#define ZS_GEN_SMOOTH_CREASE_DEG 60.0
+
 /* The unit sphere: a lathe of stacks + 1 points, slices x stacks faces. */
 zs_status zs_gen_sphere(zs_model *m, int slices, int stacks,
                         const double xform[16], uint32_t rgb, int32_t obj);

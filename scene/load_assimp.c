@@ -11,6 +11,8 @@
  */
 #include "scene/load_assimp.h"
 #include "scene/load_common.h"
+#include "scene/texture_file.h"
+#include "util/grow.h"
 
 #include <errno.h>
 #include <math.h>
@@ -26,6 +28,12 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+/* glTF's sampler filters: assimp 5.1 and later */
+#if defined(__has_include)
+#if __has_include(<assimp/GltfMaterial.h>)
+#include <assimp/GltfMaterial.h>
+#endif
+#endif
 #endif
 
 int zs_assimp_available(void) {
@@ -227,12 +235,24 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
 
 /* ---- the scene -------------------------------------------------------- */
 
+/* A texture made once for every material that names it: key is the
+ * file's path as opened, or "*N" for embedded texture N. */
+typedef struct tex_entry {
+  char *key;
+  const zs_texture *tex; /* owned by the model */
+} tex_entry;
+
 typedef struct loader {
   const char *path;
   const struct aiScene *scene;
   zs_model *m;
   int64_t vertices, faces; /* added so far */
   zs_error *err;
+  char *dir;               /* the model's folder, for texture files */
+  int32_t *material;       /* per assimp material: its model material, -1 until used */
+  tex_entry *tex;
+  int32_t ntex, cap_tex;
+  int need_normals;        /* a mesh has colours or uvs but no normals */
 } loader;
 
 /* 4x4 row-major doubles from an aiMatrix4x4 (also row-major, column
@@ -264,6 +284,327 @@ static uint32_t mesh_colour(const struct aiScene *sc, const struct aiMesh *mesh)
       aiReturn_SUCCESS)
     return ZS_GREY;
   return channel(c.r) << 16 | channel(c.g) << 8 | channel(c.b);
+}
+
+/* ---- materials and textures ------------------------------------------ */
+
+static zs_wrap wrap_mode(enum aiTextureMapMode m) {
+  switch (m) {
+  case aiTextureMapMode_Clamp:
+  case aiTextureMapMode_Decal: return ZS_WRAP_CLAMP; /* (a border zscan does not have) */
+  case aiTextureMapMode_Mirror: return ZS_WRAP_MIRROR;
+  default: return ZS_WRAP_REPEAT;
+  }
+}
+
+/* glTF's sampler filters (the GL enums), as assimp passes them on: the
+ * minification filter decides, as that is where the three differ; a
+ * magnification filter alone only when it asks for nearest texels. */
+enum {
+  GLTF_NEAREST = 9728,
+  GLTF_LINEAR = 9729,
+  GLTF_NEAREST_MIPMAP_NEAREST = 9984,
+  GLTF_LINEAR_MIPMAP_NEAREST = 9985,
+  GLTF_NEAREST_MIPMAP_LINEAR = 9986,
+  GLTF_LINEAR_MIPMAP_LINEAR = 9987
+};
+
+static zs_filter texture_filter(const struct aiMaterial *mat, enum aiTextureType type) {
+#ifndef AI_MATKEY_GLTF_MAPPINGFILTER_MIN
+  (void)mat;
+  (void)type;
+  return ZS_FILTER_DEFAULT;
+#else
+  int min = 0, mag = 0;
+  if (aiGetMaterialIntegerArray(mat, AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), &min, NULL) ==
+      aiReturn_SUCCESS) {
+    switch (min) {
+    case GLTF_NEAREST:
+    case GLTF_NEAREST_MIPMAP_NEAREST: return ZS_FILTER_NEAREST;
+    case GLTF_LINEAR:
+    case GLTF_LINEAR_MIPMAP_NEAREST: return ZS_FILTER_BILINEAR;
+    case GLTF_NEAREST_MIPMAP_LINEAR:
+    case GLTF_LINEAR_MIPMAP_LINEAR: return ZS_FILTER_TRILINEAR;
+    default: break;
+    }
+  }
+  if (aiGetMaterialIntegerArray(mat, AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), &mag, NULL) ==
+          aiReturn_SUCCESS &&
+      mag == GLTF_NEAREST)
+    return ZS_FILTER_NEAREST;
+  return ZS_FILTER_DEFAULT;
+#endif
+}
+
+/* What follows the last '/' or '\' of a name, as assimp matches embedded
+ * textures by their file names. */
+static const char *short_name(const char *s) {
+  const char *p = s;
+  for (const char *q = s; *q; q++)
+    if (*q == '/' || *q == '\\') p = q + 1;
+  return p;
+}
+
+/* The embedded texture that name means ("*N", or the file name of one of
+ * the scene's textures); -1 for none, -2 for "*N" out of range. */
+static int embedded_index(const struct aiScene *sc, const char *name) {
+  if (name[0] == '*') {
+    char *end;
+    errno = 0;
+    unsigned long i = strtoul(name + 1, &end, 10);
+    if (name[1] < '0' || name[1] > '9' || *end || errno || i >= sc->mNumTextures ||
+        !sc->mTextures || !sc->mTextures[i])
+      return -2;
+    return (int)i;
+  }
+  for (unsigned i = 0; i < sc->mNumTextures; i++)
+    if (sc->mTextures && sc->mTextures[i] && sc->mTextures[i]->mFilename.length &&
+        strcmp(short_name(sc->mTextures[i]->mFilename.data), short_name(name)) == 0)
+      return (int)i;
+  return -1;
+}
+
+/* Embedded texture i: compressed bytes (PNG, JPEG) to decode, or
+ * mWidth x mHeight texels of B, G, R, A. */
+static zs_status embedded_texture(loader *L, int i, const char *key, zs_texture **out,
+                                  zs_error *e) {
+  const struct aiTexture *t = L->scene->mTextures[i];
+  if (!t->pcData) return zs_error_set(e, ZS_ERR_PARSE, "%s: no texels", key);
+  if (t->mHeight == 0) return zs_texture_decode(t->pcData, t->mWidth, key, out, e);
+  if (t->mWidth > ZS_MAX_TEXTURE_SIDE || t->mHeight > ZS_MAX_TEXTURE_SIDE)
+    return zs_error_set(e, ZS_ERR_LIMIT, "%s: %ux%u texture: each side must be 1 to %d", key,
+                        t->mWidth, t->mHeight, ZS_MAX_TEXTURE_SIDE);
+  size_t n = (size_t)t->mWidth * t->mHeight;
+  uint8_t *rgba = malloc(4 * n);
+  if (!rgba) return zs_error_set(e, ZS_ERR_NOMEM, "%s: out of memory", key);
+  for (size_t k = 0; k < n; k++) {
+    const struct aiTexel *p = &t->pcData[k];
+    rgba[4 * k] = p->r;
+    rgba[4 * k + 1] = p->g;
+    rgba[4 * k + 2] = p->b;
+    rgba[4 * k + 3] = p->a;
+  }
+  zs_status st = zs_texture_create((int)t->mWidth, (int)t->mHeight, rgba, out, e);
+  free(rgba);
+  return st;
+}
+
+/* The texture that a material names (a file relative to the model's
+ * folder, or embedded), made on its first use and owned by the model;
+ * errors read "MODEL: texture NAME: reason". */
+static zs_status find_texture(loader *L, const char *name, const zs_texture **out) {
+  *out = NULL;
+  int emb = embedded_index(L->scene, name);
+  if (emb == -2)
+    return set_error(L->err, ZS_ERR_PARSE, "%s: texture %s: no such embedded texture", L->path,
+                     name);
+  char *key;
+  if (emb >= 0) {
+    key = malloc(24);
+    if (key) snprintf(key, 24, "*%d", emb);
+  } else {
+    /* relative to the model's folder unless absolute (a drive letter
+     * too, as written on Windows, where '\' is '/') */
+    const int absolute = name[0] == '/' || name[0] == '\\' ||
+                         (((name[0] | 0x20) >= 'a' && (name[0] | 0x20) <= 'z') && name[1] == ':');
+    size_t dlen = absolute ? 0 : strlen(L->dir);
+    int slash = dlen > 0 && L->dir[dlen - 1] != '/';
+    size_t nlen = strlen(name);
+    key = malloc(dlen + (size_t)slash + nlen + 1);
+    if (key) {
+      memcpy(key, L->dir, dlen);
+      if (slash) key[dlen] = '/';
+      for (size_t k = 0; k <= nlen; k++) key[dlen + slash + k] = name[k] == '\\' ? '/' : name[k];
+    }
+  }
+  if (!key) return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+  for (int32_t k = 0; k < L->ntex; k++)
+    if (strcmp(L->tex[k].key, key) == 0) {
+      free(key);
+      *out = L->tex[k].tex;
+      return ZS_OK;
+    }
+  zs_error e;
+  zs_error_clear(&e);
+  zs_texture *t = NULL;
+  zs_status st = emb >= 0 ? embedded_texture(L, emb, key, &t, &e) : zs_texture_load(key, &t, &e);
+  if (st != ZS_OK) {
+    free(key);
+    return set_error(L->err, st, "%s: texture %s", L->path, e.msg);
+  }
+  if (!zs_grow((void **)&L->tex, &L->cap_tex, (int64_t)L->ntex + 1, sizeof *L->tex)) {
+    zs_texture_destroy(t);
+    free(key);
+    return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+  }
+  if (!zs_model_own_texture(L->m, t)) { /* (which destroyed t) */
+    free(key);
+    return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+  }
+  L->tex[L->ntex].key = key;
+  L->tex[L->ntex].tex = t;
+  L->ntex++;
+  *out = t;
+  return ZS_OK;
+}
+
+static uint16_t shininess(float s) {
+  if (!(s > 0.0f)) return 0; /* NaN too */
+  return s >= (float)ZS_MAX_SHININESS ? ZS_MAX_SHININESS : (uint16_t)lround(s);
+}
+
+/* The model material of assimp material mi, made on its first use; -1
+ * for a mesh without one. */
+static zs_status find_material(loader *L, unsigned mi, int32_t *out) {
+  *out = -1;
+  const struct aiScene *sc = L->scene;
+  if (mi >= sc->mNumMaterials || !sc->mMaterials || !sc->mMaterials[mi]) return ZS_OK;
+  if (L->material[mi] >= 0) {
+    *out = L->material[mi];
+    return ZS_OK;
+  }
+  const struct aiMaterial *mat = sc->mMaterials[mi];
+  zs_material zm = zs_material_default();
+  struct aiColor4D c;
+  /* the base colour: glTF's, else the diffuse one; its alpha, unless
+   * the material gives an opacity; glTF's OPAQUE mode ignores alpha */
+  if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) == aiReturn_SUCCESS ||
+      aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) {
+    zm.base[0] = (uint8_t)channel(c.r);
+    zm.base[1] = (uint8_t)channel(c.g);
+    zm.base[2] = (uint8_t)channel(c.b);
+    zm.base[3] = (uint8_t)channel(c.a);
+  }
+  ai_real f;
+  if (aiGetMaterialFloatArray(mat, AI_MATKEY_OPACITY, &f, NULL) == aiReturn_SUCCESS)
+    zm.base[3] = (uint8_t)channel(f);
+#ifdef AI_MATKEY_GLTF_ALPHAMODE
+  struct aiString mode;
+  if (aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS &&
+      strcmp(mode.data, "OPAQUE") == 0)
+    zm.base[3] = 255;
+#endif
+  /* a highlight: its colour (times its strength) and exponent; none at
+   * shininess 0, which assimp defines as Gouraud shading, or when the
+   * shading model says so */
+  int model = 0;
+  ai_real shine = 0.0f, strength = 1.0f;
+  int shaded =
+      aiGetMaterialIntegerArray(mat, AI_MATKEY_SHADING_MODEL, &model, NULL) != aiReturn_SUCCESS ||
+      !(model == aiShadingMode_Flat || model == aiShadingMode_Gouraud ||
+        model == aiShadingMode_NoShading);
+  if (aiGetMaterialFloatArray(mat, AI_MATKEY_SHININESS, &shine, NULL) == aiReturn_SUCCESS &&
+      shaded && shininess(shine) > 0 &&
+      aiGetMaterialColor(mat, AI_MATKEY_COLOR_SPECULAR, &c) == aiReturn_SUCCESS) {
+    if (aiGetMaterialFloatArray(mat, AI_MATKEY_SHININESS_STRENGTH, &strength, NULL) !=
+        aiReturn_SUCCESS)
+      strength = 1.0f;
+    zm.specular[0] = (uint8_t)channel(c.r * strength);
+    zm.specular[1] = (uint8_t)channel(c.g * strength);
+    zm.specular[2] = (uint8_t)channel(c.b * strength);
+    zm.shininess = shininess(shine);
+  }
+  if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS) {
+    zm.emissive[0] = (uint8_t)channel(c.r);
+    zm.emissive[1] = (uint8_t)channel(c.g);
+    zm.emissive[2] = (uint8_t)channel(c.b);
+  }
+  int two = 0;
+  if (aiGetMaterialIntegerArray(mat, AI_MATKEY_TWOSIDED, &two, NULL) == aiReturn_SUCCESS)
+    zm.double_sided = two != 0;
+  /* the base colour's texture: glTF's, else the diffuse one */
+  static const enum aiTextureType types[] = {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE};
+  for (int k = 0; k < 2; k++) {
+    struct aiString file;
+    enum aiTextureMapMode wrap[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+    if (aiGetMaterialTextureCount(mat, types[k]) == 0 ||
+        aiGetMaterialTexture(mat, types[k], 0, &file, NULL, NULL, NULL, NULL, wrap, NULL) !=
+            aiReturn_SUCCESS ||
+        file.length == 0)
+      continue;
+    /* the name assimp's MD2 reader gives a model without a skin */
+    if (strcmp(file.data, "$texture_dummy.bmp") == 0) break;
+    zs_status st = find_texture(L, file.data, &zm.base_texture);
+    if (st != ZS_OK) return st;
+    zm.wrap_s = wrap_mode(wrap[0]);
+    zm.wrap_t = wrap_mode(wrap[1]);
+    zm.filter = texture_filter(mat, types[k]);
+    break;
+  }
+  int32_t idx = zs_model_add_material(L->m, &zm);
+  if (idx < 0) return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+  L->material[mi] = idx;
+  *out = idx;
+  return ZS_OK;
+}
+
+/* ---- meshes ----------------------------------------------------------- */
+
+/* The normal matrix of the transform xf: its 3 x 3 cofactors, signed by
+ * its determinant (the inverse transpose up to a positive factor); 0
+ * when xf's 3 x 3 is the identity, whose normals are copied as they are. */
+static int normal_matrix(const double xf[16], double n[9]) {
+  const double a = xf[0], b = xf[1], c = xf[2], d = xf[4], e = xf[5], f = xf[6], g = xf[8],
+               h = xf[9], i = xf[10];
+  if (a == 1 && b == 0 && c == 0 && d == 0 && e == 1 && f == 0 && g == 0 && h == 0 && i == 1)
+    return 0;
+  const double co[9] = {e * i - f * h, f * g - d * i, d * h - e * g,
+                        c * h - b * i, a * i - c * g, b * g - a * h,
+                        b * f - c * e, c * d - a * f, a * e - b * d};
+  const double det = a * co[0] + b * co[1] + c * co[2];
+  for (int k = 0; k < 9; k++) n[k] = det < 0 ? -co[k] : co[k];
+  return 1;
+}
+
+/* Vertex v's normal placed by the normal matrix nm (NULL: as it is), of
+ * unit length; (0, 0, 0), none, when it is not finite or has no length. */
+static void place_normal(const struct aiVector3D *in, const double *nm, float out[3]) {
+  double p[3] = {in->x, in->y, in->z}, q[3];
+  for (int r = 0; r < 3; r++)
+    q[r] = nm ? nm[3 * r] * p[0] + nm[3 * r + 1] * p[1] + nm[3 * r + 2] * p[2] : p[r];
+  const double len2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+  if (!isfinite(len2) || !(len2 > 0.0)) {
+    out[0] = out[1] = out[2] = 0.0f;
+    return;
+  }
+  const double len = nm ? sqrt(len2) : 1.0;
+  for (int r = 0; r < 3; r++) out[r] = (float)(q[r] / len);
+}
+
+/* One attribute vertex per vertex of the mesh, from its normals, first
+ * colours and first texture coordinates (those it has). */
+static zs_status add_attrs(loader *L, const struct aiMesh *mesh, unsigned mi, const double xf[16]) {
+  const struct aiVector3D *nrm = mesh->mNormals, *uvs = mesh->mTextureCoords[0];
+  const struct aiColor4D *col = mesh->mColors[0];
+  double nm[9];
+  const int turn = normal_matrix(xf, nm);
+  if (!nrm) L->need_normals = 1;
+  for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+    float n[3], uv[2];
+    uint8_t rgba[4];
+    if (nrm) {
+      place_normal(&nrm[v], turn ? nm : NULL, n);
+      if (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) L->need_normals = 1;
+    }
+    if (col) {
+      rgba[0] = (uint8_t)channel(col[v].r);
+      rgba[1] = (uint8_t)channel(col[v].g);
+      rgba[2] = (uint8_t)channel(col[v].b);
+      rgba[3] = (uint8_t)channel(col[v].a);
+    }
+    if (uvs) {
+      /* assimp's convention is OpenGL's, v up, as zs_mesh's */
+      if (!isfinite(uvs[v].x) || !isfinite(uvs[v].y))
+        return set_error(L->err, ZS_ERR_PARSE,
+                         "%s: mesh %u vertex %u: texture coordinate not a finite number",
+                         L->path, mi, v);
+      uv[0] = (float)uvs[v].x;
+      uv[1] = (float)uvs[v].y;
+    }
+    if (zs_model_add_attr(L->m, nrm ? n : NULL, col ? rgba : NULL, uvs ? uv : NULL) < 0)
+      return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+  }
+  return ZS_OK;
 }
 
 /* The object name of mesh mi placed by node nd. */
@@ -311,6 +652,23 @@ static zs_status add_mesh(loader *L, const struct aiNode *nd, unsigned j, const 
       return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
   }
   L->vertices += mesh->mNumVertices;
+  /* attributes and a material only for a mesh with polygons (points and
+   * lines are skipped); attribute vertices only for a mesh that has
+   * attributes, so that a file without any keeps a mesh without
+   * attribute arrays */
+  int polygons = 0;
+  for (unsigned f = 0; f < mesh->mNumFaces && !polygons; f++)
+    polygons = mesh->mFaces[f].mNumIndices >= 3;
+  if (!polygons) return ZS_OK;
+  int32_t abase = -1;
+  if (mesh->mNormals || mesh->mColors[0] || mesh->mTextureCoords[0]) {
+    abase = L->m->mesh.nattrs;
+    zs_status st = add_attrs(L, mesh, mi, xf);
+    if (st != ZS_OK) return st;
+  }
+  int32_t material;
+  zs_status mst = find_material(L, mesh->mMaterialIndex, &material);
+  if (mst != ZS_OK) return mst;
   uint32_t rgb = mesh_colour(L->scene, mesh);
   for (unsigned f = 0; f < mesh->mNumFaces; f++) {
     const struct aiFace *face = &mesh->mFaces[f];
@@ -319,19 +677,22 @@ static zs_status add_mesh(loader *L, const struct aiNode *nd, unsigned j, const 
       return set_error(L->err, ZS_ERR_LIMIT, "%s: mesh %u face %u: %u vertices", L->path, mi, f,
                        face->mNumIndices);
     /* a face may have any number of corners: the model splits it */
-    int32_t small[ZS_MAX_POLY_VERTS];
-    int32_t *idx = face->mNumIndices <= ZS_MAX_POLY_VERTS
-                       ? small
-                       : malloc(face->mNumIndices * sizeof *idx);
+    /* (positions and attributes in one array: idx, then attr) */
+    int32_t small[2 * ZS_MAX_POLY_VERTS];
+    const unsigned n = face->mNumIndices;
+    int32_t *idx = n <= ZS_MAX_POLY_VERTS ? small : malloc(2 * (size_t)n * sizeof *idx);
     if (!idx) return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+    int32_t *attr = abase >= 0 ? idx + n : NULL;
     zs_status st = ZS_OK;
-    for (unsigned k = 0; k < face->mNumIndices && st == ZS_OK; k++) {
+    for (unsigned k = 0; k < n && st == ZS_OK; k++) {
       if (face->mIndices[k] >= mesh->mNumVertices)
         st = set_error(L->err, ZS_ERR_PARSE, "%s: mesh %u face %u: vertex index %u out of range",
                        L->path, mi, f, face->mIndices[k]);
       idx[k] = base + (int32_t)face->mIndices[k];
+      if (attr) attr[k] = abase + (int32_t)face->mIndices[k];
     }
-    if (st == ZS_OK && zs_model_add_polygon(L->m, idx, (int)face->mNumIndices, rgb, obj) != ZS_OK)
+    if (st == ZS_OK &&
+        zs_model_add_face(L->m, idx, attr, (int)n, rgb, material, obj) != ZS_OK)
       st = set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
     if (idx != small) free(idx);
     if (st != ZS_OK) return st;
@@ -398,12 +759,26 @@ zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
                        path, cameras, cameras == 1 ? "" : "s");
     return set_error(err, ZS_ERR_PARSE, "%s: no meshes", path);
   }
-  loader L = {path, sc, out, 0, 0, err};
-  double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  st = walk(&L, sc->mRootNode, identity, 0);
+  loader L = {path, sc, out, 0, 0, err, zs_load_dir(path), NULL, NULL, 0, 0, 0};
+  if (sc->mNumMaterials) L.material = malloc(sc->mNumMaterials * sizeof *L.material);
+  if (!L.dir || (sc->mNumMaterials && !L.material)) {
+    st = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
+  } else {
+    for (unsigned i = 0; i < sc->mNumMaterials; i++) L.material[i] = -1;
+    double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    st = walk(&L, sc->mRootNode, identity, 0);
+  }
   if (st == ZS_OK && out->nsource_faces == 0)
     st = set_error(err, ZS_ERR_PARSE, "%s: no polygons (only points or lines)", path);
+  /* zscan's own normals, the same bytes everywhere, where the file has
+   * none (never assimp's aiProcess_GenNormals) */
+  if (st == ZS_OK && L.need_normals && !zs_model_compute_normals(out, 60.0))
+    st = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   aiReleaseImport(sc);
+  for (int32_t k = 0; k < L.ntex; k++) free(L.tex[k].key);
+  free(L.tex);
+  free(L.material);
+  free(L.dir);
   if (st != ZS_OK) zs_model_free(out);
   return st;
 }

@@ -14,7 +14,38 @@
  * meshes; points and lines are skipped.  Faces are numbered from 0 in the
  * order of the walk.  A face's colour is its material's diffuse colour
  * (AI_MATKEY_COLOR_DIFFUSE, each channel round(clamp(c, 0, 1) * 255)),
- * ZS_GREY when the material has none.
+ * ZS_GREY when the material has none: what the flat shading draws.
+ *
+ * Shading attributes (zscan.h, zs_mesh).  A mesh with normals, first
+ * colours (COLOR_0, as round(clamp(c, 0, 1) * 255)) or first texture
+ * coordinates (TEXCOORD_0, OpenGL's v up as assimp gives them: no
+ * aiProcess_FlipUVs) gets one attribute vertex per vertex, its normal
+ * turned by the node's transform (the cofactors of its 3 x 3, unit
+ * length); a mesh without them gets none, so a file without any has no
+ * attribute arrays and draws as before.  Where a mesh has colours or
+ * coordinates but no normals (or a normal is not finite or zero),
+ * zs_model_compute_normals (crease 60 degrees) makes them, never
+ * assimp's aiProcess_GenNormals.  JoinIdenticalVertices joins only
+ * vertices whose every attribute is equal, so nothing read is lost.
+ *
+ * Materials, one per assimp material that a mesh with polygons uses, in
+ * the order of first use: the base colour AI_MATKEY_BASE_COLOR, else
+ * the diffuse one, its alpha replaced by AI_MATKEY_OPACITY when there is
+ * one, and 255 under glTF's alphaMode OPAQUE; the specular colour (times
+ * AI_MATKEY_SHININESS_STRENGTH) and AI_MATKEY_SHININESS (rounded, at most
+ * ZS_MAX_SHININESS), none when the shininess is 0 or the shading model
+ * is flat, Gouraud or none, as assimp defines them; the emissive colour;
+ * AI_MATKEY_TWOSIDED (double-sided when absent).  The base colour's
+ * texture is the first of aiTextureType_BASE_COLOR, else _DIFFUSE: a
+ * file relative to the model's folder ('\' read as '/'), or embedded
+ * ("*N", or a file name of aiScene.mTextures): compressed PNG or JPEG
+ * bytes, or B, G, R, A texels.  Each texture is read once however many
+ * materials name it, and owned by the model.  Its wrap modes are
+ * AI_MATKEY_MAPPINGMODE_U/V (wrap, clamp and decal as clamp, mirror);
+ * its filter glTF's sampler's (GltfMaterial.h): the minification filter
+ * NEAREST and NEAREST_MIPMAP_NEAREST nearest, LINEAR and
+ * LINEAR_MIPMAP_NEAREST bilinear, *_MIPMAP_LINEAR trilinear; else a
+ * magnification filter NEAREST nearest; else the default.
  *
  * What is refused, each as one line "FILE: reason":
  *   - a file that cannot be opened, is not a regular file, or is larger
@@ -30,7 +61,12 @@
  *     ("mesh M vertex V: not a finite number"); a face index out of range;
  *   - more than ZS_ASSIMP_MAX_VERTICES vertices or faces in all (meshes
  *     instanced by many nodes are counted each time);
- *   - no polygon at all (a point cloud, lines only).
+ *   - no polygon at all (a point cloud, lines only);
+ *   - a texture coordinate that is not finite ("mesh M vertex V: texture
+ *     coordinate not a finite number");
+ *   - a texture that cannot be read ("FILE: texture PATH: REASON", REASON
+ *     as scene/texture_file.h words it, e.g. "cannot open: No such file
+ *     or directory"), or an embedded one that does not exist.
  * A build without assimp (ZS_HAVE_ASSIMP undefined) refuses every file
  * with "FILE: this build reads only .obj (built without assimp)".
  */

@@ -25,6 +25,8 @@
 #include "scene/load_common.h"
 #include "scene/load_obj.h"
 #include "scene/paths.h"
+#include "scene/texture_file.h"
+#include "util/lights.h"
 
 enum {
   PATH_MAX_CHARS = 256, /* of a JSON path in messages */
@@ -329,7 +331,9 @@ static zs_status generator_spec(reader *r, const cJSON *obj, const char *gen, ch
   memcpy(spec, gen, n + 1);
   char sep = '?';
   for (const cJSON *c = obj->child; c; c = c->next) {
-    if (strcmp(c->string, "name") == 0 || strcmp(c->string, "generator") == 0) continue;
+    if (strcmp(c->string, "name") == 0 || strcmp(c->string, "generator") == 0 ||
+        strcmp(c->string, "material") == 0)
+      continue;
     size_t mark = push_key(r, c->string);
     char value[64];
     if (cJSON_IsNumber(c)) {
@@ -369,13 +373,108 @@ static zs_status load_generated_mesh(reader *r, const cJSON *obj, const char *ge
   return ZS_OK;
 }
 
+/* A boolean member key of obj into *out (left as it is when absent). */
+static zs_status get_bool(reader *r, const cJSON *obj, const char *key, int *out) {
+  const cJSON *v = member(obj, key);
+  if (!v) return ZS_OK;
+  if (!cJSON_IsBool(v)) return fail_at(r, key, ZS_ERR_PARSE, "expected true or false");
+  *out = cJSON_IsTrue(v);
+  return ZS_OK;
+}
+
+static zs_status read_color(reader *r, const cJSON *v, uint32_t *rgb);
+
+/* A colour member key of obj into rgb (8-bit sRGB), when given. */
+static zs_status get_color(reader *r, const cJSON *obj, const char *key, uint8_t rgb[3]) {
+  const cJSON *v = member(obj, key);
+  if (!v) return ZS_OK;
+  uint32_t x = 0;
+  size_t mark = push_key(r, key);
+  zs_status st = read_color(r, v, &x);
+  if (st != ZS_OK) return st;
+  pop(r, mark);
+  rgb[0] = (uint8_t)(x >> 16), rgb[1] = (uint8_t)(x >> 8), rgb[2] = (uint8_t)x;
+  return ZS_OK;
+}
+
+/* The name of a word member key of obj among names (its index in *out,
+ * left as it is when absent). */
+static zs_status get_word(reader *r, const cJSON *obj, const char *key,
+                          const char *const *names, int n, int *out) {
+  const char *w = NULL;
+  if (!member(obj, key)) return ZS_OK;
+  zs_status st = get_string(r, obj, key, 1, &w);
+  if (st != ZS_OK) return st;
+  for (int i = 0; i < n; i++)
+    if (strcmp(w, names[i]) == 0) return *out = i, ZS_OK;
+  char list[128] = "";
+  for (int i = 0; i < n; i++)
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", names[i]);
+  return fail_at(r, key, ZS_ERR_PARSE, "expected one of %s, got \"%.40s\"", list, w);
+}
+
+/* A mesh's "material": it replaces the mesh's own on every face.  Colours
+ * as instances' (sRGB); its texture is a file beside the scene file. */
+static zs_status read_material(reader *r, const cJSON *obj, zs_model *m) {
+  static const char *const keys[] = {"color",   "alpha",  "specular", "shininess", "emissive",
+                                     "texture", "wrap",   "filter",   "double_sided", NULL};
+  static const char *const wraps[] = {"repeat", "clamp", "mirror"};
+  static const char *const filters[] = {"nearest", "bilinear", "trilinear"};
+  if (!cJSON_IsObject(obj)) return fail(r, ZS_ERR_PARSE, "expected object");
+  zs_status st = check_object(r, obj, keys);
+  zs_material mat = zs_material_default();
+  double alpha = 1.0;
+  int32_t shininess = 0;
+  int wrap = ZS_WRAP_REPEAT, filter = -1, two = 1, given = 0;
+  const char *texture = NULL;
+  if (st == ZS_OK) st = get_color(r, obj, "color", mat.base);
+  if (st == ZS_OK) st = get_color(r, obj, "specular", mat.specular);
+  if (st == ZS_OK) st = get_color(r, obj, "emissive", mat.emissive);
+  if (st == ZS_OK) st = get_number(r, obj, "alpha", 0, &alpha, &given);
+  if (st == ZS_OK && given && !(alpha >= 0.0 && alpha <= 1.0))
+    st = fail_at(r, "alpha", ZS_ERR_PARSE, "%g is outside 0 .. 1", alpha);
+  if (st == ZS_OK) st = get_int(r, obj, "shininess", 0, 0, ZS_MAX_SHININESS, &shininess, NULL);
+  if (st == ZS_OK) st = get_word(r, obj, "wrap", wraps, 3, &wrap);
+  if (st == ZS_OK) st = get_word(r, obj, "filter", filters, 3, &filter);
+  if (st == ZS_OK) st = get_bool(r, obj, "double_sided", &two);
+  if (st == ZS_OK) st = get_string(r, obj, "texture", 0, &texture);
+  if (st != ZS_OK) return st;
+  mat.base[3] = (uint8_t)lround(alpha * 255.0);
+  mat.shininess = (uint16_t)shininess;
+  mat.wrap_s = mat.wrap_t = (zs_wrap)wrap;
+  mat.filter = filter < 0 ? ZS_FILTER_DEFAULT : (zs_filter)(filter + ZS_FILTER_NEAREST);
+  mat.double_sided = (uint8_t)two;
+  if (texture) {
+    char path[4096];
+    const char *dir = r->dir ? r->dir : "";
+    int n = texture[0] == '/' || !*dir ? snprintf(path, sizeof path, "%s", texture)
+                                       : snprintf(path, sizeof path, "%s/%s", dir, texture);
+    if (n < 0 || (size_t)n >= sizeof path)
+      return fail_at(r, "texture", ZS_ERR_LIMIT, "path too long");
+    zs_texture *tex = NULL;
+    zs_error inner;
+    zs_error_clear(&inner);
+    if (zs_texture_load(path, &tex, &inner) != ZS_OK)
+      return fail_at(r, "texture", inner.code, "%s", inner.msg);
+    if (!zs_model_own_texture(m, tex)) return fail(r, ZS_ERR_NOMEM, "out of memory");
+    mat.base_texture = tex;
+  }
+  /* one material for every face */
+  free(m->materials);
+  m->materials = NULL;
+  m->mesh.nmaterials = m->cap_materials = 0;
+  if (zs_model_add_material(m, &mat) < 0) return fail(r, ZS_ERR_NOMEM, "out of memory");
+  for (int32_t f = 0; f < m->mesh.nfaces && m->mesh.face_material; f++) m->mesh.face_material[f] = 0;
+  return ZS_OK;
+}
+
 static zs_status read_mesh(reader *r, const cJSON *obj, zs_scene *s, name_table *names) {
   if (!cJSON_IsObject(obj)) return fail(r, ZS_ERR_PARSE, "expected object");
   const cJSON *fv = member(obj, "file"), *gv = member(obj, "generator");
   if (fv && gv) return fail_at(r, "generator", ZS_ERR_PARSE, "cannot be combined with \"file\"");
   if (!fv && !gv) return fail(r, ZS_ERR_PARSE, "expected \"file\" or \"generator\"");
   /* a generator's object holds its parameters: any key */
-  static const char *const file_keys[] = {"name", "file", NULL};
+  static const char *const file_keys[] = {"name", "file", "material", NULL};
   zs_status st = check_object(r, obj, gv ? NULL : file_keys);
   const char *name = NULL, *what = NULL;
   if (st == ZS_OK) st = get_string(r, obj, "name", 1, &name);
@@ -391,6 +490,12 @@ static zs_status read_mesh(reader *r, const cJSON *obj, zs_scene *s, name_table 
     if (st == ZS_OK) pop(r, mark);
   } else {
     st = load_generated_mesh(r, obj, what, &m);
+  }
+  const cJSON *mv = member(obj, "material");
+  if (st == ZS_OK && mv) {
+    size_t mark = push_key(r, "material");
+    st = read_material(r, mv, &m);
+    if (st == ZS_OK) pop(r, mark);
   }
   int32_t index = st == ZS_OK ? zs_scene_add_mesh(s, &m) : -1;
   zs_model_free(&m);
@@ -685,6 +790,57 @@ static zs_status read_camera(reader *r, const cJSON *obj, zs_scene *s) {
   return ZS_OK;
 }
 
+/* One light of "lights" (zscan.h, zs_light): colours linear, times
+ * "intensity". */
+static zs_status read_light(reader *r, const cJSON *obj, zs_light *l) {
+  static const char *const keys[] = {"type",  "color", "intensity", "position", "direction",
+                                     "inner", "outer", "eye_space", NULL};
+  static const char *const kinds[] = {"directional", "point", "spot", "ambient"};
+  if (!cJSON_IsObject(obj)) return fail(r, ZS_ERR_PARSE, "expected object");
+  zs_status st = check_object(r, obj, keys);
+  memset(l, 0, sizeof *l);
+  int kind = -1, eye = 0, given = 0;
+  double intensity = 1.0;
+  l->color[0] = l->color[1] = l->color[2] = 1.0;
+  if (st == ZS_OK && !member(obj, "type")) st = fail(r, ZS_ERR_PARSE, "missing \"type\"");
+  if (st == ZS_OK) st = get_word(r, obj, "type", kinds, 4, &kind);
+  if (st == ZS_OK) st = get_vec3(r, obj, "color", 0, l->color, NULL);
+  if (st == ZS_OK) st = get_number(r, obj, "intensity", 0, &intensity, &given);
+  if (st == ZS_OK && given && !(intensity >= 0.0))
+    st = fail_at(r, "intensity", ZS_ERR_PARSE, "%g: must not be negative", intensity);
+  const int placed = kind == ZS_LIGHT_POINT || kind == ZS_LIGHT_SPOT;
+  const int aimed = kind == ZS_LIGHT_DIRECTIONAL || kind == ZS_LIGHT_SPOT;
+  if (st == ZS_OK) st = get_vec3(r, obj, "position", placed, l->position, NULL);
+  if (st == ZS_OK) st = get_vec3(r, obj, "direction", aimed, l->direction, NULL);
+  if (st == ZS_OK) st = get_number(r, obj, "inner", kind == ZS_LIGHT_SPOT, &l->inner_deg, NULL);
+  if (st == ZS_OK) st = get_number(r, obj, "outer", kind == ZS_LIGHT_SPOT, &l->outer_deg, NULL);
+  if (st == ZS_OK) st = get_bool(r, obj, "eye_space", &eye);
+  if (st != ZS_OK) return st;
+  l->kind = (zs_light_kind)kind;
+  l->eye_space = eye;
+  for (int k = 0; k < 3; k++) l->color[k] = l->color[k] * intensity;
+  zs_error why;
+  zs_error_clear(&why);
+  if (zs_lights_check(l, 1, &why) != ZS_OK) /* "lights[0].FIELD: reason" */
+    return fail(r, ZS_ERR_PARSE, "%s", strchr(why.msg, ' ') + 1);
+  return ZS_OK;
+}
+
+static zs_status read_lights(reader *r, const cJSON *arr, zs_scene *s) {
+  if (!cJSON_IsArray(arr)) return fail(r, ZS_ERR_PARSE, "expected array");
+  const int n = cJSON_GetArraySize(arr);
+  if (n > ZS_MAX_LIGHTS) return fail(r, ZS_ERR_LIMIT, "%d lights: at most %d", n, ZS_MAX_LIGHTS);
+  int i = 0;
+  for (const cJSON *c = arr->child; c; c = c->next, i++) {
+    size_t mark = push_index(r, i);
+    zs_status st = read_light(r, c, &s->lights[i]);
+    if (st != ZS_OK) return st;
+    pop(r, mark);
+  }
+  s->nlights = n;
+  return ZS_OK;
+}
+
 static zs_status read_bounds(reader *r, const cJSON *obj, zs_scene *s) {
   static const char *const keys[] = {"min", "max", NULL};
   double lo[3], hi[3];
@@ -840,7 +996,7 @@ static zs_status read_part(reader *r, const cJSON *root, const char *key, zs_sce
 
 static zs_status read_scene(reader *r, const cJSON *root, zs_scene *s) {
   static const char *const keys[] = {"description", "meshes", "instances", "generator",
-                                     "camera",      "path",   "bounds",    NULL};
+                                     "camera",      "path",   "bounds",    "lights", NULL};
   zs_status st = check_object(r, root, keys);
   if (st != ZS_OK) return st;
   const cJSON *dv = member(root, "description");
@@ -848,6 +1004,12 @@ static zs_status read_scene(reader *r, const cJSON *root, zs_scene *s) {
   st = member(root, "generator") ? read_generated_scene(r, root, s) : read_objects(r, root, s);
   if (st == ZS_OK) st = read_part(r, root, "camera", s, read_camera);
   if (st == ZS_OK) st = read_part(r, root, "bounds", s, read_bounds);
+  const cJSON *lv = member(root, "lights");
+  if (st == ZS_OK && lv) {
+    size_t mark = push_key(r, "lights");
+    st = read_lights(r, lv, s);
+    if (st == ZS_OK) pop(r, mark);
+  }
   named_path named = {NULL, 0};
   const cJSON *pv = member(root, "path");
   if (st == ZS_OK && pv) {

@@ -215,14 +215,18 @@ static int group_faces(const zs_model *m, face_groups *g) {
  * use, renumbered in order of first use; face ids stay those of src.
  * remap has an entry per vertex of src, all -1, and is left so. */
 static zs_status extract_faces(const zs_model *src, const int32_t *face, int32_t n, zs_model *dst,
-                               int32_t *remap, zs_error *err) {
+                               int32_t *remap, int32_t *remap_attr, zs_error *err) {
   const zs_mesh *m = &src->mesh;
   zs_status st = ZS_OK;
   int32_t last_id = -1;
+  /* every material, at the same numbers (their textures stay the
+   * source's, handed on by zs_scene_from_model) */
+  for (int32_t i = 0; i < m->nmaterials && st == ZS_OK; i++)
+    if (zs_model_add_material(dst, &m->materials[i]) < 0) st = ZS_ERR_NOMEM;
   for (int32_t i = 0; i < n && st == ZS_OK; i++) {
     int32_t f = face[i], start = m->face_start[f];
     int32_t k = m->face_start[f + 1] - start;
-    int32_t idx[ZS_MAX_POLY_VERTS];
+    int32_t idx[ZS_MAX_POLY_VERTS], attr[ZS_MAX_POLY_VERTS];
     for (int32_t j = 0; j < k && j < ZS_MAX_POLY_VERTS; j++) {
       int32_t v = m->face_vert[start + j];
       if (remap[v] < 0) {
@@ -231,12 +235,24 @@ static zs_status extract_faces(const zs_model *src, const int32_t *face, int32_t
         if (remap[v] < 0) st = ZS_ERR_NOMEM;
       }
       idx[j] = remap[v];
+      /* the corner's attribute vertex, copied at its first use */
+      int32_t a = m->corner_attr ? m->corner_attr[start + j] : m->nattrs > 0 ? v : -1;
+      if (a >= m->nattrs) a = -1;
+      if (a >= 0 && remap_attr[a] < 0) {
+        remap_attr[a] = zs_model_add_attr(dst, m->normal ? &m->normal[3 * (size_t)a] : NULL,
+                                          m->color ? &m->color[4 * (size_t)a] : NULL,
+                                          m->uv ? &m->uv[2 * (size_t)a] : NULL);
+        if (remap_attr[a] < 0) st = ZS_ERR_NOMEM;
+      }
+      attr[j] = a >= 0 ? remap_attr[a] : -1;
     }
     if (st != ZS_OK) break;
     /* Mesh faces are convex and planar already (zs_model split them), so
      * each is stored whole; it then takes back its source face's id. */
     int32_t before = dst->mesh.nfaces;
-    st = zs_model_add_polygon(dst, idx, (int)k, m->face_rgb[f], -1);
+    const int32_t mat = m->face_material && m->nmaterials > 0 ? m->face_material[f] : -1;
+    st = zs_model_add_face(dst, idx, m->nattrs > 0 ? attr : NULL, (int)k, m->face_rgb[f],
+                           mat >= 0 && mat < m->nmaterials ? mat : -1, -1);
     for (int32_t g = before; g < dst->mesh.nfaces; g++) dst->mesh.face_id[g] = m->face_id[f];
     /* the pieces of one source face are consecutive: count its id once */
     if (st == ZS_OK) dst->nsource_faces += (m->face_id[f] != last_id) - 1;
@@ -244,7 +260,11 @@ static zs_status extract_faces(const zs_model *src, const int32_t *face, int32_t
   }
   for (int32_t i = 0; i < n; i++) {
     int32_t f = face[i];
-    for (int32_t j = m->face_start[f]; j < m->face_start[f + 1]; j++) remap[m->face_vert[j]] = -1;
+    for (int32_t j = m->face_start[f]; j < m->face_start[f + 1]; j++) {
+      remap[m->face_vert[j]] = -1;
+      const int32_t a = m->corner_attr ? m->corner_attr[j] : m->nattrs > 0 ? m->face_vert[j] : -1;
+      if (a >= 0 && a < m->nattrs) remap_attr[a] = -1;
+    }
   }
   if (st != ZS_OK)
     return zs_error_set(err, st, "scene: %s", st == ZS_ERR_NOMEM ? "out of memory" : "bad face");
@@ -255,15 +275,29 @@ zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err) {
   zs_status st = ZS_OK;
   face_groups g = {NULL, NULL};
   int32_t *remap = malloc(((size_t)m->mesh.nverts + 1) * sizeof *remap);
-  if (!remap || !group_faces(m, &g)) st = zs_error_set(err, ZS_ERR_NOMEM, "scene: out of memory");
+  int32_t *remap_attr = malloc(((size_t)m->mesh.nattrs + 1) * sizeof *remap_attr);
+  if (!remap || !remap_attr || !group_faces(m, &g))
+    st = zs_error_set(err, ZS_ERR_NOMEM, "scene: out of memory");
   for (int32_t v = 0; st == ZS_OK && v < m->mesh.nverts; v++) remap[v] = -1;
+  for (int32_t a = 0; st == ZS_OK && a < m->mesh.nattrs; a++) remap_attr[a] = -1;
+  int textures_handed = 0;
   /* objects in order, then the faces of no object */
   for (int32_t o = 0; st == ZS_OK && o <= m->nobjects; o++) {
     int32_t n = g.first[o + 1] - g.first[o];
     if (n == 0) continue; /* an object without faces draws nothing */
     zs_model part;
     zs_model_init(&part);
-    st = extract_faces(m, g.face + g.first[o], n, &part, remap, err);
+    st = extract_faces(m, g.face + g.first[o], n, &part, remap, remap_attr, err);
+    if (st == ZS_OK && !textures_handed) {
+      /* the first part owns the model's textures; every part's materials
+       * point at them, and the scene frees its meshes together */
+      part.textures = m->textures;
+      part.ntextures = m->ntextures;
+      part.cap_textures = m->cap_textures;
+      m->textures = NULL;
+      m->ntextures = m->cap_textures = 0;
+      textures_handed = 1;
+    }
     int32_t mi = st == ZS_OK ? zs_scene_add_mesh(s, &part) : -1;
     zs_model_free(&part);
     if (st != ZS_OK) break;
@@ -278,6 +312,7 @@ zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err) {
   free(g.first);
   free(g.face);
   free(remap);
+  free(remap_attr);
   zs_model_free(m);
   return st;
 }

@@ -2,6 +2,8 @@
  * quads.  See teapot.h for the data, the placement and the counts. */
 #include "scene/teapot.h"
 
+#include <math.h>
+
 #include <stddef.h>
 
 #include "util/matrix.h"
@@ -255,6 +257,37 @@ static void patch_point(const double cp[16][3], const double bu[4],
   }
 }
 
+/* The derivatives of the cubic Bernstein polynomials at t (s = 1 - t). */
+static void bernstein3_d(double t, double s, double d[4]) {
+  d[0] = -3.0 * (s * s);
+  d[1] = 3.0 * (s * (s - 2.0 * t));
+  d[2] = 3.0 * (t * (2.0 * s - t));
+  d[3] = 3.0 * (t * t);
+}
+
+/* The patch's normal du x dv at the bases (bu, bv) and their derivatives
+ * (du, dv): outward (the quads turn counter-clockwise around it); zero
+ * where the patch folds to a point (the poles of the lid and the bottom),
+ * and there left for zs_model_compute_normals. */
+static void patch_normal(const double cp[16][3], const double bu[4], const double bv[4],
+                         const double du[4], const double dv[4], float out[3]) {
+  double tu[3] = {0, 0, 0}, tv[3] = {0, 0, 0};
+  for (int r = 0; r < 4; r++)
+    for (int c = 0; c < 4; c++)
+      for (int k = 0; k < 3; k++) {
+        tu[k] += bv[r] * du[c] * cp[4 * r + c][k];
+        tv[k] += dv[r] * bu[c] * cp[4 * r + c][k];
+      }
+  const double n[3] = {tu[1] * tv[2] - tu[2] * tv[1], tu[2] * tv[0] - tu[0] * tv[2],
+                       tu[0] * tv[1] - tu[1] * tv[0]};
+  const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  const double uu = tu[0] * tu[0] + tu[1] * tu[1] + tu[2] * tu[2];
+  const double vv = tv[0] * tv[0] + tv[1] * tv[1] + tv[2] * tv[2];
+  const double len = sqrt(nn);
+  const int folded = !(nn > 1e-12 * uu * vv) || !(len > 0.0);
+  for (int k = 0; k < 3; k++) out[k] = folded ? 0.0f : (float)(n[k] / len);
+}
+
 zs_status zs_teapot_add(zs_model *m, int level, const double xform[16],
                         uint32_t rgb, int32_t obj, zs_error *err) {
   if (level < 1 || level > ZS_TEAPOT_MAX_LEVEL)
@@ -264,11 +297,12 @@ zs_status zs_teapot_add(zs_model *m, int level, const double xform[16],
   const int side = level + 1;
 
   /* The basis at each grid parameter i / level, shared by u and v. */
-  double basis[ZS_TEAPOT_MAX_LEVEL + 1][4];
+  double basis[ZS_TEAPOT_MAX_LEVEL + 1][4], deriv[ZS_TEAPOT_MAX_LEVEL + 1][4];
   for (int i = 0; i < side; i++) {
     double t = (double)i / level;
     double s = (double)(level - i) / level;
     bernstein3(t, s, basis[i]);
+    bernstein3_d(t, s, deriv[i]);
   }
 
   for (int p = 0; p < ZS_TEAPOT_PATCHES; p++) {
@@ -284,11 +318,24 @@ zs_status zs_teapot_add(zs_model *m, int level, const double xform[16],
 
     /* Vertex (i, j) of the grid, u = i / level, v = j / level, gets index
      * first + j * side + i. */
-    int32_t first = m->mesh.nverts;
+    int32_t first = m->mesh.nverts, first_attr = m->mesh.nattrs;
     for (int j = 0; j < side; j++) {
       for (int i = 0; i < side; i++) {
         double pt[3];
         patch_point(cp, basis[i], basis[j], pt);
+        /* the patch's own normal and parameters (u, v) as texture
+         * coordinates; xform moves positions only (callers pass a
+         * rotation and a uniform scale, or none) */
+        float nrm[3], uv[2] = {(float)i / (float)level, (float)j / (float)level};
+        patch_normal(cp, basis[i], basis[j], deriv[i], deriv[j], nrm);
+        if (xform) {
+          double w[3];
+          for (int r = 0; r < 3; r++)
+            w[r] = xform[4 * r] * nrm[0] + xform[4 * r + 1] * nrm[1] + xform[4 * r + 2] * nrm[2];
+          for (int r = 0; r < 3; r++) nrm[r] = (float)w[r];
+        }
+        if (zs_model_add_attr(m, nrm, NULL, uv) < 0)
+          return zs_error_set(err, ZS_ERR_NOMEM, "teapot: out of memory");
         if (xform) {
           double h[4];
           zs_mat_apply(xform, pt, h);
@@ -305,13 +352,17 @@ zs_status zs_teapot_add(zs_model *m, int level, const double xform[16],
      * around du x dv, which points outward. */
     for (int j = 0; j < level; j++) {
       for (int i = 0; i < level; i++) {
-        int32_t a = first + j * side + i;
+        int32_t a = first + j * side + i, t = first_attr + j * side + i;
         int32_t quad[4] = {a, a + 1, a + side + 1, a + side};
-        zs_status st = zs_model_add_polygon(m, quad, 4, rgb, obj);
+        int32_t attr[4] = {t, t + 1, t + side + 1, t + side};
+        zs_status st = zs_model_add_face(m, quad, attr, 4, rgb, -1, obj);
         if (st != ZS_OK)
           return zs_error_set(err, st, "teapot: cannot add a face");
       }
     }
   }
+  /* the poles' normals, from the faces around them */
+  if (!zs_model_compute_normals(m, ZS_TEAPOT_CREASE_DEG))
+    return zs_error_set(err, ZS_ERR_NOMEM, "teapot: out of memory");
   return ZS_OK;
 }

@@ -57,11 +57,19 @@ enum {
   ZS_TEAPOT_MAX_LEVEL = 64  /* 32 * 65^2 = 135200 vertices */
 };
 
+/* The crease angle for the normals of the poles (model.h, compute_normals). */
+#define ZS_TEAPOT_CREASE_DEG 60.0
+
 /* Appends one teapot to m: its vertices, then its 32 * level^2 quads, patch
  * by patch in the order of the data, each in object obj (-1: none) with
- * colour rgb (0xRRGGBB).  xform places it (row-major, p' = M p, applied
+ * colour rgb (0xRRGGBB).  Every vertex gets an attribute vertex: the
+ * patch's normal there (du x dv, so the teapot is smooth across its
+ * patches; at the poles, where a patch folds to a point, the normal of
+ * the faces around it) and the patch parameters (u, v) as texture
+ * coordinates.  xform places it (row-major, p' = M p, applied
  * after the z-up to y-up turn; it should be affine: its last row is
- * ignored); NULL means identity.  Returns ZS_OK; ZS_ERR_ARG when level is
+ * ignored; its linear part turns the normals, so it should be a rotation
+ * times a uniform scale); NULL means identity.  Returns ZS_OK; ZS_ERR_ARG when level is
  * not in 1 .. ZS_TEAPOT_MAX_LEVEL; ZS_ERR_NOMEM, after which m may hold part
  * of the teapot (it stays valid for zs_model_free). */
 zs_status zs_teapot_add(zs_model *m, int level, const double xform[16],

@@ -97,12 +97,19 @@ static void shuffle_scene(zs_scene *s, uint64_t seed) {
     int32_t *vert = malloc((size_t)(m->face_start[n] ? m->face_start[n] : 1) * sizeof *vert);
     uint32_t *rgb = malloc((size_t)(n ? n : 1) * sizeof *rgb);
     int32_t *id = malloc((size_t)(n ? n : 1) * sizeof *id);
+    /* the corners' attribute vertices move with them, a face's material
+     * with it */
+    int32_t *attr = malloc((size_t)(m->face_start[n] ? m->face_start[n] : 1) * sizeof *attr);
+    int32_t *mat = malloc((size_t)(n ? n : 1) * sizeof *mat);
     for (int32_t i = 0; i < n; i++) perm[i] = i;
     zs_rng_shuffle(&rng, perm, (size_t)n, sizeof *perm);
     start[0] = 0;
     for (int32_t i = 0; i < n; i++) {
       int32_t f = perm[i], fs = m->face_start[f], len = m->face_start[f + 1] - fs;
       memcpy(&vert[start[i]], &m->face_vert[fs], (size_t)len * sizeof *vert);
+      if (m->corner_attr)
+        memcpy(&attr[start[i]], &m->corner_attr[fs], (size_t)len * sizeof *attr);
+      if (m->face_material) mat[i] = m->face_material[f];
       start[i + 1] = start[i] + len;
       rgb[i] = m->face_rgb[f];
       id[i] = m->face_id[f];
@@ -111,6 +118,10 @@ static void shuffle_scene(zs_scene *s, uint64_t seed) {
     memcpy(m->face_vert, vert, (size_t)start[n] * sizeof *vert);
     memcpy(m->face_rgb, rgb, (size_t)n * sizeof *rgb);
     memcpy(m->face_id, id, (size_t)n * sizeof *id);
+    if (m->corner_attr) memcpy(m->corner_attr, attr, (size_t)start[n] * sizeof *attr);
+    if (m->face_material) memcpy(m->face_material, mat, (size_t)n * sizeof *mat);
+    free(attr);
+    free(mat);
     free(perm);
     free(start);
     free(vert);

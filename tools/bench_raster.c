@@ -64,6 +64,8 @@ static const char usage[] =
     "  --callgrind       also the instructions per frame of each case, one thread, counted\n"
     "                    by valgrind's callgrind (runs of 1 and 3 frames; the difference / 2)\n"
     "  --case NAME       only that case ('triangles 10x10', 'builtin:city', ...)\n"
+    "  --shade MODE      the devices' shading: flat (default), auto, unlit, gouraud\n"
+    "                    or phong (the scenes' own lights, else the headlight)\n"
     "  --algo MODE       only that mode: zbuffer or scanline\n";
 
 static const int sides[] = {4, 10, 25, 100, 500};
@@ -81,6 +83,7 @@ typedef struct bench_opts {
   zs_simd simd; /* the cap asked for; after parsing, the level in use */
   int mesa, callgrind, speedup;
   int algo;               /* -1: both modes */
+  zs_shade shade;         /* the devices' shading (default flat) */
   const char *only_case;  /* NULL: every case */
   const char *csv, *md, *plot;
 } bench_opts;
@@ -559,11 +562,15 @@ static zs_status count_instructions(const bench_opts *o, const char *name, zs_al
 static zs_status run_case(const bench_opts *o, int a, const char *name, const zs_scene *s,
                           const double view[16], const double proj[16], double *ms, bench_row *r,
                           zs_error *err) {
-  zs_device_config cfg = {o->width, o->height, algos[a], ZS_SHADE_FLAT, 0,
+  zs_device_config cfg = {o->width, o->height, algos[a], o->shade, 0,
                           algos[a] == ZS_ALGO_ZBUFFER ? o->threads : 1, 0, spans_of(o), 0};
   zs_device *dev;
   zs_status st = zs_device_create(&cfg, &dev, err);
   if (st) return st;
+  if ((st = zs_device_set_lights(dev, s->lights, s->nlights, err))) {
+    zs_device_destroy(dev);
+    return st;
+  }
   snprintf(r->name, sizeof r->name, "%s", name);
   r->algo = zs_algo_name(algos[a]);
   st = time_scene(dev, s, view, proj, o, ms, r, err);
@@ -580,9 +587,9 @@ static void write_table(FILE *f, const bench_row *rows, int n, const bench_opts 
             o->callgrind ? " instructions per frame | per triangle | per pixel tested |" : "");
     fprintf(f, "|---|---|---|---|---|---|---|---|%s\n", o->callgrind ? "---|---|---|" : "");
   } else {
-    fprintf(f, "raster throughput at %dx%d, %d thread%s, %s spans, median of %d frames\n",
-            o->width, o->height, o->threads, o->threads > 1 ? "s" : "", simd_label(o->simd),
-            o->repeat);
+    fprintf(f, "raster throughput at %dx%d, %d thread%s, %s spans, %s shading, median of %d "
+            "frames\n", o->width, o->height, o->threads, o->threads > 1 ? "s" : "",
+            simd_label(o->simd), zs_shade_name(o->shade), o->repeat);
     fprintf(f, "%-28s %-9s %10s %13s %10s %8s %8s %9s%s\n", "case", "algo", "triangles",
             "pixels_tested", "ms", "Mtri/s", "Mpix/s", "table_B/tri",
             o->callgrind ? "  instr/frame  instr/tri  instr/pix" : "");
@@ -661,7 +668,8 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX512, 0, 0, 0, -1, NULL, NULL, NULL, NULL};
+  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX512, 0, 0, 0, -1, ZS_SHADE_FLAT, NULL,
+                    NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
@@ -687,6 +695,14 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
       o->callgrind = 1;
     } else if (strcmp(a, "--case") == 0) {
       if (zs_cli_value(argc, argv, &i, &o->only_case, err)) return err->code;
+    } else if (strcmp(a, "--shade") == 0) {
+      if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
+      const int sh = zs_shade_parse(v);
+      if (sh != ZS_SHADE_FLAT && sh != ZS_SHADE_UNLIT && sh != ZS_SHADE_GOURAUD &&
+          sh != ZS_SHADE_PHONG && sh != ZS_SHADE_AUTO)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "--shade '%s': flat, auto, unlit, gouraud or phong", v);
+      o->shade = (zs_shade)sh;
     } else if (strcmp(a, "--algo") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;
       o->algo = zs_algo_parse(v);

@@ -123,6 +123,96 @@ zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], cons
   return ZS_OK;
 }
 
+/* The texture object of tex with filter and the wraps (made for each
+ * draw that uses it: the cross-check's scenes are small), its levels
+ * uploaded bottom row first, so that GL's t = 0 is the image's last row
+ * and its t the v zscan reads. */
+static GLuint texture_of(const zs_texture *tex, const zs_material *mat, zs_filter filter) {
+  static const GLint wraps[] = {GL_REPEAT, GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT};
+  GLuint name = 0;
+  glGenTextures(1, &name);
+  glBindTexture(GL_TEXTURE_2D, name);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const int levels = filter == ZS_FILTER_NEAREST ? 1 : zs_texture_levels(tex);
+  for (int k = 0; k < levels; k++) {
+    int w, h;
+    const uint8_t *t = zs_texture_level(tex, k, &w, &h);
+    uint8_t *flip = malloc(4 * (size_t)w * (size_t)h);
+    if (!flip) break;
+    for (int y = 0; y < h; y++) memcpy(flip + 4 * (size_t)y * w, t + 4 * (size_t)(h - 1 - y) * w, 4 * (size_t)w);
+    glTexImage2D(GL_TEXTURE_2D, k, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, flip);
+    free(flip);
+  }
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                  filter == ZS_FILTER_NEAREST    ? GL_NEAREST
+                  : filter == ZS_FILTER_BILINEAR ? GL_LINEAR_MIPMAP_NEAREST
+                                                 : GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER,
+                  filter == ZS_FILTER_NEAREST ? GL_NEAREST : GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wraps[mat->wrap_s]);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wraps[mat->wrap_t]);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  return name;
+}
+
+zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
+                        const double proj[16], zs_filter filter, uint32_t *rgb, zs_error *err) {
+  (void)err;
+  begin_frame(m, proj);
+  glShadeModel(GL_SMOOTH);
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_instance *in = &s->inst[i];
+    load_modelview(view, in->model);
+    const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
+    for (int32_t f = 0; f < mesh->nfaces; f++) {
+      const zs_material *mat = NULL;
+      if (mesh->materials && mesh->nmaterials > 0) {
+        int32_t k = mesh->face_material ? mesh->face_material[f] : 0;
+        mat = &mesh->materials[k >= 0 && k < mesh->nmaterials ? k : 0];
+      }
+      /* the base colour as zscan's surface shading takes it (zscan.h) */
+      const uint32_t base = in->rgb != ZS_RGB_MESH ? in->rgb
+                            : mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
+                            : mesh->color ? 0xFFFFFFu
+                            : mesh->face_rgb ? mesh->face_rgb[f] : 0xB4B4B4u;
+      const zs_filter fl = filter != ZS_FILTER_DEFAULT ? filter
+                           : mat && mat->filter != ZS_FILTER_DEFAULT ? mat->filter
+                                                                     : ZS_FILTER_TRILINEAR;
+      GLuint tex = 0;
+      if (mat && mat->base_texture) {
+        tex = texture_of(mat->base_texture, mat, fl);
+        glEnable(GL_TEXTURE_2D);
+      }
+      glBegin(GL_POLYGON);
+      for (int32_t k = mesh->face_start[f]; k < mesh->face_start[f + 1]; k++) {
+        int32_t a = mesh->corner_attr ? mesh->corner_attr[k] : mesh->face_vert[k];
+        if (a >= mesh->nattrs) a = -1;
+        GLubyte c[3];
+        for (int ch = 0; ch < 3; ch++) {
+          const uint32_t v = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + ch] : 255;
+          c[ch] = (GLubyte)(((base >> (16 - 8 * ch) & 255) * v + 127) / 255);
+        }
+        glColor3ubv(c);
+        if (a >= 0 && mesh->uv) glTexCoord2fv(&mesh->uv[2 * (size_t)a]);
+        glVertex3dv(&mesh->pos[3 * mesh->face_vert[k]]);
+      }
+      glEnd();
+      if (tex) {
+        glDisable(GL_TEXTURE_2D);
+        glDeleteTextures(1, &tex);
+      }
+    }
+  }
+  glFinish();
+  for (int y = 0; y < m->h; y++)
+    for (int x = 0; x < m->w; x++) {
+      const unsigned char *q = &m->rgba[4 * ((size_t)(m->h - 1 - y) * m->w + x)];
+      rgb[(size_t)y * m->w + x] = (uint32_t)q[0] << 16 | (uint32_t)q[1] << 8 | q[2];
+    }
+  return ZS_OK;
+}
+
 static zs_status make_fans(zs_mesa *m, const zs_scene *s, zs_error *err) {
   if (m->nfans == s->nmeshes) return ZS_OK;
   for (int32_t i = 0; i < m->nfans; i++) free(m->fans[i].index);
@@ -186,6 +276,12 @@ void zs_mesa_destroy(zs_mesa *m) { (void)m; }
 zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], const double proj[16],
                       uint32_t *ids, zs_error *err) {
   (void)m, (void)s, (void)view, (void)proj, (void)ids;
+  return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: zscan was built without OSMesa");
+}
+
+zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
+                        const double proj[16], zs_filter filter, uint32_t *rgb, zs_error *err) {
+  (void)m, (void)s, (void)view, (void)proj, (void)filter, (void)rgb;
   return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: zscan was built without OSMesa");
 }
 

@@ -30,6 +30,18 @@ void zs_mesa_destroy(zs_mesa *m);
 zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], const double proj[16],
                       uint32_t *ids, zs_error *err);
 
+/* The colours (0xRRGGBB, row 0 at the top) of scene s drawn as zscan's
+ * unlit shading draws it (zscan.h, ZS_SHADE_UNLIT): lighting off, smooth
+ * shading, each corner's colour the face's base colour times its vertex
+ * colour (8 bits, rounded as zscan rounds), each material's base texture
+ * modulating it (GL_MODULATE) through filter (ZS_FILTER_NEAREST:
+ * GL_NEAREST; else GL_LINEAR magnified and GL_LINEAR_MIPMAP_NEAREST or
+ * _LINEAR minified, over zscan's own mip chain) and its wraps; faces as
+ * polygons (GL fans them from their first corner, as zscan does) in id
+ * order, a "less" depth test. */
+zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
+                        const double proj[16], zs_filter filter, uint32_t *rgb, zs_error *err);
+
 /* One frame of s as fast as this GL offers it: each mesh's faces, fanned
  * into triangles, drawn from vertex arrays (built on the first call), one
  * colour per instance; cleared first, finished (glFinish) at the end. */

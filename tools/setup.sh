@@ -17,6 +17,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   cmake gcc make pkg-config   the build
 #   g++                         the C++ example and the test that the headers compile as C++
 #   libpng-dev                  PNG output (lib/image.c)
+#   libjpeg62-turbo-dev         JPEG textures (scene/texture_file.c)
 #   check                       the unit-test framework (tests/)
 #   clang                       the second compiler CI builds and sanitizes with
 #   libcjson-dev                scene files (JSON) and statistics
@@ -27,7 +28,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   valgrind                    instruction counts: zscan bench raster --callgrind and its test
 #   chromium                    headless, reads the pages zscan writes (the golden report) in tests
 #   python3-pytest python3-numpy   the Python binding's tests (python/)
-zs_packages=(cmake gcc g++ make pkg-config libpng-dev check clang libcjson-dev
+zs_packages=(cmake gcc g++ make pkg-config libpng-dev libjpeg62-turbo-dev check clang libcjson-dev
              libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind chromium
              python3-pytest python3-numpy)
 

@@ -376,7 +376,7 @@ class Scene:
         return self._lib.zs_scene_faces(self._handle())
 
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
-               far=None, algo="zbuffer", shade="flat", style="solid", threads=1,
+               far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
                cull_back=False):
         """Renders the scene as zscan.render() does."""
         opts = _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style,
@@ -415,7 +415,7 @@ def load(input=None, allow_empty=False):
 
 
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
-           far=None, algo="zbuffer", shade="flat", style="solid", threads=1,
+           far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
            cull_back=False, allow_empty=False):
     """Loads input and renders one frame: the image `zscan render INPUT` makes
     with the same options, byte for byte (its .hash is the CLI's image_hash).
@@ -426,7 +426,9 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     fovy       degrees; None: the scene's (45 unless it says)
     near, far  the clip planes' distances; None: from the bounds
     algo       'zbuffer', 'scanline' or 'depthsort'
-    shade      'flat', 'id', 'depth' or 'overdraw'
+    shade      'auto' (flat, or phong for a model with normals, colours or
+               textures), 'flat', 'unlit', 'gouraud', 'phong', 'normal', 'id',
+               'depth' or 'overdraw'
     style      'solid' or 'hidden-line' (zbuffer and flat only)
     threads    1 .. 64 (depthsort: its walk only)
     cull_back  drop faces turned away from the camera (--cull-back)
