@@ -13,6 +13,7 @@ typedef struct gather {
 static void gather_row(void *user, const zs_row *row) {
   gather *g = user;
   size_t off = (size_t)row->y * (size_t)row->width;
+  if (!g->im) return; /* the rows shaded and dropped: a frame timed */
   memcpy(g->im->rgb + off, row->rgb, (size_t)row->width * sizeof *row->rgb);
   if (g->depth)
     for (int x = 0; x < row->width; x++)
@@ -56,7 +57,9 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
         return err->code;
     }
   }
-  return zs_device_finish(dev, out ? gather_row : NULL, &g, err);
+  /* every row goes out, kept or not: the shadings that read attributes
+   * colour a pixel only when its row does (raster/surface.h) */
+  return zs_device_finish(dev, gather_row, &g, err);
 }
 
 zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err) {

@@ -46,7 +46,8 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
 
 /* The same with a device made by the caller and kept across frames
  * (`--repeat`): the device's size and modes are used.  out may be NULL
- * (and then depth too): the frame is rendered and stays in the device. */
+ * (and then depth too): the frame is rendered, its rows shaded and
+ * dropped, and its buffers stay in the device. */
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err);

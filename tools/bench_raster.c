@@ -547,9 +547,10 @@ static zs_status count_instructions(const bench_opts *o, const char *name, zs_al
   uint64_t n[2];
   static const char *const frames[2] = {"1", "3"};
   for (int k = 0; k < 2; k++) {
-    const char *args[] = {"bench", "raster", "--case", name, "--algo", zs_algo_name(algo),
-                          "--repeat", frames[k], "--size", size, "--simd", zs_simd_name(o->simd),
-                          NULL};
+    const char *args[] = {"bench",  "raster",          "--case",  name,
+                          "--algo", zs_algo_name(algo), "--repeat", frames[k],
+                          "--size", size,              "--simd",  zs_simd_name(o->simd),
+                          "--shade", zs_shade_name(o->shade), NULL};
     zs_status st = zs_callgrind_count(args, &n[k], err);
     if (st) return st;
   }
