@@ -19,7 +19,10 @@ zs_status zs_scene_load(const char *input, const zs_load_opts *opts, zs_scene **
   *out = NULL;
   zs_scene *s = malloc(sizeof *s);
   if (!s) return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  zs_status st = zs_input_load(input, opts ? opts->allow_empty : 0, s, err);
+  int flags = 0;
+  if (opts && opts->allow_empty) flags |= ZS_INPUT_ALLOW_EMPTY;
+  if (opts && opts->skip_missing_textures) flags |= ZS_INPUT_SKIP_MISSING_TEXTURES;
+  zs_status st = zs_input_load(input, flags, s, err);
   if (st != ZS_OK) {
     free(s);
     return st;
@@ -35,6 +38,10 @@ void zs_scene_destroy(zs_scene *scene) {
 }
 
 int32_t zs_scene_objects(const zs_scene *scene) { return scene->ninst; }
+
+const char *zs_scene_notes(const zs_scene *scene) {
+  return scene->notes.text ? scene->notes.text : "";
+}
 
 /* The camera and the frame's options that opts ask for, on scene: the
  * user's camera over the scene's, as the command's options are. */

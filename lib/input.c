@@ -22,17 +22,20 @@ zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err) {
   return zs_input_load(spec, 0, out, err);
 }
 
-zs_status zs_input_load(const char *spec, int allow_empty, zs_scene *out, zs_error *err) {
+zs_status zs_input_load(const char *spec, int flags, zs_scene *out, zs_error *err) {
   zs_scene_init(out);
   zs_status st;
+  const int skip = (flags & ZS_INPUT_SKIP_MISSING_TEXTURES) != 0;
   if (!spec) return zs_gen_scene("default", out, err);
   if (strncmp(spec, "builtin:", 8) == 0) return zs_gen_scene(spec + 8, out, err);
-  if (has_suffix(spec, ".json")) return zs_scenefile_load(spec, out, err);
+  if (has_suffix(spec, ".json"))
+    return zs_scenefile_load_flags(spec, skip ? ZS_SCENEFILE_SKIP_MISSING_TEXTURES : 0, out, err);
   zs_model m;
-  if (has_suffix(spec, ".obj")) st = zs_obj_load(spec, &m, err);
-  else st = zs_assimp_load(spec, &m, err);
+  if (has_suffix(spec, ".obj"))
+    st = zs_obj_load_flags(spec, skip ? ZS_OBJ_SKIP_MISSING_TEXTURES : 0, &m, err);
+  else st = zs_assimp_load_flags(spec, skip ? ZS_ASSIMP_SKIP_MISSING_TEXTURES : 0, &m, err);
   if (st != ZS_OK) return st;
-  if (m.nsource_faces == 0 && !allow_empty) {
+  if (m.nsource_faces == 0 && !(flags & ZS_INPUT_ALLOW_EMPTY)) {
     /* an empty file, vertices or points only: nothing would be drawn */
     zs_model_free(&m);
     return zs_error_set(err, ZS_ERR_PARSE, "%s: no faces", spec);

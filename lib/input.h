@@ -17,8 +17,16 @@
  * with "FILE: no faces". */
 zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err);
 
-/* The same; allow_empty: a model without faces loads too (its frame is the
- * background alone). */
-zs_status zs_input_load(const char *spec, int allow_empty, zs_scene *out, zs_error *err);
+/* Flags of zs_input_load (0: as zs_input_load_scene). */
+enum {
+  /* a model without faces loads too (its frame is the background alone) */
+  ZS_INPUT_ALLOW_EMPTY = 1,
+  /* a texture that cannot be opened or read is left out, and the scene's
+   * notes say which (ZS_OBJ_, ZS_ASSIMP_, ZS_SCENEFILE_SKIP_MISSING_TEXTURES) */
+  ZS_INPUT_SKIP_MISSING_TEXTURES = 2
+};
+
+/* The same with flags (ZS_INPUT_*). */
+zs_status zs_input_load(const char *spec, int flags, zs_scene *out, zs_error *err);
 
 #endif

@@ -53,10 +53,15 @@ zs_status zs_assimp_cameras(const char *path, zs_file_camera **out, int *n, zs_e
                       "%s: cameras are read through assimp (built without it)", path);
 }
 
-zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
+zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_error *err) {
+  (void)flags;
   zs_model_init(out);
   return zs_error_set(err, ZS_ERR_UNSUPPORTED,
                       "%s: this build reads only .obj (built without assimp)", path);
+}
+
+zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
+  return zs_assimp_load_flags(path, 0, out, err);
 }
 
 #else
@@ -239,7 +244,7 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
  * file's path as opened, or "*N" for embedded texture N. */
 typedef struct tex_entry {
   char *key;
-  const zs_texture *tex; /* owned by the model */
+  const zs_texture *tex; /* owned by the model; NULL: skipped */
 } tex_entry;
 
 typedef struct loader {
@@ -253,6 +258,7 @@ typedef struct loader {
   tex_entry *tex;
   int32_t ntex, cap_tex;
   int need_normals;        /* a mesh has colours or uvs but no normals */
+  int flags;               /* ZS_ASSIMP_* */
 } loader;
 
 /* 4x4 row-major doubles from an aiMatrix4x4 (also row-major, column
@@ -391,7 +397,9 @@ static zs_status embedded_texture(loader *L, int i, const char *key, zs_texture 
 
 /* The texture that a material names (a file relative to the model's
  * folder, or embedded), made on its first use and owned by the model;
- * errors read "MODEL: texture NAME: reason". */
+ * errors read "MODEL: texture NAME: reason".  *out NULL when it is
+ * skipped (ZS_ASSIMP_SKIP_MISSING_TEXTURES), with a note of the model's:
+ * that message and ": drawn without it". */
 static zs_status find_texture(loader *L, const char *name, const zs_texture **out) {
   *out = NULL;
   int emb = embedded_index(L->scene, name);
@@ -428,6 +436,15 @@ static zs_status find_texture(loader *L, const char *name, const zs_texture **ou
   zs_error_clear(&e);
   zs_texture *t = NULL;
   zs_status st = emb >= 0 ? embedded_texture(L, emb, key, &t, &e) : zs_texture_load(key, &t, &e);
+  /* only a file that cannot be opened or read is skipped: a corrupt
+   * image is there to be fixed */
+  if (st == ZS_ERR_IO && (L->flags & ZS_ASSIMP_SKIP_MISSING_TEXTURES)) {
+    if (!zs_notes_add(&L->m->notes, "%s: texture %s: drawn without it", L->path, e.msg)) {
+      free(key);
+      return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+    }
+    st = ZS_OK; /* t stays NULL: the entry below remembers the skip */
+  }
   if (st != ZS_OK) {
     free(key);
     return set_error(L->err, st, "%s: texture %s", L->path, e.msg);
@@ -437,7 +454,7 @@ static zs_status find_texture(loader *L, const char *name, const zs_texture **ou
     free(key);
     return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
   }
-  if (!zs_model_own_texture(L->m, t)) { /* (which destroyed t) */
+  if (t && !zs_model_own_texture(L->m, t)) { /* (which destroyed t) */
     free(key);
     return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
   }
@@ -742,6 +759,10 @@ static zs_status import_checked(const char *path, unsigned flags, const struct a
 }
 
 zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
+  return zs_assimp_load_flags(path, 0, out, err);
+}
+
+zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_error *err) {
   zs_model_init(out);
   const struct aiScene *sc;
   zs_status st = import_checked(path,
@@ -759,7 +780,7 @@ zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
                        path, cameras, cameras == 1 ? "" : "s");
     return set_error(err, ZS_ERR_PARSE, "%s: no meshes", path);
   }
-  loader L = {path, sc, out, 0, 0, err, zs_load_dir(path), NULL, NULL, 0, 0, 0};
+  loader L = {path, sc, out, 0, 0, err, zs_load_dir(path), NULL, NULL, 0, 0, 0, flags};
   if (sc->mNumMaterials) L.material = malloc(sc->mNumMaterials * sizeof *L.material);
   if (!L.dir || (sc->mNumMaterials && !L.material)) {
     st = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);

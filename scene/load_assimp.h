@@ -66,7 +66,9 @@
  *     coordinate not a finite number");
  *   - a texture that cannot be read ("FILE: texture PATH: REASON", REASON
  *     as scene/texture_file.h words it, e.g. "cannot open: No such file
- *     or directory"), or an embedded one that does not exist.
+ *     or directory"), or an embedded one that does not exist; with
+ *     ZS_ASSIMP_SKIP_MISSING_TEXTURES, one that cannot be opened or read
+ *     is a note instead (below).
  * A build without assimp (ZS_HAVE_ASSIMP undefined) refuses every file
  * with "FILE: this build reads only .obj (built without assimp)".
  */
@@ -107,5 +109,19 @@ zs_status zs_assimp_cameras(const char *path, zs_file_camera **out, int *n, zs_e
  * previous content is not freed).  On failure out is left empty and err
  * says why. */
 zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err);
+
+/* Flags of zs_assimp_load_flags (0: the defaults). */
+enum {
+  /* A texture file that cannot be opened or read (ZS_ERR_IO) leaves its
+   * materials untextured instead of failing the load, and the model's
+   * notes say so, once per file: the message the load would have failed
+   * with and ": drawn without it" ("FILE: texture DIR/wood.png: cannot
+   * open: No such file or directory: drawn without it").  A corrupt
+   * image, or an embedded one that is not there, is still an error. */
+  ZS_ASSIMP_SKIP_MISSING_TEXTURES = 1
+};
+
+/* zs_assimp_load with flags (ZS_ASSIMP_*); the plain one passes 0. */
+zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_error *err);
 
 #endif

@@ -816,8 +816,10 @@ static zs_status end_nomem(obj_parser *p) {
 }
 
 /* The texture of d's map_Kd, read once per path; *out NULL when it is
- * skipped (ZS_OBJ_SKIP_MISSING_TEXTURES).  A failure names the library's
- * line and the file as written there, then the reader's reason. */
+ * skipped (ZS_OBJ_SKIP_MISSING_TEXTURES), with a note of the model's.  A
+ * failure names the library's line and the file as written there, then
+ * the reader's reason; the note is that message and ": drawn without
+ * it". */
 static zs_status texture_of(obj_parser *p, const mtl_def *d, const zs_texture **out) {
   for (int32_t i = 0; i < p->ntex; i++) {
     if (strcmp(p->tex[i].path, d->map_path) == 0) {
@@ -831,13 +833,18 @@ static zs_status texture_of(obj_parser *p, const mtl_def *d, const zs_texture **
   zs_error e;
   zs_error_clear(&e);
   zs_status st = zs_texture_load(d->map_path, &tex, &e);
-  if (st == ZS_ERR_IO && (p->flags & ZS_OBJ_SKIP_MISSING_TEXTURES)) st = ZS_OK;
   if (st != ZS_OK) {
     /* the reader's message begins with the path it was given: drop that */
     size_t plen = strlen(d->map_path);
     const char *why = strncmp(e.msg, d->map_path, plen) == 0 && strncmp(e.msg + plen, ": ", 2) == 0
                           ? e.msg + plen + 2 : e.msg;
-    return zs_load_error(p->r.err, st, "%s: map_Kd %s: %s", d->map_where, d->map, why);
+    /* only a file that cannot be opened or read is skipped: a corrupt
+     * image is there to be fixed */
+    if (st != ZS_ERR_IO || !(p->flags & ZS_OBJ_SKIP_MISSING_TEXTURES))
+      return zs_load_error(p->r.err, st, "%s: map_Kd %s: %s", d->map_where, d->map, why);
+    if (!zs_notes_add(&p->m->notes, "%s: map_Kd %s: %s: drawn without it", d->map_where, d->map,
+                      why))
+      return end_nomem(p);
   }
   if (tex && !zs_model_own_texture(p->m, tex)) return end_nomem(p);
   if (!(p->tex[p->ntex].path = strdup(d->map_path))) return end_nomem(p);

@@ -72,8 +72,9 @@
  * texture that cannot be read is an error at its map_Kd line, the file
  * as written there, then the image reader's reason:
  * "DIR/m.mtl:12: map_Kd wood.png: cannot open: No such file or
- * directory".  Lines longer than ZS_OBJ_LINE_MAX bytes and NUL bytes are
- * refused.
+ * directory" (with ZS_OBJ_SKIP_MISSING_TEXTURES, one that cannot be
+ * opened or read is a note instead).  Lines longer than ZS_OBJ_LINE_MAX
+ * bytes and NUL bytes are refused.
  */
 #ifndef ZS_SCENE_LOAD_OBJ_H
 #define ZS_SCENE_LOAD_OBJ_H
@@ -91,9 +92,12 @@ enum { ZS_OBJ_LINE_MAX = 65536 }; /* bytes per line, without "\r\n" */
 /* Flags of zs_obj_load_flags and zs_obj_parse_flags (0: the defaults). */
 enum {
   /* A texture that cannot be opened or read (ZS_ERR_IO) leaves its
-   * material untextured instead of failing the load; an image that is
-   * there but corrupt is still an error.  (For an option of the public
-   * zs_load_opts to come.) */
+   * materials untextured instead of failing the load, and the model's
+   * notes say so, once per file: the message the load would have failed
+   * with and ": drawn without it" ("m.mtl:12: map_Kd wood.png: cannot
+   * open: No such file or directory: drawn without it").  An image that
+   * is there but corrupt is still an error.  (zs_load_opts's
+   * skip_missing_textures.) */
   ZS_OBJ_SKIP_MISSING_TEXTURES = 1
 };
 

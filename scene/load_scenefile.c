@@ -41,16 +41,23 @@ enum {
 typedef struct reader {
   const char *name; /* the scene file, for messages */
   const char *dir;  /* mesh files are relative to it */
+  int flags;        /* ZS_SCENEFILE_* */
   char path[PATH_MAX_CHARS];
   size_t plen;
   zs_error *err;
 } reader;
 
+/* "NAME: PATH: " ("NAME: " at the top level): what every message of the
+ * value at the path starts with. */
+static void where(const reader *r, char *buf, size_t cap) {
+  if (r->plen == 0) snprintf(buf, cap, "%s: ", r->name);
+  else snprintf(buf, cap, "%s: %s: ", r->name, r->path);
+}
+
 /* Sets err to "NAME: PATH: reason" ("NAME: reason" at the top level). */
 static zs_status ZS_PRINTF_LIKE(3, 4) fail(reader *r, zs_status code, const char *fmt, ...) {
   char prefix[ZS_ERROR_MSG_MAX];
-  if (r->plen == 0) snprintf(prefix, sizeof prefix, "%s: ", r->name);
-  else snprintf(prefix, sizeof prefix, "%s: %s: ", r->name, r->path);
+  where(r, prefix, sizeof prefix);
   va_list ap;
   va_start(ap, fmt);
   zs_status st = zs_load_verror(r->err, code, 0, prefix, fmt, ap);
@@ -301,10 +308,19 @@ static zs_status load_mesh_file(reader *r, const char *file, zs_model *m) {
     return fail(r, ZS_ERR_LIMIT, "%s: larger than %lld MiB", full, ZS_SCENEFILE_MAX_BYTES >> 20);
   zs_error inner;
   zs_error_clear(&inner);
+  const int skip = (r->flags & ZS_SCENEFILE_SKIP_MISSING_TEXTURES) != 0;
   zs_status st =
-      has_obj_extension(full) ? zs_obj_load(full, m, &inner) : zs_assimp_load(full, m, &inner);
+      has_obj_extension(full)
+          ? zs_obj_load_flags(full, skip ? ZS_OBJ_SKIP_MISSING_TEXTURES : 0, m, &inner)
+          : zs_assimp_load_flags(full, skip ? ZS_ASSIMP_SKIP_MISSING_TEXTURES : 0, m, &inner);
   if (st != ZS_OK) return fail(r, st, "%s", inner.msg);
   if (m->nsource_faces == 0) return fail(r, ZS_ERR_PARSE, "%s: no faces", full);
+  /* the file's notes follow the path, as its errors do */
+  char prefix[PATH_MAX_CHARS + 4096];
+  where(r, prefix, sizeof prefix);
+  zs_notes notes = {NULL, 0, 0};
+  if (!zs_notes_move(&notes, &m->notes, prefix)) return fail(r, ZS_ERR_NOMEM, "out of memory");
+  m->notes = notes;
   return ZS_OK;
 }
 
@@ -414,7 +430,9 @@ static zs_status get_word(reader *r, const cJSON *obj, const char *key,
 }
 
 /* A mesh's "material": it replaces the mesh's own on every face.  Colours
- * as instances' (sRGB); its texture is a file beside the scene file. */
+ * as instances' (sRGB); its texture is a file beside the scene file, or
+ * a note of the model's when it cannot be opened or read and
+ * ZS_SCENEFILE_SKIP_MISSING_TEXTURES says to draw without it. */
 static zs_status read_material(reader *r, const cJSON *obj, zs_model *m) {
   static const char *const keys[] = {"color",   "alpha",  "specular", "shininess", "emissive",
                                      "texture", "wrap",   "filter",   "double_sided", NULL};
@@ -454,9 +472,21 @@ static zs_status read_material(reader *r, const cJSON *obj, zs_model *m) {
     zs_texture *tex = NULL;
     zs_error inner;
     zs_error_clear(&inner);
-    if (zs_texture_load(path, &tex, &inner) != ZS_OK)
+    zs_status tst = zs_texture_load(path, &tex, &inner);
+    /* only a file that cannot be opened or read is skipped: a corrupt
+     * image is there to be fixed */
+    if (tst == ZS_ERR_IO && (r->flags & ZS_SCENEFILE_SKIP_MISSING_TEXTURES)) {
+      char prefix[PATH_MAX_CHARS + 4096];
+      size_t mark = push_key(r, "texture");
+      where(r, prefix, sizeof prefix);
+      pop(r, mark);
+      if (!zs_notes_add(&m->notes, "%s%s: drawn without it", prefix, inner.msg))
+        return fail(r, ZS_ERR_NOMEM, "out of memory");
+    } else if (tst != ZS_OK) {
       return fail_at(r, "texture", inner.code, "%s", inner.msg);
-    if (!zs_model_own_texture(m, tex)) return fail(r, ZS_ERR_NOMEM, "out of memory");
+    } else if (!zs_model_own_texture(m, tex)) {
+      return fail(r, ZS_ERR_NOMEM, "out of memory");
+    }
     mat.base_texture = tex;
   }
   /* one material for every face */
@@ -1036,10 +1066,17 @@ static void line_col(const char *text, size_t pos, long *line, long *col) {
   *col = (long)(pos - start) + 1;
 }
 
+/* What zs_load_parsed hands to parse_scene. */
+typedef struct scene_target {
+  zs_scene *s;
+  int flags;
+} scene_target;
+
 /* zs_scenefile_parse, in the form of zs_load_parser. */
 static zs_status parse_scene(const char *text, size_t len, const char *name, const char *dir,
-                             void *scene, zs_error *err) {
-  zs_scene *out = scene;
+                             void *target, zs_error *err) {
+  const scene_target *t = target;
+  zs_scene *out = t->s;
   zs_scene_init(out);
   if ((unsigned long long)len > (unsigned long long)ZS_SCENEFILE_MAX_BYTES)
     return zs_load_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", name,
@@ -1062,7 +1099,7 @@ static zs_status parse_scene(const char *text, size_t len, const char *name, con
     line_col(buf, pos, &line, &col);
     st = zs_load_error(err, ZS_ERR_PARSE, "%s:%ld:%ld: invalid JSON", name, line, col);
   } else {
-    reader r = {name, dir, "", 0, err};
+    reader r = {name, dir, t->flags, "", 0, err};
     st = read_scene(&r, root, out);
   }
   cJSON_Delete(root);
@@ -1073,11 +1110,17 @@ static zs_status parse_scene(const char *text, size_t len, const char *name, con
 
 zs_status zs_scenefile_parse(const char *text, size_t len, const char *name, const char *dir,
                              zs_scene *out, zs_error *err) {
-  return parse_scene(text, len, name, dir, out, err);
+  scene_target t = {out, 0};
+  return parse_scene(text, len, name, dir, &t, err);
+}
+
+zs_status zs_scenefile_load_flags(const char *path, int flags, zs_scene *out, zs_error *err) {
+  zs_scene_init(out);
+  scene_target t = {out, flags};
+  /* mesh files live next to the scene file */
+  return zs_load_parsed(path, ZS_SCENEFILE_MAX_BYTES, ZS_LOAD_REGULAR_ONLY, parse_scene, &t, err);
 }
 
 zs_status zs_scenefile_load(const char *path, zs_scene *out, zs_error *err) {
-  zs_scene_init(out);
-  /* mesh files live next to the scene file */
-  return zs_load_parsed(path, ZS_SCENEFILE_MAX_BYTES, ZS_LOAD_REGULAR_ONLY, parse_scene, out, err);
+  return zs_scenefile_load_flags(path, 0, out, err);
 }

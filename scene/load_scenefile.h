@@ -121,6 +121,23 @@ enum { ZS_SCENEFILE_MAX_MESHES = 1 << 16, ZS_SCENEFILE_MAX_INSTANCES = 1 << 20 }
  * empty and err says why. */
 zs_status zs_scenefile_load(const char *path, zs_scene *out, zs_error *err);
 
+/* Flags of zs_scenefile_load_flags (0: the defaults). */
+enum {
+  /* A texture that cannot be opened or read, of a mesh file (as
+   * ZS_OBJ_SKIP_MISSING_TEXTURES and ZS_ASSIMP_SKIP_MISSING_TEXTURES
+   * say) or of a mesh's "material", leaves its material untextured
+   * instead of failing the load, and the scene's notes say so: the
+   * message the load would have failed with and ": drawn without it",
+   * e.g. "scene.json: meshes[0].material.texture: dir/wood.png: cannot
+   * open: No such file or directory: drawn without it", or "scene.json:
+   * meshes[1].file: dir/m.mtl:4: map_Kd wood.png: cannot open: ...:
+   * drawn without it".  A corrupt image is still an error. */
+  ZS_SCENEFILE_SKIP_MISSING_TEXTURES = 1
+};
+
+/* zs_scenefile_load with flags (ZS_SCENEFILE_*); the plain one passes 0. */
+zs_status zs_scenefile_load_flags(const char *path, int flags, zs_scene *out, zs_error *err);
+
 /* Parses the len bytes of text (not necessarily NUL-terminated) as a scene
  * file.  name is used in messages; dir is the directory mesh files are
  * relative to ("" or NULL: the current directory).  out as for

@@ -9,7 +9,9 @@
 #include "util/grow.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,7 +47,67 @@ void zs_model_free(zs_model *m) {
   free(m->materials);
   for (int32_t i = 0; i < m->ntextures; i++) zs_texture_destroy(m->textures[i]);
   free(m->textures);
+  zs_notes_free(&m->notes);
   zs_model_init(m);
+}
+
+/* ---- notes ------------------------------------------------------------ */
+
+/* Room for more bytes and the NUL after them. */
+static int notes_reserve(zs_notes *n, int64_t more) {
+  return zs_grow((void **)&n->text, &n->cap, (int64_t)n->len + more + 1, 1);
+}
+
+int zs_notes_add(zs_notes *n, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int k = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  if (k < 0 || !notes_reserve(n, (int64_t)k + 1)) return 0;
+  char *line = n->text + n->len;
+  va_start(ap, fmt);
+  vsnprintf(line, (size_t)k + 1, fmt, ap);
+  va_end(ap);
+  for (int i = 0; i < k; i++)
+    if ((unsigned char)line[i] < 0x20 || line[i] == 0x7f) line[i] = ' ';
+  line[k] = '\n';
+  line[k + 1] = '\0';
+  n->len += k + 1;
+  return 1;
+}
+
+int zs_notes_move(zs_notes *to, zs_notes *from, const char *prefix) {
+  if (from->len == 0) {
+    zs_notes_free(from);
+    return 1;
+  }
+  if (!prefix && to->len == 0) { /* the whole buffer changes hands */
+    zs_notes_free(to);
+    *to = *from;
+    *from = (zs_notes){NULL, 0, 0};
+    return 1;
+  }
+  const size_t plen = prefix ? strlen(prefix) : 0;
+  int64_t lines = 0;
+  for (int32_t i = 0; i < from->len; i++) lines += from->text[i] == '\n';
+  if ((int64_t)plen * lines > INT32_MAX || !notes_reserve(to, from->len + (int64_t)plen * lines))
+    return 0;
+  for (const char *s = from->text, *end = from->text + from->len; s < end;) {
+    const char *nl = memchr(s, '\n', (size_t)(end - s));
+    size_t k = (size_t)(nl - s) + 1; /* every note ends in '\n' */
+    memcpy(to->text + to->len, prefix ? prefix : "", plen);
+    memcpy(to->text + to->len + plen, s, k);
+    to->len += (int32_t)(plen + k);
+    s += k;
+  }
+  to->text[to->len] = '\0';
+  zs_notes_free(from);
+  return 1;
+}
+
+void zs_notes_free(zs_notes *n) {
+  free(n->text);
+  *n = (zs_notes){NULL, 0, 0};
 }
 
 static int reserve_vertices(zs_model *m, int64_t need) {

@@ -18,6 +18,31 @@
 
 #define ZS_GREY 0xB4B4B4u /* the colour of faces without a material */
 
+/* The notes of a load (zs_scene_notes): lines of text, each ending in
+ * '\n', about what was drawn otherwise than the file asked (a texture
+ * skipped because it cannot be opened).  text is NULL when there are
+ * none, else NUL-terminated after its len bytes. */
+typedef struct zs_notes {
+  char *text;
+  int32_t len, cap;
+} zs_notes;
+
+/* Appends one note: the line fmt makes, with every control character
+ * written as a space (a name from a file cannot break it in two), and
+ * '\n'.  0 when out of memory (the notes then stay as they were). */
+int zs_notes_add(zs_notes *n, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Appends every note of *from to *to, each after prefix (NULL: none), and
+ * frees *from (left empty).  0 when out of memory (both stay as they
+ * were). */
+int zs_notes_move(zs_notes *to, zs_notes *from, const char *prefix);
+
+void zs_notes_free(zs_notes *n);
+
 typedef struct zs_model {
   zs_mesh mesh;           /* arrays owned by the model */
   int32_t *face_object;   /* per mesh face, -1 for none */
@@ -27,6 +52,7 @@ typedef struct zs_model {
   zs_material *materials; /* mesh.materials, owned (mesh.nmaterials of them) */
   zs_texture **textures;  /* the textures the materials use, owned */
   int32_t ntextures;
+  zs_notes notes;         /* of its load, until a scene takes them */
   /* capacities (private) */
   int32_t cap_verts, cap_faces, cap_face_verts, cap_objects;
   int32_t cap_attrs, cap_materials, cap_textures;

@@ -54,11 +54,13 @@ void zs_scene_free(zs_scene *s) {
   for (int32_t i = 0; i < s->ninst; i++) free(s->inst[i].name);
   free(s->inst);
   free(s->path.keys);
+  zs_notes_free(&s->notes);
   zs_scene_init(s);
 }
 
 int32_t zs_scene_add_mesh(zs_scene *s, zs_model *m) {
-  if (!zs_grow((void **)&s->meshes, &s->cap_meshes, (int64_t)s->nmeshes + 1, sizeof *s->meshes))
+  if (!zs_grow((void **)&s->meshes, &s->cap_meshes, (int64_t)s->nmeshes + 1, sizeof *s->meshes) ||
+      !zs_notes_move(&s->notes, &m->notes, NULL))
     return -1;
   s->meshes[s->nmeshes] = *m;
   zs_model_init(m);
@@ -280,6 +282,8 @@ zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "scene: out of memory");
   for (int32_t v = 0; st == ZS_OK && v < m->mesh.nverts; v++) remap[v] = -1;
   for (int32_t a = 0; st == ZS_OK && a < m->mesh.nattrs; a++) remap_attr[a] = -1;
+  if (st == ZS_OK && !zs_notes_move(&s->notes, &m->notes, NULL))
+    st = zs_error_set(err, ZS_ERR_NOMEM, "scene: out of memory");
   int textures_handed = 0;
   /* objects in order, then the faces of no object */
   for (int32_t o = 0; st == ZS_OK && o <= m->nobjects; o++) {

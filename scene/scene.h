@@ -78,13 +78,15 @@ typedef struct zs_scene {
   zs_light lights[ZS_MAX_LIGHTS]; /* the scene file's lights (nlights 0: none,
                                    * the device's headlight) */
   int nlights;
+  zs_notes notes;      /* of the load, its meshes' too (zs_scene_notes) */
 } zs_scene;
 
 void zs_scene_init(zs_scene *s);
 void zs_scene_free(zs_scene *s);
 
-/* Adds a mesh (moving *m into the scene, which then owns it; *m is left
- * empty); returns its index or -1 when out of memory. */
+/* Adds a mesh (moving *m into the scene, which then owns it, and its
+ * notes onto the scene's; *m is left empty); returns its index or -1
+ * when out of memory. */
 int32_t zs_scene_add_mesh(zs_scene *s, zs_model *m);
 
 /* Adds an instance of mesh with the model matrix (NULL: identity), colour
@@ -99,7 +101,7 @@ zs_status zs_scene_finish(zs_scene *s, zs_error *err);
 
 /* A scene of one OBJ-style model: one instance per object of the model
  * (faces of no object form one instance named "(none)"), ids as in the
- * model.  *m is consumed (left empty). */
+ * model, its notes the scene's.  *m is consumed (left empty). */
 zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err);
 
 /* Number of source faces (ids) of the whole scene: the sum over instances

@@ -681,6 +681,58 @@ START_TEST(empty_inputs_refused_unless_allowed) {
 }
 END_TEST
 
+/* A material whose texture cannot be opened: exit 1 with the library's
+ * line; with --skip-missing-textures exit 0, a warning naming it (none
+ * with -q), and the image of the same model whose material has no
+ * texture at all. */
+START_TEST(render_skips_missing_textures) {
+  char obj[4096], png[4200], plain_obj[4200], plain_mtl[4200], plain_png[4200], want[8400];
+  snprintf(obj, sizeof obj, "%s", zs_test_src("tests/data/obj/missing_texture.obj"));
+  snprintf(png, sizeof png, "%s/cli-notex.png", ZS_BINARY_DIR);
+  unlink(png);
+  const char *refused[] = {"render", obj, "--size", "32x24", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(refused, out, sizeof out, err, sizeof err), 1);
+  const char *why = "map_Kd nothing here.png: cannot open: No such file or directory";
+  snprintf(want, sizeof want, "zscan render: %s: %s\n",
+           zs_test_src("tests/data/obj/missing_texture.mtl:4"), why);
+  ck_assert_str_eq(err, want);
+  ck_assert(!zs_test_exists(png));
+
+  const char *skipped[] = {"render", obj, "--size", "32x24", "-o", png, "--skip-missing-textures",
+                           NULL};
+  ck_assert_int_eq(zs_test_run_zscan(skipped, out, sizeof out, err, sizeof err), 0);
+  snprintf(want, sizeof want,
+           "zscan render: warning: %s: %s: drawn without it\n"
+           "zscan render: wrote %s: 32x24, 1 faces, ",
+           zs_test_src("tests/data/obj/missing_texture.mtl:4"), why, png);
+  ck_assert_msg(strncmp(err, want, strlen(want)) == 0, "%s", err);
+  ck_assert_str_eq(out, "");
+  const char *quiet[] = {"render", obj, "--size", "32x24", "-o", png, "--skip-missing-textures",
+                         "-q", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(quiet, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(err, "");
+
+  /* the same model and material, without map_Kd */
+  snprintf(plain_obj, sizeof plain_obj, "%s/cli-notex-plain.obj", ZS_BINARY_DIR);
+  snprintf(plain_mtl, sizeof plain_mtl, "%s/cli-notex-plain.mtl", ZS_BINARY_DIR);
+  snprintf(plain_png, sizeof plain_png, "%s/cli-notex-plain.png", ZS_BINARY_DIR);
+  FILE *f = fopen(plain_obj, "w");
+  ck_assert_ptr_nonnull(f);
+  fputs("mtllib cli-notex-plain.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl gone\nf 1 2 3\n", f);
+  ck_assert_int_eq(fclose(f), 0);
+  ck_assert_ptr_nonnull(f = fopen(plain_mtl, "w"));
+  fputs("newmtl gone\nKd 1 0 0\n", f);
+  ck_assert_int_eq(fclose(f), 0);
+  const char *plain[] = {"render", plain_obj, "--size", "32x24", "-o", plain_png, "-q", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(plain, out, sizeof out, err, sizeof err), 0);
+  zs_test_assert_same_file(png, plain_png);
+  unlink(plain_obj);
+  unlink(plain_mtl);
+  unlink(plain_png);
+  unlink(png);
+}
+END_TEST
+
 /* calibrate measures what this device shows and keeps the modelled
  * values of what it cannot (latency, switch, CPU side), saying which; the
  * file it writes reads back with its latency. */
@@ -1245,6 +1297,7 @@ int main(void) {
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);
+  tcase_add_test(tc, render_skips_missing_textures);
   tcase_add_test(tc, calibrate_keeps_the_modelled_latency);
   tcase_add_test(tc, progress_in_logs_unless_quiet);
   tcase_add_test(tc, render_background);

@@ -183,6 +183,35 @@ START_TEST(zero_config_renders) {
 }
 END_TEST
 
+/* zs_load_opts.skip_missing_textures: a texture that cannot be opened
+ * is an error without it; with it the model loads, and zs_scene_notes
+ * says which texture was left out, the error's words and ": drawn
+ * without it".  A scene without notes has "". */
+START_TEST(scene_notes_name_a_skipped_texture) {
+  char path[4096], want[8192];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/obj/missing_texture.obj"));
+  zs_error err = {0};
+  zs_scene *scene = NULL;
+  ck_assert_int_eq(zs_scene_load(path, NULL, &scene, &err), ZS_ERR_IO);
+  ck_assert_ptr_null(scene);
+  snprintf(want, sizeof want,
+           "%s: map_Kd nothing here.png: cannot open: No such file or directory",
+           zs_test_src("tests/data/obj/missing_texture.mtl:4"));
+  ck_assert_str_eq(err.msg, want);
+  zs_load_opts opts = {0};
+  opts.skip_missing_textures = 1;
+  zs_error_clear(&err);
+  ck_assert_msg(zs_scene_load(path, &opts, &scene, &err) == ZS_OK, "%s", err.msg);
+  strcat(want, ": drawn without it\n");
+  ck_assert_str_eq(zs_scene_notes(scene), want);
+  ck_assert_uint_eq(zs_scene_faces(scene), 1);
+  zs_scene_destroy(scene);
+  ck_assert_int_eq(zs_scene_load("builtin:cubes?n=2", &opts, &scene, &err), ZS_OK);
+  ck_assert_str_eq(zs_scene_notes(scene), "");
+  zs_scene_destroy(scene);
+}
+END_TEST
+
 /* The library refuses what the command refuses, in its own words: the
  * fields of zs_render_opts, never the command's flags. */
 START_TEST(library_errors_name_its_options_not_flags) {
@@ -484,6 +513,7 @@ int main(void) {
   tcase_add_test(tc, shared_library_exports_the_api_only);
   tcase_add_test(tc, zero_config_renders);
   tcase_add_test(tc, library_errors_name_its_options_not_flags);
+  tcase_add_test(tc, scene_notes_name_a_skipped_texture);
   tcase_add_test(tc, render_hash_equals_the_command);
   tcase_add_test(tc, cxx_example_queries);
   tcase_add_test(tc, query_objects_equal_the_command);

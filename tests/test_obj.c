@@ -887,7 +887,8 @@ END_TEST
 
 /* A texture that cannot be opened is an error at its map_Kd line, naming
  * the file as the library writes it; with ZS_OBJ_SKIP_MISSING_TEXTURES
- * the material is left untextured. */
+ * the material is left untextured, and the model's notes hold that
+ * message and ": drawn without it". */
 START_TEST(obj_missing_texture) {
   char path[4096], want[4400];
   snprintf(path, sizeof path, "%s", zs_test_src("tests/data/obj/missing_texture.obj"));
@@ -901,10 +902,14 @@ START_TEST(obj_missing_texture) {
   ck_assert_str_eq(err.msg, want);
   ck_assert_ptr_null(m.mesh.pos);
   ck_assert_ptr_null(m.materials);
+  ck_assert_ptr_null(m.notes.text);
 
   zs_error_clear(&err);
   ck_assert_msg(zs_obj_load_flags(path, ZS_OBJ_SKIP_MISSING_TEXTURES, &m, &err) == ZS_OK, "%s",
                 err.msg);
+  strcat(want, ": drawn without it\n");
+  ck_assert_str_eq(m.notes.text, want);
+  ck_assert_int_eq(m.notes.len, (int)strlen(want));
   ck_assert_int_eq(m.mesh.nmaterials, 1);
   ck_assert_ptr_null(m.mesh.materials[0].base_texture);
   ck_assert_int_eq(m.ntextures, 0);
@@ -975,6 +980,21 @@ START_TEST(obj_mtl_messages) {
   ck_assert_int_eq(load_pair("mtlerr", obj, "newmtl a\nmap_Kd mtlerr.obj\n",
                              ZS_OBJ_SKIP_MISSING_TEXTURES, &m, &err),
                    ZS_ERR_PARSE);
+  /* A missing file is noted once, at the first material that names it,
+   * with the control bytes of its name blanked: one line. */
+  static const char two[] = "mtllib mtlerr.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"
+                            "usemtl b\nf 3 2 1\n";
+  ck_assert_msg(load_pair("mtlerr", two,
+                          "newmtl a\nmap_Kd no\x01pe.png\nnewmtl b\nmap_Kd no\x01pe.png\n",
+                          ZS_OBJ_SKIP_MISSING_TEXTURES, &m, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_msg(strncmp(m.notes.text, dir, dlen) == 0, "%s", m.notes.text);
+  ck_assert_str_eq(m.notes.text + dlen + (dir[dlen - 1] != '/'),
+                   "mtlerr.mtl:2: map_Kd no pe.png: cannot open: No such file or directory: "
+                   "drawn without it\n");
+  ck_assert_int_eq(m.mesh.nmaterials, 2);
+  ck_assert_ptr_null(m.mesh.materials[0].base_texture);
+  ck_assert_ptr_null(m.mesh.materials[1].base_texture);
+  zs_model_free(&m);
   /* A texture used by no face is not read. */
   ck_assert_int_eq(load_pair("mtlerr", obj, "newmtl a\nnewmtl b\nmap_Kd nope.png\n", 0, &m, &err),
                    ZS_OK);

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "lib/input.h"
 #include "raster/raster.h"
 #include "util/rng.h"
 #include "scene/load_assimp.h"
@@ -1208,6 +1209,105 @@ START_TEST(bad_scene_sizes_and_io) {
 }
 END_TEST
 
+/* Writes text to the file at path. */
+static void write_text(const char *path, const char *text) {
+  FILE *f = fopen(path, "wb");
+  ck_assert_msg(f != NULL, "%s", path);
+  fputs(text, f);
+  ck_assert_int_eq(fclose(f), 0);
+}
+
+/* A texture that cannot be opened, of a mesh file or of a mesh's own
+ * material, is an error; with ZS_SCENEFILE_SKIP_MISSING_TEXTURES (and
+ * zs_input_load's ZS_INPUT_SKIP_MISSING_TEXTURES) the material is drawn
+ * without it and the scene's notes hold each error with ": drawn without
+ * it", in the order of the meshes.  A corrupt image stays an error. */
+START_TEST(scenefile_missing_textures_noted) {
+  char dir[4096], path[4200], json[4200], want[20480];
+  snprintf(dir, sizeof dir, "%s", zs_test_bin("scene-test-notex"));
+  mkdir(dir, 0755);
+  snprintf(path, sizeof path, "%s/m.obj", dir);
+  write_text(path, "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  snprintf(path, sizeof path, "%s/m.mtl", dir);
+  write_text(path, "newmtl a\nKd 1 0 0\nmap_Kd gone.png\n");
+  snprintf(json, sizeof json, "%s/scene.json", dir);
+  write_text(json, "{\"meshes\": [{\"name\": \"m\", \"file\": \"m.obj\"},\n"
+                   "  {\"name\": \"b\", \"generator\": \"box\",\n"
+                   "   \"material\": {\"color\": \"#00ff00\", \"texture\": \"wood.png\"}}],\n"
+                   " \"instances\": [{\"mesh\": \"m\"}, {\"mesh\": \"b\"}]}\n");
+  const char *why = "cannot open: No such file or directory";
+  zs_scene s;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_scenefile_load(json, &s, &err), ZS_ERR_IO);
+  snprintf(want, sizeof want, "%s: meshes[0].file: %s/m.mtl:3: map_Kd gone.png: %s", json, dir,
+           why);
+  ck_assert_str_eq(err.msg, want);
+  ck_assert_ptr_null(s.notes.text);
+
+  zs_error_clear(&err);
+  ck_assert_msg(zs_scenefile_load_flags(json, ZS_SCENEFILE_SKIP_MISSING_TEXTURES, &s, &err) ==
+                    ZS_OK, "%s", err.msg);
+  snprintf(want, sizeof want,
+           "%s: meshes[0].file: %s/m.mtl:3: map_Kd gone.png: %s: drawn without it\n"
+           "%s: meshes[1].material.texture: %s/wood.png: %s: drawn without it\n",
+           json, dir, why, json, dir, why);
+  ck_assert_str_eq(s.notes.text, want);
+  ck_assert_int_eq(s.nmeshes, 2);
+  for (int32_t i = 0; i < s.nmeshes; i++) {
+    ck_assert_int_eq(s.meshes[i].mesh.nmaterials, 1);
+    ck_assert_ptr_null(s.meshes[i].mesh.materials[0].base_texture);
+    ck_assert_ptr_null(s.meshes[i].notes.text); /* moved into the scene's */
+  }
+  ck_assert_uint_eq(s.meshes[0].mesh.face_rgb[0], 0xFF0000);
+  ck_assert_uint_eq(s.meshes[1].mesh.materials[0].base[1], 0xFF);
+  zs_scene_free(&s);
+  ck_assert_ptr_null(s.notes.text);
+
+  /* the same through the inputs of the command and the library */
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_input_load(json, 0, &s, &err), ZS_ERR_IO);
+  zs_error_clear(&err);
+  ck_assert_msg(zs_input_load(json, ZS_INPUT_SKIP_MISSING_TEXTURES, &s, &err) == ZS_OK, "%s",
+                err.msg);
+  ck_assert_str_eq(s.notes.text, want);
+  zs_scene_free(&s);
+  snprintf(path, sizeof path, "%s/m.obj", dir);
+  zs_error_clear(&err);
+  ck_assert_msg(zs_input_load(path, ZS_INPUT_SKIP_MISSING_TEXTURES, &s, &err) == ZS_OK, "%s",
+                err.msg);
+  snprintf(want, sizeof want, "%s/m.mtl:3: map_Kd gone.png: %s: drawn without it\n", dir, why);
+  ck_assert_str_eq(s.notes.text, want);
+  zs_scene_free(&s);
+
+  /* the material's own texture alone: the error the note repeats */
+  write_text(json, "{\"meshes\": [{\"name\": \"b\", \"generator\": \"box\",\n"
+                   "   \"material\": {\"texture\": \"wood.png\"}}],\n"
+                   " \"instances\": [{\"mesh\": \"b\"}]}\n");
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_scenefile_load(json, &s, &err), ZS_ERR_IO);
+  snprintf(want, sizeof want, "%s: meshes[0].material.texture: %s/wood.png: %s", json, dir, why);
+  ck_assert_str_eq(err.msg, want);
+
+  /* a texture that is there but no image stays an error */
+  snprintf(path, sizeof path, "%s/wood.png", dir);
+  write_text(path, "not an image\n");
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_scenefile_load_flags(json, ZS_SCENEFILE_SKIP_MISSING_TEXTURES, &s, &err),
+                   ZS_ERR_PARSE);
+  snprintf(want, sizeof want, "%s: meshes[0].material.texture: %s/wood.png: not a PNG or JPEG image",
+           json, dir);
+  ck_assert_str_eq(err.msg, want);
+  ck_assert_ptr_null(s.notes.text);
+  static const char *const files[] = {"wood.png", "scene.json", "m.obj", "m.mtl"};
+  for (int i = 0; i < 4; i++) {
+    snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+    unlink(path);
+  }
+  rmdir(dir);
+}
+END_TEST
+
 /* ---- models through assimp ----------------------------------------------------- */
 
 /* Finite coordinates, indices in range, ids and objects consistent. */
@@ -1523,6 +1623,91 @@ START_TEST(assimp_good_models) {
 }
 END_TEST
 
+/* ---- textures that cannot be opened, through assimp ---------------------- */
+
+/* The painted triangle with its image a file beside it that is not there:
+ * an error; with ZS_ASSIMP_SKIP_MISSING_TEXTURES a note, the material
+ * untextured, the rest as read; in a scene file the note follows the
+ * mesh's path.  A corrupt image stays an error. */
+START_TEST(assimp_missing_texture_noted) {
+#ifndef ZS_HAVE_ASSIMP
+  fprintf(stderr, "test_scene: built without assimp; assimp_missing_texture_noted skipped\n");
+  return;
+#else
+  char dir[4096], gltf[4200], json[4200], png[4200], want[16384];
+  snprintf(dir, sizeof dir, "%s", zs_test_bin("scene-test-gltf-notex"));
+  mkdir(dir, 0755);
+  snprintf(gltf, sizeof gltf, "%s/tri.gltf", dir);
+  snprintf(json, sizeof json, "%s/scene.json", dir);
+  snprintf(png, sizeof png, "%s/gone.png", dir);
+  unlink(png);
+  size_t n;
+  char *text = slurp_src("tests/data/models/painted_triangle.gltf", &n);
+  const char *uri = "\"uri\": \"data:image/png;base64,";
+  char *at = strstr(text, uri);
+  ck_assert_ptr_nonnull(at);
+  char *end = strchr(at + strlen(uri), '"');
+  ck_assert_ptr_nonnull(end);
+  *at = '\0';
+  FILE *f = fopen(gltf, "wb");
+  ck_assert_ptr_nonnull(f);
+  fprintf(f, "%s\"uri\": \"gone.png%s", text, end);
+  ck_assert_int_eq(fclose(f), 0);
+  free(text);
+
+  const char *why = "cannot open: No such file or directory";
+  zs_model m;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_assimp_load(gltf, &m, &err), ZS_ERR_IO);
+  snprintf(want, sizeof want, "%s: texture %s: %s", gltf, png, why);
+  ck_assert_str_eq(err.msg, want);
+  ck_assert_ptr_null(m.notes.text);
+
+  zs_error_clear(&err);
+  ck_assert_msg(zs_assimp_load_flags(gltf, ZS_ASSIMP_SKIP_MISSING_TEXTURES, &m, &err) == ZS_OK,
+                "%s", err.msg);
+  snprintf(want, sizeof want, "%s: texture %s: %s: drawn without it\n", gltf, png, why);
+  ck_assert_str_eq(m.notes.text, want);
+  ck_assert_int_eq(m.mesh.nmaterials, 1);
+  ck_assert_ptr_null(m.mesh.materials[0].base_texture);
+  ck_assert_int_eq(m.ntextures, 0);
+  ck_assert_int_eq(m.mesh.materials[0].base[1], 128); /* baseColorFactor's 0.5 */
+  ck_assert_int_eq(m.mesh.nattrs, 3);                 /* the colours and uvs kept */
+  zs_model_free(&m);
+
+  /* as a scene file's mesh, and through the command's inputs */
+  write_text(json, "{\"meshes\": [{\"name\": \"t\", \"file\": \"tri.gltf\"}],"
+                   " \"instances\": [{\"mesh\": \"t\"}]}\n");
+  zs_scene s;
+  zs_error_clear(&err);
+  ck_assert_msg(zs_scenefile_load_flags(json, ZS_SCENEFILE_SKIP_MISSING_TEXTURES, &s, &err) ==
+                    ZS_OK, "%s", err.msg);
+  char prefixed[24576];
+  snprintf(prefixed, sizeof prefixed, "%s: meshes[0].file: %s", json, want);
+  ck_assert_str_eq(s.notes.text, prefixed);
+  zs_scene_free(&s);
+  zs_error_clear(&err);
+  ck_assert_msg(zs_input_load(gltf, ZS_INPUT_SKIP_MISSING_TEXTURES, &s, &err) == ZS_OK, "%s",
+                err.msg);
+  ck_assert_str_eq(s.notes.text, want);
+  zs_scene_free(&s);
+
+  /* an image that is there but corrupt */
+  write_text(png, "not an image\n");
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_assimp_load_flags(gltf, ZS_ASSIMP_SKIP_MISSING_TEXTURES, &m, &err),
+                   ZS_ERR_PARSE);
+  snprintf(want, sizeof want, "%s: texture %s: not a PNG or JPEG image", gltf, png);
+  ck_assert_str_eq(err.msg, want);
+  unlink(png);
+  unlink(gltf);
+  unlink(json);
+  rmdir(dir);
+#endif
+}
+END_TEST
+
 /* ---- the suite ------------------------------------------------------------- */
 
 static Suite *scene_suite(void) {
@@ -1561,6 +1746,7 @@ static Suite *scene_suite(void) {
   tcase_add_test(tc, bad_scene_corpus_complete);
   tcase_add_test(tc, bad_scene_sizes_and_io);
   tcase_add_test(tc, mutated_examples);
+  tcase_add_test(tc, scenefile_missing_textures_noted);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("assimp");
@@ -1569,6 +1755,7 @@ static Suite *scene_suite(void) {
   tcase_add_loop_test(tc, assimp_own_broken_models, 0,
                       (int)(sizeof own_broken / sizeof own_broken[0]));
   tcase_add_test(tc, assimp_good_models);
+  tcase_add_test(tc, assimp_missing_texture_noted);
   suite_add_tcase(s, tc);
   return s;
 }

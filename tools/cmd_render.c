@@ -64,6 +64,10 @@ static const char usage_tail[] =
     "  --background RRGGBB flat shading's background (default 1E2228)\n"
     "  --allow-empty       render a model without faces (the background alone)\n"
     "                      instead of refusing it\n"
+    "  --skip-missing-textures\n"
+    "                      draw a material whose texture cannot be opened or read\n"
+    "                      without it, with a warning naming it, instead of\n"
+    "                      refusing the input (a corrupt image stays an error)\n"
     "  --cull METHOD       draw through a culling method (vfc, hsw, chc, chc-prob, ...;\n"
     "                      default: draw everything)\n"
     "  --bounds parts|box  with --cull: queries ask about an object's parts'\n"
@@ -189,6 +193,8 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
       o->stats = 1;
     } else if (strcmp(a, "--allow-empty") == 0) {
       o->allow_empty = 1;
+    } else if (strcmp(a, "--skip-missing-textures") == 0) {
+      o->skip_missing_textures = 1;
     } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
       o->verbose = 1;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
@@ -424,8 +430,17 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   if (o->list_cameras) return file_camera(o, 1.0, NULL, err);
   zs_scene model;
   double t0 = zs_wall_ms();
-  if (zs_input_load(o->input, o->allow_empty, &model, err)) return err->code;
+  int flags = (o->allow_empty ? ZS_INPUT_ALLOW_EMPTY : 0) |
+              (o->skip_missing_textures ? ZS_INPUT_SKIP_MISSING_TEXTURES : 0);
+  if (zs_input_load(o->input, flags, &model, err)) return err->code;
   double load_ms = zs_wall_ms() - t0;
+  /* what is drawn otherwise than the input asks, a line each */
+  if (!keep && !o->quiet)
+    for (const char *n = zs_scene_notes(&model); *n;) {
+      const char *nl = strchr(n, '\n');
+      fprintf(stderr, "zscan render: warning: %.*s\n", (int)(nl - n), n);
+      n = nl + 1;
+    }
   /* the scene's own camera and size, where the options say nothing */
   zs_cmd_render_opts eff = *o;
   zs_view_opts user = o->view;

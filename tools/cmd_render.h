@@ -24,6 +24,7 @@ typedef struct zs_cmd_render_opts {
   zs_light lights[ZS_MAX_LIGHTS]; /* --light, in the order given */
   int nlights;
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
+  int skip_missing_textures; /* --skip-missing-textures */
   zs_query_bounds bounds;
   zs_clock_params clock;
   zs_cost_params cost;

@@ -45,6 +45,9 @@
  *   zs_render_opts.filter             0: each material's own texture filter
  *   zs_render_opts.lights, .nlights   NULL: the scene's lights, else the headlight
  *   zs_load_opts.allow_empty          0: a model without faces is an error
+ *   zs_load_opts.skip_missing_textures  0: a texture that cannot be opened
+ *                                     is an error; else the material is drawn
+ *                                     without it, noted (zs_scene_notes)
  *   the device clock (zscan/clock.h)  zs_clock_params_default
  *
  * STABILITY: before 1.0 the names and structs here may still change
@@ -480,6 +483,9 @@ typedef struct zs_scene zs_scene;
 
 typedef struct zs_load_opts {
   int allow_empty; /* 0: a model without faces is refused ("FILE: no faces") */
+  int skip_missing_textures; /* 0: a texture that cannot be opened is an error; else the
+                              * material is drawn without it, and the scene says which
+                              * (zs_scene_notes) */
 } zs_load_opts;
 
 /* Loads input (opts may be NULL):
@@ -496,6 +502,12 @@ void zs_scene_destroy(zs_scene *scene);
 /* Instances (objects) and source faces, over the instances. */
 int32_t zs_scene_objects(const zs_scene *scene);
 uint64_t zs_scene_faces(const zs_scene *scene);
+/* The notes of the load, each a line ending in '\n' ("" when none): what
+ * is drawn otherwise than the input asks, as the message the load would
+ * have failed with and ": drawn without it", e.g. "model.mtl:12: map_Kd
+ * wood.png: cannot open: No such file or directory: drawn without it"
+ * (zs_load_opts.skip_missing_textures).  Valid while the scene is. */
+const char *zs_scene_notes(const zs_scene *scene);
 
 typedef struct zs_render_opts {
   int width, height;       /* 0: the scene's size, else 1024 x 768 */

@@ -245,3 +245,5 @@ def test_struct_sizes_and_offsets_are_the_c_compilers():
     assert ctypes.sizeof(_lib.zs_diff_result) == 24
     assert _lib.zs_diff_result.max_channel_diff.offset == 16
     assert ctypes.sizeof(_lib.zs_raster_stats) == 96
+    assert ctypes.sizeof(_lib.zs_load_opts) == 8
+    assert _lib.zs_load_opts.skip_missing_textures.offset == 4

@@ -61,7 +61,10 @@ class zs_diff_result(ctypes.Structure):
 
 
 class zs_load_opts(ctypes.Structure):
-    _fields_ = [("allow_empty", ctypes.c_int)]
+    _fields_ = [
+        ("allow_empty", ctypes.c_int),
+        ("skip_missing_textures", ctypes.c_int),
+    ]
 
 
 class zs_light(ctypes.Structure):
