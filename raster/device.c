@@ -374,7 +374,7 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + zs_scan_scratch_bytes(&d->scratch);
   if (d->band_scratch)
     for (int i = 0; i < ZS_MAX_BANDS; i++) m.tables += zs_scan_scratch_bytes(&d->band_scratch[i]);
-  m.tables += zs_defer_bytes(d) + (d->hzb ? zs_hzb_bytes(d->hzb) : 0);
+  m.tables += zs_defer_bytes(d) + (d->hzb ? zs_hzb_bytes(d->hzb) : 0) + zs_surfaces_bytes(&d->surf);
   m.vertices = zs_vert_scratch_bytes(&d->verts);
   return m;
 }

@@ -138,7 +138,8 @@ zs_status zs_device_hzb_test(zs_device *dev, const double (*lo)[3], const double
 /* The memory a device holds now, in bytes: pixel buffers (full-frame in
  * zbuffer mode; one row in scanline and depthsort modes), the polygon and
  * edge tables with the scan's scratch (which grow with the polygons of a
- * draw, or of the whole frame in scanline mode, and one entry per row),
+ * draw, or of the whole frame in scanline mode, and one entry per row;
+ * with them the surface shadings' records, one per triangle drawn),
  * and the per-vertex arrays of the largest mesh drawn. */
 typedef struct zs_device_memory {
   size_t pixel_buffers, tables, vertices;

@@ -41,10 +41,12 @@ void zs_surfaces_init(zs_surfaces *s, int width, int height, zs_filter filter) {
   s->sets_stale = 1;
 }
 
+static void cache_empty(void *cache);
+
 void zs_surfaces_clear(zs_surfaces *s) {
   s->ndraws = s->nrecs = s->nsets = 0;
   s->sets_stale = 1;
-  if (s->cache) free(s->cache), s->cache = NULL; /* its records' numbers start again */
+  if (s->cache) cache_empty(s->cache); /* the records' numbers start again */
 }
 
 void zs_surfaces_free(zs_surfaces *s) {
@@ -100,9 +102,11 @@ int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double vi
   return s->ndraws++;
 }
 
+static size_t cache_bytes(void);
+
 size_t zs_surfaces_bytes(const zs_surfaces *s) {
   return (size_t)s->cap_draws * sizeof *s->draws + (size_t)s->cap_recs * sizeof *s->recs +
-         (size_t)s->cap_sets * sizeof *s->sets;
+         (size_t)s->cap_sets * sizeof *s->sets + (s->cache ? cache_bytes() : 0);
 }
 
 /* ---- a triangle prepared ---- */
@@ -477,13 +481,15 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   t->run = run_for(dr->shade, textured);
 }
 
+static void cache_empty(void *cache) {
+  tri *c = cache;
+  for (int i = 0; i < CACHE_SLOTS; i++) c[i].rec = -1;
+}
+
+static size_t cache_bytes(void) { return CACHE_SLOTS * sizeof(tri); }
+
 void zs_surface_shade_row(zs_surfaces *s, int y, const uint32_t *rgb, uint32_t *out) {
-  if (!s->cache) {
-    tri *c = malloc(CACHE_SLOTS * sizeof *c);
-    if (c)
-      for (int i = 0; i < CACHE_SLOTS; i++) c[i].rec = -1;
-    s->cache = c;
-  }
+  if (!s->cache && (s->cache = malloc(CACHE_SLOTS * sizeof(tri)))) cache_empty(s->cache);
   tri *cache = s->cache, spare;
   const int w = s->width;
   int x = 0;
