@@ -41,6 +41,8 @@ void zs_trace_pair_of(const zs_active *a, const zs_poly *p, int32_t y, zs_trace_
   out->zl_real = depth_real(out->zl, p->zshift);
   out->dzx = depth_real(p->dzdx, p->zshift);
   out->dzy = depth_real(p->dzdy, p->zshift);
+  out->left = a->left;
+  out->right = a->right;
 }
 
 void zs_trace_tables(const zs_batch *b, const zs_trace_observer *obs) {

@@ -1,6 +1,8 @@
 /* zscan trace against the lecture: the active edge table of its
  * two-polygon example at scanline y = 6, the z-buffer grids of its two
- * z-buffer examples, and ids that match `zscan render --shade id`. */
+ * z-buffer examples, ids that match `zscan render --shade id`, and the
+ * Gouraud intensities of the example with vertex colours, by hand and
+ * against `zscan render --shade unlit`. */
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -234,6 +236,11 @@ START_TEST(html_page_steps_through_the_walk) {
   char cells[4096];
   aet_cells(dom, cells, sizeof cells);
   ck_assert_str_eq(cells, "4 1 3 7 0 3\n41/6 5/6 5 73/8 3/8 5\n");
+  /* without vertex colours the row buffer has no I row */
+  const char *rb = strstr(dom, "<div id=\"rowbuf\">");
+  ck_assert_ptr_nonnull(rb);
+  ck_assert_ptr_nonnull(strstr(rb, "<td>z</td>"));
+  ck_assert_ptr_null(strstr(rb, "<td>I</td>"));
   /* seeded random triangles: the page's pairs are the JSON trace's */
   char obj[4200];
   snprintf(obj, sizeof obj, "%s/trace-random.obj", ZS_BINARY_DIR);
@@ -362,6 +369,238 @@ START_TEST(step_pictures_one_per_scanline) {
 }
 END_TEST
 
+/* The lecture's two polygons with a grey level at each corner
+ * (tests/data/lecture/gouraud.obj: 0.2, 1, 0.6 read as 51, 255, 153).  At
+ * y = 6 (row 3), by hand:
+ *   polygon 1: the left edge runs from 51 at (1, 9) to 153 at (7, 3),
+ *     halfway at y = 6: Il = 102, dIl = 102 / 6 = 17; the right from 255
+ *     at (7, 9) to 153: Ir = 204, dIr = -17; dIx = (204 - 102) / (7 - 4) = 34
+ *   polygon 2: the lower left edge from 51 at (6, 7) to 153 at (11, 1),
+ *     1/6 of the way: Il = 68, dIl = 17; the right from 255 at (8, 9) to
+ *     153 at (11, 1), 3/8 of the way: Ir = 255 - 3/8 102 = 867/4,
+ *     dIr = -102 / 8 = -51/4; dIx = (867/4 - 68) / (73/8 - 41/6) = 714/11
+ * and a pixel's I is Il + (x - xl) dIx. */
+START_TEST(gouraud_intensities_at_y6) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/gouraud.obj"));
+  const char *args[] = {"trace", path, "--grid", "12x10", "--format", "json", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(err, "");
+  cJSON *row = scanline(3);
+  ck_assert_ptr_nonnull(row);
+  cJSON *edges = cJSON_GetObjectItem(row, "active_edges");
+  ck_assert_int_eq(cJSON_GetArraySize(edges), 2);
+  static const char *const keys[5] = {"Il", "dIl", "Ir", "dIr", "dIx"};
+  static const char *const want[2][5] = {{"102", "17", "204", "-17", "34"},
+                                         {"68", "17", "867/4", "-51/4", "714/11"}};
+  static const double value[2][5] = {{102, 17, 204, -17, 34},
+                                      {68, 17, 867.0 / 4, -51.0 / 4, 714.0 / 11}};
+  for (int k = 0; k < 2; k++) {
+    const cJSON *e = cJSON_GetArrayItem(edges, k);
+    for (int i = 0; i < 5; i++) {
+      char key[32];
+      snprintf(key, sizeof key, "%s_fraction", keys[i]);
+      ck_assert_str_eq(str(e, key), want[k][i]);
+      ck_assert_double_eq_tol(num(e, keys[i]), value[k][i], 1e-12);
+    }
+  }
+  /* each pixel's: 102, 136, 170 across polygon 1, 68 + (x - 41/6) 714/11
+   * across polygon 2, none beside */
+  const cJSON *I = cJSON_GetObjectItem(row, "I");
+  ck_assert_int_eq(cJSON_GetArraySize(I), 12);
+  for (int x = 0; x < 12; x++) {
+    const cJSON *v = cJSON_GetArrayItem(I, x);
+    if (x < 4 || x > 9) {
+      ck_assert(cJSON_IsNull(v));
+      continue;
+    }
+    const double hand = x < 7 ? 102 + 34 * (x - 4) : 68 + (x - 41.0 / 6) * 714 / 11;
+    ck_assert_msg(fabs(v->valuedouble - hand) < 1e-9, "column %d: %.12g, by hand %.12g", x,
+                  v->valuedouble, hand);
+  }
+  cJSON_Delete(row);
+  /* the edge table: I at each edge's top row, and per row down (polygon
+   * 2's lower left edge enters at row 3 with 68) */
+  cJSON *tables = cJSON_Parse(out);
+  ck_assert_ptr_nonnull(tables);
+  const cJSON *e4 = cJSON_GetArrayItem(cJSON_GetObjectItem(tables, "edge_table"), 4);
+  ck_assert_double_eq(num(e4, "row"), 3);
+  ck_assert_str_eq(str(e4, "I_fraction"), "68");
+  ck_assert_str_eq(str(e4, "dI_fraction"), "17");
+  cJSON_Delete(tables);
+
+  /* the text says the same */
+  const char *targs[] = {"trace", path, "--grid", "12x10", "--rows", "3:3", "--brief", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(targs, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_nonnull(strstr(out, "   row     id  side          x         dx   dy          I         dI\n"));
+  ck_assert_ptr_nonnull(strstr(out, "     3      1  left   6.833333        5/6    5         68         17\n"));
+  ck_assert_ptr_nonnull(strstr(out, "| Il 102 dIl 17 | Ir 204 dIr -17 | dIx 34\n"));
+  ck_assert_ptr_nonnull(strstr(out, "| Il 68 dIl 17 | Ir 867/4 dIr -51/4 | dIx 714/11\n"));
+  ck_assert_ptr_nonnull(strstr(out, "  I:   - - - - 102.00 136.00 170.00 78.82 143.73 208.64 - -\n"));
+}
+END_TEST
+
+/* Each pixel's I of a JSON trace in out against the red of an unlit
+ * render: the render interpolates the same corners, so its byte is I
+ * rounded (a half either way, for the rounding of its weights). */
+static void check_unlit(const char *png, int w, int h, const char *what) {
+  zs_image im;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+  int covered = 0;
+  for (int y = 0; y < h; y++) {
+    cJSON *row = scanline(y);
+    ck_assert_ptr_nonnull(row);
+    const cJSON *I = cJSON_GetObjectItem(row, "I"), *ids = cJSON_GetObjectItem(row, "ids");
+    for (int x = 0; x < w; x++) {
+      const cJSON *v = cJSON_GetArrayItem(I, x);
+      ck_assert_int_eq(cJSON_IsNull(v), cJSON_IsNull(cJSON_GetArrayItem(ids, x)));
+      if (cJSON_IsNull(v)) continue;
+      const double red = (double)(im.rgb[(size_t)y * (size_t)w + (size_t)x] >> 16);
+      ck_assert_msg(fabs(red - v->valuedouble) <= 0.5 + 1e-4, "%s (%d, %d): render %g, trace %.6f",
+                    what, x, y, red, v->valuedouble);
+      covered++;
+    }
+    cJSON_Delete(row);
+  }
+  ck_assert_int_gt(covered, 10);
+  zs_image_free(&im);
+}
+
+/* The trace's I is what zscan computes: under the orthographic grid its
+ * perspective-correct interpolation is the textbook's linear one, so
+ * `--shade unlit` (the vertex colours interpolated as given) draws each
+ * pixel as the trace's I rounded, in both modes; on the lecture's example
+ * and on seeded random coloured triangles. */
+START_TEST(gouraud_matches_unlit_render) {
+  static char json[1 << 18], rout[1 << 12];
+  char path[4200], png[4200];
+  snprintf(png, sizeof png, "%s/trace-unlit.png", ZS_BINARY_DIR);
+  char obj[4200];
+  snprintf(obj, sizeof obj, "%s/trace-random-colours.obj", ZS_BINARY_DIR);
+  zs_rng rng;
+  zs_rng_seed(&rng, 11);
+  FILE *f = fopen(obj, "w");
+  ck_assert_ptr_nonnull(f);
+  for (int i = 0; i < 18; i++) {
+    const int grey = (int)zs_rng_below(&rng, 256);
+    fprintf(f, "v %d %d %d %.6f %.6f %.6f\n", (int)zs_rng_below(&rng, 16),
+            (int)zs_rng_below(&rng, 12), -(int)zs_rng_below(&rng, 5), grey / 255.0,
+            grey / 255.0, grey / 255.0);
+  }
+  for (int i = 0; i < 6; i++) fprintf(f, "f %d %d %d\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+  fclose(f);
+  static const struct { const char *obj, *grid; int w, h; } inputs[2] = {
+      {"lecture", "12x10", 12, 10}, {"random", "16x12", 16, 12}};
+  for (int k = 0; k < 2; k++) {
+    if (k == 0) snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/gouraud.obj"));
+    else snprintf(path, sizeof path, "%s", obj);
+    const char *targs[] = {"trace", path, "--grid", inputs[k].grid, "--format", "json", NULL};
+    ck_assert_int_eq(zs_test_run_zscan(targs, json, sizeof json, err, sizeof err), 0);
+    memcpy(out, json, strlen(json) + 1);
+    for (int m = 0; m < 2; m++) {
+      const char *rargs[] = {"render", path, "--grid", inputs[k].grid, "--algo",
+                             m ? "zbuffer" : "scanline", "--shade", "unlit", "-o", png, NULL};
+      ck_assert_int_eq(zs_test_run_zscan(rargs, rout, sizeof rout, err, sizeof err), 0);
+      char what[64];
+      snprintf(what, sizeof what, "%s, %s", inputs[k].obj, m ? "zbuffer" : "scanline");
+      check_unlit(png, inputs[k].w, inputs[k].h, what);
+    }
+  }
+}
+END_TEST
+
+/* Without vertex colours the trace is as it was: no I anywhere (the
+ * tests above pin the rest); under a perspective view a mesh with them
+ * shows none either, and a note says why. */
+START_TEST(gouraud_needs_colours_and_ortho) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
+  const char *args[] = {"trace", path, "--grid", "12x10", "--format", "json", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_null(strstr(out, "\"I"));
+  ck_assert_ptr_null(strstr(out, "\"dI"));
+  const char *text[] = {"trace", path, "--grid", "12x10", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(text, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_null(strstr(out, "| Il "));
+  ck_assert_ptr_null(strstr(out, "  I:"));
+  ck_assert_ptr_nonnull(strstr(out, "   row     id  side          x         dx   dy\n"));
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/gouraud.obj"));
+  const char *persp[] = {"trace", path, "--rows", "3:3", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(persp, out, sizeof out, err, sizeof err), 0);
+  ck_assert_ptr_null(strstr(out, "| Il "));
+  ck_assert_str_eq(err, "zscan trace: note: no Gouraud intensities under a perspective view "
+                        "(zscan interpolates perspective-correct); --grid or --ortho shows them\n");
+  /* a quad whose corners' I are on no plane is noted (zscan shades its
+   * fan); a pentagon's on one plane is not */
+  static const char *const faces[2] = {"v 1 1 -1 0 0 0\nv 8 1 -1 1 1 1\nv 8 6 -1 0 0 0\n"
+                                       "v 1 6 -1 1 1 1\nf 1 2 3 4\n",
+                                       /* I = 10 x + 20 y */
+                                       "v 1 1 -1 0.117647 0 0\nv 4 1 -1 0.235294 0 0\n"
+                                       "v 8 1 -1 0.392157 0 0\nv 8 6 -1 0.784314 0 0\n"
+                                       "v 1 6 -1 0.509804 0 0\nf 1 2 3 4 5\n"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(path, sizeof path, "%s/trace-%s.obj", ZS_BINARY_DIR, k ? "pentagon" : "quad");
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(faces[k], f);
+    fclose(f);
+    const char *a[] = {"trace", path, "--grid", "10x8", NULL};
+    ck_assert_int_eq(zs_test_run_zscan(a, out, sizeof out, err, sizeof err), 0);
+    ck_assert_ptr_nonnull(strstr(out, "| Il "));
+    ck_assert_str_eq(err, k ? ""
+                            : "zscan trace: note: polygon 0: its corners' I are not on one plane; "
+                              "zscan shades it as the fan from its first corner, the tables along "
+                              "its edges\n");
+  }
+}
+END_TEST
+
+/* The pictures gain a third panel, the intensities as grey, and a legend
+ * line; the page's active edge table the I columns, its row buffer I. */
+START_TEST(gouraud_pictures_and_page) {
+  char dir[4096], path[4096], png[4200];
+  snprintf(dir, sizeof dir, "%s/trace-gouraud-steps", ZS_BINARY_DIR);
+  snprintf(path, sizeof path, "%s", zs_test_src("tests/data/lecture/gouraud.obj"));
+  const char *args[] = {"trace", path, "--grid", "12x10", "--png-dir", dir, "--scale", "4",
+                        "--rows", "3:3", "--quiet", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  enum { S = 4, LEFT = 14, TOP = 8, W = 12, H = 10, PANEL = LEFT + 2 * (W + 1) * S };
+  snprintf(png, sizeof png, "%s/scanline-0003.png", dir);
+  zs_image im;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_msg(zs_png_read(png, &im, &e) == ZS_OK, "%s", e.msg);
+  ck_assert_int_eq(im.width, LEFT + (3 * W + 2) * S);
+  ck_assert_int_eq(im.height, TOP + H * S + 4 * 8 + 1);
+  /* row 3's pixels: 102 at column 4, 170 at 6, 78.82 rounded at 7 */
+  static const struct { int x; uint32_t grey; } px[3] = {{4, 102}, {6, 170}, {7, 79}};
+  for (int i = 0; i < 3; i++) {
+    uint32_t c = im.rgb[(size_t)(TOP + 3 * S + S / 2) * im.width + PANEL + px[i].x * S + S / 2];
+    ck_assert_uint_eq(c, px[i].grey * 0x010101u);
+  }
+  zs_image_free(&im);
+
+  static char dom[1 << 20];
+  char page[4200];
+  snprintf(page, sizeof page, "%s/trace-gouraud.html", ZS_BINARY_DIR);
+  const char *html[] = {"trace", path, "--grid", "12x10", "--html", page, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(html, out, sizeof out, err, sizeof err), 0);
+  ck_assert_int_eq(page_dom(page, 3, dom, sizeof dom), 0);
+  const char *t = strstr(dom, "<div id=\"aet\">");
+  ck_assert_ptr_nonnull(t);
+  ck_assert_ptr_nonnull(strstr(t, "<th class=\"sym\">Il</th><th class=\"sym\">dIl</th><th class=\"sym\">Ir</th>"
+                            "<th class=\"sym\">dIr</th><th class=\"sym\">dI/dx</th><th>id</th>"));
+  ck_assert_ptr_nonnull(strstr(t, "<td>102</td><td>17</td><td>204</td><td>-17</td><td>34</td><td>0</td>"));
+  ck_assert_ptr_nonnull(
+      strstr(t, "<td>68</td><td>17</td><td>867/4</td><td>-51/4</td><td>714/11</td><td>1</td>"));
+  const char *rb = strstr(dom, "<div id=\"rowbuf\">");
+  ck_assert_ptr_nonnull(rb);
+  ck_assert_ptr_nonnull(strstr(rb, "<td>I</td><td>-</td><td>-</td><td>-</td><td>-</td><td>102.00</td>"));
+}
+END_TEST
+
 int main(void) {
   Suite *s = suite_create("trace");
   TCase *tc = tcase_create("lecture");
@@ -372,6 +611,10 @@ int main(void) {
   tcase_add_test(tc, grid_brief_ids_rows);
   tcase_add_test(tc, html_page_steps_through_the_walk);
   tcase_add_test(tc, step_pictures_one_per_scanline);
+  tcase_add_test(tc, gouraud_intensities_at_y6);
+  tcase_add_test(tc, gouraud_matches_unlit_render);
+  tcase_add_test(tc, gouraud_needs_colours_and_ortho);
+  tcase_add_test(tc, gouraud_pictures_and_page);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

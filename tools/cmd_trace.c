@@ -7,7 +7,8 @@
  * Units: rows and columns of the image (row 0 at the top); x values in
  * pixel-centre units (column c has its centre at x = c), shown exactly as
  * fractions where the DDA holds them exactly; depth as window depth in
- * [0, 1], 0 at the near plane, beside the fixed-point integers. */
+ * [0, 1], 0 at the near plane, beside the fixed-point integers; with vertex
+ * colours, the Gouraud intensities beside them (cmd_trace_gouraud.h). */
 #include "tools/commands.h"
 
 #include <cjson/cJSON.h>
@@ -26,6 +27,7 @@
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
+#include "tools/cmd_trace_gouraud.h"
 #include "tools/cmd_trace_page.h"
 #include "tools/viewopts.h"
 
@@ -46,6 +48,10 @@ static const char usage[] =
     "                      grid, the sorted and active tables with the exact\n"
     "                      fractions, the row's z-buffer and who won each pixel;\n"
     "                      #row=N opens at scanline N; everything inline\n"
+    "  vertex colours      a mesh with them (OBJ v x y z r g b) seen orthographically\n"
+    "                      (--grid, --ortho) adds Gouraud intensities: I = a corner's\n"
+    "                      red channel (0 to 255); I and dI per edge, Il dIl Ir dIr\n"
+    "                      dIx per pair, I per pixel, in the pictures and page too\n"
     "  --quiet             no progress of the pictures on stderr\n";
 
 typedef struct trace_opts {
@@ -77,6 +83,15 @@ typedef struct tracer {
   uint32_t *outline_id;
   int noutline;
   uint32_t max_id; /* the largest polygon id, for the legend */
+  /* Gouraud intensities (cmd_trace_gouraud.h), when the input has vertex
+   * colours and the view is orthographic: the row's pairs', each pixel's
+   * (NAN: none), and for the pictures the frame's so far */
+  int shading;
+  zs_gouraud gouraud;
+  zs_gouraud_pair *gpairs;
+  int *has_gpair;
+  int gcap;
+  double *row_I, *inten;
   zs_error err;
 } tracer;
 
@@ -139,7 +154,21 @@ static cJSON *json_poly(const zs_trace_poly *p) {
   return o;
 }
 
-static cJSON *json_edge(const zs_trace_edge *e) {
+/* The Gouraud intensity of batch edge k at its top row, and per row, as
+ * numbers and fractions beside its x and dx (when it has one). */
+static void json_edge_I(cJSON *o, const tracer *t, const zs_trace_edge *e, int32_t k) {
+  zs_q I, dI;
+  char s[64];
+  if (!t->shading || !zs_gouraud_edge_at(&t->gouraud, k, e->row0, &I, &dI)) return;
+  cJSON_AddNumberToObject(o, "I", I.v);
+  cJSON_AddNumberToObject(o, "dI", dI.v);
+  zs_q_str(s, sizeof s, I);
+  cJSON_AddStringToObject(o, "I_fraction", s);
+  zs_q_str(s, sizeof s, dI);
+  cJSON_AddStringToObject(o, "dI_fraction", s);
+}
+
+static cJSON *json_edge(const tracer *t, const zs_trace_edge *e, int32_t k) {
   cJSON *o = cJSON_CreateObject();
   char s[64];
   cJSON_AddNumberToObject(o, "id", e->id);
@@ -154,6 +183,7 @@ static cJSON *json_edge(const zs_trace_edge *e) {
   const double ends[4] = {e->X0 / (double)ZS_SUBPIXEL_ONE - 0.5, e->Y0 / (double)ZS_SUBPIXEL_ONE - 0.5,
                           e->X1 / (double)ZS_SUBPIXEL_ONE - 0.5, e->Y1 / (double)ZS_SUBPIXEL_ONE - 0.5};
   cJSON_AddItemToObject(o, "ends", cJSON_CreateDoubleArray(ends, 4));
+  json_edge_I(o, t, e, k);
   return o;
 }
 
@@ -166,6 +196,17 @@ static void print_json(tracer *t, cJSON *o) {
   cJSON_Delete(o);
 }
 
+/* The text edge table's I and dI columns (and the line's end). */
+static void print_edge_I(const tracer *t, const zs_trace_edge *e, int32_t k) {
+  zs_q I, dI;
+  char a[64] = "-", b[64] = "-";
+  if (t->shading && zs_gouraud_edge_at(&t->gouraud, k, e->row0, &I, &dI)) {
+    zs_q_str(a, sizeof a, I);
+    zs_q_str(b, sizeof b, dI);
+  }
+  fprintf(t->out, t->shading ? " %10s %10s\n" : "%.0s%.0s\n", a, b);
+}
+
 static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
                       const zs_trace_edge *edges, int nedges) {
   tracer *t = user;
@@ -173,14 +214,18 @@ static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
    * a stable sort by row gives the same order. */
   zs_trace_poly *p = malloc((size_t)(npolys ? npolys : 1) * sizeof *p);
   zs_trace_edge *e = malloc((size_t)(nedges ? nedges : 1) * sizeof *e);
-  if (!p || !e) {
+  int32_t *ek = malloc((size_t)(nedges ? nedges : 1) * sizeof *ek); /* e[i] is edges[ek[i]] */
+  if (!p || !e || !ek ||
+      (t->shading && !zs_gouraud_edges(&t->gouraud, polys, npolys, edges, nedges))) {
     free(p);
     free(e);
+    free(ek);
     t->failed = 1;
     return;
   }
   if (npolys) memcpy(p, polys, (size_t)npolys * sizeof *p);
   if (nedges) memcpy(e, edges, (size_t)nedges * sizeof *e);
+  for (int i = 0; i < nedges; i++) ek[i] = i;
   /* insertion sort: stable, and the tables of a teaching scene are short */
   for (int i = 1; i < npolys; i++)
     for (int j = i; j > 0 && cmp_row0_poly(&p[j - 1], &p[j]) > 0; j--) {
@@ -193,6 +238,9 @@ static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
       zs_trace_edge tmp = e[j];
       e[j] = e[j - 1];
       e[j - 1] = tmp;
+      int32_t k = ek[j];
+      ek[j] = ek[j - 1];
+      ek[j - 1] = k;
     }
   if (t->o->png_dir && nedges) { /* kept for the step pictures */
     t->outline = malloc((size_t)nedges * sizeof *t->outline);
@@ -214,7 +262,7 @@ static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
     cJSON *pa = cJSON_AddArrayToObject(o, "polygon_table");
     for (int i = 0; i < npolys; i++) cJSON_AddItemToArray(pa, json_poly(&p[i]));
     cJSON *ea = cJSON_AddArrayToObject(o, "edge_table");
-    for (int i = 0; i < nedges; i++) cJSON_AddItemToArray(ea, json_edge(&e[i]));
+    for (int i = 0; i < nedges; i++) cJSON_AddItemToArray(ea, json_edge(t, &e[i], ek[i]));
     print_json(t, o);
   } else {
     FILE *f = t->out;
@@ -226,19 +274,57 @@ static void on_tables(void *user, const zs_trace_poly *polys, int npolys,
               p[i].id, p[i].row1 - p[i].row0, p[i].z0, p[i].dzx, p[i].dzy, p[i].rgb & 0xFFFFFF,
               p[i].ox, p[i].oy);
     fprintf(f, "sorted edge table (bucketed by top row; x at that row's centre)\n");
-    fprintf(f, "  %4s %6s %5s %10s %10s %4s\n", "row", "id", "side", "x", "dx", "dy");
+    fprintf(f, "  %4s %6s %5s %10s %10s %4s", "row", "id", "side", "x", "dx", "dy");
+    fprintf(f, t->shading ? " %10s %10s\n" : "%.0s%.0s\n", "I", "dI");
     for (int i = 0; i < nedges; i++) {
       char s[64];
       slope(s, sizeof s, (int64_t)e[i].X1 - e[i].X0, (int64_t)e[i].Y1 - e[i].Y0);
-      fprintf(f, "  %4d %6u %5s %10.6f %10s %4d\n", e[i].row0, e[i].id,
+      fprintf(f, "  %4d %6u %5s %10.6f %10s %4d", e[i].row0, e[i].id,
               e[i].side ? "right" : "left", e[i].x_top, s, e[i].row1 - e[i].row0);
+      print_edge_I(t, &e[i], ek[i]);
     }
   }
   free(p);
   free(e);
+  free(ek);
 }
 
 /* ---- each scanline ---- */
+
+/* The Gouraud intensities of the row's pairs, beside them. */
+static void gouraud_pairs(tracer *t, int y) {
+  if (t->npairs > t->gcap) {
+    zs_gouraud_pair *g = realloc(t->gpairs, (size_t)t->npairs * sizeof *g);
+    if (g) t->gpairs = g;
+    int *h = realloc(t->has_gpair, (size_t)t->npairs * sizeof *h);
+    if (h) t->has_gpair = h;
+    if (!g || !h) {
+      t->failed = 1;
+      return;
+    }
+    t->gcap = t->npairs;
+  }
+  for (int i = 0; i < t->npairs; i++)
+    t->has_gpair[i] = zs_gouraud_pair_of(&t->gouraud, &t->pairs[i], y, &t->gpairs[i]);
+}
+
+/* Each pixel's intensity on the finished row: from the pair of the
+ * polygon that won it (NAN where none did, or it has none). */
+static void gouraud_pixels(tracer *t, const zs_row *row) {
+  for (int x = 0; x < row->width; x++) {
+    t->row_I[x] = NAN;
+    for (int i = 0; i < t->npairs && row->id[x] != ZS_ID_NONE; i++) {
+      const zs_trace_pair *p = &t->pairs[i];
+      if (t->has_gpair[i] && p->id == row->id[x] && p->xl <= x && x < p->xr) {
+        t->row_I[x] = zs_gouraud_at(&t->gpairs[i], p, x);
+        break;
+      }
+    }
+  }
+  if (t->inten)
+    memcpy(t->inten + (size_t)row->y * (size_t)row->width, t->row_I,
+           (size_t)row->width * sizeof *t->row_I);
+}
 
 static void on_row(void *user, const zs_trace_row *row) {
   tracer *t = user;
@@ -260,9 +346,26 @@ static void on_row(void *user, const zs_trace_row *row) {
   if (row->nspans) memcpy(t->spans, row->spans, (size_t)row->nspans * sizeof *row->spans);
   t->npairs = row->npairs;
   t->nspans = row->nspans;
+  if (t->shading) gouraud_pairs(t, row->y);
 }
 
-static cJSON *json_pair(const zs_trace_pair *p) {
+/* The pair's Gouraud intensities, as numbers and fractions (dIx null
+ * where the span has no width). */
+static void json_pair_I(cJSON *o, const zs_gouraud_pair *g) {
+  static const char *const names[] = {"Il", "dIl", "Ir", "dIr", "dIx"};
+  const zs_q v[] = {g->Il, g->dIl, g->Ir, g->dIr, g->dIx};
+  char s[64], key[32];
+  for (int i = 0; i < 5; i++) {
+    const int none = i == 4 && !g->has_dIx;
+    cJSON_AddItemToObject(o, names[i], none ? cJSON_CreateNull() : cJSON_CreateNumber(v[i].v));
+    zs_q_str(s, sizeof s, v[i]);
+    snprintf(key, sizeof key, "%s_fraction", names[i]);
+    cJSON_AddItemToObject(o, key, none ? cJSON_CreateNull() : cJSON_CreateString(s));
+  }
+}
+
+static cJSON *json_pair(const tracer *t, int i) {
+  const zs_trace_pair *p = &t->pairs[i];
   cJSON *o = cJSON_CreateObject();
   char s[64];
   static const char *const names[] = {"id", "xl", "dxl", "dyl", "xr",
@@ -282,6 +385,7 @@ static cJSON *json_pair(const zs_trace_pair *p) {
   static const char *const fixed[] = {"xl", "xr", "zl", "zshift"};
   const double f[] = {(double)p->xl, (double)p->xr, (double)p->zl, p->zshift};
   add_numbers(fx, fixed, f, 4);
+  if (t->shading && t->has_gpair[i]) json_pair_I(o, &t->gpairs[i]);
   return o;
 }
 
@@ -291,6 +395,17 @@ static cJSON *json_pair(const zs_trace_pair *p) {
 static double view_z(const tracer *t, uint32_t depth) {
   double ndc = 2.0 * (depth == ZS_DEPTH_FAR ? 1.0 : depth / 4294967296.0) - 1.0;
   return t->ortho ? (ndc - t->proj11) / t->proj10 : -t->proj11 / (ndc + t->proj10);
+}
+
+/* " | Il .. dIl .. | Ir .. dIr .. | dIx ..", the textbook's fractions */
+static void print_pair_I(FILE *f, const zs_gouraud_pair *g) {
+  char il[64], dil[64], ir[64], dir[64], dix[64] = "-";
+  zs_q_str(il, sizeof il, g->Il);
+  zs_q_str(dil, sizeof dil, g->dIl);
+  zs_q_str(ir, sizeof ir, g->Ir);
+  zs_q_str(dir, sizeof dir, g->dIr);
+  if (g->has_dIx) zs_q_str(dix, sizeof dix, g->dIx);
+  fprintf(f, " | Il %s dIl %s | Ir %s dIr %s | dIx %s", il, dil, ir, dir, dix);
 }
 
 static void print_row(tracer *t, const zs_row *row) {
@@ -305,7 +420,7 @@ static void print_row(tracer *t, const zs_row *row) {
       cJSON_AddNumberToObject(p, "id", t->pairs[i].id);
       cJSON_AddNumberToObject(p, "dy", t->pairs[i].dy);
       cJSON_AddItemToArray(ap, p);
-      cJSON_AddItemToArray(ae, json_pair(&t->pairs[i]));
+      cJSON_AddItemToArray(ae, json_pair(t, i));
     }
     cJSON *sp = cJSON_AddArrayToObject(o, "spans");
     for (int i = 0; i < t->nspans; i++) {
@@ -325,6 +440,11 @@ static void print_row(tracer *t, const zs_row *row) {
       cJSON_AddItemToArray(zs, bg ? cJSON_CreateNull() : cJSON_CreateNumber(row->depth[x] / 4294967296.0));
       cJSON_AddItemToArray(zv, cJSON_CreateNumber(view_z(t, row->depth[x])));
     }
+    if (t->shading) {
+      cJSON *iv = cJSON_AddArrayToObject(o, "I");
+      for (int x = 0; x < w; x++)
+        cJSON_AddItemToArray(iv, isnan(t->row_I[x]) ? cJSON_CreateNull() : cJSON_CreateNumber(t->row_I[x]));
+    }
     print_json(t, o);
     return;
   }
@@ -339,8 +459,10 @@ static void print_row(tracer *t, const zs_row *row) {
     fraction(xr, sizeof xr, p->xr, p->remr, p->dr);
     slope(dxl, sizeof dxl, p->dxl_num, p->dl);
     slope(dxr, sizeof dxr, p->dxr_num, p->dr);
-    fprintf(f, "    id %u: xl %s dxl %s dyl %d | xr %s dxr %s dyr %d | zl %.9f dzx %.9f dzy %.9f\n",
+    fprintf(f, "    id %u: xl %s dxl %s dyl %d | xr %s dxr %s dyr %d | zl %.9f dzx %.9f dzy %.9f",
             p->id, xl, dxl, p->dyl, xr, dxr, p->dyr, p->zl_real, p->dzx, p->dzy);
+    if (t->shading && t->has_gpair[i]) print_pair_I(f, &t->gpairs[i]);
+    fputc('\n', f);
     if (!t->o->brief)
       fprintf(f, "          fixed: first column %lld (rem %lld/%lld), past the last %lld (rem %lld/%lld), "
                  "zl %lld >> %d\n",
@@ -366,6 +488,13 @@ static void print_row(tracer *t, const zs_row *row) {
   for (int x = 0; x < w; x++) {
     double z = view_z(t, row->depth[x]);
     fprintf(f, " %.4g", fabs(z) < 1e-6 ? 0.0 : z); /* a depth quantum from 0 */
+  }
+  if (t->shading) {
+    fprintf(f, "\n  I:  ");
+    for (int x = 0; x < w; x++) {
+      if (isnan(t->row_I[x])) fprintf(f, " -");
+      else fprintf(f, " %.2f", t->row_I[x]);
+    }
   }
   fprintf(f, "\n");
 }
@@ -405,13 +534,30 @@ static uint32_t light(uint32_t c) { return ((c & 0xFEFEFE) >> 1) + 0x7F7F7F; }
 
 enum { PICTURE_PAPER = 0x101010, LABEL_INK = 0xD0D0D0 };
 
+/* The rows done of the Gouraud intensities as grey levels (I, 0 to 255),
+ * from (x0, y0), the current row outlined. */
+static void intensity_panel(const tracer *t, zs_image *im, int x0, int y0, int y) {
+  const int w = t->o->view.width, h = t->o->view.height, s = t->o->scale;
+  for (int r = 0; r < h; r++)
+    for (int x = 0; x < w; x++) {
+      const double v = r <= y ? t->inten[(size_t)r * (size_t)w + (size_t)x] : NAN;
+      uint32_t c = 0x202020;
+      if (!isnan(v)) {
+        const uint32_t g = v <= 0 ? 0 : v >= 255 ? 255 : (uint32_t)(v + 0.5);
+        c = g << 16 | g << 8 | g;
+      }
+      rect(im, x0 + x * s, y0 + r * s, x0 + (x + 1) * s, y0 + (r + 1) * s, c, 1);
+    }
+  rect(im, x0, y0 + y * s, x0 + w * s, y0 + (y + 1) * s, 0xFFFF00, 0);
+}
+
 /* The step picture of scanline y, in picture pixels (s per image pixel):
  *
  *   column numbers           |
- *   row  the frame so far,   | the z-buffer as grey
- *   nos  outlines, scanline, | (near is light)
- *        spans, crossings    |
- *   legend: the polygons' colours; XL, XR, SPAN, ROW; Z NEAR = LIGHT
+ *   row  the frame so far,   | the z-buffer as grey | with vertex colours:
+ *   nos  outlines, scanline, | (near is light)      | the intensities I as
+ *        spans, crossings    |                      | grey
+ *   legend: the polygons' colours; XL, XR, SPAN, ROW; Z NEAR = LIGHT; I
  */
 static void write_picture(tracer *t, int y) {
   const int w = t->o->view.width, h = t->o->view.height, s = t->o->scale;
@@ -425,7 +571,9 @@ static void write_picture(tracer *t, int y) {
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
-  if (zs_image_alloc(&im, left + 2 * w * s + s, top + h * s + 3 * line_h + k, &err)) {
+  const int panels = t->shading ? 3 : 2; /* frame, z-buffer, and the intensities */
+  if (zs_image_alloc(&im, left + panels * w * s + (panels - 1) * s,
+                     top + h * s + (panels + 1) * line_h + k, &err)) {
     t->failed = 1;
     t->err = err;
     return;
@@ -444,6 +592,7 @@ static void write_picture(tracer *t, int y) {
       rect(&im, ox + x * s, oy + r * s, ox + (x + 1) * s, oy + (r + 1) * s, 0x202020, 1);
       rect(&im, dx + x * s, oy + r * s, dx + (x + 1) * s, oy + (r + 1) * s, 0, 1);
     }
+  if (t->shading) intensity_panel(t, &im, left + 2 * (w + 1) * s, oy, y);
   /* the pixel grid, faint, and the row and column numbers */
   char num[16];
   for (int r = 0; r < h; r++) {
@@ -500,6 +649,15 @@ static void write_picture(tracer *t, int y) {
     rect(&im, lx + g * sw, ly, lx + (g + 1) * sw, ly + sw, v << 16 | v << 8 | v, 1);
   }
   zs_glyphs_draw(&im, lx + 4 * sw + 2 * k, ly, k, LABEL_INK, "NEAR = LIGHT");
+  if (t->shading) {
+    ly += line_h;
+    lx = zs_glyphs_draw(&im, left, ly, k, LABEL_INK, "I ");
+    for (int g = 0; g < 4; g++) { /* 0 (black) to 255 (white) */
+      uint32_t v = (uint32_t)(85 * g);
+      rect(&im, lx + g * sw, ly, lx + (g + 1) * sw, ly + sw, v << 16 | v << 8 | v, 1);
+    }
+    zs_glyphs_draw(&im, lx + 4 * sw + 2 * k, ly, k, LABEL_INK, "255 = WHITE");
+  }
   char path[4200];
   snprintf(path, sizeof path, "%s/scanline-%04d.png", t->o->png_dir, y);
   if (zs_png_write(path, &im, &err)) {
@@ -516,6 +674,7 @@ static void on_sink(void *user, const zs_row *row) {
     memcpy(t->ids + (size_t)row->y * (size_t)row->width, row->id, (size_t)row->width * 4);
     memcpy(t->depth + (size_t)row->y * (size_t)row->width, row->depth, (size_t)row->width * 4);
   }
+  if (t->shading && !t->failed) gouraud_pixels(t, row);
   if (!in_rows(t->o, row->y) || t->failed) return;
   print_row(t, row);
   if (t->o->png_dir) {
@@ -658,6 +817,32 @@ static zs_status parse(int argc, char **argv, trace_opts *o, zs_error *err) {
   return ZS_OK;
 }
 
+/* The Gouraud intensities of a scene with vertex colours: under an
+ * orthographic view only, where they are linear on the screen as the
+ * textbook steps them (zscan interpolates perspective-correct). */
+static zs_status start_gouraud(tracer *t, const zs_scene *s, const double view[16],
+                               const double proj[16], zs_error *err) {
+  const int w = t->o->view.width, h = t->o->view.height;
+  if (!t->ortho) {
+    fprintf(stderr, "zscan trace: note: no Gouraud intensities under a perspective view "
+                    "(zscan interpolates perspective-correct); --grid or --ortho shows them\n");
+    return ZS_OK;
+  }
+  if (!zs_gouraud_corners(&t->gouraud, s, view, proj, w, h))
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  t->shading = zs_gouraud_any(&t->gouraud);
+  if (!t->shading) return ZS_OK;
+  t->row_I = malloc((size_t)w * sizeof *t->row_I);
+  if (t->o->png_dir) t->inten = malloc((size_t)w * (size_t)h * sizeof *t->inten);
+  if (!t->row_I || (t->o->png_dir && !t->inten))
+    return zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  if (t->gouraud.nbent)
+    fprintf(stderr, "zscan trace: note: polygon %u%s: its corners' I are not on one plane; zscan "
+                    "shades it as the fan from its first corner, the tables along its edges\n",
+            t->gouraud.bent_id, t->gouraud.nbent > 1 ? " (and others)" : "");
+  return ZS_OK;
+}
+
 int zs_cmd_trace(int argc, char **argv) {
   if (zs_cli_help(argc, argv, usage, zs_view_opts_usage, NULL)) return 0;
   trace_opts o;
@@ -694,6 +879,8 @@ int zs_cmd_trace(int argc, char **argv) {
   t.ortho = proj[14] == 0.0;
   t.proj10 = proj[10];
   t.proj11 = proj[11];
+  if (!o.zbuffer && zs_gouraud_scene_has(&model) && start_gouraud(&t, &model, view, proj, &err))
+    goto fail;
   if (o.png_dir) {
     int first = o.row0 > 0 ? o.row0 : 0;
     int last = o.row1 >= 0 && o.row1 < o.view.height - 1 ? o.row1 : o.view.height - 1;
@@ -752,6 +939,11 @@ done:
   free(t.depth);
   free(t.outline);
   free(t.outline_id);
+  free(t.gpairs);
+  free(t.has_gpair);
+  free(t.row_I);
+  free(t.inten);
+  zs_gouraud_free(&t.gouraud);
   zs_device_destroy(dev);
   if (have_model) zs_scene_free(&model);
   return rc;

@@ -52,6 +52,8 @@ typedef struct zs_trace_pair {
   int64_t zl;            /* fixed-point depth at (xl, y) */
   double zl_real, dzx, dzy;
   int zshift;
+  int32_t left, right;   /* the current edges: their places in the edges the
+                            tables were handed (batch order, not sorted) */
 } zs_trace_pair;
 
 typedef struct zs_trace_span {
