@@ -28,6 +28,7 @@
 #include "lib/input.h"
 #include "lib/outfile.h"
 #include "tools/cmd_trace_gouraud.h"
+#include "util/exactmath.h"
 #include "tools/cmd_trace_page.h"
 #include "tools/viewopts.h"
 
@@ -97,15 +98,10 @@ typedef struct tracer {
 
 /* ---- numbers as the lecture writes them ---- */
 
+/* zs_gcd64, 1 where both are 0 (a zero over any denominator). */
 static int64_t gcd64(int64_t a, int64_t b) {
-  if (a < 0) a = -a;
-  if (b < 0) b = -b;
-  while (b) {
-    int64_t t = a % b;
-    a = b;
-    b = t;
-  }
-  return a ? a : 1;
+  const int64_t g = zs_gcd64(a, b);
+  return g ? g : 1;
 }
 
 /* x - rem / d as "n" or "n/m" (reduced) */

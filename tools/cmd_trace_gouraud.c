@@ -14,20 +14,10 @@
 #include <string.h>
 
 #include "raster/setup.h"
+#include "util/exactmath.h"
 #include "util/matrix.h"
 
 /* ---- exact fractions, with their value in double beside ---- */
-
-static int64_t gcd(int64_t a, int64_t b) {
-  if (a < 0) a = -a;
-  if (b < 0) b = -b;
-  while (b) {
-    int64_t t = a % b;
-    a = b;
-    b = t;
-  }
-  return a;
-}
 
 /* a * b, a + b, a - b into *out, 0 where they would not fit (in plain C:
  * the builtins call a helper on some 32-bit targets) */
@@ -54,7 +44,7 @@ static zs_q q_inexact(double v) { return (zs_q){0, 1, 0, v}; }
 /* n / d, reduced, d > 0 (d != 0; n and d above INT64_MIN) */
 static zs_q q_make(int64_t n, int64_t d) {
   if (d < 0) n = -n, d = -d;
-  int64_t g = gcd(n, d);
+  int64_t g = zs_gcd64(n, d);
   if (g > 1) n /= g, d /= g;
   return (zs_q){n, d, 1, (double)n / (double)d};
 }
@@ -66,7 +56,7 @@ static int fits(int64_t v) { return v != INT64_MIN; } /* so that -v does too */
 static zs_q q_add(zs_q a, zs_q b) {
   int64_t g, x, y, n, d;
   if (!a.exact || !b.exact) return q_inexact(a.v + b.v);
-  g = gcd(a.d, b.d);
+  g = zs_gcd64(a.d, b.d);
   if (!mul_ok(a.n, b.d / g, &x) || !mul_ok(b.n, a.d / g, &y) || !add_ok(x, y, &n) ||
       !mul_ok(a.d, b.d / g, &d) || !fits(n))
     return q_inexact(a.v + b.v);
@@ -80,7 +70,7 @@ static zs_q q_sub(zs_q a, zs_q b) { return q_add(a, q_neg(b)); }
 static zs_q q_mul(zs_q a, zs_q b) {
   int64_t n, d;
   if (!a.exact || !b.exact) return q_inexact(a.v * b.v);
-  const int64_t g1 = gcd(a.n, b.d), g2 = gcd(b.n, a.d); /* at least 1: d > 0 */
+  const int64_t g1 = zs_gcd64(a.n, b.d), g2 = zs_gcd64(b.n, a.d); /* at least 1: d > 0 */
   if (!mul_ok(a.n / g1, b.n / g2, &n) || !mul_ok(a.d / g2, b.d / g1, &d) || !fits(n))
     return q_inexact(a.v * b.v);
   return q_make(n, d);

@@ -10,9 +10,24 @@
 #ifndef ZS_EXACTMATH_H
 #define ZS_EXACTMATH_H
 
+#include <stdint.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* The greatest common divisor of |a| and |b| (0 when both are 0): the
+ * exact fractions of the teaching trace. */
+static inline int64_t zs_gcd64(int64_t a, int64_t b) {
+  if (a < 0) a = -a;
+  if (b < 0) b = -b;
+  while (b) {
+    const int64_t t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
 
 /* sin and cos of an angle in turns (1 turn = 360 degrees).  Exact at
  * multiples of a quarter turn (no -0.0); within 2 ulp elsewhere. */
