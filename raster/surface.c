@@ -131,6 +131,17 @@ struct tri {
   const zs_light_set *lights;
 };
 
+/* v rounded to an integer, within +-2^62: a slope beyond the box's
+ * budget (a box one pixel wide bounds nothing across it) is never
+ * multiplied by more than 0 there, but must still be the same number on
+ * every machine, and llrint leaves an out-of-range result unspecified. */
+static int64_t to_int(double v) {
+  const double lim = 4611686018427387904.0; /* 2^62 */
+  if (!(v > -lim)) return v != v ? 0 : -((int64_t)1 << 62);
+  if (!(v < lim)) return (int64_t)1 << 62;
+  return llrint(v);
+}
+
 /* The perspective-correct planes of a triangle with clip coordinates c
  * (surface.h, INTERPOLATION), in integers, for a width x height window. */
 static void make_planes(tri *t, const double c[3][4], int width, int height) {
@@ -194,9 +205,9 @@ static void make_planes(tri *t, const double c[3][4], int width, int height) {
   frexp(biggest, &ex); /* biggest < 2^ex */
   const double scale = ldexp(1.0, PLANE_BITS - ex);
   for (int i = 0; i < 3; i++) {
-    t->A[i] = llrint(e[i][0] * scale);
-    t->B[i] = llrint(e[i][1] * scale);
-    t->C[i] = llrint(at0[i] * scale);
+    t->A[i] = to_int(e[i][0] * scale);
+    t->B[i] = to_int(e[i][1] * scale);
+    t->C[i] = to_int(at0[i] * scale);
   }
 }
 
