@@ -203,8 +203,13 @@ zs_status zs_device_set_lights(zs_device *d, const zs_light *lights, int n, zs_e
   if (n > 0 && !lights) return zs_error_set(err, ZS_ERR_ARG, "lights: NULL with n = %d", n);
   zs_status st = zs_lights_check(lights, n, err);
   if (st != ZS_OK) return st;
-  if (n > 0) memcpy(d->surf.lights, lights, (size_t)n * sizeof *lights);
-  d->surf.nlights = n;
+  if (n > 0) {
+    memcpy(d->surf.lights, lights, (size_t)n * sizeof *lights);
+    d->surf.nlights = n;
+  } else {
+    d->surf.nlights = zs_lights_default(d->surf.lights);
+  }
+  d->surf.lights_given = n > 0;
   d->surf.sets_stale = 1;
   return ZS_OK;
 }
@@ -314,7 +319,7 @@ static zs_status draw_now(zs_device *d, const zs_mesh *mesh, const double model[
 static zs_status draw_queued(zs_device *d, const zs_mesh *mesh, const double model[16],
                              uint32_t id_base, uint32_t rgb, zs_error *err) {
   if (d->query_open || mesh->nfaces >= ZS_DEFER_MAX_FACES ||
-      (d->reads_attrs && zs_surface_reads(d->cfg.shade, mesh)))
+      (d->reads_attrs && zs_surface_reads(&d->surf, d->cfg.shade, mesh)))
     return draw_now(d, mesh, model, id_base, rgb, err);
   return zs_defer_push(d, mesh, model, id_base, rgb, err);
 }

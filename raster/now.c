@@ -159,7 +159,7 @@ zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[
   zs_draw_prepare(&ks->prep, d->view, d->proj, model, &prep);
   zs_status st;
   if (d->reads_attrs && ks == &d->state_of[ZS_KERNEL_DRAW] &&
-      zs_surface_reads(d->cfg.shade, mesh)) {
+      zs_surface_reads(&d->surf, d->cfg.shade, mesh)) {
     /* its triangles noted for the rows' shading (surface.h), on one
      * thread, so that the records keep one list */
     prep.surf = &d->surf;

@@ -63,8 +63,8 @@ int zs_surface_grow_recs(zs_surfaces *s) {
   return zs_grow((void **)&s->recs, &s->cap_recs, (int64_t)s->nrecs + 1, sizeof *s->recs);
 }
 
-int zs_surface_reads(zs_shade shade, const zs_mesh *mesh) {
-  if (shade == ZS_SHADE_AUTO) return mesh->normal || mesh->color || mesh->uv;
+int zs_surface_reads(const zs_surfaces *s, zs_shade shade, const zs_mesh *mesh) {
+  if (shade == ZS_SHADE_AUTO) return mesh->normal || mesh->color || mesh->uv || s->lights_given;
   return shade >= ZS_SHADE_UNLIT;
 }
 
@@ -424,7 +424,8 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
     geo[1] = a[2] * b[0] - a[0] * b[2];
     geo[2] = a[0] * b[1] - a[1] * b[0];
   }
-  const int textured = mat && mat->base_texture && dr->shade != ZS_SHADE_NORMAL;
+  /* a texture without texture coordinates is not applied (glTF's rule) */
+  const int textured = mat && mat->base_texture && m->uv && dr->shade != ZS_SHADE_NORMAL;
   if (textured) {
     zs_filter f = s->filter != ZS_FILTER_DEFAULT ? s->filter : mat->filter;
     t->sampler = (zs_sampler){mat->base_texture, mat->wrap_s, mat->wrap_t,

@@ -73,6 +73,7 @@ typedef struct zs_surfaces {
   int sets_stale;      /* the lights or the camera changed since the last set */
   zs_light lights[ZS_MAX_LIGHTS];
   int nlights;
+  int lights_given;    /* zs_device_set_lights set lights of the caller's */
   int width, height;
   zs_filter filter;    /* the device's override, or ZS_FILTER_DEFAULT */
   void *cache;         /* prepared triangles, for the rows (surface.c) */
@@ -84,8 +85,9 @@ void zs_surfaces_free(zs_surfaces *s);
 void zs_surfaces_clear(zs_surfaces *s);
 size_t zs_surfaces_bytes(const zs_surfaces *s);
 
-/* Whether a draw of mesh under shade reads attributes. */
-int zs_surface_reads(zs_shade shade, const zs_mesh *mesh);
+/* Whether a draw of mesh under shade reads attributes (auto: when the
+ * mesh has any, or lights were given: a lit scene lights every mesh). */
+int zs_surface_reads(const zs_surfaces *s, zs_shade shade, const zs_mesh *mesh);
 
 /* Notes a draw (its matrices and the lights in force under view);
  * returns its number, -1 when out of memory. */

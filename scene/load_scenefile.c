@@ -495,6 +495,9 @@ static zs_status read_material(reader *r, const cJSON *obj, zs_model *m) {
   m->mesh.nmaterials = m->cap_materials = 0;
   if (zs_model_add_material(m, &mat) < 0) return fail(r, ZS_ERR_NOMEM, "out of memory");
   for (int32_t f = 0; f < m->mesh.nfaces && m->mesh.face_material; f++) m->mesh.face_material[f] = 0;
+  /* and its colour the faces' own, which flat shading draws */
+  const uint32_t rgb = (uint32_t)mat.base[0] << 16 | (uint32_t)mat.base[1] << 8 | mat.base[2];
+  for (int32_t f = 0; f < m->mesh.nfaces && m->mesh.face_rgb; f++) m->mesh.face_rgb[f] = rgb;
   return ZS_OK;
 }
 

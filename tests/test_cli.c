@@ -137,6 +137,8 @@ static const bad_option bad_options[] = {
     {{"render", "--cull", "chc", "--algo", "scanline", NULL}, "--cull needs --algo zbuffer", 2},
     {{"render", "--style", "hidden-line", "--algo", "scanline", NULL},
      "--style hidden-line needs --algo zbuffer and --shade auto or flat", 2},
+    {{"render", "--shade", "flat", "--light", "dir:0,-1,0", NULL},
+     "--light: --shade flat draws no lights (auto, gouraud and phong do)", 2},
     {{"render", "--shade", "pink", NULL}, "--shade: expected auto, flat, unlit, gouraud, phong, normal, id, depth or overdraw", 2},
     {{"render", "-o", "lines.svg", NULL}, "-o: lines.svg: an SVG holds hidden lines (--style hidden-line)", 2},
     {{"render", "--threads", "0", NULL}, "--threads: 0 is outside 1 .. 64", 2},

@@ -36,7 +36,8 @@ static const char usage_head[] =
 static const char usage_tail[] =
     "  --algo zbuffer|scanline|depthsort   hidden-surface mode (default zbuffer)\n"
     "  --shade MODE        auto (default: flat, or phong for a model with normals,\n"
-    "                      colours or textures), flat, unlit, gouraud, phong,\n"
+    "                      colours or textures, and for every model where lights\n"
+    "                      are given), flat, unlit, gouraud, phong,\n"
     "                      normal (the eye-space normal as a colour), id, depth,\n"
     "                      overdraw\n"
     "  --filter F          every texture sampled nearest, bilinear or trilinear\n"
@@ -86,6 +87,10 @@ static const char usage_tail[] =
 /* What the options ask together, and of the outputs: their formats,
  * their folders, the one stream standard output carries. */
 static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *err) {
+  if (o->nlights > 0 && !(o->shade == ZS_SHADE_AUTO || o->shade == ZS_SHADE_GOURAUD ||
+                          o->shade == ZS_SHADE_PHONG))
+    return zs_error_set(err, ZS_ERR_ARG, "--light: --shade %s draws no lights (auto, gouraud "
+                        "and phong do)", zs_shade_name(o->shade));
   if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade auto or flat");
   if (o->overlay && o->cull < 0)

@@ -156,7 +156,8 @@ int zs_algo_parse(const char *name);
 
 typedef enum zs_shade {
   ZS_SHADE_AUTO,     /* as the mesh says: flat for a mesh without normals,
-                      * colours or textures, Phong for one with them */
+                      * colours or textures, Phong for one with them and
+                      * for every mesh once lights are given */
   ZS_SHADE_FLAT,     /* face colour times a Lambert term, attributes unread */
   ZS_SHADE_ID,       /* RGB = id + 1 as 24 bits, background 0 */
   ZS_SHADE_DEPTH,    /* grey from the linear eye distance, near white */
@@ -331,10 +332,11 @@ const zs_device_config *zs_device_config_of(const zs_device *dev);
  * (eye to clip), e.g. from zs_mat_look_at and zs_mat_perspective. */
 void zs_device_set_camera(zs_device *dev, const double view[16], const double proj[16]);
 
-/* The lights of the lit shadings from the next draw on: n of them (0 ..
- * ZS_MAX_LIGHTS, copied).  A device starts with the headlight: a white
- * directional light of 0.9 along the view, (0, 0, -1) in eye space, and
- * an ambient light of 0.1.  Directions need not be unit; a zero
+/* The lights of the lit shadings from the next draw on: n of them (1 ..
+ * ZS_MAX_LIGHTS, copied); under ZS_SHADE_AUTO they light every mesh, those
+ * without attributes too (Phong, with their faces' plane normals).  n = 0,
+ * and a new device: the headlight, a white directional light of 0.9 along
+ * the view, (0, 0, -1) in eye space, and an ambient light of 0.1.  Directions need not be unit; a zero
  * direction, a negative colour, a spot's angles out of range or a value
  * not finite is refused (ZS_ERR_ARG, naming the light and its field). */
 zs_status zs_device_set_lights(zs_device *dev, const zs_light *lights, int n, zs_error *err);
