@@ -13,6 +13,10 @@
 
 /* ---- a row handed out ---- */
 
+typedef void (*emit_fn)(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
+                        const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
+                        void *user);
+
 static void emit_as_drawn(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
                           const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
                           void *user) {
@@ -47,7 +51,7 @@ static void emit_surfaces(zs_device *d, int y, const uint32_t *depth, const uint
     emit_as_drawn(d, y, depth, id, rgb, count, sink, user);
     return;
   }
-  zs_surface_shade_row(&d->surf, y, rgb, d->row_out);
+  zs_surface_shade_row(&d->surf, 0, y, rgb, d->row_out);
   zs_row row = {y, d->cfg.width, d->row_out, depth, id, NULL};
   sink(user, &row);
 }
@@ -174,6 +178,12 @@ static void scan_band_rows(void *ctx, int t) {
   j->counts[b] = (zs_scan_counts){0, 0, 0};
   j->ok[b] = zs_scan_batch(&d->drawing->traversal, &d->batch, &tg, y0, y1, &hooks, NULL,
                            &d->band_scratch[b], &j->counts[b]);
+  /* the band's pixels shaded here, on its thread, in place */
+  if (j->ok[b] && d->surf.nrecs > 0)
+    for (int y = y0; y < y1; y++) {
+      uint32_t *row = tg.rgb + (size_t)(y - y0) * (size_t)d->cfg.width;
+      zs_surface_shade_row(&d->surf, t, y, row, row);
+    }
 }
 
 static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
@@ -182,6 +192,8 @@ static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_err
   j.nbands = finish_band_count(d);
   if (j.nbands < 2) return finish_scan(d, sink, user, err);
   const int threads = d->cfg.threads, w = d->cfg.width;
+  /* the bands' rows come shaded (scan_band_rows) */
+  const emit_fn emit = d->surf.nrecs > 0 ? emit_as_drawn : d->emit;
   zs_command c = {.kind = ZS_CMD_FRAME_SCAN, .issued_ps = -1};
   for (j.first = 0; j.first < j.nbands; j.first += threads) {
     zs_pool_run(d->pool, scan_band_rows, &j, threads);
@@ -194,7 +206,7 @@ static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_err
       const zs_target tg = band_target(d, t, y0);
       for (int y = y0; y < y1; y++) {
         const size_t off = (size_t)(y - y0) * (size_t)w;
-        d->emit(d, y, tg.depth + off, tg.id + off, tg.rgb + off, tg.count + off, sink, user);
+        emit(d, y, tg.depth + off, tg.id + off, tg.rgb + off, tg.count + off, sink, user);
       }
     }
   }
@@ -218,19 +230,44 @@ static zs_status finish_painter_bands(zs_device *d, zs_row_sink sink, void *user
 
 /* ---- zbuffer: the drawn frame's rows ---- */
 
+/* On threads, the frame's pixels that name records shaded in place, a
+ * band of rows a thread (each with its own cache); the rows then go out
+ * as drawn. */
+typedef struct shade_job {
+  zs_device *d;
+  int nparts;
+} shade_job;
+
+static void shade_part(void *ctx, int part) {
+  const shade_job *j = ctx;
+  zs_device *d = j->d;
+  const int y0 = (int)zs_part_start(d->cfg.height, part, j->nparts),
+            y1 = (int)zs_part_start(d->cfg.height, part + 1, j->nparts);
+  for (int y = y0; y < y1; y++)
+    if (!d->fresh[y]) {
+      uint32_t *row = d->rgb + (size_t)y * (size_t)d->cfg.width;
+      zs_surface_shade_row(&d->surf, part, y, row, row);
+    }
+}
+
 static zs_status finish_frame(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   (void)err;
   if (!sink) return ZS_OK;
+  emit_fn emit = d->emit;
+  if (d->pool && d->surf.nrecs > 0) {
+    shade_job j = {d, d->cfg.threads};
+    zs_pool_run(d->pool, shade_part, &j, j.nparts);
+    emit = emit_as_drawn;
+  }
   const size_t w = (size_t)d->cfg.width;
   const uint32_t *blank = d->blank; /* rows no draw reached: cleared, not stored */
   for (int y = 0; y < d->cfg.height; y++) {
     size_t off = (size_t)y * w;
     if (d->fresh[y])
-      d->emit(d, y, blank, blank + w, blank + 2 * w, d->count ? blank + 3 * w : NULL, sink,
-              user);
+      emit(d, y, blank, blank + w, blank + 2 * w, d->count ? blank + 3 * w : NULL, sink, user);
     else
-      d->emit(d, y, d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL,
-              sink, user);
+      emit(d, y, d->depth + off, d->id + off, d->rgb + off, d->count ? d->count + off : NULL,
+           sink, user);
   }
   return ZS_OK;
 }

@@ -46,14 +46,15 @@ static void cache_empty(void *cache);
 void zs_surfaces_clear(zs_surfaces *s) {
   s->ndraws = s->nrecs = s->nsets = 0;
   s->sets_stale = 1;
-  if (s->cache) cache_empty(s->cache); /* the records' numbers start again */
+  for (int i = 0; i < ZS_SURFACE_SLOTS; i++) /* the records' numbers start again */
+    if (s->cache[i]) cache_empty(s->cache[i]);
 }
 
 void zs_surfaces_free(zs_surfaces *s) {
   free(s->draws);
   free(s->recs);
   free(s->sets);
-  free(s->cache);
+  for (int i = 0; i < ZS_SURFACE_SLOTS; i++) free(s->cache[i]);
   memset(s, 0, sizeof *s);
 }
 
@@ -105,8 +106,10 @@ int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double vi
 static size_t cache_bytes(void);
 
 size_t zs_surfaces_bytes(const zs_surfaces *s) {
+  size_t caches = 0;
+  for (int i = 0; i < ZS_SURFACE_SLOTS; i++) caches += s->cache[i] ? cache_bytes() : 0;
   return (size_t)s->cap_draws * sizeof *s->draws + (size_t)s->cap_recs * sizeof *s->recs +
-         (size_t)s->cap_sets * sizeof *s->sets + (s->cache ? cache_bytes() : 0);
+         (size_t)s->cap_sets * sizeof *s->sets + caches;
 }
 
 /* ---- a triangle prepared ---- */
@@ -500,9 +503,10 @@ static void cache_empty(void *cache) {
 
 static size_t cache_bytes(void) { return CACHE_SLOTS * sizeof(tri); }
 
-void zs_surface_shade_row(zs_surfaces *s, int y, const uint32_t *rgb, uint32_t *out) {
-  if (!s->cache && (s->cache = malloc(CACHE_SLOTS * sizeof(tri)))) cache_empty(s->cache);
-  tri *cache = s->cache, spare;
+void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, uint32_t *out) {
+  void **mine = &s->cache[slot];
+  if (!*mine && (*mine = malloc(CACHE_SLOTS * sizeof(tri)))) cache_empty(*mine);
+  tri *cache = *mine, spare;
   const int w = s->width;
   int x = 0;
   while (x < w) {

@@ -48,6 +48,8 @@
 
 #define ZS_SURFACE_BIT 0x80000000u /* a colour word that names a record */
 
+enum { ZS_SURFACE_SLOTS = 64 }; /* threads that may shade rows at once */
+
 typedef struct zs_surface_draw {
   zs_mesh mesh;      /* a copy of the caller's: its arrays must outlive the frame */
   double mv[16], mvp[16];
@@ -76,7 +78,8 @@ typedef struct zs_surfaces {
   int lights_given;    /* zs_device_set_lights set lights of the caller's */
   int width, height;
   zs_filter filter;    /* the device's override, or ZS_FILTER_DEFAULT */
-  void *cache;         /* prepared triangles, for the rows (surface.c) */
+  void *cache[ZS_SURFACE_SLOTS]; /* prepared triangles, one cache for each
+                       * thread that shades rows (surface.c) */
 } zs_surfaces;
 
 void zs_surfaces_init(zs_surfaces *s, int width, int height, zs_filter filter);
@@ -101,8 +104,10 @@ static inline int32_t zs_surface_add_rec(zs_surfaces *s, int32_t draw, int32_t f
 /* Forgets the last record (its triangle drew nothing). */
 static inline void zs_surface_drop_rec(zs_surfaces *s) { s->nrecs--; }
 
-/* Row y's colour words (rgb) shaded into out, width pixels. */
-void zs_surface_shade_row(zs_surfaces *s, int y, const uint32_t *rgb, uint32_t *out);
+/* Row y's colour words (rgb) shaded into out, width pixels (out may be
+ * rgb itself); slot: the calling thread's own cache, 0 .. 63.  Rows may
+ * be shaded on several threads at once, each with a slot of its own. */
+void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, uint32_t *out);
 
 int zs_surface_grow_recs(zs_surfaces *s);
 
