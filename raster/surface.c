@@ -214,13 +214,19 @@ static void make_planes(tri *t, const double c[3][4], int width, int height) {
   }
 }
 
-/* The weights b (2^-24, summing to 2^24) at pixel (x, y); l gets the
- * planes' values there (negatives as 0). */
-static inline void weights_at(const tri *t, int x, int y, int64_t l[3], int64_t b[3]) {
+/* The planes' values at pixel (x, y), exactly; going right a pixel adds
+ * A_i, as exactly. */
+static inline void planes_at(const tri *t, int x, int y, int64_t raw[3]) {
   const int64_t dx = x - t->ox, dy = y - t->oy;
+  for (int i = 0; i < 3; i++) raw[i] = t->A[i] * dx + t->B[i] * dy + t->C[i];
+}
+
+/* The weights b (2^-24, summing to 2^24) of the planes' values raw at a
+ * pixel; l gets those values with negatives as 0. */
+static inline void weights_of(const int64_t raw[3], int64_t l[3], int64_t b[3]) {
   int64_t sum = 0;
   for (int i = 0; i < 3; i++) {
-    int64_t v = t->A[i] * dx + t->B[i] * dy + t->C[i];
+    int64_t v = raw[i];
     if (v < 0) v = 0;
     if (v > ((int64_t)1 << (PLANE_BITS + 1))) v = (int64_t)1 << (PLANE_BITS + 1);
     l[i] = v;
@@ -287,10 +293,12 @@ static inline uint32_t to16(double v) {
 __attribute__((always_inline)) static inline void shade_run(const tri *t, int y, int x0, int x1,
                                                             uint32_t *out, const zs_shade sh,
                                                             const int textured) {
-  for (int x = x0; x < x1; x++) {
+  int64_t raw[3];
+  planes_at(t, x0, y, raw);
+  for (int x = x0; x < x1; x++, raw[0] += t->A[0], raw[1] += t->A[1], raw[2] += t->A[2]) {
     int64_t l[3], b[3];
     uint8_t tx[4] = {255, 255, 255, 255};
-    weights_at(t, x, y, l, b);
+    weights_of(raw, l, b);
     if (textured) texel_at(t, l, b, tx);
     if (sh == ZS_SHADE_UNLIT) {
       uint32_t c[3];

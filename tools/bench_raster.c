@@ -72,7 +72,8 @@ static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
 static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
                                      "builtin:default,level=42", "builtin:teapots,count=4",
-                                     "builtin:spheres,count=4"};
+                                     "builtin:spheres,count=4",
+                                     "scene/examples/teapot_textured.json"};
 static const int random_sides[] = {4, 10, 25, 100};
 enum { NRANDOM = 2 * sizeof random_sides / sizeof random_sides[0] };
 enum { NSCENES = sizeof scenes / sizeof scenes[0] };
@@ -253,14 +254,20 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
   uint32_t *ids = malloc((size_t)w * h * sizeof *ids);
   zs_mesa *mesa = NULL;
   zs_device *dev = NULL;
-  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, o->threads, 0, spans_of(o), 0};
+  zs_device_config cfg = {w, h, ZS_ALGO_ZBUFFER, o->shade, 0, o->threads, 0, spans_of(o), 0};
   zs_status st = !mms || !ids ? zs_error_set(err, ZS_ERR_NOMEM, "out of memory") : ZS_OK;
   if (!st && !(st = zs_mesa_create(w, h, &mesa, err))) st = zs_device_create(&cfg, &dev, err);
+  if (!st) st = zs_device_set_lights(dev, s->lights, s->nlights, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
     double t0 = zs_wall_ms();
     if ((st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err))) break;
     double t1 = zs_wall_ms();
-    if ((st = zs_mesa_frame(mesa, s, view, proj, err))) break;
+    /* the same state: flat as one colour an instance, else the shading's */
+    if ((st = o->shade == ZS_SHADE_FLAT
+                  ? zs_mesa_frame(mesa, s, view, proj, err)
+                  : zs_mesa_frame_shaded(mesa, s, view, proj, o->shade, ZS_FILTER_DEFAULT,
+                                         s->lights, s->nlights, err)))
+      break;
     ms[k] = t1 - t0;
     mms[k] = zs_wall_ms() - t1;
   }
@@ -802,7 +809,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
                       "random SxS back to front, random SxS front to back for S = 4, 10, 25, "
                       "100; builtin:teapots, builtin:city, builtin:plant, "
                       "builtin:default,level=42, builtin:teapots,count=4, "
-                      "builtin:spheres,count=4)",
+                      "builtin:spheres,count=4, scene/examples/teapot_textured.json)",
                       o.only_case ? o.only_case : "");
   FILE *report = stdout;
   const char *outs[] = {o.csv, o.md, o.plot};

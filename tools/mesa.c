@@ -13,6 +13,8 @@
 #include <string.h>
 
 #include "raster/raster.h"
+#include "util/lights.h"
+#include "util/matrix.h"
 
 /* A mesh's faces fanned into triangles: its index array. */
 typedef struct fan {
@@ -20,12 +22,27 @@ typedef struct fan {
   GLsizei count;
 } fan;
 
+/* A mesh's fanned triangles with their corners' attributes, grouped by
+ * material (group k: corners first[k] .. first[k + 1] - 1). */
+typedef struct shaded {
+  GLdouble *pos;
+  GLfloat *nrm, *uv;
+  GLubyte *col;
+  int32_t *first; /* ngroups + 1 */
+  int32_t ngroups;
+  GLuint *tex;    /* per group, 0: none */
+} shaded;
+
 struct zs_mesa {
   OSMesaContext ctx;
   int w, h;
   unsigned char *rgba;
   fan *fans;
   int32_t nfans;
+  shaded *shaded;   /* per mesh, for zs_mesa_frame_shaded */
+  int32_t nshaded;
+  zs_filter shaded_filter;
+  GLuint phong;     /* the Blinn-Phong program, 0 until made */
 };
 
 int zs_mesa_available(void) { return 1; }
@@ -59,8 +76,23 @@ zs_status zs_mesa_create(int w, int h, zs_mesa **out, zs_error *err) {
   return ZS_OK;
 }
 
+static void free_shaded(zs_mesa *m) {
+  for (int32_t i = 0; i < m->nshaded; i++) {
+    shaded *sh = &m->shaded[i];
+    if (sh->tex) glDeleteTextures(sh->ngroups, sh->tex);
+    free(sh->pos), free(sh->nrm), free(sh->uv), free(sh->col), free(sh->first), free(sh->tex);
+  }
+  free(m->shaded);
+  m->shaded = NULL;
+  m->nshaded = 0;
+}
+
 void zs_mesa_destroy(zs_mesa *m) {
   if (!m) return;
+  if (m->ctx) {
+    OSMesaMakeCurrent(m->ctx, m->rgba, GL_UNSIGNED_BYTE, m->w, m->h);
+    free_shaded(m);
+  }
   if (m->ctx) OSMesaDestroyContext(m->ctx);
   for (int32_t i = 0; i < m->nfans; i++) free(m->fans[i].index);
   free(m->fans);
@@ -213,6 +245,267 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
   return ZS_OK;
 }
 
+/* The material of face f of mesh, or NULL. */
+static const zs_material *material_of(const zs_mesh *mesh, int32_t f) {
+  if (!mesh->materials || mesh->nmaterials <= 0) return NULL;
+  const int32_t k = mesh->face_material ? mesh->face_material[f] : 0;
+  return &mesh->materials[k >= 0 && k < mesh->nmaterials ? k : 0];
+}
+
+/* Mesh i's shaded arrays (struct shaded): its faces by material, each
+ * fanned from its first corner as zscan shades it. */
+static int make_shaded_mesh(const zs_mesh *mesh, zs_filter filter, shaded *sh) {
+  const int32_t groups = mesh->nmaterials > 0 ? mesh->nmaterials : 1;
+  size_t n = 0;
+  for (int32_t f = 0; f < mesh->nfaces; f++) {
+    const int32_t k = mesh->face_start[f + 1] - mesh->face_start[f];
+    if (k >= 3) n += 3 * (size_t)(k - 2);
+  }
+  sh->ngroups = groups;
+  sh->first = calloc((size_t)groups + 1, sizeof *sh->first);
+  sh->tex = calloc((size_t)groups, sizeof *sh->tex);
+  sh->pos = malloc((n ? n : 1) * 3 * sizeof *sh->pos);
+  sh->nrm = malloc((n ? n : 1) * 3 * sizeof *sh->nrm);
+  sh->uv = malloc((n ? n : 1) * 2 * sizeof *sh->uv);
+  sh->col = malloc((n ? n : 1) * 4 * sizeof *sh->col);
+  if (!sh->first || !sh->tex || !sh->pos || !sh->nrm || !sh->uv || !sh->col) return 0;
+  size_t o = 0;
+  for (int32_t g = 0; g < groups; g++) {
+    sh->first[g] = (int32_t)o;
+    for (int32_t f = 0; f < mesh->nfaces; f++) {
+      const zs_material *mat = material_of(mesh, f);
+      if (mat && mat - mesh->materials != g) continue;
+      if (!mat && g != 0) continue;
+      const uint32_t base = mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
+                            : mesh->color ? 0xFFFFFFu
+                            : mesh->face_rgb ? mesh->face_rgb[f] : 0xB4B4B4u;
+      const int32_t s0 = mesh->face_start[f], nv = mesh->face_start[f + 1] - s0;
+      /* the face's plane normal, for corners without one */
+      double fn[3] = {0, 0, 0};
+      for (int i = 0; i < nv; i++)
+        zs_newell_add(fn, &mesh->pos[3 * (size_t)mesh->face_vert[s0 + i]],
+                      &mesh->pos[3 * (size_t)mesh->face_vert[s0 + (i + 1) % nv]]);
+      for (int k = 1; k + 1 < nv; k++) {
+        const int32_t corner[3] = {s0, s0 + k, s0 + k + 1};
+        for (int c = 0; c < 3; c++, o++) {
+          const int32_t v = mesh->face_vert[corner[c]];
+          int32_t a = mesh->corner_attr ? mesh->corner_attr[corner[c]] : v;
+          if (a >= mesh->nattrs) a = -1;
+          memcpy(&sh->pos[3 * o], &mesh->pos[3 * (size_t)v], 3 * sizeof *sh->pos);
+          const float *nv3 = a >= 0 && mesh->normal ? &mesh->normal[3 * (size_t)a] : NULL;
+          const int has = nv3 && (nv3[0] != 0 || nv3[1] != 0 || nv3[2] != 0);
+          for (int q = 0; q < 3; q++) sh->nrm[3 * o + q] = has ? nv3[q] : (GLfloat)fn[q];
+          sh->uv[2 * o] = a >= 0 && mesh->uv ? mesh->uv[2 * (size_t)a] : 0.0f;
+          sh->uv[2 * o + 1] = a >= 0 && mesh->uv ? mesh->uv[2 * (size_t)a + 1] : 0.0f;
+          for (int q = 0; q < 3; q++) {
+            const uint32_t vc = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + q] : 255;
+            sh->col[4 * o + q] = (GLubyte)(((base >> (16 - 8 * q) & 255) * vc + 127) / 255);
+          }
+          sh->col[4 * o + 3] = 255;
+        }
+      }
+    }
+    const zs_material *mat = mesh->nmaterials > 0 ? &mesh->materials[g] : NULL;
+    if (mat && mat->base_texture && mesh->uv) {
+      const zs_filter fl = filter != ZS_FILTER_DEFAULT ? filter
+                           : mat->filter != ZS_FILTER_DEFAULT ? mat->filter : ZS_FILTER_TRILINEAR;
+      sh->tex[g] = texture_of(mat->base_texture, mat, fl);
+    }
+  }
+  sh->first[groups] = (int32_t)o;
+  return 1;
+}
+
+static zs_status make_shaded(zs_mesa *m, const zs_scene *s, zs_filter filter, zs_error *err) {
+  if (m->nshaded == s->nmeshes && m->shaded_filter == filter) return ZS_OK;
+  free_shaded(m);
+  if (!(m->shaded = calloc((size_t)(s->nmeshes > 0 ? s->nmeshes : 1), sizeof *m->shaded)))
+    return zs_error_set(err, ZS_ERR_NOMEM, "mesa: out of memory");
+  m->nshaded = s->nmeshes;
+  m->shaded_filter = filter;
+  for (int32_t i = 0; i < s->nmeshes; i++)
+    if (!make_shaded_mesh(&s->meshes[i].mesh, filter, &m->shaded[i]))
+      return zs_error_set(err, ZS_ERR_NOMEM, "mesa: out of memory");
+  return ZS_OK;
+}
+
+/* Blinn-Phong per fragment over the enabled fixed-function lights (their
+ * eye-space positions, colours, attenuation and cones), the colour array
+ * as the base, a texture modulating it when bound. */
+static const char phong_vs[] =
+    "varying vec3 p, n;\n"
+    "void main() {\n"
+    "  p = vec3(gl_ModelViewMatrix * gl_Vertex);\n"
+    "  n = gl_NormalMatrix * gl_Normal;\n"
+    "  gl_FrontColor = gl_Color;\n"
+    "  gl_TexCoord[0] = gl_MultiTexCoord0;\n"
+    "  gl_Position = ftransform();\n"
+    "}\n";
+static const char phong_fs[] =
+    "uniform int lights, textured;\n"
+    "uniform sampler2D tex;\n"
+    "varying vec3 p, n;\n"
+    "void main() {\n"
+    "  vec3 v = normalize(-p), nn = normalize(n);\n"
+    "  if (dot(nn, v) < 0.0) nn = -nn;\n"
+    "  vec3 base = gl_Color.rgb;\n"
+    "  if (textured != 0) base *= texture2D(tex, gl_TexCoord[0].st).rgb;\n"
+    "  vec3 d = gl_LightModel.ambient.rgb, s = vec3(0.0);\n"
+    "  for (int i = 0; i < 8; i++) {\n"
+    "    if (i >= lights) break;\n"
+    "    vec4 lp = gl_LightSource[i].position;\n"
+    "    vec3 l = lp.w == 0.0 ? normalize(lp.xyz) : normalize(lp.xyz - p);\n"
+    "    float f = 1.0;\n"
+    "    if (lp.w != 0.0) { vec3 t = lp.xyz - p; f = 1.0 / dot(t, t); }\n"
+    "    float ndl = dot(nn, l);\n"
+    "    if (ndl <= 0.0) continue;\n"
+    "    d += gl_LightSource[i].diffuse.rgb * f * ndl;\n"
+    "    float ndh = max(dot(nn, normalize(l + v)), 0.0);\n"
+    "    s += gl_LightSource[i].specular.rgb * f * pow(ndh, gl_FrontMaterial.shininess);\n"
+    "  }\n"
+    "  gl_FragColor = vec4(base * d + gl_FrontMaterial.specular.rgb * s, 1.0);\n"
+    "}\n";
+
+static GLuint phong_program(void) {
+  GLuint prog = glCreateProgram(), vs = glCreateShader(GL_VERTEX_SHADER),
+         fs = glCreateShader(GL_FRAGMENT_SHADER);
+  const char *v = phong_vs, *f = phong_fs;
+  glShaderSource(vs, 1, &v, NULL);
+  glShaderSource(fs, 1, &f, NULL);
+  glCompileShader(vs);
+  glCompileShader(fs);
+  glAttachShader(prog, vs);
+  glAttachShader(prog, fs);
+  glLinkProgram(prog);
+  GLint ok = 0;
+  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+  return ok ? prog : 0;
+}
+
+/* The lights as OpenGL's fixed-function lights: positions in eye space
+ * (view, or as given for eye-space lights), point and spot falling off as
+ * 1 / d^2, a spot cut off at its outer angle; the ambient lights summed
+ * into the light model's ambient.  The number of lights set. */
+static int set_gl_lights(const double view[16], const zs_light *lights, int n) {
+  GLfloat ambient[4] = {0, 0, 0, 1};
+  int k = 0;
+  for (int i = 0; i < n && k < 8; i++) {
+    const zs_light *l = &lights[i];
+    if (l->kind == ZS_LIGHT_AMBIENT) {
+      for (int c = 0; c < 3; c++) ambient[c] += (GLfloat)l->color[c];
+      continue;
+    }
+    const GLenum id = GL_LIGHT0 + (GLenum)k++;
+    double g[16], ident[16];
+    zs_mat_identity(ident);
+    const double *mv = l->eye_space ? ident : view;
+    for (int r = 0; r < 4; r++)
+      for (int c = 0; c < 4; c++) g[4 * c + r] = mv[4 * r + c];
+    glLoadMatrixd(g);
+    const GLfloat col[4] = {(GLfloat)l->color[0], (GLfloat)l->color[1], (GLfloat)l->color[2], 1};
+    const GLfloat none[4] = {0, 0, 0, 1};
+    glLightfv(id, GL_DIFFUSE, col);
+    glLightfv(id, GL_SPECULAR, col);
+    glLightfv(id, GL_AMBIENT, none);
+    if (l->kind == ZS_LIGHT_DIRECTIONAL) {
+      const GLfloat pos[4] = {(GLfloat)-l->direction[0], (GLfloat)-l->direction[1],
+                              (GLfloat)-l->direction[2], 0};
+      glLightfv(id, GL_POSITION, pos);
+    } else {
+      const GLfloat pos[4] = {(GLfloat)l->position[0], (GLfloat)l->position[1],
+                              (GLfloat)l->position[2], 1};
+      glLightfv(id, GL_POSITION, pos);
+      glLightf(id, GL_CONSTANT_ATTENUATION, 0);
+      glLightf(id, GL_QUADRATIC_ATTENUATION, 1);
+      if (l->kind == ZS_LIGHT_SPOT) {
+        const GLfloat dir[3] = {(GLfloat)l->direction[0], (GLfloat)l->direction[1],
+                                (GLfloat)l->direction[2]};
+        glLightfv(id, GL_SPOT_DIRECTION, dir);
+        glLightf(id, GL_SPOT_CUTOFF, (GLfloat)l->outer_deg);
+      }
+    }
+    glEnable(id);
+  }
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  return k;
+}
+
+zs_status zs_mesa_frame_shaded(zs_mesa *m, const zs_scene *s, const double view[16],
+                               const double proj[16], zs_shade shade, zs_filter filter,
+                               const zs_light *lights, int nlights, zs_error *err) {
+  if (shade != ZS_SHADE_UNLIT && shade != ZS_SHADE_GOURAUD && shade != ZS_SHADE_PHONG)
+    return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: --shade %s has no llvmpipe state here",
+                        zs_shade_name(shade));
+  begin_frame(m, proj);
+  zs_status st = make_shaded(m, s, filter, err);
+  if (st) return st;
+  glShadeModel(GL_SMOOTH);
+  zs_light head[ZS_MAX_LIGHTS];
+  if (nlights == 0) nlights = zs_lights_default(head), lights = head;
+  const int lit = shade != ZS_SHADE_UNLIT;
+  int ngl = 0;
+  if (lit) {
+    glMatrixMode(GL_MODELVIEW);
+    ngl = set_gl_lights(view, lights, nlights);
+    glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+    glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SEPARATE_SPECULAR_COLOR);
+    glEnable(GL_COLOR_MATERIAL);
+    glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+    glEnable(GL_NORMALIZE);
+  }
+  if (shade == ZS_SHADE_PHONG) {
+    if (!m->phong && !(m->phong = phong_program()))
+      return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: this OSMesa has no GLSL program");
+    glUseProgram(m->phong);
+    glUniform1i(glGetUniformLocation(m->phong, "lights"), ngl);
+    glUniform1i(glGetUniformLocation(m->phong, "tex"), 0);
+  } else if (lit) {
+    glEnable(GL_LIGHTING);
+  }
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_instance *in = &s->inst[i];
+    const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
+    const shaded *sh = &m->shaded[in->mesh];
+    load_modelview(view, in->model);
+    glVertexPointer(3, GL_DOUBLE, 0, sh->pos);
+    glNormalPointer(GL_FLOAT, 0, sh->nrm);
+    glColorPointer(4, GL_UNSIGNED_BYTE, 0, sh->col);
+    glTexCoordPointer(2, GL_FLOAT, 0, sh->uv);
+    for (int32_t g = 0; g < sh->ngroups; g++) {
+      const GLsizei count = sh->first[g + 1] - sh->first[g];
+      if (count == 0) continue;
+      const zs_material *mat = mesh->nmaterials > 0 ? &mesh->materials[g] : NULL;
+      const GLfloat spec[4] = {mat ? mat->specular[0] / 255.0f : 0, mat ? mat->specular[1] / 255.0f : 0,
+                               mat ? mat->specular[2] / 255.0f : 0, 1};
+      glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, spec);
+      glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS,
+                  mat ? (mat->shininess > 128 ? 128.0f : (GLfloat)mat->shininess) : 0.0f);
+      if (sh->tex[g]) {
+        glBindTexture(GL_TEXTURE_2D, sh->tex[g]);
+        glEnable(GL_TEXTURE_2D);
+      }
+      if (m->phong && shade == ZS_SHADE_PHONG)
+        glUniform1i(glGetUniformLocation(m->phong, "textured"), sh->tex[g] != 0);
+      glDrawArrays(GL_TRIANGLES, sh->first[g], count);
+      if (sh->tex[g]) glDisable(GL_TEXTURE_2D);
+    }
+  }
+  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  if (shade == ZS_SHADE_PHONG) glUseProgram(0);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_COLOR_MATERIAL);
+  for (int k = 0; k < 8; k++) glDisable(GL_LIGHT0 + (GLenum)k);
+  glFinish();
+  return ZS_OK;
+}
+
 static zs_status make_fans(zs_mesa *m, const zs_scene *s, zs_error *err) {
   if (m->nfans == s->nmeshes) return ZS_OK;
   for (int32_t i = 0; i < m->nfans; i++) free(m->fans[i].index);
@@ -282,6 +575,13 @@ zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], cons
 zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
                         const double proj[16], zs_filter filter, uint32_t *rgb, zs_error *err) {
   (void)m, (void)s, (void)view, (void)proj, (void)filter, (void)rgb;
+  return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: zscan was built without OSMesa");
+}
+
+zs_status zs_mesa_frame_shaded(zs_mesa *m, const zs_scene *s, const double view[16],
+                               const double proj[16], zs_shade shade, zs_filter filter,
+                               const zs_light *lights, int nlights, zs_error *err) {
+  (void)m, (void)s, (void)view, (void)proj, (void)shade, (void)filter, (void)lights, (void)nlights;
   return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: zscan was built without OSMesa");
 }
 

@@ -42,6 +42,22 @@ zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], cons
 zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
                         const double proj[16], zs_filter filter, uint32_t *rgb, zs_error *err);
 
+/* One frame of s as zscan's shading `shade` draws it, as fast as this GL
+ * offers it (the equivalent state for `zscan bench raster --mesa
+ * --shade`): each mesh's faces fanned into triangles whose corners carry
+ * their normals, colours (the base colour times the vertex colour) and
+ * texture coordinates, drawn from vertex arrays built on the first call,
+ * a group a material, its texture bound (zscan's mip chain, GL_MODULATE)
+ * when it has one; unlit: lighting off; gouraud: OpenGL's fixed-function
+ * lighting with the device's lights (or the headlight) and a separate
+ * specular colour; phong: the same lights per fragment, in a GLSL
+ * program of Blinn-Phong.  Cleared first, finished (glFinish) at the end.
+ * ZS_ERR_UNSUPPORTED for another shading, or phong where this GL has no
+ * GLSL. */
+zs_status zs_mesa_frame_shaded(zs_mesa *m, const zs_scene *s, const double view[16],
+                               const double proj[16], zs_shade shade, zs_filter filter,
+                               const zs_light *lights, int nlights, zs_error *err);
+
 /* One frame of s as fast as this GL offers it: each mesh's faces, fanned
  * into triangles, drawn from vertex arrays (built on the first call), one
  * colour per instance; cleared first, finished (glFinish) at the end. */

@@ -10,17 +10,17 @@
  * formula and written out (srgb.c). */
 extern const uint16_t zs_srgb_to_linear16[256];
 
+/* zs_linear16_to_srgb's first guess for q >> 4 (srgb.c). */
+extern const uint8_t zs_srgb_of_linear_bucket[4096];
+
 /* The 8-bit sRGB code nearest to a linear value q (0 .. 65535): the code c
- * whose table value is nearest to q, the higher of two equally near. */
+ * whose table value is nearest to q, the higher of two equally near: c is
+ * the code from which q reaches the midpoint between c - 1 and c.  The
+ * bucket's guess is that code or one below it. */
 static inline uint8_t zs_linear16_to_srgb(uint32_t q) {
-  int lo = 0, hi = 255; /* the answer lies in [lo, hi] */
-  while (lo < hi) {
-    const int mid = (lo + hi + 1) / 2;
-    /* code mid or above when q reaches the midpoint between mid - 1 and mid */
-    if (2 * q >= (uint32_t)zs_srgb_to_linear16[mid - 1] + zs_srgb_to_linear16[mid]) lo = mid;
-    else hi = mid - 1;
-  }
-  return (uint8_t)lo;
+  uint32_t c = zs_srgb_of_linear_bucket[q >> 4];
+  if (c < 255 && 2 * q >= (uint32_t)zs_srgb_to_linear16[c] + zs_srgb_to_linear16[c + 1]) c++;
+  return (uint8_t)c;
 }
 
 #endif
