@@ -854,8 +854,17 @@ static zs_status read_light(reader *r, const cJSON *obj, zs_light *l) {
   for (int k = 0; k < 3; k++) l->color[k] = l->color[k] * intensity;
   zs_error why;
   zs_error_clear(&why);
-  if (zs_lights_check(l, 1, &why) != ZS_OK) /* "lights[0].FIELD: reason" */
-    return fail(r, ZS_ERR_PARSE, "%s", strchr(why.msg, ' ') + 1);
+  if (zs_lights_check(l, 1, &why) != ZS_OK) {
+    /* "lights[0].FIELD: reason", or "lights[0]: reason" for a spot's
+     * angles: the message at the key at fault */
+    const char *field = strchr(why.msg, '.'), *colon = strchr(why.msg, ':');
+    char key[32] = "inner";
+    if (field && colon && field < colon && (size_t)(colon - field - 1) < sizeof key) {
+      memcpy(key, field + 1, (size_t)(colon - field - 1));
+      key[colon - field - 1] = '\0';
+    }
+    return fail_at(r, key, ZS_ERR_PARSE, "%s", colon + 2);
+  }
   return ZS_OK;
 }
 
