@@ -127,6 +127,37 @@ START_TEST(update_then_check_passes) {
 }
 END_TEST
 
+/* A key given as an array of strings is its option once for each: two
+ * lights in a case are two --light options, the same golden as render's. */
+START_TEST(an_array_of_strings_repeats_its_option) {
+  write_text(in_dir("lit.json"),
+             "{\"cases\": [{\"name\": \"lit\", \"input\": \"builtin:default?level=2\",\n"
+             "  \"size\": \"160x120\", \"light\": [\"dir:0,-1,-1\", \"ambient:0.2,0.2,0.2\"]}]}\n");
+  ck_assert_msg(golden("update", in_dir("lit.json"), NULL, NULL, NULL, NULL) == 0, "%s", err);
+  const char *png = in_dir("render.png");
+  const char *args[] = {"render", "builtin:default?level=2", "--size", "160x120", "--light",
+                        "dir:0,-1,-1", "--light", "ambient:0.2,0.2,0.2", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
+  zs_image a, b;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(png, &a, &e), ZS_OK);
+  ck_assert_int_eq(zs_png_read(in_dir("golden/lit.png"), &b, &e), ZS_OK);
+  ck_assert_uint_eq(zs_image_hash(&a), zs_image_hash(&b));
+  zs_image_free(&a);
+  zs_image_free(&b);
+  /* one light alone differs from the two */
+  const char *one[] = {"render", "builtin:default?level=2", "--size", "160x120", "--light",
+                       "dir:0,-1,-1", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(one, out, sizeof out, err, sizeof err), 0);
+  ck_assert_int_eq(zs_png_read(png, &a, &e), ZS_OK);
+  ck_assert_int_eq(zs_png_read(in_dir("golden/lit.png"), &b, &e), ZS_OK);
+  ck_assert_uint_ne(zs_image_hash(&a), zs_image_hash(&b));
+  zs_image_free(&a);
+  zs_image_free(&b);
+}
+END_TEST
+
 /* Chromium's DOM of a page, or NULL (with why) when it could not run. */
 static int dump_dom(const char *html, char *dom, size_t cap) {
   char cmd[9000];
@@ -296,6 +327,7 @@ int main(void) {
   tcase_set_timeout(tc, 300);
   tcase_add_checked_fixture(tc, setup, teardown);
   tcase_add_test(tc, update_then_check_passes);
+  tcase_add_test(tc, an_array_of_strings_repeats_its_option);
   tcase_add_test(tc, moved_camera_fails_alone_with_a_report);
   tcase_add_test(tc, shards_check_every_case_once);
   tcase_add_test(tc, bad_manifests_named_by_json_path);

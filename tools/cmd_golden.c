@@ -161,9 +161,22 @@ static zs_status parse_case(const char *manifest, const char *mdir, const cJSON 
       if (cJSON_IsTrue(o)) st = push_arg(c, &used, cap, opt, where, err);
       continue;
     }
+    if (cJSON_IsArray(o) && o->child && cJSON_IsString(o->child)) {
+      /* an array of strings: the option once for each ("light": ["dir:..",
+       * "ambient:.."] is --light dir:.. --light ambient:..) */
+      for (const cJSON *e = o->child; e && !st; e = e->next) {
+        if (!cJSON_IsString(e))
+          return zs_error_set(err, ZS_ERR_PARSE, "%s.%s: expected an array of strings", where,
+                              key);
+        if (!(st = push_arg(c, &used, cap, opt, where, err)))
+          st = push_arg(c, &used, cap, e->valuestring, where, err);
+      }
+      continue;
+    }
     if (!value_text(o, key, value, sizeof value))
       return zs_error_set(err, ZS_ERR_PARSE,
-                          "%s.%s: expected a string, a number or an array of numbers", where, key);
+                          "%s.%s: expected a string, a number, an array of numbers or an array "
+                          "of strings", where, key);
     if (!(st = push_arg(c, &used, cap, opt, where, err)))
       st = push_arg(c, &used, cap, value, where, err);
   }
