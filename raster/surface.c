@@ -16,7 +16,6 @@
 
 #include "raster/texture.h"
 #include "util/lights.h"
-#include "util/exactmath.h"
 #include "util/grow.h"
 #include "util/srgb.h"
 
@@ -245,6 +244,29 @@ static inline int64_t interp(const int64_t b[3], int64_t a0, int64_t a1, int64_t
   return (b[0] * a0 + b[1] * a1 + b[2] * a2 + ((int64_t)1 << (BARY_BITS - 1))) >> BARY_BITS;
 }
 
+/* floor(128 log2(m)) for a mantissa m in [0.5, 1), by its top 8 bits:
+ * entry i is that of m = 0.5 + (i + 0.5) / 512, made once with a
+ * logarithm and written out, so no pixel's level of detail passes through
+ * one (1/256 of a level at most from the logarithm of m itself). */
+static const int16_t log2_mantissa128[256] = {
+    -128, -127, -127, -126, -125, -125, -124, -123, -122, -122, -121, -120, -120, -119, -118, -118,
+    -117, -116, -116, -115, -114, -114, -113, -112, -112, -111, -110, -110, -109, -108, -108, -107,
+    -106, -106, -105, -105, -104, -103, -103, -102, -101, -101, -100, -100,  -99,  -98,  -98,  -97,
+     -96,  -96,  -95,  -95,  -94,  -93,  -93,  -92,  -92,  -91,  -90,  -90,  -89,  -89,  -88,  -88,
+     -87,  -86,  -86,  -85,  -85,  -84,  -84,  -83,  -82,  -82,  -81,  -81,  -80,  -80,  -79,  -79,
+     -78,  -77,  -77,  -76,  -76,  -75,  -75,  -74,  -74,  -73,  -73,  -72,  -72,  -71,  -70,  -70,
+     -69,  -69,  -68,  -68,  -67,  -67,  -66,  -66,  -65,  -65,  -64,  -64,  -63,  -63,  -62,  -62,
+     -61,  -61,  -60,  -60,  -59,  -59,  -58,  -58,  -57,  -57,  -56,  -56,  -55,  -55,  -54,  -54,
+     -53,  -53,  -52,  -52,  -51,  -51,  -51,  -50,  -50,  -49,  -49,  -48,  -48,  -47,  -47,  -46,
+     -46,  -45,  -45,  -44,  -44,  -44,  -43,  -43,  -42,  -42,  -41,  -41,  -40,  -40,  -40,  -39,
+     -39,  -38,  -38,  -37,  -37,  -36,  -36,  -36,  -35,  -35,  -34,  -34,  -33,  -33,  -33,  -32,
+     -32,  -31,  -31,  -30,  -30,  -30,  -29,  -29,  -28,  -28,  -27,  -27,  -27,  -26,  -26,  -25,
+     -25,  -25,  -24,  -24,  -23,  -23,  -22,  -22,  -22,  -21,  -21,  -20,  -20,  -20,  -19,  -19,
+     -18,  -18,  -18,  -17,  -17,  -17,  -16,  -16,  -15,  -15,  -15,  -14,  -14,  -13,  -13,  -13,
+     -12,  -12,  -11,  -11,  -11,  -10,  -10,  -10,   -9,   -9,   -8,   -8,   -8,   -7,   -7,   -7,
+      -6,   -6,   -5,   -5,   -5,   -4,   -4,   -4,   -3,   -3,   -2,   -2,   -2,   -1,   -1,   -1,
+};
+
 /* The level of detail at the pixel whose plane values are l (texture.h,
  * LEVEL OF DETAIL), in 1/256 level: from the derivatives of s = N / S
  * along x, dN/dx S - N dS/dx over S^2, and along y. */
@@ -265,9 +287,14 @@ static inline int32_t lod_at(const tri *t, const int64_t l[3]) {
   const double rx = sx * sx + tx * tx, ry = sy * sy + ty * ty;
   const double rho2 = rx > ry ? rx : ry;
   if (!(rho2 > 1.0)) return 0; /* magnified (and NaN) */
-  /* log2(rho) = ln(rho^2) / (2 ln 2), in 1/256 */
-  const double lod = zs_log(rho2) * (128.0 / 0.69314718055994530942);
-  return lod > 256.0 * ZS_TEXTURE_MAX_LEVELS ? 256 * ZS_TEXTURE_MAX_LEVELS : (int32_t)lod;
+  if (rho2 > 0x1p60) return 256 * ZS_TEXTURE_MAX_LEVELS; /* past every level */
+  /* log2(rho) = log2(rho^2) / 2 in 1/256 of a level: 128 (e + log2 m) for
+   * rho^2 = m 2^e, frexp exact on every machine */
+  int e = 0;
+  const double m = frexp(rho2, &e);
+  int i = (int)((m - 0.5) * 512.0);
+  if (i > 255) i = 255;
+  return 128 * e + log2_mantissa128[i];
 }
 
 static inline void texel_at(const tri *t, const int64_t l[3], const int64_t b[3],

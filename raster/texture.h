@@ -15,7 +15,9 @@
  * LEVEL OF DETAIL
  *   lod = log2(rho), rho the larger of the lengths (in level-0 texels) of
  *   the mapping's derivatives along x and along y at the pixel, from the
- *   exact planes of the triangle (surface.c), in 1/256 of a level.
+ *   exact planes of the triangle (surface.c), in 1/256 of a level: the
+ *   exponent of rho^2 from frexp, its mantissa's logarithm from a table
+ *   of 256 entries.
  *   Nearest samples level 0 only; bilinear the level nearest to lod;
  *   trilinear the levels floor(lod) and floor(lod) + 1.  lod <= 0 is
  *   magnification: level 0, by the filter (nearest or bilinear). */
