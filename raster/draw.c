@@ -9,8 +9,6 @@
 #include "raster/draw.h"
 #include "raster/tuning.h"
 
-#define ZS_DEFAULT_RGB 0xB4B4B4u /* faces without a colour: light grey */
-
 int zs_vert_scratch_reserve(zs_vert_scratch *v, int32_t n) {
   if (n <= v->cap) return 1;
   void **const arrays[] = {(void **)&v->clip, (void **)&v->eyepos, (void **)&v->outcode,

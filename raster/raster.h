@@ -70,6 +70,8 @@ enum {
   ZS_GUARD_PIXELS = 1 << 15    /* snapped |x|,|y| stay below this */
 };
 
+#define ZS_DEFAULT_RGB 0xB4B4B4u /* a face without a colour: light grey */
+
 /* The faces the clock charges a draw for: those that reached set-up and
  * were not culled as back faces or degenerate.  A face dropped there for
  * lying off the window counts, as a GPU sets it up before its scissor. */

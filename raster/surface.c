@@ -27,7 +27,6 @@ enum {
 };
 #define NORMAL_ONE 1073741824.0 /* normals in 2^-30 */
 
-#define ZS_DEFAULT_RGB 0xB4B4B4u /* as the flat draws' (draw.c) */
 
 /* ---- the records ---- */
 
@@ -439,18 +438,8 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   }
   make_planes(t, clip, s->width, s->height);
 
-  /* the face's material and colour */
-  const zs_material *mat = NULL;
-  if (m->materials && m->nmaterials > 0) {
-    int32_t k = m->face_material ? m->face_material[r->face] : 0;
-    mat = &m->materials[k >= 0 && k < m->nmaterials ? k : 0];
-  }
-  /* the base colour: the draw's, the material's, else white under vertex
-   * colours (they are the colour) or the face's */
-  uint32_t rgb = dr->rgb != ZS_RGB_MESH ? dr->rgb
-                 : mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
-                 : m->color ? 0xFFFFFFu
-                 : m->face_rgb ? m->face_rgb[r->face] : ZS_DEFAULT_RGB;
+  const zs_material *mat = zs_face_material(m, r->face);
+  const uint32_t rgb = zs_face_base_rgb(m, mat, r->face, dr->rgb);
   const uint8_t base8[3] = {(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb};
 
   /* the geometric normal, for corners without one */

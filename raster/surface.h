@@ -104,6 +104,25 @@ static inline int32_t zs_surface_add_rec(zs_surfaces *s, int32_t draw, int32_t f
 /* Forgets the last record (its triangle drew nothing). */
 static inline void zs_surface_drop_rec(zs_surfaces *s) { s->nrecs--; }
 
+/* Face f's material, or NULL when the mesh has none (a face_material out
+ * of range: material 0). */
+static inline const zs_material *zs_face_material(const zs_mesh *m, int32_t f) {
+  if (!m->materials || m->nmaterials <= 0) return NULL;
+  const int32_t k = m->face_material ? m->face_material[f] : 0;
+  return &m->materials[k >= 0 && k < m->nmaterials ? k : 0];
+}
+
+/* Face f's base colour (zscan.h, zs_device_draw): the draw's rgb unless it
+ * is ZS_RGB_MESH, else its material's, else white under vertex colours
+ * (they are the colour), else the face's own. */
+static inline uint32_t zs_face_base_rgb(const zs_mesh *m, const zs_material *mat, int32_t f,
+                                        uint32_t rgb) {
+  return rgb != ZS_RGB_MESH ? rgb
+         : mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
+         : m->color ? 0xFFFFFFu
+         : m->face_rgb ? m->face_rgb[f] : ZS_DEFAULT_RGB;
+}
+
 /* Row y's colour words (rgb) shaded into out, width pixels (out may be
  * rgb itself); slot: the calling thread's own cache, 0 .. 63.  Rows may
  * be shaded on several threads at once, each with a slot of its own. */

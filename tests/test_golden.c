@@ -106,11 +106,11 @@ static int load_input(const char *input, zs_scene *s) {
   return 1;
 }
 
-static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_algo algo,
-                                    int threads, zs_image *keep, zs_raster_stats *stats) {
+/* The case's camera: a scene file's own (as zscan render takes it), else
+ * the automatic one, with the case's eye and target when it gives them. */
+static zs_camera case_camera(const golden_case *c, const zs_scene *s) {
   zs_camera cam;
   zs_camera_default(&cam);
-  /* a scene file's own camera, as zscan render takes it */
   const size_t n = strlen(c->input);
   if (n > 5 && strcmp(c->input + n - 5, ".json") == 0) cam = s->camera;
   if (c->has_eye) {
@@ -118,6 +118,12 @@ static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_
     memcpy(cam.target, c->target, sizeof cam.target);
     cam.has_eye = cam.has_target = 1;
   }
+  return cam;
+}
+
+static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_algo algo,
+                                    int threads, zs_image *keep, zs_raster_stats *stats) {
+  const zs_camera cam = case_camera(c, s);
   zs_frame_opts o = {c->width,  c->height, algo, c->shade, c->cull_back,
                      threads,   c->hidden_line, c->filter, NULL, 0};
   zs_image im;
@@ -134,15 +140,7 @@ static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_
  * (zscan.h, zs_span_fill): the same bytes at every level. */
 static uint64_t render_case_spans(const golden_case *c, const zs_scene *s, zs_algo algo,
                                   zs_span_fill spans) {
-  zs_camera cam;
-  zs_camera_default(&cam);
-  const size_t n = strlen(c->input);
-  if (n > 5 && strcmp(c->input + n - 5, ".json") == 0) cam = s->camera;
-  if (c->has_eye) {
-    memcpy(cam.eye, c->eye, sizeof cam.eye);
-    memcpy(cam.target, c->target, sizeof cam.target);
-    cam.has_eye = cam.has_target = 1;
-  }
+  const zs_camera cam = case_camera(c, s);
   zs_error err;
   zs_error_clear(&err);
   double view[16], proj[16];

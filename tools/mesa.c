@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "raster/raster.h"
+#include "raster/surface.h"
 #include "util/lights.h"
 #include "util/matrix.h"
 
@@ -198,16 +199,8 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
     load_modelview(view, in->model);
     const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
     for (int32_t f = 0; f < mesh->nfaces; f++) {
-      const zs_material *mat = NULL;
-      if (mesh->materials && mesh->nmaterials > 0) {
-        int32_t k = mesh->face_material ? mesh->face_material[f] : 0;
-        mat = &mesh->materials[k >= 0 && k < mesh->nmaterials ? k : 0];
-      }
-      /* the base colour as zscan's surface shading takes it (zscan.h) */
-      const uint32_t base = in->rgb != ZS_RGB_MESH ? in->rgb
-                            : mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
-                            : mesh->color ? 0xFFFFFFu
-                            : mesh->face_rgb ? mesh->face_rgb[f] : 0xB4B4B4u;
+      const zs_material *mat = zs_face_material(mesh, f);
+      const uint32_t base = zs_face_base_rgb(mesh, mat, f, in->rgb);
       const zs_filter fl = filter != ZS_FILTER_DEFAULT ? filter
                            : mat && mat->filter != ZS_FILTER_DEFAULT ? mat->filter
                                                                      : ZS_FILTER_TRILINEAR;
@@ -245,13 +238,6 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
   return ZS_OK;
 }
 
-/* The material of face f of mesh, or NULL. */
-static const zs_material *material_of(const zs_mesh *mesh, int32_t f) {
-  if (!mesh->materials || mesh->nmaterials <= 0) return NULL;
-  const int32_t k = mesh->face_material ? mesh->face_material[f] : 0;
-  return &mesh->materials[k >= 0 && k < mesh->nmaterials ? k : 0];
-}
-
 /* Mesh i's shaded arrays (struct shaded): its faces by material, each
  * fanned from its first corner as zscan shades it. */
 static int make_shaded_mesh(const zs_mesh *mesh, zs_filter filter, shaded *sh) {
@@ -273,12 +259,11 @@ static int make_shaded_mesh(const zs_mesh *mesh, zs_filter filter, shaded *sh) {
   for (int32_t g = 0; g < groups; g++) {
     sh->first[g] = (int32_t)o;
     for (int32_t f = 0; f < mesh->nfaces; f++) {
-      const zs_material *mat = material_of(mesh, f);
+      const zs_material *mat = zs_face_material(mesh, f);
       if (mat && mat - mesh->materials != g) continue;
       if (!mat && g != 0) continue;
-      const uint32_t base = mat ? (uint32_t)mat->base[0] << 16 | (uint32_t)mat->base[1] << 8 | mat->base[2]
-                            : mesh->color ? 0xFFFFFFu
-                            : mesh->face_rgb ? mesh->face_rgb[f] : 0xB4B4B4u;
+      /* the mesh's own colours: an instance's colour is not applied here */
+      const uint32_t base = zs_face_base_rgb(mesh, mat, f, ZS_RGB_MESH);
       const int32_t s0 = mesh->face_start[f], nv = mesh->face_start[f + 1] - s0;
       /* the face's plane normal, for corners without one */
       double fn[3] = {0, 0, 0};
