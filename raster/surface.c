@@ -428,13 +428,20 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   const zs_surface_draw *dr = &s->draws[r->draw];
   const zs_mesh *m = &dr->mesh;
   t->rec = rec;
+  /* what the shading reads: unlit neither normals nor eye-space positions
+   * (most of a small triangle's preparation), normal no positions but for
+   * a corner without a normal */
+  const int lit = dr->shade == ZS_SHADE_GOURAUD || dr->shade == ZS_SHADE_PHONG;
+  const int normals = dr->shade != ZS_SHADE_UNLIT;
   double clip[3][4];
   for (int i = 0; i < 3; i++) {
     const double *pos = &m->pos[3 * (size_t)m->face_vert[r->corner[i]]];
     double e[4];
     zs_mat_apply(dr->mvp, pos, clip[i]);
-    zs_mat_apply(dr->mv, pos, e);
-    memcpy(t->p[i], e, sizeof t->p[i]);
+    if (normals) {
+      zs_mat_apply(dr->mv, pos, e);
+      memcpy(t->p[i], e, sizeof t->p[i]);
+    }
   }
   make_planes(t, clip, s->width, s->height);
 
@@ -443,8 +450,8 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   const uint8_t base8[3] = {(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb};
 
   /* the geometric normal, for corners without one */
-  double geo[3];
-  {
+  double geo[3] = {0, 0, 1};
+  if (normals) {
     const double a[3] = {t->p[1][0] - t->p[0][0], t->p[1][1] - t->p[0][1], t->p[1][2] - t->p[0][2]};
     const double b[3] = {t->p[2][0] - t->p[0][0], t->p[2][1] - t->p[0][1], t->p[2][2] - t->p[0][2]};
     geo[0] = a[1] * b[2] - a[2] * b[1];
@@ -459,33 +466,37 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
                               f == ZS_FILTER_DEFAULT ? ZS_FILTER_TRILINEAR : f};
     t->mipmapped = t->sampler.filter != ZS_FILTER_NEAREST;
   }
-  t->refl.double_sided = mat ? mat->double_sided : 1;
-  t->refl.shininess = mat ? mat->shininess : 0;
-  for (int k = 0; k < 3; k++) {
-    t->refl.emissive[k] = mat ? lin(mat->emissive[k]) : 0.0;
-    t->refl.specular[k] = mat ? lin(mat->specular[k]) : 0.0;
+  if (lit) {
+    t->refl.double_sided = mat ? mat->double_sided : 1;
+    t->refl.shininess = mat ? mat->shininess : 0;
+    for (int k = 0; k < 3; k++) {
+      t->refl.emissive[k] = mat ? lin(mat->emissive[k]) : 0.0;
+      t->refl.specular[k] = mat ? lin(mat->specular[k]) : 0.0;
+    }
+    t->lights = &s->sets[dr->lights];
   }
-  t->lights = &s->sets[dr->lights];
 
   double nrm[3][3];
   for (int i = 0; i < 3; i++) {
     int32_t a = m->corner_attr ? m->corner_attr[r->corner[i]] : m->face_vert[r->corner[i]];
     if (a >= m->nattrs) a = -1;
     /* normal */
-    double n[3] = {0, 0, 0};
-    if (a >= 0 && m->normal) {
-      const float *f = &m->normal[3 * (size_t)a];
-      for (int k = 0; k < 3; k++)
-        n[k] = dr->nrm[3 * k] * f[0] + dr->nrm[3 * k + 1] * f[1] + dr->nrm[3 * k + 2] * f[2];
-    }
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(len > 0.0) || !isfinite(len)) {
-      memcpy(n, geo, sizeof n);
-      len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    }
-    for (int k = 0; k < 3; k++) {
-      nrm[i][k] = len > 0.0 && isfinite(len) ? n[k] / len : k == 2;
-      t->n[i][k] = (int32_t)llrint(nrm[i][k] * NORMAL_ONE);
+    if (normals) {
+      double n[3] = {0, 0, 0};
+      if (a >= 0 && m->normal) {
+        const float *f = &m->normal[3 * (size_t)a];
+        for (int k = 0; k < 3; k++)
+          n[k] = dr->nrm[3 * k] * f[0] + dr->nrm[3 * k + 1] * f[1] + dr->nrm[3 * k + 2] * f[2];
+      }
+      double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(len > 0.0) || !isfinite(len)) {
+        memcpy(n, geo, sizeof n);
+        len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      }
+      for (int k = 0; k < 3; k++) {
+        nrm[i][k] = len > 0.0 && isfinite(len) ? n[k] / len : k == 2;
+        t->n[i][k] = (int32_t)llrint(nrm[i][k] * NORMAL_ONE);
+      }
     }
     /* colour */
     const uint8_t *vc = a >= 0 && m->color ? &m->color[4 * (size_t)a] : NULL;
@@ -498,9 +509,11 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
     }
     t->col[i][3] = 255;
     /* texture coordinates, t down the image */
-    const float *uv = a >= 0 && m->uv ? &m->uv[2 * (size_t)a] : NULL;
-    t->s[i] = uv ? uv_fixed(uv[0]) : 0;
-    t->t[i] = uv ? uv_fixed(1.0 - (double)uv[1]) : 0;
+    if (textured) {
+      const float *uv = a >= 0 ? &m->uv[2 * (size_t)a] : NULL;
+      t->s[i] = uv ? uv_fixed(uv[0]) : 0;
+      t->t[i] = uv ? uv_fixed(1.0 - (double)uv[1]) : 0;
+    }
   }
   if (textured) {
     settle_uv(t->s, t->sampler.wrap_s);
