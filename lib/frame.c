@@ -8,13 +8,18 @@
 typedef struct gather {
   zs_image *im;
   float *depth;
+  float *normals; /* 3 a pixel */
+  zs_layer *layer;
 } gather;
 
 static void gather_row(void *user, const zs_row *row) {
   gather *g = user;
   size_t off = (size_t)row->y * (size_t)row->width;
+  if (g->layer) zs_layer_row_sink(g->layer, row);
   if (!g->im) return; /* the rows shaded and dropped: a frame timed */
   memcpy(g->im->rgb + off, row->rgb, (size_t)row->width * sizeof *row->rgb);
+  if (g->normals && row->normal)
+    memcpy(g->normals + 3 * off, row->normal, 3 * (size_t)row->width * sizeof *row->normal);
   if (g->depth)
     for (int x = 0; x < row->width; x++)
       g->depth[off + (size_t)x] =
@@ -45,7 +50,7 @@ zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double 
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err) {
-  gather g = {out, depth};
+  gather g = {out, depth, NULL, NULL};
   if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
   if (hidden_line) {
     /* the faces stay in the depth buffer; the picture is their edges */
@@ -63,8 +68,31 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
 }
 
 zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err) {
-  gather g = {out, depth};
+  return zs_frame_finish_into(dev, out, depth, NULL, err);
+}
+
+zs_status zs_frame_finish_into(zs_device *dev, zs_image *out, float *depth, zs_layer *layer,
+                               zs_error *err) {
+  gather g = {out, depth, NULL, layer};
   return zs_device_finish(dev, gather_row, &g, err);
+}
+
+zs_status zs_frame_render_normals(const zs_device_config *cfg, const zs_scene *scene,
+                                  const double view[16], const double proj[16], float *xyz,
+                                  zs_error *err) {
+  zs_device_config c = *cfg;
+  c.shade = ZS_SHADE_NORMAL;
+  zs_device *dev = NULL;
+  zs_image im = {0, 0, NULL};
+  gather g = {&im, NULL, xyz, NULL};
+  zs_status st = zs_device_create(&c, &dev, err);
+  if (!st) st = zs_device_set_normals(dev, 1, err);
+  if (!st) st = zs_image_alloc(&im, c.width, c.height, err);
+  if (!st) st = zs_frame_draw_all(dev, scene, view, proj, err);
+  if (!st) st = zs_device_finish(dev, gather_row, &g, err);
+  zs_image_free(&im);
+  zs_device_destroy(dev);
+  return st;
 }
 
 zs_status zs_frame_set_lights(zs_device *dev, const zs_scene *scene, const zs_light *lights,

@@ -7,6 +7,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "lib/image.h"
+#include "zscan/layer.h"
 
 #define ZS_BACKGROUND_RGB 0x1E2228u /* flat shading's background */
 
@@ -52,8 +53,21 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err);
 
+/* The eye-space unit normals of what scene shows from (view, proj), into
+ * xyz (3 floats a pixel, row 0 at the top; 0, 0, 0 where no face is): one
+ * frame of every instance on a device configured as cfg but shaded
+ * ZS_SHADE_NORMAL, handing out normals (zs_device_set_normals), so that every face has them
+ * (its corners', else its plane's).  The `--normals` of zscan render. */
+zs_status zs_frame_render_normals(const zs_device_config *cfg, const zs_scene *scene,
+                                  const double view[16], const double proj[16], float *xyz,
+                                  zs_error *err);
+
 /* Ends the device's frame into out (and depth, when not NULL). */
 zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err);
+/* The same, and into layer too when it is not NULL (of the device's size:
+ * zs_layer_alloc). */
+zs_status zs_frame_finish_into(zs_device *dev, zs_image *out, float *depth, zs_layer *layer,
+                               zs_error *err);
 
 /* Draws every instance of scene (no clear, no finish). */
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);

@@ -434,13 +434,14 @@ zs_status zs_png_read(const char *path, zs_image *out, zs_error *err) {
 
 _Static_assert(sizeof(float) == 4, "PFM needs 32-bit floats");
 
-zs_status zs_pfm_write(const char *path, int width, int height,
-                       const float *values, zs_error *err) {
+/* A PFM of channels (1: "Pf", 3: "PF") floats a pixel. */
+static zs_status pfm_write(const char *path, int width, int height, int channels,
+                           const float *values, zs_error *err) {
   if (!valid_size(width, height))
     return zs_error_set(err, ZS_ERR_LIMIT,
                         "%s: image size %dx%d: each side must be 1 .. %d",
                         path, width, height, ZS_MAX_IMAGE_SIDE);
-  size_t row_bytes = 4 * (size_t)width;
+  const size_t row_floats = (size_t)channels * (size_t)width, row_bytes = 4 * row_floats;
   unsigned char *bytes = malloc(row_bytes);
   if (!bytes) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   zs_out f;
@@ -449,11 +450,11 @@ zs_status zs_pfm_write(const char *path, int width, int height,
     free(bytes);
     return st;
   }
-  int ok = fprintf(f.fp, "Pf\n%d %d\n-1.0\n", width, height) > 0;
+  int ok = fprintf(f.fp, "%s\n%d %d\n-1.0\n", channels == 3 ? "PF" : "Pf", width, height) > 0;
   /* The format stores the bottom row first. */
   for (int y = height - 1; y >= 0 && ok; y--) {
-    const float *src = values + (size_t)y * (size_t)width;
-    for (int x = 0; x < width; x++) {
+    const float *src = values + (size_t)y * row_floats;
+    for (size_t x = 0; x < row_floats; x++) {
       uint32_t bits;
       memcpy(&bits, &src[x], sizeof bits);
       for (int k = 0; k < 4; k++) /* little-endian, whatever the host */
@@ -469,6 +470,16 @@ zs_status zs_pfm_write(const char *path, int width, int height,
     return st;
   }
   return zs_out_commit(&f, err);
+}
+
+zs_status zs_pfm_write(const char *path, int width, int height, const float *values,
+                       zs_error *err) {
+  return pfm_write(path, width, height, 1, values, err);
+}
+
+zs_status zs_pfm_write_rgb(const char *path, int width, int height, const float *xyz,
+                           zs_error *err) {
+  return pfm_write(path, width, height, 3, xyz, err);
 }
 
 /* ---- Comparing two images ---- */

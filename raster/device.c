@@ -133,6 +133,22 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
   return ZS_OK;
 }
 
+zs_status zs_device_set_normals(zs_device *d, int on, zs_error *err) {
+  if (on && !zs_shade_reads_attrs(d->cfg.shade))
+    return zs_error_set(err, ZS_ERR_ARG,
+                        "normals need a shading that reads attributes (auto, unlit, gouraud, "
+                        "phong or normal), not %s", zs_shade_name(d->cfg.shade));
+  if (on && !d->row_normal &&
+      !(d->row_normal = malloc(3 * (size_t)d->cfg.width * sizeof *d->row_normal)))
+    return zs_error_set(err, ZS_ERR_NOMEM, "normals: out of memory");
+  if (!on) {
+    free(d->row_normal);
+    d->row_normal = NULL;
+  }
+  zs_surfaces_set_normals_out(&d->surf, on);
+  return ZS_OK;
+}
+
 void zs_device_destroy(zs_device *d) {
   if (!d) return;
   zs_surfaces_free(&d->surf);
@@ -147,6 +163,7 @@ void zs_device_destroy(zs_device *d) {
   free(d->row_rgb);
   free(d->row_count);
   free(d->row_out);
+  free(d->row_normal);
   free(d->band_rows);
   free(d->runs);
   zs_batch_free(&d->batch);

@@ -34,6 +34,7 @@ struct zs_device {
   uint32_t *blank;                     /* a cleared row: depth, id, colour, count */
   uint32_t *row_depth, *row_id, *row_rgb, *row_count; /* scanline mode */
   uint32_t *row_out;                   /* one shaded row */
+  float *row_normal;                   /* its normals (zs_device_set_normals), else NULL */
   uint32_t *band_rows;                 /* scanline mode on threads: each thread's
                                         * band of rows, four buffers (finish.c) */
   int band_max_rows;

@@ -21,7 +21,7 @@ static void emit_as_drawn(zs_device *d, int y, const uint32_t *depth, const uint
                           const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
                           void *user) {
   (void)count;
-  zs_row row = {y, d->cfg.width, rgb, depth, id, NULL};
+  zs_row row = {y, d->cfg.width, rgb, depth, id, NULL, NULL};
   sink(user, &row);
 }
 
@@ -31,7 +31,7 @@ static void emit_colours_of(zs_device *d, int y, const uint32_t *depth, const ui
                             const uint32_t *count, const uint32_t *out_count, zs_row_sink sink,
                             void *user) {
   d->shade_row(d->cfg.width, depth, id, count, d->znear, d->zfar, d->row_out);
-  zs_row row = {y, d->cfg.width, d->row_out, depth, id, out_count};
+  zs_row row = {y, d->cfg.width, d->row_out, depth, id, out_count, NULL};
   sink(user, &row);
 }
 
@@ -43,16 +43,19 @@ static void emit_shaded(zs_device *d, int y, const uint32_t *depth, const uint32
 }
 
 /* The shadings that read attributes: the words naming records shaded
- * (surface.h); a frame without any goes out as drawn. */
+ * (surface.h), and their normals once zs_device_set_normals asks; a
+ * frame without any records goes out as drawn. */
 static void emit_surfaces(zs_device *d, int y, const uint32_t *depth, const uint32_t *id,
                           const uint32_t *rgb, const uint32_t *count, zs_row_sink sink,
                           void *user) {
-  if (d->surf.nrecs == 0) {
-    emit_as_drawn(d, y, depth, id, rgb, count, sink, user);
-    return;
+  (void)count;
+  if (d->row_normal) zs_surface_normal_row(&d->surf, 0, y, rgb, d->row_normal);
+  const uint32_t *out = rgb;
+  if (d->surf.nrecs > 0) {
+    zs_surface_shade_row(&d->surf, 0, y, rgb, d->row_out);
+    out = d->row_out;
   }
-  zs_surface_shade_row(&d->surf, 0, y, rgb, d->row_out);
-  zs_row row = {y, d->cfg.width, d->row_out, depth, id, NULL};
+  zs_row row = {y, d->cfg.width, out, depth, id, NULL, d->row_normal};
   sink(user, &row);
 }
 
@@ -178,8 +181,9 @@ static void scan_band_rows(void *ctx, int t) {
   j->counts[b] = (zs_scan_counts){0, 0, 0};
   j->ok[b] = zs_scan_batch(&d->drawing->traversal, &d->batch, &tg, y0, y1, &hooks, NULL,
                            &d->band_scratch[b], &j->counts[b]);
-  /* the band's pixels shaded here, on its thread, in place */
-  if (j->ok[b] && d->surf.nrecs > 0)
+  /* the band's pixels shaded here, on its thread, in place (not when
+   * their normals go out too: the rows keep their records for that) */
+  if (j->ok[b] && d->surf.nrecs > 0 && !d->row_normal)
     for (int y = y0; y < y1; y++) {
       uint32_t *row = tg.rgb + (size_t)(y - y0) * (size_t)d->cfg.width;
       zs_surface_shade_row(&d->surf, t, y, row, row);
@@ -193,7 +197,7 @@ static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_err
   if (j.nbands < 2) return finish_scan(d, sink, user, err);
   const int threads = d->cfg.threads, w = d->cfg.width;
   /* the bands' rows come shaded (scan_band_rows) */
-  const emit_fn emit = d->surf.nrecs > 0 ? emit_as_drawn : d->emit;
+  const emit_fn emit = d->surf.nrecs > 0 && !d->row_normal ? emit_as_drawn : d->emit;
   zs_command c = {.kind = ZS_CMD_FRAME_SCAN, .issued_ps = -1};
   for (j.first = 0; j.first < j.nbands; j.first += threads) {
     zs_pool_run(d->pool, scan_band_rows, &j, threads);
@@ -254,7 +258,7 @@ static zs_status finish_frame(zs_device *d, zs_row_sink sink, void *user, zs_err
   (void)err;
   if (!sink) return ZS_OK;
   emit_fn emit = d->emit;
-  if (d->pool && d->surf.nrecs > 0) {
+  if (d->pool && d->surf.nrecs > 0 && !d->row_normal) {
     shade_job j = {d, d->cfg.threads};
     zs_pool_run(d->pool, shade_part, &j, j.nparts);
     emit = emit_as_drawn;

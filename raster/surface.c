@@ -48,6 +48,12 @@ void zs_surfaces_clear(zs_surfaces *s) {
     if (s->cache[i]) cache_empty(s->cache[i]);
 }
 
+void zs_surfaces_set_normals_out(zs_surfaces *s, int on) {
+  s->normals_out = on != 0;
+  for (int i = 0; i < ZS_SURFACE_SLOTS; i++)
+    if (s->cache[i]) cache_empty(s->cache[i]);
+}
+
 void zs_surfaces_free(zs_surfaces *s) {
   free(s->draws);
   free(s->recs);
@@ -288,12 +294,13 @@ static inline int32_t lod_at(const tri *t, const int64_t l[3]) {
   if (!(rho2 > 1.0)) return 0; /* magnified (and NaN) */
   if (rho2 > 0x1p60) return 256 * ZS_TEXTURE_MAX_LEVELS; /* past every level */
   /* log2(rho) = log2(rho^2) / 2 in 1/256 of a level: 128 (e + log2 m) for
-   * rho^2 = m 2^e, frexp exact on every machine */
-  int e = 0;
-  const double m = frexp(rho2, &e);
-  int i = (int)((m - 0.5) * 512.0);
-  if (i > 255) i = 255;
-  return 128 * e + log2_mantissa128[i];
+   * rho^2 = m 2^e, m in [0.5, 1), read off the double's bits (what frexp
+   * gives, rho^2 being normal here): e from the exponent field, and the
+   * top 8 bits of the fraction, (m - 0.5) 512 truncated, the table's entry */
+  uint64_t bits;
+  memcpy(&bits, &rho2, sizeof bits);
+  const int e = (int)(bits >> 52 & 0x7FF) - 1022;
+  return 128 * e + log2_mantissa128[bits >> 44 & 255];
 }
 
 static inline void texel_at(const tri *t, const int64_t l[3], const int64_t b[3],
@@ -312,6 +319,19 @@ static inline uint32_t to16(double v) {
   if (!(v > 0.0)) return 0;
   if (v >= 1.0) return 65535;
   return (uint32_t)(v * 65535.0 + 0.5);
+}
+
+/* The unit normal at a pixel of weights b: the corners' normals
+ * interpolated and normalised (in double, one sqrt and a division each);
+ * 0 where they cancel. */
+static inline void unit_normal_at(const tri *t, const int64_t b[3], double u[3]) {
+  double len2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    u[k] = (double)interp(b, t->n[0][k], t->n[1][k], t->n[2][k]);
+    len2 += u[k] * u[k];
+  }
+  const double len = sqrt(len2);
+  for (int k = 0; k < 3; k++) u[k] = len > 0.0 ? u[k] / len : 0.0;
 }
 
 /* The pixels [x0, x1) of row y, one loop per shading and texturing; the
@@ -355,15 +375,11 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
       out[x] = rgb_of(zs_linear16_to_srgb(to16(d[0] + s[0])), zs_linear16_to_srgb(to16(d[1] + s[1])),
                       zs_linear16_to_srgb(to16(d[2] + s[2])));
     } else { /* ZS_SHADE_NORMAL */
-      double n[3], len2 = 0.0;
-      for (int k = 0; k < 3; k++) {
-        n[k] = (double)interp(b, t->n[0][k], t->n[1][k], t->n[2][k]);
-        len2 += n[k] * n[k];
-      }
-      const double len = sqrt(len2);
+      double n[3];
+      unit_normal_at(t, b, n);
       uint32_t c[3];
       for (int k = 0; k < 3; k++) {
-        const double v = len > 0.0 ? n[k] / len * 127.5 + 128.0 : 128.0;
+        const double v = n[k] * 127.5 + 128.0;
         c[k] = v < 0.0 ? 0 : v >= 255.0 ? 255 : (uint32_t)v;
       }
       out[x] = rgb_of(c[0], c[1], c[2]);
@@ -432,7 +448,7 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
    * (most of a small triangle's preparation), normal no positions but for
    * a corner without a normal */
   const int lit = dr->shade == ZS_SHADE_GOURAUD || dr->shade == ZS_SHADE_PHONG;
-  const int normals = dr->shade != ZS_SHADE_UNLIT;
+  const int normals = dr->shade != ZS_SHADE_UNLIT || s->normals_out;
   double clip[3][4];
   for (int i = 0; i < 3; i++) {
     const double *pos = &m->pos[3 * (size_t)m->face_vert[r->corner[i]]];
@@ -540,10 +556,27 @@ static void cache_empty(void *cache) {
 
 static size_t cache_bytes(void) { return CACHE_SLOTS * sizeof(tri); }
 
-void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, uint32_t *out) {
+/* The triangle of record rec, prepared: from the slot's cache, else into
+ * spare. */
+static const tri *prepared(zs_surfaces *s, int slot, int32_t rec, tri *spare) {
   void **mine = &s->cache[slot];
   if (!*mine && (*mine = malloc(CACHE_SLOTS * sizeof(tri)))) cache_empty(*mine);
-  tri *cache = *mine, spare;
+  tri *cache = *mine;
+  tri *t = cache ? &cache[rec & (CACHE_SLOTS - 1)] : spare;
+  if (!cache || t->rec != rec) prepare(s, rec, t);
+  return t;
+}
+
+/* What a row's run of equal words [x0, x1) becomes: t its triangle, or
+ * NULL for a colour v drawn as it is. */
+typedef void (*run_visit)(const tri *t, uint32_t v, int y, int x0, int x1, void *out);
+
+/* Row y cut into runs of equal words, each visited once with its triangle
+ * prepared; visit is a constant where this is inlined, so each caller gets
+ * its own loop. */
+__attribute__((always_inline)) static inline void each_run(zs_surfaces *s, int slot, int y,
+                                                           const uint32_t *rgb, run_visit visit,
+                                                           void *out) {
   const int w = s->width;
   int x = 0;
   while (x < w) {
@@ -551,13 +584,44 @@ void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, 
     int x1 = x + 1;
     while (x1 < w && rgb[x1] == v) x1++;
     if (v & ZS_SURFACE_BIT) {
-      const int32_t rec = (int32_t)(v & ~ZS_SURFACE_BIT);
-      tri *t = cache ? &cache[rec & (CACHE_SLOTS - 1)] : &spare;
-      if (!cache || t->rec != rec) prepare(s, rec, t);
-      t->run(t, y, x, x1, out);
+      tri spare;
+      visit(prepared(s, slot, (int32_t)(v & ~ZS_SURFACE_BIT), &spare), v, y, x, x1, out);
     } else {
-      for (int i = x; i < x1; i++) out[i] = v;
+      visit(NULL, v, y, x, x1, out);
     }
     x = x1;
   }
+}
+
+static inline void shade_visit(const tri *t, uint32_t v, int y, int x0, int x1, void *out) {
+  uint32_t *o = out;
+  if (t) t->run(t, y, x0, x1, o);
+  else
+    for (int i = x0; i < x1; i++) o[i] = v;
+}
+
+static inline void normal_visit(const tri *t, uint32_t v, int y, int x0, int x1, void *out) {
+  (void)v;
+  float *xyz = out;
+  if (!t) {
+    memset(xyz + 3 * (size_t)x0, 0, 3 * (size_t)(x1 - x0) * sizeof *xyz);
+    return;
+  }
+  int64_t raw[3];
+  planes_at(t, x0, y, raw);
+  for (int i = x0; i < x1; i++, raw[0] += t->A[0], raw[1] += t->A[1], raw[2] += t->A[2]) {
+    int64_t l[3], b[3];
+    double n[3];
+    weights_of(raw, l, b);
+    unit_normal_at(t, b, n);
+    for (int k = 0; k < 3; k++) xyz[3 * (size_t)i + k] = (float)n[k];
+  }
+}
+
+void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, uint32_t *out) {
+  each_run(s, slot, y, rgb, shade_visit, out);
+}
+
+void zs_surface_normal_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, float *xyz) {
+  each_run(s, slot, y, rgb, normal_visit, xyz);
 }

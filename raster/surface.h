@@ -78,6 +78,7 @@ typedef struct zs_surfaces {
   int lights_given;    /* zs_device_set_lights set lights of the caller's */
   int width, height;
   zs_filter filter;    /* the device's override, or ZS_FILTER_DEFAULT */
+  int normals_out;     /* every shading prepares normals: the rows' are read */
   void *cache[ZS_SURFACE_SLOTS]; /* prepared triangles, one cache for each
                        * thread that shades rows (surface.c) */
 } zs_surfaces;
@@ -127,6 +128,13 @@ static inline uint32_t zs_face_base_rgb(const zs_mesh *m, const zs_material *mat
  * rgb itself); slot: the calling thread's own cache, 0 .. 63.  Rows may
  * be shaded on several threads at once, each with a slot of its own. */
 void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, uint32_t *out);
+/* Whether every shading prepares normals, for zs_surface_normal_row (the
+ * triangles prepared so far are dropped). */
+void zs_surfaces_set_normals_out(zs_surfaces *s, int on);
+/* Row y's eye-space unit normals, x, y, z a pixel, into xyz: the normal
+ * ZS_SHADE_NORMAL colours at a pixel naming a record, 0, 0, 0 at any
+ * other (s->normals_out set, so that every shading prepares them). */
+void zs_surface_normal_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, float *xyz);
 
 int zs_surface_grow_recs(zs_surfaces *s);
 

@@ -164,6 +164,28 @@ static const bad_option bad_options[] = {
     {{"render", "--clock", "/nonexistent-dir/c.json", NULL}, "/nonexistent-dir/c.json: cannot open", 1},
     {{"render", "-o", "x.jpg", NULL}, "-o: x.jpg: zscan writes PNG (FILE.png)", 2},
     {{"render", "--depth", "d.png", NULL}, "--depth: d.png: zscan writes PFM (FILE.pfm)", 2},
+    {{"render", "--normals", "n.png", NULL}, "--normals: n.png: zscan writes PFM (FILE.pfm)", 2},
+    {{"render", "--layer", "l.png", NULL}, "--layer: l.png: zscan writes ZSL (FILE.zsl)", 2},
+    {{"render", "--layer", "l.zsl", "--algo", "depthsort", NULL},
+     "--layer: depthsort's depths are ranks, which do not composite", 2},
+    {{"render", "--layer", "l.zsl", "--style", "hidden-line", NULL},
+     "--layer: a layer holds faces, not hidden lines (--style solid)", 2},
+    {{"render", "--objects", "3-1", NULL},
+     "--objects: expected object numbers A or A-B (A <= B), comma-separated, got '3-1'", 2},
+    {{"render", "--objects", "1,x", NULL},
+     "--objects: expected object numbers A or A-B (A <= B), comma-separated, got '1,x'", 2},
+    {{"render", "builtin:cubes,n=2", "--objects", "0-8", "-o", "/tmp/zscan-never.png", NULL},
+     "--objects: object 8: the scene has 8 objects (0 to 7)", 1},
+    {{"render", "--layer", "l.zsl", "--shade", "id", NULL},
+     "--layer: id shading's PNG is marked as ids, which a composite does not keep", 2},
+    {{"composite", NULL}, "no layers (see zscan composite --help)", 2},
+    {{"composite", "a.zsl", NULL}, "-o OUT.png or --layer OUT.zsl: nothing to write", 2},
+    {{"composite", "/nonexistent-dir/a.zsl", "-o", "c.png", NULL},
+     "/nonexistent-dir/a.zsl: cannot open: No such file or directory", 1},
+    {{"render", "--normals", "-", "-o", "-", NULL},
+     "standard output (-) takes one stream: only one of -o -, --depth -, --normals -, --layer - "
+     "and --stats",
+     2},
     {{"render", "--background", "red", NULL}, "--background: expected RRGGBB (hex), got 'red'", 2},
     {{"render", "builtin:cubes", "--ortho", "-1,1,-1,1", "--fovy", "30", NULL},
      "--fovy and --ortho: an orthographic camera has no field", 2},
@@ -345,7 +367,8 @@ START_TEST(bench_suite_writes_every_file) {
   snprintf(dir, sizeof dir, "%s/cli-suite", ZS_BINARY_DIR);
   static const char *const files[] = {"raster.csv", "raster.md", "raster.png", "tradeoff.md",
                                       "tradeoff-plant.png", "depthsort.csv", "octree.csv",
-                                      "octree.png"};
+                                      "octree.png", "shade-unlit.md", "shade-gouraud.md",
+                                      "shade-phong.md"};
   enum { NFILES = sizeof files / sizeof files[0] };
   for (int k = 0; k < NFILES; k++) {
     snprintf(path, sizeof path, "%s/%s", dir, files[k]);
@@ -358,8 +381,8 @@ START_TEST(bench_suite_writes_every_file) {
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
   unsetenv("ZSCAN_PROGRESS_MS");
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
-  ck_assert_msg(strstr(err, "bench suite: benchmark 1/8 (12 %), ") != NULL, "%s", err);
-  ck_assert_msg(strstr(err, "bench suite: benchmark 8/8 (100 %), ") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "bench suite: benchmark 1/11 (9 %), ") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "bench suite: benchmark 11/11 (100 %), ") != NULL, "%s", err);
   ck_assert_msg(strstr(err, "bench tradeoff: walk 3/3, plant\n") != NULL, "%s", err);
   ck_assert_msg(strstr(err, "walk: frame 5/5 (100 %), ") != NULL, "%s", err);
   for (int k = 0; k < NFILES; k++) {
@@ -369,6 +392,7 @@ START_TEST(bench_suite_writes_every_file) {
   /* each benchmark's command is echoed before its output */
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench raster --csv"));
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench tradeoff --out"));
+  ck_assert_ptr_nonnull(strstr(out, "$ zscan bench raster --shade phong --no-tilings --md"));
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench depthsort --frames 4 --csv"));
   ck_assert_ptr_nonnull(strstr(out, "$ zscan bench octree --count 500"));
   check_tradeoff_md(dir);
@@ -1196,6 +1220,50 @@ START_TEST(render_writes_png_and_stats) {
 }
 END_TEST
 
+/* --normals: a three-channel PFM of the image's size, unit normals where
+ * the spheres are and zeros at the background; the image is the one
+ * rendered without it. */
+START_TEST(render_writes_normals) {
+  char png[4096], png2[4096], pfm[4096];
+  snprintf(png, sizeof png, "%s/cli-normals.png", ZS_BINARY_DIR);
+  snprintf(png2, sizeof png2, "%s/cli-normals-not.png", ZS_BINARY_DIR);
+  snprintf(pfm, sizeof pfm, "%s/cli-normals.pfm", ZS_BINARY_DIR);
+  unlink(pfm);
+  const char *args[] = {"render", "builtin:teapots,count=4", "--size", "64x48", "-o", png,
+                        "--normals", pfm, "--shade", "gouraud", NULL};
+  int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
+  ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+  ck_assert_msg(strstr(err, ", normals to ") != NULL, "%s", err);
+  const char *plain[] = {"render", "builtin:teapots,count=4", "--size", "64x48", "-o", png2,
+                         "--shade", "gouraud", "-q", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(plain, out, sizeof out, err, sizeof err), 0);
+  zs_test_assert_same_file(png, png2);
+  size_t n = 0;
+  unsigned char *f = zs_test_slurp(pfm, &n);
+  ck_assert_ptr_nonnull(f);
+  const char head[] = "PF\n64 48\n-1.0\n";
+  ck_assert_uint_eq(n, strlen(head) + 64 * 48 * 12);
+  ck_assert(memcmp(f, head, strlen(head)) == 0);
+  int unit = 0, zero = 0;
+  for (int i = 0; i < 64 * 48; i++) {
+    float v[3];
+    for (int k = 0; k < 3; k++) {
+      const unsigned char *p = f + strlen(head) + 12 * i + 4 * k;
+      const uint32_t bits = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+                            (uint32_t)p[3] << 24;
+      memcpy(&v[k], &bits, sizeof bits);
+    }
+    const double len2 = (double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2];
+    if (len2 == 0) zero++;
+    else if (fabs(len2 - 1) < 1e-6) unit++;
+  }
+  free(f);
+  ck_assert_int_eq(unit + zero, 64 * 48);
+  ck_assert_int_gt(unit, 64 * 48 / 20);
+  ck_assert_int_gt(zero, 64 * 48 / 20);
+}
+END_TEST
+
 /* The value of "key":N in a JSON line of numbers. */
 static long long json_int(const char *line, const char *key) {
   char pat[128];
@@ -1204,6 +1272,79 @@ static long long json_int(const char *line, const char *key) {
   ck_assert_msg(p != NULL, "no %s in %s", key, line);
   return atoll(p + strlen(pat));
 }
+
+/* rgbα+z layers: a scene drawn in three parts, each into a layer from the
+ * whole scene's camera, composites to the frame of the whole, byte for
+ * byte, in both modes, flat and Phong-lit, on 1 and 2 threads. */
+START_TEST(composite_of_parts_is_the_whole) {
+  static const char *const scenes[] = {"builtin:teapots,count=9", "builtin:city",
+                                       "builtin:default", "builtin:spheres,count=40"};
+  static const char *const modes[][3] = {
+      {"zbuffer", "flat", "1"}, {"scanline", "phong", "2"}, {"zbuffer", "phong", "2"},
+      {"scanline", "flat", "1"}};
+  char whole[4096], comp[4096], layer[3][4096];
+  snprintf(whole, sizeof whole, "%s/cli-whole.png", ZS_BINARY_DIR);
+  snprintf(comp, sizeof comp, "%s/cli-composite.png", ZS_BINARY_DIR);
+  for (int k = 0; k < 3; k++) snprintf(layer[k], sizeof layer[k], "%s/cli-part%d.zsl", ZS_BINARY_DIR, k);
+  for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++)
+    for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
+      const char *w[] = {"render", scenes[i], "--size", "96x72", "--algo", modes[m][0], "--shade",
+                         modes[m][1], "--threads", modes[m][2], "-o", whole, "--stats", NULL};
+      ck_assert_msg(zs_test_run_zscan(w, out, sizeof out, err, sizeof err) == 0, "%s", err);
+      const int n = (int)json_int(out, "objects");
+      ck_assert_int_ge(n, 3);
+      for (int k = 0; k < 3; k++) {
+        char range[64];
+        snprintf(range, sizeof range, "%d-%d", n * k / 3, n * (k + 1) / 3 - 1);
+        const char *p[] = {"render", scenes[i], "--size", "96x72", "--algo", modes[m][0],
+                           "--shade", modes[m][1], "--threads", modes[m][2], "--objects", range,
+                           "--layer", layer[k], "-o", comp, "-q", NULL};
+        ck_assert_msg(zs_test_run_zscan(p, out, sizeof out, err, sizeof err) == 0, "%s", err);
+      }
+      unlink(comp);
+      const char *c[] = {"composite", layer[2], layer[0], layer[1], "-o", comp, NULL};
+      ck_assert_msg(zs_test_run_zscan(c, out, sizeof out, err, sizeof err) == 0, "%s", err);
+      ck_assert_msg(strstr(err, "zscan composite: 3 layers, 96x72, ") != NULL, "%s", err);
+      zs_test_assert_same_file(whole, comp);
+    }
+  /* layers of another size or camera are refused, and nothing is written */
+  char other[4096];
+  snprintf(other, sizeof other, "%s/cli-other.zsl", ZS_BINARY_DIR);
+  const char *o1[] = {"render", "builtin:city", "--size", "48x36", "--layer", other, "-q", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(o1, out, sizeof out, err, sizeof err), 0);
+  unlink(comp);
+  const char *c1[] = {"composite", layer[0], other, "-o", comp, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(c1, out, sizeof out, err, sizeof err), 1);
+  char want[9000];
+  snprintf(want, sizeof want, "zscan composite: %s: 48x36, but %s is 96x72\n", other, layer[0]);
+  ck_assert_str_eq(err, want);
+  ck_assert(!zs_test_exists(comp));
+  const char *o2[] = {"render", "builtin:spheres,count=40", "--size", "96x72", "--fovy", "20",
+                      "--layer", other, "-q", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(o2, out, sizeof out, err, sizeof err), 0);
+  ck_assert_int_eq(zs_test_run_zscan(c1, out, sizeof out, err, sizeof err), 1);
+  snprintf(want, sizeof want, "zscan composite: %s: another camera than %s's\n", other, layer[0]);
+  ck_assert_str_eq(err, want);
+  /* a file that is no layer, and one cut short */
+  FILE *f = fopen(other, "wb");
+  fputs("P6\n1 1\n255\n...", f);
+  fclose(f);
+  ck_assert_int_eq(zs_test_run_zscan(c1, out, sizeof out, err, sizeof err), 1);
+  snprintf(want, sizeof want, "zscan composite: %s:1: not a zscan layer (ZSLAYER 1)\n", other);
+  ck_assert_str_eq(err, want);
+  size_t len = 0;
+  unsigned char *bytes = zs_test_slurp(layer[0], &len);
+  ck_assert_ptr_nonnull(bytes);
+  f = fopen(other, "wb");
+  fwrite(bytes, 1, len - 12 * 96 * 10, f);
+  fclose(f);
+  free(bytes);
+  ck_assert_int_eq(zs_test_run_zscan(c1, out, sizeof out, err, sizeof err), 1);
+  snprintf(want, sizeof want, "zscan composite: %s: cut short: 62 of 72 rows of pixels\n", other);
+  ck_assert_str_eq(err, want);
+  ck_assert(!zs_test_exists(comp));
+}
+END_TEST
 
 START_TEST(render_stats_show_the_culling_work) {
   /* vfc on the city: plane masking leaves far fewer box-plane tests than
@@ -1296,6 +1437,8 @@ int main(void) {
                       sizeof help_commands / sizeof help_commands[0]);
   tcase_add_loop_test(tc, every_command_of_the_table_has_help, 0, zs_ncommands);
   tcase_add_test(tc, render_writes_png_and_stats);
+  tcase_add_test(tc, render_writes_normals);
+  tcase_add_test(tc, composite_of_parts_is_the_whole);
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);

@@ -29,6 +29,7 @@
 #include "tests/testutil.h"
 #include "lib/frame_camera.h"
 #include "tools/crosscheck.h"
+#include "tools/crosscheck_colours.h"
 #include "lib/frame.h"
 #include "lib/input.h"
 #include "tools/mesa.h"
@@ -91,104 +92,35 @@ END_TEST
 
 /* ---- colours: zscan's unlit shading against llvmpipe's smooth shading ---- */
 
-typedef struct colour_case {
-  const char *input;       /* relative to the source tree, absolute, or builtin: */
-  int paint;               /* give every attribute vertex a colour of its own */
-  zs_filter filter;
-  double min_share;        /* of covered pixels within max_diff per channel */
-  int max_diff;
-} colour_case;
-
-static const colour_case colour_cases[] = {
-    /* vertex colours, smooth: within 2 a channel on 99.9 % of covered pixels */
-    {"builtin:default", 1, ZS_FILTER_NEAREST, 0.999, 2},
-    {"builtin:spheres?count=300", 1, ZS_FILTER_NEAREST, 0.999, 2},
-    {"tests/data/models/rgb_quad.ply", 0, ZS_FILTER_NEAREST, 0.999, 2},
-    /* GL_NEAREST textures: the same texel but within a rounding of a texel
-     * edge (99.5 %) */
-    {"scene/examples/checker/checker_plane.json", 0, ZS_FILTER_NEAREST, 0.995, 0},
-    {"scene/examples/teapot_textured.json", 0, ZS_FILTER_NEAREST, 0.995, 0},
-    {"/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf", 0, ZS_FILTER_NEAREST,
-     0.995, 0},
-    /* filtered: close (the figures printed; docs/RESULTS.md) */
-    {"scene/examples/checker/checker_plane.json", 0, ZS_FILTER_BILINEAR, 0.95, 8},
-    {"scene/examples/checker/checker_plane.json", 0, ZS_FILTER_TRILINEAR, 0.95, 8},
-    {"scene/examples/teapot_textured.json", 0, ZS_FILTER_TRILINEAR, 0.95, 8},
-};
-
-/* Every attribute vertex of every mesh (or, for a mesh without any, every
- * vertex) gets a colour from its number. */
-static void paint(zs_scene *s) {
-  for (int32_t i = 0; i < s->nmeshes; i++) {
-    zs_mesh *m = &s->meshes[i].mesh;
-    if (m->nattrs == 0 && !m->corner_attr) m->nattrs = m->nverts;
-    free(m->color);
-    m->color = malloc(4 * (size_t)(m->nattrs ? m->nattrs : 1));
-    for (int32_t a = 0; a < m->nattrs; a++) {
-      const uint32_t h = (uint32_t)a * 2654435761u;
-      m->color[4 * a] = (uint8_t)(h >> 24), m->color[4 * a + 1] = (uint8_t)(h >> 16);
-      m->color[4 * a + 2] = (uint8_t)(h >> 8), m->color[4 * a + 3] = 255;
-    }
-    s->meshes[i].cap_attrs = m->nattrs;
-  }
-}
-
 START_TEST(unlit_colours_match_llvmpipe) {
-  const colour_case *c = &colour_cases[_i];
+  /* the cases and their bounds: tools/crosscheck_colours.c; the figures
+   * in docs/RESULTS.md from zscan bench colours */
+  const zs_colour_case *c = &zs_colour_cases[_i];
   if (c->input[0] == '/' && !zs_test_exists(c->input)) {
     printf("mesa colours %s: not installed, skipped\n", c->input);
     return;
   }
-  zs_scene s;
   zs_error err;
   zs_error_clear(&err);
   char path[4096];
   snprintf(path, sizeof path, "%s",
            strncmp(c->input, "builtin:", 8) == 0 || c->input[0] == '/' ? c->input
                                                                        : zs_test_src(c->input));
-  zs_status st = zs_input_load_scene(path, &s, &err);
-  if (st == ZS_ERR_UNSUPPORTED) { /* a glTF without assimp */
+  zs_colour_check x;
+  const zs_status st = zs_crosscheck_colours(c, path, W, H, &x, &err);
+  if (st == ZS_ERR_UNSUPPORTED && strstr(err.msg, "assimp")) { /* a glTF without assimp */
     printf("mesa colours %s: %s, skipped\n", c->input, err.msg);
     return;
   }
   ck_assert_msg(st == ZS_OK, "%s", err.msg);
-  if (c->paint) paint(&s);
-  double view[16], proj[16];
-  ck_assert_int_eq(zs_frame_camera(&s, &s.camera, W, H, view, proj, &err), ZS_OK);
-  static uint32_t gl[W * H];
-  zs_mesa *mesa;
-  ck_assert_msg(zs_mesa_create(W, H, &mesa, &err) == ZS_OK, "%s", err.msg);
-  ck_assert_msg(zs_mesa_unlit(mesa, &s, view, proj, c->filter, gl, &err) == ZS_OK, "%s", err.msg);
-  zs_mesa_destroy(mesa);
-  zs_image ours, ids;
-  zs_frame_opts o = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_UNLIT, 0, 1, 0, c->filter, NULL, 0};
-  ck_assert_msg(zs_frame_render(&s, &s.camera, &o, &ours, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
-  o.shade = ZS_SHADE_ID;
-  ck_assert_msg(zs_frame_render(&s, &s.camera, &o, &ids, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
-  uint64_t covered = 0, close = 0, exact = 0;
-  int worst = 0;
-  for (size_t i = 0; i < (size_t)W * H; i++) {
-    if (ids.rgb[i] == 0) continue; /* the background */
-    covered++;
-    int d = 0;
-    for (int k = 0; k < 24; k += 8) {
-      const int e = abs((int)(ours.rgb[i] >> k & 255) - (int)(gl[i] >> k & 255));
-      if (e > d) d = e;
-    }
-    if (d > worst) worst = d;
-    close += d <= c->max_diff;
-    exact += d == 0;
-  }
-  const double share = covered ? (double)close / (double)covered : 0.0;
+  const double share = x.covered ? (double)x.close / (double)x.covered : 0.0;
   printf("mesa colours %-48s %-9s %7d covered, %.4f %% within %d a channel, %.4f %% exact, "
-         "largest difference %d\n", c->input, zs_filter_name(c->filter), (int)covered,
-         100.0 * share, c->max_diff, 100.0 * (double)exact / (double)(covered ? covered : 1), worst);
-  ck_assert_int_gt((int)covered, W * H / 100);
+         "largest difference %d\n", c->input, zs_filter_name(c->filter), (int)x.covered,
+         100.0 * share, c->max_diff,
+         100.0 * (double)x.exact / (double)(x.covered ? x.covered : 1), x.worst);
+  ck_assert_int_gt((int)x.covered, W * H / 100);
   ck_assert_msg(share >= c->min_share, "%s: %.4f %% of covered pixels within %d, bound %.2f %%",
                 c->input, 100.0 * share, c->max_diff, 100.0 * c->min_share);
-  zs_image_free(&ours);
-  zs_image_free(&ids);
-  zs_scene_free(&s);
 }
 END_TEST
 
@@ -221,7 +153,7 @@ int main(void) {
   tcase_set_timeout(tc, 600);
   tcase_add_loop_test(tc, faces_match_llvmpipe, 0, (int)(sizeof cases / sizeof cases[0]));
   tcase_add_loop_test(tc, unlit_colours_match_llvmpipe, 0,
-                      (int)(sizeof colour_cases / sizeof colour_cases[0]));
+                      zs_ncolour_cases);
   tcase_add_test(tc, bench_draws_the_tilings_through_llvmpipe);
   suite_add_tcase(s, tc);
   setenv("CK_FORK", "no", 0);

@@ -14,9 +14,16 @@ enum { W = 160, H = 120 };
 static zs_error err;
 static uint32_t image[W * H];
 
+static float normals[3 * W * H]; /* the rows' normals, when asked for */
+static int normals_asked, rows_with_normals;
+
 static void keep(void *user, const zs_row *row) {
   (void)user;
   memcpy(image + (size_t)row->y * W, row->rgb, W * sizeof *image);
+  if (row->normal) {
+    memcpy(normals + 3 * (size_t)row->y * W, row->normal, 3 * W * sizeof *normals);
+    rows_with_normals++;
+  }
 }
 
 /* ---- a model with every attribute ---- */
@@ -120,6 +127,8 @@ static uint64_t render(const zs_mesh *mesh, zs_algo algo, zs_shade shade, int th
   zs_device_config cfg = {W, H, algo, shade, 0, threads, 0x203040, spans, (int)filter};
   zs_device *d = NULL;
   ck_assert_msg(zs_device_create(&cfg, &d, &err) == ZS_OK, "%s", err.msg);
+  ck_assert_int_eq(zs_device_set_normals(d, normals_asked, &err), ZS_OK);
+  rows_with_normals = 0;
   double view[16], proj[16];
   const double eye[3] = {0.6, 1.6, 3.2}, target[3] = {0, 0.8, 0}, up[3] = {0, 1, 0};
   zs_mat_look_at(view, eye, target, up);
@@ -398,6 +407,58 @@ START_TEST(bad_lights_refused) {
 }
 END_TEST
 
+/* Normals handed out with the rows: unit where a face is, the normal
+ * shading's colours of them, 0 at the background; the same floats in every
+ * mode and thread count, and under another shading of the same faces. */
+START_TEST(normals_go_out_with_the_rows) {
+  model *m = malloc(sizeof *m);
+  build(m);
+  const zs_mesh mesh = mesh_of(m);
+  normals_asked = 1;
+  render(&mesh, ZS_ALGO_ZBUFFER, ZS_SHADE_NORMAL, 1, ZS_SPANS_BEST, 1, 0, 0);
+  ck_assert_int_eq(rows_with_normals, H);
+  const uint64_t want = zs_test_fnv1a(normals, sizeof normals);
+  int faces = 0, bad = -1;
+  for (size_t i = 0; i < (size_t)W * H && bad < 0; i++) {
+    const float *n = &normals[3 * i];
+    const double len2 = (double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2];
+    if (image[i] == 0x203040) { /* the background */
+      if (len2 != 0) bad = (int)i;
+      continue;
+    }
+    faces++;
+    if (!(fabs(len2 - 1.0) < 1e-6)) bad = (int)i;
+    for (int k = 0; k < 3; k++) { /* the colour is the normal, to its rounding */
+      const double v = n[k] * 127.5 + 128.0;
+      if (!(fabs(v - (double)(image[i] >> (16 - 8 * k) & 255)) < 1.0 + 1e-4)) bad = (int)i;
+    }
+  }
+  ck_assert_msg(bad < 0, "pixel %d: normal %f %f %f, colour %06X", bad,
+                bad < 0 ? 0 : normals[3 * bad], bad < 0 ? 0 : normals[3 * bad + 1],
+                bad < 0 ? 0 : normals[3 * bad + 2], bad < 0 ? 0 : image[bad]);
+  ck_assert_int_gt(faces, W * H / 4);
+  for (int algo = ZS_ALGO_ZBUFFER; algo <= ZS_ALGO_SCANLINE; algo++)
+    for (int t = 1; t <= 4; t *= 2) {
+      render(&mesh, (zs_algo)algo, ZS_SHADE_NORMAL, t, ZS_SPANS_BEST, 3, t == 2, 0);
+      ck_assert_uint_eq(zs_test_fnv1a(normals, sizeof normals), want);
+      render(&mesh, (zs_algo)algo, ZS_SHADE_UNLIT, t, ZS_SPANS_BEST, 3, t == 4, 0);
+      ck_assert_uint_eq(zs_test_fnv1a(normals, sizeof normals), want);
+    }
+  normals_asked = 0;
+  /* a shading that reads no attributes has none to give */
+  zs_device_config cfg = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, 1, 0, 0, 0};
+  zs_device *d = NULL;
+  ck_assert_int_eq(zs_device_create(&cfg, &d, &err), ZS_OK);
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_device_set_normals(d, 1, &err), ZS_ERR_ARG);
+  ck_assert_str_eq(err.msg, "normals need a shading that reads attributes (auto, unlit, "
+                            "gouraud, phong or normal), not flat");
+  zs_device_destroy(d);
+  zs_texture_destroy(m->tex);
+  free(m);
+}
+END_TEST
+
 /* Textures: sizes out of range refused; the mip chain's levels. */
 START_TEST(texture_limits_and_levels) {
   uint8_t px[4 * 6] = {0};
@@ -431,6 +492,7 @@ int main(void) {
   tcase_add_test(tc, flat_draws_keep_their_colours);
   tcase_add_test(tc, bad_lights_refused);
   tcase_add_test(tc, texture_limits_and_levels);
+  tcase_add_test(tc, normals_go_out_with_the_rows);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

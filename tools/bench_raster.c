@@ -52,6 +52,7 @@ static const char usage[] =
     "  --md FILE         the table in Markdown\n"
     "  --plot FILE.png   Mtri/s and Mpix/s against triangle size, both modes\n"
     "  --no-scenes       the triangle sizes only\n"
+    "  --no-tilings      the scenes only (no tilings or random triangles)\n"
     "  --simd LEVEL      cap the span fill and the vertex stage at scalar, sse2, avx2\n"
     "                    or avx512 (default: the best the CPU has; the same pixels at\n"
     "                    every level)\n"
@@ -80,7 +81,7 @@ enum { NSCENES = sizeof scenes / sizeof scenes[0] };
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {
-  int repeat, threads, width, height, scenes;
+  int repeat, threads, width, height, scenes, tilings;
   zs_simd simd; /* the cap asked for; after parsing, the level in use */
   int mesa, callgrind, speedup;
   int algo;               /* -1: both modes */
@@ -676,12 +677,14 @@ static zs_status write_plot(const char *path, const bench_row *rows, const bench
 }
 
 static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
-  *o = (bench_opts){11, 1, 1024, 768, 1, ZS_SIMD_AVX512, 0, 0, 0, -1, ZS_SHADE_FLAT, NULL,
+  *o = (bench_opts){11, 1, 1024, 768, 1, 1, ZS_SIMD_AVX512, 0, 0, 0, -1, ZS_SHADE_FLAT, NULL,
                     NULL, NULL, NULL};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = NULL;
     if (strcmp(a, "--no-scenes") == 0) {
       o->scenes = 0;
+    } else if (strcmp(a, "--no-tilings") == 0) {
+      o->tilings = 0;
     } else if (strcmp(a, "--no-simd") == 0) {
       o->simd = ZS_SIMD_SCALAR;
     } else if (strcmp(a, "--simd") == 0) {
@@ -738,6 +741,10 @@ static zs_status parse(int argc, char **argv, bench_opts *o, zs_error *err) {
       return zs_error_set(err, ZS_ERR_ARG, "unexpected argument '%s' (see zscan bench raster --help)", a);
     }
   }
+  if (!o->scenes && !o->tilings)
+    return zs_error_set(err, ZS_ERR_ARG, "--no-scenes and --no-tilings: no case left");
+  if (!o->tilings && o->plot)
+    return zs_error_set(err, ZS_ERR_ARG, "--plot draws the tilings: not with --no-tilings");
   if (o->speedup && o->threads < 2)
     return zs_error_set(err, ZS_ERR_ARG, "--speedup: against --threads N, N of 2 or more");
   if (o->width < sides[NSIDES - 1] || o->height < sides[NSIDES - 1])
@@ -761,7 +768,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
   o.simd = zs_span_simd_level(st ? ZS_SIMD_SCALAR : o.simd); /* what is in use */
   if (!st && !(ms = malloc((size_t)o.repeat * sizeof *ms)))
     st = zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
-  for (int i = 0; i < NSIDES && !st; i++) {
+  for (int i = 0; i < NSIDES && o.tilings && !st; i++) {
     char name[64];
     snprintf(name, sizeof name, "triangles %dx%d", sides[i], sides[i]);
     if (o.only_case && strcmp(o.only_case, name) != 0) continue;
@@ -773,7 +780,7 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     if (!st && o.mesa) st = compare_mesa(&o, &t.scene, name, t.view, t.proj, ms, &mrows[nm++], &err);
     zs_scene_free(&t.scene);
   }
-  for (int i = 0; i < NRANDOM && !st; i++) {
+  for (int i = 0; i < NRANDOM && o.tilings && !st; i++) {
     char name[64];
     const int side = random_sides[i / 2], front = i % 2;
     snprintf(name, sizeof name, "random %dx%d %s", side, side,
@@ -803,6 +810,10 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     zs_scene_free(&s);
   }
   free(ms);
+  if (!st && n == 0 && (!o.tilings || !o.scenes))
+    st = zs_error_set(&err, ZS_ERR_ARG, "--case '%s': not among the %s (--no-%s)",
+                      o.only_case ? o.only_case : "", o.tilings ? "tilings" : "scenes",
+                      o.tilings ? "scenes" : "tilings");
   if (!st && n == 0)
     st = zs_error_set(&err, ZS_ERR_ARG,
                       "--case '%s': no such case (triangles SxS for S = 4, 10, 25, 100, 500; "

@@ -5,6 +5,11 @@
  *                           the whole scenes in both modes, one thread,
  *                           beside Mesa's llvmpipe on one thread (--mesa),
  *                           with the instructions per frame (--callgrind);
+ *   shade-unlit.md, shade-gouraud.md, shade-phong.md   bench raster's
+ *                           scenes in each shading that reads attributes,
+ *                           beside llvmpipe's equivalent state;
+ *   colours.md              bench colours: the unlit colours against
+ *                           llvmpipe's, pixel by pixel;
  *   raster-threads.csv, .md, .png, .txt   the same on N threads (every CPU
  *                           by default), zscan's speed-up over one thread
  *                           (--speedup), and llvmpipe on as many threads (a
@@ -55,6 +60,7 @@
 #include "raster/raster.h"
 #include "tools/bench_depthsort.h"
 #include "tools/bench_octree.h"
+#include "tools/bench_colours.h"
 #include "tools/bench_raster.h"
 #include "tools/bench_tradeoff.h"
 #include "tools/callgrind.h"
@@ -66,7 +72,7 @@
 
 static const char usage[] =
     "usage: zscan bench suite [--out DIR] [--quick] [--size WxH] [--threads N] [--docs DIR]\n"
-    "                         [--quiet]\n"
+    "                         [--quiet] [--no-run]\n"
     "  --out DIR    where every benchmark's files go (default bench-suite)\n"
     "  --quick      a few frames of each, small scenes: a check that it all runs\n"
     "  --size WxH   the image size of raster, tradeoff, depthsort and the walks (raster\n"
@@ -77,7 +83,9 @@ static const char usage[] =
     "               DIR/results/*.md, its plots in DIR/images (zscan bench suite\n"
     "               --docs docs rewrites docs/RESULTS.md)\n"
     "  --quiet      no progress on stderr (else a line after each benchmark, and\n"
-    "               the walks of tradeoff as bench tradeoff shows them)\n";
+    "               the walks of tradeoff as bench tradeoff shows them)\n"
+    "  --no-run     measure nothing: the page (--docs) from the files an earlier run\n"
+    "               with the same options left in --out, after a template's edit\n";
 
 /* Every culling method; the few whose lines a plot can tell apart (hsw,
  * which waits for every answer, would flatten them); the rows of the
@@ -97,6 +105,9 @@ static const char *const walks[2][3] = {
 };
 /* The walks of bench tradeoff, in its order. */
 static const char *const tradeoff_walks[3] = {"teapots", "city", "plant"};
+/* The shadings of bench raster's scenes beside llvmpipe's equivalent
+ * state. */
+static const char *const shadings[3] = {"unlit", "gouraud", "phong"};
 
 /* Memory: the default scene at four sizes, in both modes. */
 static const char *const mem_sizes[2][4] = {
@@ -165,6 +176,14 @@ static const struct placeholder {
     {"depthsort.table", 1},
     {"octree.command", 1},
     {"octree.table", 1},
+    {"shade.unlit.command", 1},
+    {"shade.unlit.llvmpipe", 1},
+    {"shade.gouraud.command", 1},
+    {"shade.gouraud.llvmpipe", 1},
+    {"shade.phong.command", 1},
+    {"shade.phong.llvmpipe", 1},
+    {"colours.command", 1},
+    {"colours.table", 1},
 };
 enum { NPLACEHOLDERS = sizeof placeholders / sizeof placeholders[0] };
 
@@ -179,7 +198,7 @@ typedef struct template_file {
 /* What one run of the suite does, and what it measured, for the page. */
 typedef struct suite {
   const char *dir, *size, *docs;
-  int quick, quiet;
+  int quick, quiet, no_run;
   int threads;                     /* N of the second raster pass, as its command shows */
   char threads_arg[16], lp_env[48]; /* "N", "LP_NUM_THREADS=N" */
   int mesa, callgrind, run_threads; /* what this run does */
@@ -300,6 +319,8 @@ static const char *const file_names[NFILES] = {
 typedef struct files {
   char path[NFILES][PATH];
   char walk[2][3][PATH]; /* each large walk's csv, md, txt */
+  char shade[3][PATH];   /* each shading's md */
+  char colours[PATH];    /* bench colours' md */
 } files;
 
 static void raster_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -330,6 +351,25 @@ static void threads_args(const suite *s, const files *fs, how h, arglist *a) {
     arg2(a, "--plot", fs->path[F_THREADS_PNG]);
   }
   size_arg(s, h, NULL, a);
+}
+
+/* bench raster's scenes in shading k, beside llvmpipe's equivalent. */
+static void shade_args(const suite *s, const files *fs, int k, how h, arglist *a) {
+  arg(a, "raster");
+  arg2(a, "--shade", shadings[k]);
+  arg(a, "--no-tilings");
+  if (h.files) arg2(a, "--md", fs->shade[k]);
+  if (h.mesa) arg(a, "--mesa");
+  if (h.quick) { /* one small scene, a frame: a check that it runs */
+    arg2(a, "--repeat", "1");
+    arg2(a, "--case", "builtin:teapots,count=4");
+  }
+  size_arg(s, h, quick_raster_size, a);
+}
+
+static void colours_args(const files *fs, how h, arglist *a) {
+  arg(a, "colours");
+  if (h.files) arg2(a, "--md", fs->colours);
 }
 
 static void calibrate_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -611,13 +651,15 @@ static zs_status plot_walks(const suite *s, const files *fs, zs_error *err) {
   return ZS_OK;
 }
 
-/* The benchmarks in turn: raster, on N threads, memory, calibrate, two
- * walks, tradeoff, depthsort, octree.  1: a benchmark run here failed
+/* The benchmarks in turn: raster, on N threads, the three shadings, the
+ * colours (with llvmpipe), memory, calibrate, two walks, tradeoff,
+ * depthsort, octree.  1: a benchmark run here failed
  * (it said why); -1: an error in err. */
 static int run_all(suite *s, const files *fs, zs_error *err) {
   zs_progress progress;
   int done = 0;
-  zs_progress_start(&progress, "bench suite", "benchmark", 8 + s->run_threads, s->quiet);
+  zs_progress_start(&progress, "bench suite", "benchmark", 11 + s->run_threads + s->mesa,
+                    s->quiet);
   const how h = as_run(s);
   arglist a = {0};
   /* llvmpipe on one thread beside zscan's one */
@@ -627,6 +669,18 @@ static int run_all(suite *s, const files *fs, zs_error *err) {
   zs_progress_step(&progress, ++done);
   if (s->run_threads) {
     if (run_threads(s, fs, err)) return -1;
+    zs_progress_step(&progress, ++done);
+  }
+  for (int k = 0; k < 3; k++) {
+    a = (arglist){0};
+    shade_args(s, fs, k, h, &a);
+    if (run(zs_cmd_bench_raster, a.v)) return 1;
+    zs_progress_step(&progress, ++done);
+  }
+  if (s->mesa) {
+    a = (arglist){0};
+    colours_args(fs, h, &a);
+    if (run(zs_cmd_bench_colours, a.v)) return 1;
     zs_progress_step(&progress, ++done);
   }
   if (run_memory(s, err)) return -1;
@@ -896,6 +950,30 @@ static zs_status fill_device(suite *s, const files *fs, zs_error *err) {
   return ZS_OK;
 }
 
+/* bench raster's scenes in each shading beside llvmpipe's, and bench
+ * colours' cross-check. */
+static zs_status fill_shading(suite *s, const files *fs, zs_error *err) {
+  for (int k = 0; k < 3; k++) {
+    char name[64], md[64];
+    arglist a = {0};
+    shade_args(s, fs, k, as_shown, &a);
+    snprintf(md, sizeof md, "shade-%s.md", shadings[k]);
+#define NAME(field) (snprintf(name, sizeof name, "shade.%s." field, shadings[k]), name)
+    if (set_command(s, NAME("command"), "LP_NUM_THREADS=1 zscan bench", a.v, err) ||
+        (s->mesa ? set_table(s, NAME("llvmpipe"), md, 1, 0, err)
+                 : set_text(s, NAME("llvmpipe"), not_measured, err)))
+      return err->code;
+#undef NAME
+  }
+  arglist a = {0};
+  colours_args(fs, as_shown, &a);
+  if (set_command(s, "colours.command", "zscan bench", a.v, err) ||
+      (s->mesa ? set_table(s, "colours.table", "colours.md", 0, 0, err)
+               : set_text(s, "colours.table", not_measured, err)))
+    return err->code;
+  return ZS_OK;
+}
+
 /* The two large walks, and bench tradeoff's. */
 static zs_status fill_walks(suite *s, const files *fs, zs_error *err) {
   for (int w = 0; w < 2; w++) {
@@ -962,7 +1040,8 @@ static zs_status fill_sorts(suite *s, const files *fs, zs_error *err) {
 /* Every placeholder's value, from the files the benchmarks wrote. */
 static zs_status fill_values(suite *s, const files *fs, zs_error *err) {
   if (set_text(s, "machine", s->machine, err) || set_text(s, "suite.command", s->command, err) ||
-      fill_device(s, fs, err) || fill_walks(s, fs, err) || fill_sorts(s, fs, err))
+      fill_device(s, fs, err) || fill_shading(s, fs, err) || fill_walks(s, fs, err) ||
+      fill_sorts(s, fs, err))
     return err->code;
   return ZS_OK;
 }
@@ -1124,6 +1203,8 @@ static zs_status parse(int argc, char **argv, suite *s, zs_error *err) {
       s->quick = 1;
     } else if (strcmp(argv[i], "--quiet") == 0) {
       s->quiet = 1;
+    } else if (strcmp(argv[i], "--no-run") == 0) {
+      s->no_run = 1;
     } else if (strcmp(argv[i], "--out") == 0) {
       if (zs_cli_value(argc, argv, &i, &s->dir, err)) return err->code;
     } else if (strcmp(argv[i], "--docs") == 0) {
@@ -1139,7 +1220,15 @@ static zs_status parse(int argc, char **argv, suite *s, zs_error *err) {
                           argv[i]);
     }
   }
-  join_cmd(s->command, "zscan bench", argv);
+  if (s->no_run && !s->docs)
+    return zs_error_set(err, ZS_ERR_ARG, "--no-run: writes the page only: give --docs DIR");
+  /* the page names the run that measured: without --no-run */
+  char *kept[64];
+  int n = 0;
+  for (int i = 0; i < argc && n < 63; i++)
+    if (strcmp(argv[i], "--no-run") != 0) kept[n++] = argv[i];
+  kept[n] = NULL;
+  join_cmd(s->command, "zscan bench", kept);
   return ZS_OK;
 }
 
@@ -1197,19 +1286,22 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   if (s.docs && (read_templates(&s, &err) || check_templates(&s, &err))) goto fail;
   if (probe(&s, &err)) goto fail;
   for (int k = 0; k < NFILES; k++) in_dir(fs.path[k], &s, file_names[k]);
+  for (int k = 0; k < 3; k++) in_dir_named(fs.shade[k], &s, "shade-%s.md", shadings[k]);
+  in_dir(fs.colours, &s, "colours.md");
   for (int w = 0; w < 2; w++) {
     in_dir_named(fs.walk[w][0], &s, "walk-%s.csv", walks[w][0]);
     in_dir_named(fs.walk[w][1], &s, "walk-%s.md", walks[w][0]);
     in_dir_named(fs.walk[w][2], &s, "walk-%s.txt", walks[w][0]);
   }
-  const int ran = run_all(&s, &fs, &err);
+  const int ran = s.no_run ? 0 : run_all(&s, &fs, &err);
   if (ran > 0) goto done; /* the benchmark said why */
   if (ran < 0) goto fail;
   if (s.plots && plot_walks(&s, &fs, &err)) goto fail;
   if (s.docs && (fill_values(&s, &fs, &err) || write_docs(&s, &err))) goto fail;
-  printf("\nwrote %s: raster, memory, calibrate, walks, tradeoff (per walk), depthsort and "
+  if (!s.no_run)
+    printf("\nwrote %s: raster, shading, memory, calibrate, walks, tradeoff (per walk), depthsort and "
          "octree files%s%s%s\n",
-         s.dir, s.mesa ? "; llvmpipe beside zscan" : "",
+         s.dir, s.mesa ? "; llvmpipe beside zscan, colours too" : "",
          s.run_threads ? ", on one thread and on N" : "",
          s.callgrind ? "; instructions per frame under callgrind" : "");
   rc = 0;

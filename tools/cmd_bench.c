@@ -6,6 +6,8 @@ static const zs_command benchmarks[] = {
     {"octree", "", "loose vs plain octree update with moving spheres", zs_cmd_bench_octree},
     {"depthsort", "[INPUT]", "depth sort with and without frame coherence, four motions",
      zs_cmd_bench_depthsort},
+    {"colours", "", "unlit vertex colours and textures beside llvmpipe's, pixel by pixel",
+     zs_cmd_bench_colours},
     {"raster", "", "throughput: triangles of 4 to 500 pixels and whole scenes", zs_cmd_bench_raster},
     {"tradeoff", "", "run time against error: every method and mode on every walk",
      zs_cmd_bench_tradeoff},

@@ -49,6 +49,12 @@ static const char usage_tail[] =
     "                      ambient:R,G,B\n"
     "  --style solid|hidden-line   faces (default), or the visible edges of front faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
+    "  --normals FILE.pfm  also write the eye-space unit normals (x, y, z a pixel;\n"
+    "                      0, 0, 0 where no face is), as --shade normal finds them\n"
+    "  --layer FILE.zsl    also write the frame as a layer: colour, coverage, depth\n"
+    "                      and face ids (zscan composite merges layers)\n"
+    "  --objects LIST      draw only these objects (0-based, as --stats counts them:\n"
+    "                      A, A-B, comma-separated), framed as the whole scene is\n"
     "  --threads N         render threads, 1 to 64 (default 1; depthsort: its walk only)\n"
     "  --repeat K          render K times; ms_per_frame is the median (default 1)\n"
     "  --stats             print the frame's counters as one JSON line, with the\n"
@@ -98,7 +104,8 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
   if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))
     return zs_error_set(err, ZS_ERR_ARG, "--cull needs --algo zbuffer and --style solid");
   if (in_memory) { /* the image stays in memory: no file, no counters printed */
-    const char *extra = o->out_pfm ? "--depth" : o->stats ? "--stats" : o->out_given ? "-o" : NULL;
+    const char *extra = o->out_pfm ? "--depth" : o->out_normals ? "--normals"
+                        : o->out_layer ? "--layer" : o->stats ? "--stats" : o->out_given ? "-o" : NULL;
     if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
     return ZS_OK;
   }
@@ -111,12 +118,80 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
   if (o->out_pfm && zs_cli_output_format("--depth", o->out_pfm, "pfm", err)) return err->code;
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
   if (o->out_pfm && zs_cli_output_path("--depth", o->out_pfm, err)) return err->code;
+  if (o->out_normals && (zs_cli_output_format("--normals", o->out_normals, "pfm", err) ||
+                         zs_cli_output_path("--normals", o->out_normals, err)))
+    return err->code;
+  if (o->out_layer) {
+    if (zs_cli_output_format("--layer", o->out_layer, "zsl", err) ||
+        zs_cli_output_path("--layer", o->out_layer, err))
+      return err->code;
+    /* what a layer holds: the faces' nearest fragments, composited by depth */
+    if (o->hidden_line || o->overlay || o->algo == ZS_ALGO_DEPTHSORT ||
+        o->shade == ZS_SHADE_OVERDRAW || o->shade == ZS_SHADE_ID)
+      return zs_error_set(err, ZS_ERR_ARG, "--layer: %s", o->hidden_line
+                          ? "a layer holds faces, not hidden lines (--style solid)"
+                          : o->overlay ? "a layer holds faces, not the culling's boxes"
+                          : o->algo == ZS_ALGO_DEPTHSORT
+                              ? "depthsort's depths are ranks, which do not composite"
+                          : o->shade == ZS_SHADE_ID
+                              ? "id shading's PNG is marked as ids, which a composite does not keep"
+                              : "overdraw's counts do not composite");
+  }
   /* standard output carries one stream */
-  int to_stdout = zs_out_is_stdout(o->out_png) + (o->out_pfm && zs_out_is_stdout(o->out_pfm));
+  int to_stdout = zs_out_is_stdout(o->out_png) + (o->out_pfm && zs_out_is_stdout(o->out_pfm)) +
+                  (o->out_normals && zs_out_is_stdout(o->out_normals)) +
+                  (o->out_layer && zs_out_is_stdout(o->out_layer));
   if (to_stdout > 1 || (to_stdout && o->stats))
     return zs_error_set(err, ZS_ERR_ARG,
-                        "standard output (-) takes one stream: only one of -o -, --depth - "
-                        "and --stats");
+                        "standard output (-) takes one stream: only one of -o -, --depth -, "
+                        "--normals -, --layer - and --stats");
+  return ZS_OK;
+}
+
+/* --objects LIST: ranges A or A-B of object numbers, comma-separated. */
+static zs_status parse_objects(const char *v, zs_cmd_render_opts *o, zs_error *err) {
+  o->nparts = 0;
+  for (const char *p = v;;) {
+    char *end;
+    long lo = -1, hi = -1;
+    if (*p >= '0' && *p <= '9') lo = strtol(p, &end, 10), p = end;
+    hi = lo;
+    if (lo >= 0 && *p == '-') {
+      hi = -1;
+      if (p[1] >= '0' && p[1] <= '9') hi = strtol(p + 1, &end, 10), p = end;
+    }
+    if (lo < 0 || hi < lo || lo > INT32_MAX || hi > INT32_MAX || (*p != ',' && *p != '\0'))
+      return zs_error_set(err, ZS_ERR_ARG,
+                          "--objects: expected object numbers A or A-B (A <= B), "
+                          "comma-separated, got '%s'", v);
+    if (o->nparts == ZS_CMD_RENDER_MAX_PARTS)
+      return zs_error_set(err, ZS_ERR_ARG, "--objects: more than %d ranges",
+                          ZS_CMD_RENDER_MAX_PARTS);
+    o->part_lo[o->nparts] = (int32_t)lo;
+    o->part_hi[o->nparts++] = (int32_t)hi;
+    if (*p == '\0') return ZS_OK;
+    p++;
+  }
+}
+
+/* Keeps only the objects --objects names (their face ids unchanged). */
+static zs_status keep_objects(const zs_cmd_render_opts *o, zs_scene *s, zs_error *err) {
+  for (int k = 0; k < o->nparts; k++)
+    if (o->part_hi[k] >= s->ninst)
+      return s->ninst == 0
+                 ? zs_error_set(err, ZS_ERR_ARG, "--objects: object %d: the scene has none",
+                                (int)o->part_hi[k])
+                 : zs_error_set(err, ZS_ERR_ARG,
+                                "--objects: object %d: the scene has %d objects (0 to %d)",
+                                (int)o->part_hi[k], (int)s->ninst, (int)s->ninst - 1);
+  int32_t n = 0;
+  for (int32_t i = 0; i < s->ninst; i++) {
+    int kept = 0;
+    for (int k = 0; k < o->nparts && !kept; k++) kept = i >= o->part_lo[k] && i <= o->part_hi[k];
+    if (kept) s->inst[n++] = s->inst[i];
+    else free(s->inst[i].name);
+  }
+  s->ninst = n;
   return ZS_OK;
 }
 
@@ -188,6 +263,15 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
     } else if (strcmp(a, "--depth") == 0) {
       VALUE();
       o->out_pfm = v;
+    } else if (strcmp(a, "--normals") == 0) {
+      VALUE();
+      o->out_normals = v;
+    } else if (strcmp(a, "--layer") == 0) {
+      VALUE();
+      o->out_layer = v;
+    } else if (strcmp(a, "--objects") == 0) {
+      VALUE();
+      if (parse_objects(v, o, err)) return err->code;
     } else if (strcmp(a, "--threads") == 0) {
       VALUE();
       if (zs_cli_int(a, v, 1, 64, &o->threads, err)) return err->code;
@@ -467,7 +551,8 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   zs_octree tree;
   int have_tree = 0;
   zs_image im = {0, 0, NULL};
-  float *depth = NULL;
+  zs_layer layer = {0};
+  float *depth = NULL, *normals = NULL;
   double *times = NULL;
   double view[16], proj[16];
   if ((st = zs_frame_camera(&model, &o->view.cam, o->view.width, o->view.height, view, proj, err))) goto done;
@@ -478,6 +563,8 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     print_camera_options(stderr, &used);
     fputc('\n', stderr);
   }
+  /* the camera is the whole scene's: a part's frame composites with the others' */
+  if (o->nparts && (st = keep_objects(o, &model, err))) goto done;
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
                           o->view.cull_back, o->threads, o->background, 0, o->filter};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
@@ -485,6 +572,11 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   zs_device_keep_line_runs(dev, o->svg && !keep);
   if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;
+  if (o->out_layer &&
+      (st = zs_layer_alloc(&layer, o->view.width, o->view.height, view, proj, o->background,
+                           o->shade, err)))
+    goto done;
+  zs_layer *into = o->out_layer ? &layer : NULL;
   if (o->out_pfm && !(depth = malloc((size_t)o->view.width * (size_t)o->view.height * sizeof *depth))) {
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory for the depth map");
     goto done;
@@ -508,7 +600,11 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
           (st = zs_culler_frame(culler, dev, &model, &tree, view, proj, &cs, err)))
         goto done;
       if (o->overlay && (st = draw_overlay(dev, culler, &tree, err))) goto done;
-      if ((st = zs_frame_finish(dev, &im, depth, err))) goto done;
+      if ((st = zs_frame_finish_into(dev, &im, depth, into, err))) goto done;
+    } else if (into) { /* no hidden lines: the faces' frame */
+      if ((st = zs_frame_draw_all(dev, &model, view, proj, err)) ||
+          (st = zs_frame_finish_into(dev, &im, depth, into, err)))
+        goto done;
     } else if ((st = zs_frame_render_on(dev, &model, view, proj, o->hidden_line, &im, depth,
                                         err))) {
       goto done;
@@ -522,12 +618,28 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     goto done;
   }
 
+  if (o->out_normals) { /* one frame more, every face shaded by its normals; before any file */
+    if (!(normals = calloc(3 * (size_t)o->view.width * (size_t)o->view.height, sizeof *normals))) {
+      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory for the normals");
+      goto done;
+    }
+    if ((st = zs_frame_render_normals(&cfg, &model, view, proj, normals, err))) goto done;
+  }
   if ((st = o->svg ? write_svg(o, dev, err) : zs_png_write_shaded(o->out_png, &im, o->shade, err))) {
     zs_out_error_option(err, "-o");
     goto done;
   }
   if (depth && (st = zs_pfm_write(o->out_pfm, o->view.width, o->view.height, depth, err))) {
     zs_out_error_option(err, "--depth");
+    goto done;
+  }
+  if (normals &&
+      (st = zs_pfm_write_rgb(o->out_normals, o->view.width, o->view.height, normals, err))) {
+    zs_out_error_option(err, "--normals");
+    goto done;
+  }
+  if (into && (st = zs_layer_write(o->out_layer, &layer, err))) {
+    zs_out_error_option(err, "--layer");
     goto done;
   }
   int64_t diff_pixels = -1;
@@ -540,16 +652,20 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
                 diff_pixels, o->cull >= 0 ? &cr : NULL, &used);
   else if (!o->quiet) /* one line for a person; --stats is the line for programs */
-    fprintf(stderr, "zscan render: wrote %s: %dx%d, %llu faces, %.1f ms%s%s\n",
+    fprintf(stderr, "zscan render: wrote %s: %dx%d, %llu faces, %.1f ms%s%s%s%s%s%s\n",
             zs_out_is_stdout(o->out_png) ? "standard output" : o->out_png, o->view.width,
             o->view.height, (unsigned long long)zs_scene_faces(&model), median,
-            o->out_pfm ? ", depth to " : "", o->out_pfm ? o->out_pfm : "");
+            o->out_pfm ? ", depth to " : "", o->out_pfm ? o->out_pfm : "",
+            o->out_normals ? ", normals to " : "", o->out_normals ? o->out_normals : "",
+            o->out_layer ? ", layer to " : "", o->out_layer ? o->out_layer : "");
 
 done:
   zs_culler_destroy(culler);
   if (have_tree) zs_octree_free(&tree);
   free(times);
   free(depth);
+  free(normals);
+  zs_layer_free(&layer);
   zs_image_free(&im);
   zs_device_destroy(dev);
   zs_scene_free(&model);

@@ -8,8 +8,14 @@
 #include "tools/viewopts.h"
 #include "zscan/zscan.h"
 
+enum { ZS_CMD_RENDER_MAX_PARTS = 64 }; /* ranges in --objects */
+
 typedef struct zs_cmd_render_opts {
   const char *input, *out_png, *out_pfm;
+  const char *out_normals; /* --normals FILE.pfm */
+  const char *out_layer;   /* --layer FILE.zsl */
+  int nparts;              /* --objects: the ranges of objects drawn (0: all) */
+  int32_t part_lo[ZS_CMD_RENDER_MAX_PARTS], part_hi[ZS_CMD_RENDER_MAX_PARTS];
   int out_given; /* -o was given */
   int svg;       /* -o FILE.svg: the hidden lines as vectors */
   uint32_t background; /* flat shading's background, 0xRRGGBB */

@@ -7,6 +7,8 @@
 
 const zs_command zs_commands[] = {
     {"render", "[INPUT]", "render one frame to a PNG, with its counters", zs_cmd_render},
+    {"composite", "L1 L2 ...", "merge layers of a scene's parts by depth, as one frame",
+     zs_cmd_composite},
     {"diff", "A.png B.png", "compare two images: pixels differing, faces involved", zs_cmd_diff},
     {"golden", "update|check M", "golden-image tests over a manifest, with reports",
      zs_cmd_golden},
@@ -15,7 +17,7 @@ const zs_command zs_commands[] = {
     {"path", "SCENE", "the cameras of the scene's walk, one line per frame", zs_cmd_path},
     {"query", "INPUT", "per object: pixels owned and bounding-box samples", zs_cmd_query},
     {"calibrate", "", "measure the device clock's constants on this machine", zs_cmd_calibrate},
-    {"bench", "WHAT", "benchmarks: octree, depthsort, raster, tradeoff, suite", zs_cmd_bench},
+    {"bench", "WHAT", "benchmarks: octree, depthsort, colours, raster, tradeoff, suite", zs_cmd_bench},
 };
 const int zs_ncommands = (int)(sizeof zs_commands / sizeof zs_commands[0]);
 

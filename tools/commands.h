@@ -21,6 +21,7 @@ extern const int zs_ncommands;
 
 int zs_cmd_render(int argc, char **argv);
 int zs_cmd_diff(int argc, char **argv);
+int zs_cmd_composite(int argc, char **argv);
 int zs_cmd_golden(int argc, char **argv);
 int zs_cmd_trace(int argc, char **argv);
 int zs_cmd_walk(int argc, char **argv);
@@ -31,6 +32,7 @@ int zs_cmd_bench(int argc, char **argv);
 int zs_cmd_bench_octree(int argc, char **argv);
 int zs_cmd_bench_depthsort(int argc, char **argv);
 int zs_cmd_bench_raster(int argc, char **argv);
+int zs_cmd_bench_colours(int argc, char **argv);
 int zs_cmd_bench_tradeoff(int argc, char **argv);
 int zs_cmd_bench_suite(int argc, char **argv);
 

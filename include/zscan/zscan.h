@@ -308,14 +308,19 @@ typedef struct zs_raster_stats {
 /* One finished row of the image, handed to a zs_row_sink in order y = 0,
  * 1, ..., height-1.  rgb is 0xRRGGBB per pixel as shaded; depth and id are
  * the raw buffers (id ZS_ID_NONE for background); count is the fragment
- * count per pixel in ZS_SHADE_OVERDRAW, else NULL.  The pointers are valid
- * only during the call. */
+ * count per pixel in ZS_SHADE_OVERDRAW, else NULL.  normal, when
+ * zs_device_set_normals has asked for them, is x, y, z per pixel: the unit
+ * eye-space normal a pixel's face has there, as ZS_SHADE_NORMAL colours
+ * it (the corners' normals interpolated, else the face's plane), and
+ * 0, 0, 0 where no face shaded from attributes is; else NULL.  The
+ * pointers are valid only during the call. */
 typedef struct zs_row {
   int y, width;
   const uint32_t *rgb;
   const uint32_t *depth;
   const uint32_t *id;
   const uint32_t *count;
+  const float *normal;
 } zs_row;
 
 typedef void (*zs_row_sink)(void *user, const zs_row *row);
@@ -360,6 +365,12 @@ zs_status zs_device_draw(zs_device *dev, const zs_mesh *mesh, const double model
 /* Ends the frame (scanline mode rasterizes it now) and hands every row to
  * sink, top to bottom.  sink may be NULL. */
 zs_status zs_device_finish(zs_device *dev, zs_row_sink sink, void *user, zs_error *err);
+
+/* Whether the rows zs_device_finish hands out carry their eye-space
+ * normals (zs_row.normal), from the next finish on; off on a new device.
+ * Needs a shading that reads attributes (ZS_SHADE_NORMAL gives every face
+ * one): ZS_ERR_ARG under another. */
+zs_status zs_device_set_normals(zs_device *dev, int on, zs_error *err);
 
 const zs_raster_stats *zs_device_stats(const zs_device *dev);
 
@@ -478,6 +489,10 @@ zs_status zs_png_read(const char *path, zs_image *out, zs_error *err);
  * bottom row first, as the format wants). */
 zs_status zs_pfm_write(const char *path, int width, int height, const float *values,
                        zs_error *err);
+/* A three-channel PFM of width * height x, y, z triples (as zs_row.normal
+ * holds them), row 0 at the top. */
+zs_status zs_pfm_write_rgb(const char *path, int width, int height, const float *xyz,
+                           zs_error *err);
 
 /* ==== Scenes: load, render ==== */
 
