@@ -166,6 +166,8 @@ static const bad_option bad_options[] = {
     {{"render", "--depth", "d.png", NULL}, "--depth: d.png: zscan writes PFM (FILE.pfm)", 2},
     {{"render", "--normals", "n.png", NULL}, "--normals: n.png: zscan writes PFM (FILE.pfm)", 2},
     {{"render", "--layer", "l.png", NULL}, "--layer: l.png: zscan writes ZSL (FILE.zsl)", 2},
+    {{"render", "--simd", "neon", NULL},
+     "--simd: expected scalar, sse2, avx2, avx512 or best, got 'neon'", 2},
     {{"render", "--layer", "l.zsl", "--algo", "depthsort", NULL},
      "--layer: depthsort's depths are ranks, which do not composite", 2},
     {{"render", "--layer", "l.zsl", "--style", "hidden-line", NULL},
@@ -1273,6 +1275,30 @@ static long long json_int(const char *line, const char *key) {
   return atoll(p + strlen(pat));
 }
 
+/* --simd: every level draws the same image (the hash --stats prints), in
+ * both modes, flat and textured Phong. */
+START_TEST(render_same_at_every_simd_level) {
+  static const char *const inputs[] = {"builtin:default", "builtin:plant,detail=0.2"};
+  static const char *const levels[] = {"scalar", "sse2", "avx2", "avx512", "best"};
+  static const char *const modes[][2] = {{"zbuffer", "flat"}, {"scanline", "phong"}};
+  char png[4096], first[64];
+  snprintf(png, sizeof png, "%s/cli-simd.png", ZS_BINARY_DIR);
+  for (int i = 0; i < 2; i++)
+    for (int m = 0; m < 2; m++)
+      for (int k = 0; k < 5; k++) {
+        const char *args[] = {"render", inputs[i], "--size", "160x120", "--algo", modes[m][0],
+                              "--shade", modes[m][1], "--simd", levels[k], "-o", png, "--stats",
+                              NULL};
+        ck_assert_msg(zs_test_run_zscan(args, out, sizeof out, err, sizeof err) == 0, "%s", err);
+        const char *h = strstr(out, "\"image_hash\":\"");
+        ck_assert_ptr_nonnull(h);
+        if (k == 0) snprintf(first, sizeof first, "%.40s", h);
+        else ck_assert_msg(strncmp(h, first, strlen(first)) == 0, "%s %s %s: %.40s, scalar %s",
+                           inputs[i], modes[m][0], levels[k], h, first);
+      }
+}
+END_TEST
+
 /* rgbα+z layers: a scene drawn in three parts, each into a layer from the
  * whole scene's camera, composites to the frame of the whole, byte for
  * byte, in both modes, flat and Phong-lit, on 1 and 2 threads. */
@@ -1439,6 +1465,7 @@ int main(void) {
   tcase_add_test(tc, render_writes_png_and_stats);
   tcase_add_test(tc, render_writes_normals);
   tcase_add_test(tc, composite_of_parts_is_the_whole);
+  tcase_add_test(tc, render_same_at_every_simd_level);
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);

@@ -56,6 +56,9 @@ static const char usage_tail[] =
     "  --objects LIST      draw only these objects (0-based, as --stats counts them:\n"
     "                      A, A-B, comma-separated), framed as the whole scene is\n"
     "  --threads N         render threads, 1 to 64 (default 1; depthsort: its walk only)\n"
+    "  --simd LEVEL        cap the span fill and the vertex stage at scalar, sse2, avx2\n"
+    "                      or avx512 (default best: the widest the CPU has); every\n"
+    "                      level draws the same bytes, which this lets a user check\n"
     "  --repeat K          render K times; ms_per_frame is the median (default 1)\n"
     "  --stats             print the frame's counters as one JSON line, with the\n"
     "                      camera used (\"camera\": eye, target, up, fovy or ortho,\n"
@@ -239,6 +242,15 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
         return zs_error_set(err, ZS_ERR_ARG, "--light: at most %d lights", ZS_MAX_LIGHTS);
       if (zs_cli_light("--light", v, &o->lights[o->nlights], err)) return err->code;
       o->nlights++;
+    } else if (strcmp(a, "--simd") == 0) {
+      VALUE();
+      static const char *const levels[] = {"best", "scalar", "sse2", "avx2", "avx512"};
+      int k = 0;
+      while (k < 5 && strcmp(v, levels[k]) != 0) k++;
+      if (k == 5)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "--simd: expected scalar, sse2, avx2, avx512 or best, got '%s'", v);
+      o->spans = (zs_span_fill)k; /* the names in zs_span_fill's order */
     } else if (strcmp(a, "--filter") == 0) {
       VALUE();
       int f = zs_filter_parse(v);
@@ -566,7 +578,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   /* the camera is the whole scene's: a part's frame composites with the others' */
   if (o->nparts && (st = keep_objects(o, &model, err))) goto done;
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
-                          o->view.cull_back, o->threads, o->background, 0, o->filter};
+                          o->view.cull_back, o->threads, o->background, o->spans, o->filter};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   if ((st = zs_frame_set_lights(dev, &model, o->lights, o->nlights, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;

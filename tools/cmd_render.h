@@ -27,6 +27,7 @@ typedef struct zs_cmd_render_opts {
   zs_algo algo;
   zs_shade shade;
   zs_filter filter;    /* --filter: every texture's; 0: each material's */
+  zs_span_fill spans;  /* --simd: the widest span fill and vertex stage */
   zs_light lights[ZS_MAX_LIGHTS]; /* --light, in the order given */
   int nlights;
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
