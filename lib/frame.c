@@ -16,10 +16,10 @@ static void gather_row(void *user, const zs_row *row) {
   gather *g = user;
   size_t off = (size_t)row->y * (size_t)row->width;
   if (g->layer) zs_layer_row_sink(g->layer, row);
-  if (!g->im) return; /* the rows shaded and dropped: a frame timed */
-  memcpy(g->im->rgb + off, row->rgb, (size_t)row->width * sizeof *row->rgb);
   if (g->normals && row->normal)
     memcpy(g->normals + 3 * off, row->normal, 3 * (size_t)row->width * sizeof *row->normal);
+  if (!g->im) return; /* the rows shaded and dropped: a frame timed */
+  memcpy(g->im->rgb + off, row->rgb, (size_t)row->width * sizeof *row->rgb);
   if (g->depth)
     for (int x = 0; x < row->width; x++)
       g->depth[off + (size_t)x] =
@@ -83,14 +83,11 @@ zs_status zs_frame_render_normals(const zs_device_config *cfg, const zs_scene *s
   zs_device_config c = *cfg;
   c.shade = ZS_SHADE_NORMAL;
   zs_device *dev = NULL;
-  zs_image im = {0, 0, NULL};
-  gather g = {&im, NULL, xyz, NULL};
+  gather g = {NULL, NULL, xyz, NULL}; /* the normals only: the colours are dropped */
   zs_status st = zs_device_create(&c, &dev, err);
   if (!st) st = zs_device_set_normals(dev, 1, err);
-  if (!st) st = zs_image_alloc(&im, c.width, c.height, err);
   if (!st) st = zs_frame_draw_all(dev, scene, view, proj, err);
   if (!st) st = zs_device_finish(dev, gather_row, &g, err);
-  zs_image_free(&im);
   zs_device_destroy(dev);
   return st;
 }
