@@ -46,7 +46,7 @@ const char *zs_scene_notes(const zs_scene *scene) {
 /* The camera and the frame's options that opts ask for, on scene: the
  * user's camera over the scene's, as the command's options are. */
 static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_camera *cam,
-                        zs_frame_opts *fo, zs_error *err) {
+                        zs_frame_opts *fo, zs_shadow_opts *so, zs_error *err) {
   static const zs_render_opts none;
   const zs_render_opts *o = opts ? opts : &none;
   if (o->width < 0 || o->height < 0 || o->threads < 0)
@@ -72,8 +72,22 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
   if (o->nlights < 0 || (o->nlights > 0 && !o->lights))
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.lights: %d lights at %s", o->nlights,
                         o->lights ? "an array" : "NULL");
+  if (o->shadow_size != 0 &&
+      (o->shadow_size < ZS_SHADOW_MIN_SIZE || o->shadow_size > ZS_SHADOW_MAX_SIZE))
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.shadow_size: %d: %d to %d (0: %d)",
+                        o->shadow_size, ZS_SHADOW_MIN_SIZE, ZS_SHADOW_MAX_SIZE,
+                        ZS_SHADOW_DEFAULT_SIZE);
+  *so = (zs_shadow_opts){o->shadows != 0, o->shadow_size, ZS_SHADOW_BIAS_UNITS,
+                         ZS_SHADOW_BIAS_SLOPE};
+  if (o->has_shadow_bias) {
+    so->units = o->shadow_bias[0];
+    so->slope = o->shadow_bias[1];
+    if (!(so->units >= 0.0 && so->units <= 4294967296.0 && so->slope >= 0.0 && so->slope <= 1e6))
+      return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.shadow_bias: %g, %g: units 0 to 2^32, "
+                          "slope 0 to 1e6", so->units, so->slope);
+  }
   *fo = (zs_frame_opts){width,    height,   o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1,
-                        o->hidden_line, o->filter, o->lights, o->nlights};
+                        o->hidden_line, o->filter, o->lights, o->nlights, so};
   return ZS_OK;
 }
 
@@ -84,7 +98,8 @@ zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image 
   if (depth) *depth = NULL;
   zs_camera cam;
   zs_frame_opts fo = {0};
-  zs_status st = settle(scene, opts, &cam, &fo, err);
+  zs_shadow_opts so;
+  zs_status st = settle(scene, opts, &cam, &fo, &so, err);
   if (st != ZS_OK) return st;
   float *d = NULL;
   if (depth && !(d = malloc((size_t)fo.width * (size_t)fo.height * sizeof *d)))
@@ -101,7 +116,8 @@ zs_status zs_query_objects(const zs_scene *scene, const zs_render_opts *opts,
   *n = 0;
   zs_camera cam;
   zs_frame_opts fo = {0};
-  zs_status st = settle(scene, opts, &cam, &fo, err);
+  zs_shadow_opts so;
+  zs_status st = settle(scene, opts, &cam, &fo, &so, err);
   if (st != ZS_OK) return st;
   return zs_query_objects_at(scene, &cam, fo.width, fo.height, fo.cull_back, out, n, err);
 }

@@ -26,27 +26,6 @@ static void gather_row(void *user, const zs_row *row) {
           row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
 }
 
-zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err) {
-  /* every instance, nothing read between the draws: on two threads they
-   * are queued and rendered together (raster.h, deferred drawing) */
-  zs_device_defer_draws(dev, 1);
-  zs_status st = ZS_OK;
-  for (int32_t i = 0; i < scene->ninst && st == ZS_OK; i++) {
-    const zs_instance *in = &scene->inst[i];
-    st = zs_device_draw(dev, &scene->meshes[in->mesh].mesh, in->model, in->id_base, in->rgb, err);
-  }
-  if (st == ZS_OK) st = zs_device_flush(dev, err);
-  zs_device_defer_draws(dev, 0);
-  return st;
-}
-
-zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
-                            const double proj[16], zs_error *err) {
-  zs_device_clear(dev);
-  zs_device_set_camera(dev, view, proj);
-  return zs_frame_draw_scene(dev, scene, err);
-}
-
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err) {
@@ -94,9 +73,7 @@ zs_status zs_frame_render_normals(const zs_device_config *cfg, const zs_scene *s
 
 zs_status zs_frame_set_lights(zs_device *dev, const zs_scene *scene, const zs_light *lights,
                               int n, zs_error *err) {
-  if (n > 0) return zs_device_set_lights(dev, lights, n, err);
-  if (scene->nlights > 0) return zs_device_set_lights(dev, scene->lights, scene->nlights, err);
-  return ZS_OK;
+  return zs_frame_lights_and_shadows(dev, scene, lights, n, NULL, NULL, 1, NULL, err);
 }
 
 int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
@@ -115,7 +92,9 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, (int)o->filter};
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;
-  if (zs_frame_set_lights(dev, scene, o->lights, o->nlights, err)) {
+  zs_shadow_set maps = {0};
+  if (zs_frame_lights_and_shadows(dev, scene, o->lights, o->nlights, o->shadows, view,
+                                  o->threads, &maps, err)) {
     zs_device_destroy(dev);
     return err->code;
   }
@@ -124,5 +103,6 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
   if (st != ZS_OK) zs_image_free(out);
   zs_device_destroy(dev);
+  zs_shadow_set_free(&maps);
   return st;
 }

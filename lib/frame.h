@@ -7,6 +7,8 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "lib/image.h"
+#include "lib/scene_draw.h"
+#include "lib/shadow.h"
 #include "zscan/layer.h"
 
 #define ZS_BACKGROUND_RGB 0x1E2228u /* flat shading's background */
@@ -23,6 +25,7 @@ typedef struct zs_frame_opts {
   zs_filter filter; /* every texture's filter; 0: each material's */
   const zs_light *lights; /* NULL: the scene's, else the device's headlight */
   int nlights;
+  const zs_shadow_opts *shadows; /* NULL: no shadows (lib/shadow.h) */
 } zs_frame_opts;
 
 /* The lights of a frame: lights[0 .. n) when n > 0, else the scene's
@@ -68,13 +71,5 @@ zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error 
  * zs_layer_alloc). */
 zs_status zs_frame_finish_into(zs_device *dev, zs_image *out, float *depth, zs_layer *layer,
                                zs_error *err);
-
-/* Draws every instance of scene (no clear, no finish). */
-zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
-
-/* A new frame of everything from (view, proj): clears dev, sets its
- * camera and draws every instance of scene; the caller finishes it. */
-zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
-                            const double proj[16], zs_error *err);
 
 #endif

@@ -228,6 +228,52 @@ zs_status zs_device_set_lights(zs_device *d, const zs_light *lights, int n, zs_e
   }
   d->surf.lights_given = n > 0;
   d->surf.sets_stale = 1;
+  zs_surfaces_set_shadow_maps(&d->surf, NULL, 0); /* they were the old lights' */
+  return ZS_OK;
+}
+
+static int finite16(const double m[16]) {
+  for (int k = 0; k < 16; k++)
+    if (!isfinite(m[k])) return 0;
+  return 1;
+}
+
+zs_status zs_device_set_shadow_maps(zs_device *d, const zs_shadow_map *maps, int n,
+                                    zs_error *err) {
+  if (n < 0 || n > ZS_MAX_SHADOW_MAPS)
+    return zs_error_set(err, ZS_ERR_ARG, "shadow maps: %d maps: 0 to %d may be set", n,
+                        ZS_MAX_SHADOW_MAPS);
+  if (n > 0 && !maps) return zs_error_set(err, ZS_ERR_ARG, "shadow maps: NULL with n = %d", n);
+  if (n > 0 && d->cfg.shade != ZS_SHADE_AUTO && d->cfg.shade != ZS_SHADE_PHONG)
+    return zs_error_set(err, ZS_ERR_ARG, "shadow maps need the Phong shading (auto or phong), "
+                        "not %s", zs_shade_name(d->cfg.shade));
+  for (int j = 0; j < n; j++) {
+    const zs_shadow_map *m = &maps[j];
+    const int l = m->light;
+    if (l < 0 || l >= d->surf.nlights || !d->surf.lights_given ||
+        (d->surf.lights[l].kind != ZS_LIGHT_DIRECTIONAL && d->surf.lights[l].kind != ZS_LIGHT_SPOT))
+      return zs_error_set(err, ZS_ERR_ARG, "maps[%d].light: %d is not a directional or spot "
+                          "light of those set", j, l);
+    for (int i = 0; i < j; i++)
+      if (maps[i].light == l)
+        return zs_error_set(err, ZS_ERR_ARG, "maps[%d].light: light %d has maps[%d] already",
+                            j, l, i);
+    if (m->width < 1 || m->height < 1 || m->width > ZS_MAX_IMAGE_SIDE ||
+        m->height > ZS_MAX_IMAGE_SIDE)
+      return zs_error_set(err, ZS_ERR_ARG, "maps[%d]: %d x %d texels: 1 to %d a side", j,
+                          m->width, m->height, ZS_MAX_IMAGE_SIDE);
+    if (!m->depth) return zs_error_set(err, ZS_ERR_ARG, "maps[%d].depth: NULL", j);
+    if (!finite16(m->view) || !finite16(m->proj))
+      return zs_error_set(err, ZS_ERR_ARG, "maps[%d].%s: not finite", j,
+                          finite16(m->view) ? "proj" : "view");
+    if (!(m->bias_units >= 0.0 && m->bias_units <= 4294967296.0))
+      return zs_error_set(err, ZS_ERR_ARG, "maps[%d].bias_units: %g: 0 to 2^32", j,
+                          m->bias_units);
+    if (!(m->bias_slope >= 0.0 && m->bias_slope <= 1e6))
+      return zs_error_set(err, ZS_ERR_ARG, "maps[%d].bias_slope: %g: 0 to 1e6", j,
+                          m->bias_slope);
+  }
+  zs_surfaces_set_shadow_maps(&d->surf, maps, n);
   return ZS_OK;
 }
 

@@ -32,7 +32,7 @@ static void eye_dir(const double view[16], const double d[3], double out[3]) {
 }
 
 void zs_light_set_make(const zs_light *lights, int n, const double view[16], int perspective,
-                       zs_light_set *out) {
+                       const zs_shadow_map *maps, int nmaps, zs_light_set *out) {
   memset(out, 0, sizeof *out);
   out->perspective = perspective;
   for (int i = 0; i < n; i++) {
@@ -43,6 +43,9 @@ void zs_light_set_make(const zs_light *lights, int n, const double view[16], int
     }
     zs_eye_light *e = &out->light[out->n++];
     e->kind = l->kind;
+    e->shadow = -1;
+    for (int j = 0; j < nmaps; j++)
+      if (maps[j].light == i) e->shadow = j, out->shadowed++;
     memcpy(e->color, l->color, sizeof e->color);
     double dir[3], pos4[4];
     if (l->eye_space) {
@@ -77,7 +80,8 @@ static double power(double x, int k) {
 }
 
 void zs_light_at(const zs_light_set *ls, const zs_reflectance *r, const double p[3],
-                 const double n_in[3], const double base[3], double d[3], double s[3]) {
+                 const double n_in[3], const double base[3], const double *lit, double d[3],
+                 double s[3]) {
   double v[3], n[3];
   if (ls->perspective) {
     const double to_eye[3] = {-p[0], -p[1], -p[2]};
@@ -108,6 +112,10 @@ void zs_light_at(const zs_light_set *ls, const zs_reflectance *r, const double p
         f = f * cone;
       }
       for (int k = 0; k < 3; k++) radiance[k] = radiance[k] * f;
+    }
+    if (lit) {
+      if (!(lit[i] > 0.0)) continue;
+      for (int k = 0; k < 3; k++) radiance[k] = radiance[k] * lit[i];
     }
     const double ndl = dot3(n, l);
     if (!(ndl > 0.0)) continue;

@@ -25,6 +25,7 @@ typedef struct zs_eye_light {
   double to_light[3];  /* directional: unit, towards the light */
   double axis[3];      /* spot: unit, the way it shines */
   double cos_inner, cos_outer;
+  int shadow;          /* its shadow map's index, -1: none */
 } zs_eye_light;
 
 typedef struct zs_light_set {
@@ -32,12 +33,14 @@ typedef struct zs_light_set {
   int n;
   double ambient[3];   /* the ambient lights' sum */
   int perspective;     /* the view vector is towards the eye point (else +z) */
+  int shadowed;        /* lights with a shadow map */
 } zs_light_set;
 
 /* The lights in the eye space of view; a light marked eye_space is taken
- * as it is. */
+ * as it is.  maps[0 .. nmaps) are the shadow maps, by the index of the
+ * light each belongs to. */
 void zs_light_set_make(const zs_light *lights, int n, const double view[16], int perspective,
-                       zs_light_set *out);
+                       const zs_shadow_map *maps, int nmaps, zs_light_set *out);
 
 /* What a surface reflects, linear, 0 .. 1 a channel (specular may be 0). */
 typedef struct zs_reflectance {
@@ -50,8 +53,11 @@ typedef struct zs_reflectance {
  * a surface of linear base colour base, split in diffuse (d: emissive +
  * base times the ambient and diffuse light) and specular (s) parts, as
  * OpenGL's separate specular colour keeps them, so that a texture can
- * modulate d alone.  A normal of zero length is the direction to the eye. */
+ * modulate d alone.  A normal of zero length is the direction to the eye.
+ * lit, when not NULL, weights light i's r_l (a shadow's fraction, 0 .. 1);
+ * NULL: every light whole. */
 void zs_light_at(const zs_light_set *ls, const zs_reflectance *r, const double p[3],
-                 const double n[3], const double base[3], double d[3], double s[3]);
+                 const double n[3], const double base[3], const double *lit, double d[3],
+                 double s[3]);
 
 #endif

@@ -42,7 +42,7 @@ void zs_surfaces_init(zs_surfaces *s, int width, int height, zs_filter filter) {
 static void cache_empty(void *cache);
 
 void zs_surfaces_clear(zs_surfaces *s) {
-  s->ndraws = s->nrecs = s->nsets = 0;
+  s->ndraws = s->nrecs = s->nsets = s->nshadow_mvp = 0;
   s->sets_stale = 1;
   for (int i = 0; i < ZS_SURFACE_SLOTS; i++) /* the records' numbers start again */
     if (s->cache[i]) cache_empty(s->cache[i]);
@@ -54,7 +54,19 @@ void zs_surfaces_set_normals_out(zs_surfaces *s, int on) {
     if (s->cache[i]) cache_empty(s->cache[i]);
 }
 
+void zs_surfaces_set_shadow_maps(zs_surfaces *s, const zs_shadow_map *maps, int n) {
+  s->nshadows = n;
+  for (int j = 0; j < n; j++) {
+    s->shadows[j] = maps[j];
+    zs_mat_mul(s->shadow_vp[j], maps[j].proj, maps[j].view);
+  }
+  s->sets_stale = 1;
+  for (int i = 0; i < ZS_SURFACE_SLOTS; i++)
+    if (s->cache[i]) cache_empty(s->cache[i]);
+}
+
 void zs_surfaces_free(zs_surfaces *s) {
+  free(s->shadow_mvp);
   free(s->draws);
   free(s->recs);
   free(s->sets);
@@ -86,12 +98,13 @@ static void normal_matrix(const double mv[16], double n[9]) {
 }
 
 int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double view[16],
-                            const double mv[16], const double mvp[16], int perspective,
-                            uint32_t rgb, zs_shade shade) {
+                            const double model[16], const double mv[16], const double mvp[16],
+                            int perspective, uint32_t rgb, zs_shade shade) {
   if (s->sets_stale || s->nsets == 0) {
     if (!zs_grow((void **)&s->sets, &s->cap_sets, (int64_t)s->nsets + 1, sizeof *s->sets))
       return -1;
-    zs_light_set_make(s->lights, s->nlights, view, perspective, &s->sets[s->nsets++]);
+    zs_light_set_make(s->lights, s->nlights, view, perspective, s->shadows, s->nshadows,
+                      &s->sets[s->nsets++]);
     s->sets_stale = 0;
   }
   if (!zs_grow((void **)&s->draws, &s->cap_draws, (int64_t)s->ndraws + 1, sizeof *s->draws))
@@ -104,6 +117,18 @@ int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double vi
   d->rgb = rgb;
   d->shade = shade == ZS_SHADE_AUTO ? ZS_SHADE_PHONG : shade;
   d->lights = s->nsets - 1;
+  d->shadow_at = -1;
+  if (s->nshadows > 0 && d->shade == ZS_SHADE_PHONG) {
+    if (!zs_grow((void **)&s->shadow_mvp, &s->cap_shadow_mvp,
+                 (int64_t)s->nshadow_mvp + s->nshadows, sizeof *s->shadow_mvp))
+      return -1;
+    d->shadow_at = s->nshadow_mvp;
+    for (int j = 0; j < s->nshadows; j++) {
+      double *m = s->shadow_mvp[s->nshadow_mvp++];
+      if (model) zs_mat_mul(m, s->shadow_vp[j], model);
+      else memcpy(m, s->shadow_vp[j], sizeof s->shadow_vp[j]);
+    }
+  }
   return s->ndraws++;
 }
 
@@ -113,6 +138,7 @@ size_t zs_surfaces_bytes(const zs_surfaces *s) {
   size_t caches = 0;
   for (int i = 0; i < ZS_SURFACE_SLOTS; i++) caches += s->cache[i] ? cache_bytes() : 0;
   return (size_t)s->cap_draws * sizeof *s->draws + (size_t)s->cap_recs * sizeof *s->recs +
+         (size_t)s->cap_shadow_mvp * sizeof *s->shadow_mvp +
          (size_t)s->cap_sets * sizeof *s->sets + caches;
 }
 
@@ -136,6 +162,14 @@ struct tri {
   int mipmapped;                 /* the filter needs the level of detail */
   zs_reflectance refl;
   const zs_light_set *lights;
+  /* Phong under shadow maps: for each shadowed light k, its index in the
+   * light set, its map, the corners' clip coordinates in the map's camera
+   * and the triangle's depth bias there */
+  int nshadowed;
+  int32_t sh_light[ZS_MAX_SHADOW_MAPS];
+  const zs_shadow_map *sh_map[ZS_MAX_SHADOW_MAPS];
+  double sh_clip[ZS_MAX_SHADOW_MAPS][3][4];
+  int64_t sh_bias[ZS_MAX_SHADOW_MAPS];
 };
 
 /* v rounded to an integer, within +-2^62: a slope beyond the box's
@@ -334,11 +368,73 @@ static inline void unit_normal_at(const tri *t, const int64_t b[3], double u[3])
   for (int k = 0; k < 3; k++) u[k] = len > 0.0 ? u[k] / len : 0.0;
 }
 
+/* ---- shadows (zscan.h, zs_shadow_map) ---- */
+
+#define DEPTH_ONE 4294967296.0 /* window depth 1 in the device's units */
+
+/* A light-space clip position's window x, y, z in map m (z in depth
+ * units), as the device maps its clip coordinates; 0 when w <= 0. */
+static inline int map_window(const zs_shadow_map *m, const double c[4], double out[3]) {
+  const double w = c[3];
+  if (!(w > 0.0)) return 0;
+  out[0] = (c[0] + w) * (0.5 * m->width) / w;
+  out[1] = (w - c[1]) * (0.5 * m->height) / w;
+  out[2] = (c[2] + w) * (0.5 * DEPTH_ONE) / w;
+  return 1;
+}
+
+/* The triangle's bias in map m from its corners' clip coordinates c:
+ * units + slope (|dz/dx| + |dz/dy|), rounded down (zscan.h);
+ * units alone where a corner lies behind the light, 2^32 where the
+ * triangle is edge-on to it. */
+static int64_t shadow_bias(const zs_shadow_map *m, const double c[3][4]) {
+  double v[3][3];
+  for (int i = 0; i < 3; i++)
+    if (!map_window(m, c[i], v[i])) return (int64_t)m->bias_units;
+  const double a[3] = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
+  const double b[3] = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
+  const double nx = a[1] * b[2] - a[2] * b[1], ny = a[2] * b[0] - a[0] * b[2],
+               nz = a[0] * b[1] - a[1] * b[0];
+  if (!(nz != 0.0)) return (int64_t)DEPTH_ONE;
+  const double bias = m->bias_units + m->bias_slope * (fabs(nx / nz) + fabs(ny / nz));
+  return bias < DEPTH_ONE ? (int64_t)bias : (int64_t)DEPTH_ONE;
+}
+
+/* Of the 3 x 3 texels about the one a receiver at clip position c falls
+ * in, those that light it (zscan.h, zs_shadow_map): 0 .. 9. */
+static inline int shadow_lit(const zs_shadow_map *m, const double c[4], int64_t bias) {
+  double v[3];
+  if (!map_window(m, c, v)) return 9;
+  if (!(v[0] > -2.0 && v[0] < m->width + 2.0 && v[1] > -2.0 && v[1] < m->height + 2.0))
+    return 9; /* off the map, every tap with it (and NaN) */
+  const int64_t r = (v[2] > 0.0 ? v[2] < DEPTH_ONE ? (int64_t)v[2] : (int64_t)DEPTH_ONE : 0) - bias;
+  const int tx = (int)floor(v[0]), ty = (int)floor(v[1]);
+  int lit = 0;
+  for (int y = ty - 1; y <= ty + 1; y++)
+    for (int x = tx - 1; x <= tx + 1; x++)
+      lit += x < 0 || y < 0 || x >= m->width || y >= m->height ||
+             r <= (int64_t)m->depth[(size_t)y * (size_t)m->width + (size_t)x];
+  return lit;
+}
+
+/* Each light's share of the pixel of weights b into lit (1: no map). */
+static inline void shadows_at(const tri *t, const int64_t b[3], double *lit) {
+  for (int e = 0; e < t->lights->n; e++) lit[e] = 1.0;
+  for (int k = 0; k < t->nshadowed; k++) {
+    const double (*c)[4] = t->sh_clip[k];
+    double p[4];
+    for (int j = 0; j < 4; j++)
+      p[j] = ((double)b[0] * c[0][j] + (double)b[1] * c[1][j] + (double)b[2] * c[2][j]) * 0x1p-24;
+    lit[t->sh_light[k]] = shadow_lit(t->sh_map[k], p, t->sh_bias[k]) / 9.0;
+  }
+}
+
 /* The pixels [x0, x1) of row y, one loop per shading and texturing; the
  * constants fold each copy's branches away. */
 __attribute__((always_inline)) static inline void shade_run(const tri *t, int y, int x0, int x1,
                                                             uint32_t *out, const zs_shade sh,
-                                                            const int textured) {
+                                                            const int textured,
+                                                            const int shadowed) {
   int64_t raw[3];
   planes_at(t, x0, y, raw);
   for (int x = x0; x < x1; x++, raw[0] += t->A[0], raw[1] += t->A[1], raw[2] += t->A[2]) {
@@ -371,7 +467,9 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
         if (textured) c = (c * zs_srgb_to_linear16[tx[k]] + 32767) / 65535;
         base[k] = (double)c / 65535.0;
       }
-      zs_light_at(t->lights, &t->refl, p, n, base, d, s);
+      double lit[ZS_MAX_LIGHTS];
+      if (shadowed) shadows_at(t, b, lit);
+      zs_light_at(t->lights, &t->refl, p, n, base, shadowed ? lit : NULL, d, s);
       out[x] = rgb_of(zs_linear16_to_srgb(to16(d[0] + s[0])), zs_linear16_to_srgb(to16(d[1] + s[1])),
                       zs_linear16_to_srgb(to16(d[2] + s[2])));
     } else { /* ZS_SHADE_NORMAL */
@@ -387,25 +485,29 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
   }
 }
 
-#define RUN(name, sh, tex)                                                    \
+#define RUN(name, sh, tex, shadowed)                                          \
   static void name(const tri *t, int y, int x0, int x1, uint32_t *out) {      \
-    shade_run(t, y, x0, x1, out, sh, tex);                                   \
+    shade_run(t, y, x0, x1, out, sh, tex, shadowed);                         \
   }
-RUN(run_unlit, ZS_SHADE_UNLIT, 0)
-RUN(run_unlit_tex, ZS_SHADE_UNLIT, 1)
-RUN(run_gouraud, ZS_SHADE_GOURAUD, 0)
-RUN(run_gouraud_tex, ZS_SHADE_GOURAUD, 1)
-RUN(run_phong, ZS_SHADE_PHONG, 0)
-RUN(run_phong_tex, ZS_SHADE_PHONG, 1)
-RUN(run_normal, ZS_SHADE_NORMAL, 0)
+RUN(run_unlit, ZS_SHADE_UNLIT, 0, 0)
+RUN(run_unlit_tex, ZS_SHADE_UNLIT, 1, 0)
+RUN(run_gouraud, ZS_SHADE_GOURAUD, 0, 0)
+RUN(run_gouraud_tex, ZS_SHADE_GOURAUD, 1, 0)
+RUN(run_phong, ZS_SHADE_PHONG, 0, 0)
+RUN(run_phong_tex, ZS_SHADE_PHONG, 1, 0)
+RUN(run_phong_shadowed, ZS_SHADE_PHONG, 0, 1)
+RUN(run_phong_tex_shadowed, ZS_SHADE_PHONG, 1, 1)
+RUN(run_normal, ZS_SHADE_NORMAL, 0, 0)
 #undef RUN
 
-static run_fn run_for(zs_shade sh, int textured) {
+static run_fn run_for(zs_shade sh, int textured, int shadowed) {
   switch (sh) {
     case ZS_SHADE_UNLIT: return textured ? run_unlit_tex : run_unlit;
     case ZS_SHADE_GOURAUD: return textured ? run_gouraud_tex : run_gouraud;
     case ZS_SHADE_NORMAL: return run_normal;
-    default: return textured ? run_phong_tex : run_phong;
+    default:
+      if (shadowed) return textured ? run_phong_tex_shadowed : run_phong_shadowed;
+      return textured ? run_phong_tex : run_phong;
   }
 }
 
@@ -450,8 +552,9 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   const int lit = dr->shade == ZS_SHADE_GOURAUD || dr->shade == ZS_SHADE_PHONG;
   const int normals = dr->shade != ZS_SHADE_UNLIT || s->normals_out;
   double clip[3][4];
+  const double *pos3[3];
   for (int i = 0; i < 3; i++) {
-    const double *pos = &m->pos[3 * (size_t)m->face_vert[r->corner[i]]];
+    const double *pos = pos3[i] = &m->pos[3 * (size_t)m->face_vert[r->corner[i]]];
     double e[4];
     zs_mat_apply(dr->mvp, pos, clip[i]);
     if (normals) {
@@ -491,6 +594,19 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
     }
     t->lights = &s->sets[dr->lights];
   }
+  /* the shadowed lights: the corners in each one's map, and the bias */
+  t->nshadowed = 0;
+  if (dr->shade == ZS_SHADE_PHONG && dr->shadow_at >= 0)
+    for (int e = 0; e < t->lights->n; e++) {
+      const int j = t->lights->light[e].shadow;
+      if (j < 0) continue;
+      const int k = t->nshadowed++;
+      t->sh_light[k] = e;
+      t->sh_map[k] = &s->shadows[j];
+      for (int i = 0; i < 3; i++)
+        zs_mat_apply(s->shadow_mvp[dr->shadow_at + j], pos3[i], t->sh_clip[k][i]);
+      t->sh_bias[k] = shadow_bias(t->sh_map[k], t->sh_clip[k]);
+    }
 
   double nrm[3][3];
   for (int i = 0; i < 3; i++) {
@@ -539,14 +655,14 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
     for (int i = 0; i < 3; i++) {
       double base[3], d[3], sp[3];
       for (int k = 0; k < 3; k++) base[k] = t->col[i][k] / 65535.0;
-      zs_light_at(t->lights, &t->refl, t->p[i], nrm[i], base, d, sp);
+      zs_light_at(t->lights, &t->refl, t->p[i], nrm[i], base, NULL, d, sp);
       for (int k = 0; k < 3; k++) {
         t->d16[i][k] = (int32_t)to16(d[k]);
         t->s16[i][k] = (int32_t)to16(sp[k]);
       }
     }
   }
-  t->run = run_for(dr->shade, textured);
+  t->run = run_for(dr->shade, textured, t->nshadowed > 0);
 }
 
 static void cache_empty(void *cache) {

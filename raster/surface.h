@@ -57,6 +57,7 @@ typedef struct zs_surface_draw {
   uint32_t rgb;      /* ZS_RGB_MESH, or the colour of every face */
   zs_shade shade;    /* UNLIT, GOURAUD, PHONG or NORMAL */
   int32_t lights;    /* the light set it was drawn under */
+  int32_t shadow_at; /* its first matrix in zs_surfaces.shadow_mvp, -1: none */
 } zs_surface_draw;
 
 typedef struct zs_surface_rec {
@@ -79,6 +80,12 @@ typedef struct zs_surfaces {
   int width, height;
   zs_filter filter;    /* the device's override, or ZS_FILTER_DEFAULT */
   int normals_out;     /* every shading prepares normals: the rows' are read */
+  zs_shadow_map shadows[ZS_MAX_SHADOW_MAPS]; /* the device's, checked */
+  double shadow_vp[ZS_MAX_SHADOW_MAPS][16];  /* each map's proj x view */
+  int nshadows;
+  double (*shadow_mvp)[16]; /* a draw's nshadows matrices from its shadow_at:
+                       * each map's proj x view x the draw's model */
+  int32_t nshadow_mvp, cap_shadow_mvp;
   void *cache[ZS_SURFACE_SLOTS]; /* prepared triangles, one cache for each
                        * thread that shades rows (surface.c) */
 } zs_surfaces;
@@ -93,11 +100,15 @@ size_t zs_surfaces_bytes(const zs_surfaces *s);
  * mesh has any, or lights were given: a lit scene lights every mesh). */
 int zs_surface_reads(const zs_surfaces *s, zs_shade shade, const zs_mesh *mesh);
 
-/* Notes a draw (its matrices and the lights in force under view);
- * returns its number, -1 when out of memory. */
+/* Notes a draw (its matrices and the lights in force under view; model
+ * NULL: the identity); returns its number, -1 when out of memory. */
 int32_t zs_surface_add_draw(zs_surfaces *s, const zs_mesh *mesh, const double view[16],
-                            const double mv[16], const double mvp[16], int perspective,
-                            uint32_t rgb, zs_shade shade);
+                            const double model[16], const double mv[16], const double mvp[16],
+                            int perspective, uint32_t rgb, zs_shade shade);
+
+/* The shadow maps of the draws from the next on (checked by the device:
+ * zscan.h, zs_device_set_shadow_maps). */
+void zs_surfaces_set_shadow_maps(zs_surfaces *s, const zs_shadow_map *maps, int n);
 
 /* Notes a triangle; returns its record's number, -1 when out of memory. */
 static inline int32_t zs_surface_add_rec(zs_surfaces *s, int32_t draw, int32_t face,

@@ -827,7 +827,7 @@ static zs_status read_camera(reader *r, const cJSON *obj, zs_scene *s) {
  * "intensity". */
 static zs_status read_light(reader *r, const cJSON *obj, zs_light *l) {
   static const char *const keys[] = {"type",  "color", "intensity", "position", "direction",
-                                     "inner", "outer", "eye_space", NULL};
+                                     "inner", "outer", "eye_space", "shadow", NULL};
   static const char *const kinds[] = {"directional", "point", "spot", "ambient"};
   if (!cJSON_IsObject(obj)) return fail(r, ZS_ERR_PARSE, "expected object");
   zs_status st = check_object(r, obj, keys);
@@ -848,6 +848,7 @@ static zs_status read_light(reader *r, const cJSON *obj, zs_light *l) {
   if (st == ZS_OK) st = get_number(r, obj, "inner", kind == ZS_LIGHT_SPOT, &l->inner_deg, NULL);
   if (st == ZS_OK) st = get_number(r, obj, "outer", kind == ZS_LIGHT_SPOT, &l->outer_deg, NULL);
   if (st == ZS_OK) st = get_bool(r, obj, "eye_space", &eye);
+  if (st == ZS_OK) st = get_bool(r, obj, "shadow", &l->shadow);
   if (st != ZS_OK) return st;
   l->kind = (zs_light_kind)kind;
   l->eye_space = eye;

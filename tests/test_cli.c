@@ -133,6 +133,15 @@ static const bad_option bad_options[] = {
     {{"render", "--algo", "painter", NULL}, "--algo: expected zbuffer, scanline or depthsort", 2},
     {{"render", "--style", "sketch", NULL}, "--style: expected solid or hidden-line", 2},
     {{"render", "--overlay", "culling", NULL}, "--overlay culling needs --cull METHOD", 2},
+    {{"render", "--shadows", "--shade", "gouraud", NULL},
+     "--shadows needs --shade auto or phong (lit at each pixel), not gouraud", 2},
+    {{"render", "--shadows", "--style", "hidden-line", NULL},
+     "--shadows: the hidden-line style draws no light", 2},
+    {{"render", "--shadow-size", "8", NULL}, "--shadow-size: 8 is outside 16 .. 8192", 2},
+    {{"render", "--shadow-bias", "1", NULL},
+     "--shadow-bias: expected UNITS,SLOPE (two finite numbers), got '1'", 2},
+    {{"render", "--shadow-bias", "-1,2", NULL},
+     "--shadow-bias: -1,2: UNITS 0 to 4294967296 (2^32), SLOPE 0 to 1000000", 2},
     {{"render", "--cull", "magic", NULL}, "--cull: unknown method 'magic'", 2},
     {{"render", "--cull", "chc", "--algo", "scanline", NULL}, "--cull needs --algo zbuffer", 2},
     {{"render", "--style", "hidden-line", "--algo", "scanline", NULL},
@@ -1301,13 +1310,17 @@ END_TEST
 
 /* rgbα+z layers: a scene drawn in three parts, each into a layer from the
  * whole scene's camera, composites to the frame of the whole, byte for
- * byte, in both modes, flat and Phong-lit, on 1 and 2 threads. */
+ * byte, in both modes, flat and Phong-lit, with shadows, on 1 and 2
+ * threads. */
 START_TEST(composite_of_parts_is_the_whole) {
   static const char *const scenes[] = {"builtin:teapots,count=9", "builtin:city",
                                        "builtin:default", "builtin:spheres,count=40"};
-  static const char *const modes[][3] = {
-      {"zbuffer", "flat", "1"}, {"scanline", "phong", "2"}, {"zbuffer", "phong", "2"},
-      {"scanline", "flat", "1"}};
+  /* the shadow maps are drawn of the whole scene: a part shows the
+   * shadows the others cast on it */
+  static const char *const modes[][4] = {
+      {"zbuffer", "flat", "1", "-q"}, {"scanline", "phong", "2", "-q"},
+      {"zbuffer", "phong", "2", "-q"}, {"scanline", "flat", "1", "-q"},
+      {"scanline", "auto", "2", "--shadows"}};
   char whole[4096], comp[4096], layer[3][4096];
   snprintf(whole, sizeof whole, "%s/cli-whole.png", ZS_BINARY_DIR);
   snprintf(comp, sizeof comp, "%s/cli-composite.png", ZS_BINARY_DIR);
@@ -1315,7 +1328,8 @@ START_TEST(composite_of_parts_is_the_whole) {
   for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++)
     for (size_t m = 0; m < sizeof modes / sizeof modes[0]; m++) {
       const char *w[] = {"render", scenes[i], "--size", "96x72", "--algo", modes[m][0], "--shade",
-                         modes[m][1], "--threads", modes[m][2], "-o", whole, "--stats", NULL};
+                         modes[m][1], "--threads", modes[m][2], modes[m][3], "-o", whole,
+                         "--stats", NULL};
       ck_assert_msg(zs_test_run_zscan(w, out, sizeof out, err, sizeof err) == 0, "%s", err);
       const int n = (int)json_int(out, "objects");
       ck_assert_int_ge(n, 3);
@@ -1323,8 +1337,8 @@ START_TEST(composite_of_parts_is_the_whole) {
         char range[64];
         snprintf(range, sizeof range, "%d-%d", n * k / 3, n * (k + 1) / 3 - 1);
         const char *p[] = {"render", scenes[i], "--size", "96x72", "--algo", modes[m][0],
-                           "--shade", modes[m][1], "--threads", modes[m][2], "--objects", range,
-                           "--layer", layer[k], "-o", comp, "-q", NULL};
+                           "--shade", modes[m][1], "--threads", modes[m][2], modes[m][3],
+                           "--objects", range, "--layer", layer[k], "-o", comp, "-q", NULL};
         ck_assert_msg(zs_test_run_zscan(p, out, sizeof out, err, sizeof err) == 0, "%s", err);
       }
       unlink(comp);

@@ -1002,6 +1002,7 @@ static const bad_scene bad_scenes[] = {
     {"light_color_negative.json", ": lights[0].color: expected finite values >= 0"},
     {"light_direction_zero.json", ": lights[0].direction: expected a finite, non-zero vector"},
     {"light_key.json", ": lights[0].colour: unknown key"},
+    {"light_point_shadow.json", ": lights[0].shadow: only directional and spot lights cast shadows"},
     {"light_spot_angles.json",
      ": lights[0].inner: a spot's angles need 0 < inner_deg <= outer_deg < 90, got 40 and 30"},
     {"light_type.json",

@@ -135,9 +135,9 @@ static uint64_t render(const zs_mesh *mesh, zs_algo algo, zs_shade shade, int th
   zs_mat_perspective(proj, 50, (double)W / H, 0.5, 20);
   zs_device_set_camera(d, view, proj);
   const zs_light lights[3] = {
-      {ZS_LIGHT_DIRECTIONAL, {0.8, 0.8, 0.7}, {0, 0, 0}, {-0.5, -1, -0.3}, 0, 0, 0},
-      {ZS_LIGHT_SPOT, {6, 5, 5}, {1.5, 2.5, 1.5}, {-1.5, -2.5, -1.5}, 15, 30, 0},
-      {ZS_LIGHT_AMBIENT, {0.08, 0.08, 0.1}, {0, 0, 0}, {0, 0, 0}, 0, 0, 0}};
+      {ZS_LIGHT_DIRECTIONAL, {0.8, 0.8, 0.7}, {0, 0, 0}, {-0.5, -1, -0.3}, 0, 0, 0, 0},
+      {ZS_LIGHT_SPOT, {6, 5, 5}, {1.5, 2.5, 1.5}, {-1.5, -2.5, -1.5}, 15, 30, 0, 0},
+      {ZS_LIGHT_AMBIENT, {0.08, 0.08, 0.1}, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}};
   ck_assert_int_eq(zs_device_set_lights(d, lights, 3, &err), ZS_OK);
   zs_device_clear(d);
   for (int p = 0; p < parts; p++) {
@@ -332,8 +332,8 @@ START_TEST(lighting_follows_its_formula) {
   double s60, c60;
   zs_sincos_deg(60.0, &s60, &c60);
   const zs_light lights[2] = {
-      {ZS_LIGHT_DIRECTIONAL, {0.9, 0.8, 0.7}, {0, 0, 0}, {0, -s60, -c60}, 0, 0, 1},
-      {ZS_LIGHT_AMBIENT, {0.05, 0.05, 0.05}, {0, 0, 0}, {0, 0, 0}, 0, 0, 0}};
+      {ZS_LIGHT_DIRECTIONAL, {0.9, 0.8, 0.7}, {0, 0, 0}, {0, -s60, -c60}, 0, 0, 1, 0},
+      {ZS_LIGHT_AMBIENT, {0.05, 0.05, 0.05}, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}};
   /* l = (0, s60, c60), v = (0, 0, 1) (parallel projection), n = (0, 0, 1) */
   const double ndl = c60, hl = sqrt(s60 * s60 + (c60 + 1) * (c60 + 1)), ndh = (c60 + 1) / hl;
   const zs_shade sh[2] = {ZS_SHADE_PHONG, ZS_SHADE_GOURAUD};
@@ -385,7 +385,7 @@ END_TEST
 START_TEST(bad_lights_refused) {
   zs_device *d = NULL;
   ck_assert_int_eq(zs_device_create(NULL, &d, &err), ZS_OK);
-  zs_light l = {ZS_LIGHT_SPOT, {1, 1, 1}, {0, 0, 0}, {0, 0, -1}, 40, 30, 0};
+  zs_light l = {ZS_LIGHT_SPOT, {1, 1, 1}, {0, 0, 0}, {0, 0, -1}, 40, 30, 0, 0};
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_set_lights(d, &l, 1, &err), ZS_ERR_ARG);
   ck_assert_str_eq(err.msg, "lights[0]: a spot's angles need 0 < inner_deg <= outer_deg < 90, "

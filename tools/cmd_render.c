@@ -47,6 +47,12 @@ static const char usage_tail[] =
     "                      shines), point:X,Y,Z, spot:X,Y,Z:DX,DY,DZ:INNER,OUTER,\n"
     "                      each with :R,G,B (linear, default 1,1,1), or\n"
     "                      ambient:R,G,B\n"
+    "  --shadows           every directional and spot light casts shadows (a scene\n"
+    "                      without lights gets a key light from the upper left)\n"
+    "  --shadow-size N     each shadow map's side, 16 to 8192 texels (default 1024)\n"
+    "  --shadow-bias U,S   the maps' depth bias: U depth units (2^-32 of the light's\n"
+    "                      depth range) plus S times the surface's depth slope per\n"
+    "                      texel (default 4096,2)\n"
     "  --style solid|hidden-line   faces (default), or the visible edges of front faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --normals FILE.pfm  also write the eye-space unit normals (x, y, z a pixel;\n"
@@ -102,6 +108,11 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
                         "and phong do)", zs_shade_name(o->shade));
   if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG, "--style hidden-line needs --algo zbuffer and --shade auto or flat");
+  if (o->shadows && !(o->shade == ZS_SHADE_AUTO || o->shade == ZS_SHADE_PHONG))
+    return zs_error_set(err, ZS_ERR_ARG, "--shadows needs --shade auto or phong (lit at each "
+                        "pixel), not %s", zs_shade_name(o->shade));
+  if (o->shadows && o->hidden_line)
+    return zs_error_set(err, ZS_ERR_ARG, "--shadows: the hidden-line style draws no light");
   if (o->overlay && o->cull < 0)
     return zs_error_set(err, ZS_ERR_ARG, "--overlay culling needs --cull METHOD");
   if (o->cull >= 0 && (o->algo != ZS_ALGO_ZBUFFER || o->hidden_line))
@@ -242,6 +253,21 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
         return zs_error_set(err, ZS_ERR_ARG, "--light: at most %d lights", ZS_MAX_LIGHTS);
       if (zs_cli_light("--light", v, &o->lights[o->nlights], err)) return err->code;
       o->nlights++;
+    } else if (strcmp(a, "--shadows") == 0) {
+      o->shadows = 1;
+    } else if (strcmp(a, "--shadow-size") == 0) {
+      if (zs_cli_int_value(argc, argv, &i, ZS_SHADOW_MIN_SIZE, ZS_SHADOW_MAX_SIZE, &o->shadow_size,
+                           err))
+        return err->code;
+    } else if (strcmp(a, "--shadow-bias") == 0) {
+      VALUE();
+      if (zs_cli_numbers(a, v, 2, "UNITS,SLOPE (two finite numbers)", o->shadow_bias, err))
+        return err->code;
+      if (!(o->shadow_bias[0] >= 0 && o->shadow_bias[0] <= 4294967296.0 &&
+            o->shadow_bias[1] >= 0 && o->shadow_bias[1] <= 1e6))
+        return zs_error_set(err, ZS_ERR_ARG, "--shadow-bias: %s: UNITS 0 to 4294967296 (2^32), "
+                            "SLOPE 0 to 1000000", v);
+      o->has_shadow_bias = 1;
     } else if (strcmp(a, "--simd") == 0) {
       VALUE();
       static const char *const levels[] = {"best", "scalar", "sse2", "avx2", "avx512"};
@@ -509,7 +535,7 @@ static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs
 static zs_status painter_error(const zs_cmd_render_opts *o, const zs_scene *model,
                                int64_t *diff_pixels, zs_error *err) {
   zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
-                       o->view.cull_back, 1, 0, 0, NULL, 0};
+                       o->view.cull_back, 1, 0, 0, NULL, 0, NULL};
   zs_frame_opts mine = ref;
   mine.algo = ZS_ALGO_DEPTHSORT;
   zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
@@ -564,6 +590,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   int have_tree = 0;
   zs_image im = {0, 0, NULL};
   zs_layer layer = {0};
+  zs_shadow_set shadows = {0};
   float *depth = NULL, *normals = NULL;
   double *times = NULL;
   double view[16], proj[16];
@@ -575,12 +602,19 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     print_camera_options(stderr, &used);
     fputc('\n', stderr);
   }
-  /* the camera is the whole scene's: a part's frame composites with the others' */
-  if (o->nparts && (st = keep_objects(o, &model, err))) goto done;
   zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
                           o->view.cull_back, o->threads, o->background, o->spans, o->filter};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
-  if ((st = zs_frame_set_lights(dev, &model, o->lights, o->nlights, err))) goto done;
+  const zs_shadow_opts so = {o->shadows, o->shadow_size,
+                             o->has_shadow_bias ? o->shadow_bias[0] : ZS_SHADOW_BIAS_UNITS,
+                             o->has_shadow_bias ? o->shadow_bias[1] : ZS_SHADOW_BIAS_SLOPE};
+  /* the shadow maps see the whole scene, so that a part's frame shows the
+   * shadows the other parts cast on it */
+  if ((st = zs_frame_lights_and_shadows(dev, &model, o->lights, o->nlights, &so, view,
+                                        o->threads, &shadows, err)))
+    goto done;
+  /* the camera is the whole scene's: a part's frame composites with the others' */
+  if (o->nparts && (st = keep_objects(o, &model, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
   zs_device_keep_line_runs(dev, o->svg && !keep);
   if ((st = zs_image_alloc(&im, o->view.width, o->view.height, err))) goto done;
@@ -678,6 +712,7 @@ done:
   free(depth);
   free(normals);
   zs_layer_free(&layer);
+  zs_shadow_set_free(&shadows);
   zs_image_free(&im);
   zs_device_destroy(dev);
   zs_scene_free(&model);

@@ -30,6 +30,10 @@ typedef struct zs_cmd_render_opts {
   zs_span_fill spans;  /* --simd: the widest span fill and vertex stage */
   zs_light lights[ZS_MAX_LIGHTS]; /* --light, in the order given */
   int nlights;
+  int shadows;         /* --shadows: every directional and spot light casts them */
+  int shadow_size;     /* --shadow-size: texels a side; 0: the default */
+  int has_shadow_bias; /* --shadow-bias UNITS,SLOPE */
+  double shadow_bias[2];
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
   int skip_missing_textures; /* --skip-missing-textures */
   zs_query_bounds bounds;

@@ -30,6 +30,9 @@ zs_status zs_lights_check(const zs_light *lights, int n, zs_error *err) {
         !(l->inner_deg > 0 && l->inner_deg <= l->outer_deg && l->outer_deg < 90))
       return zs_error_set(err, ZS_ERR_ARG, "lights[%d]: a spot's angles need 0 < inner_deg <= "
                           "outer_deg < 90, got %g and %g", i, l->inner_deg, l->outer_deg);
+    if (l->shadow && l->kind != ZS_LIGHT_DIRECTIONAL && l->kind != ZS_LIGHT_SPOT)
+      return zs_error_set(err, ZS_ERR_ARG, "lights[%d].shadow: only directional and spot "
+                          "lights cast shadows", i);
   }
   return ZS_OK;
 }
@@ -45,3 +48,17 @@ int zs_lights_default(zs_light out[ZS_MAX_LIGHTS]) {
   return 2;
 }
 
+
+int zs_lights_key(zs_light out[2]) {
+  memset(out, 0, 2 * sizeof *out);
+  out[0].kind = ZS_LIGHT_DIRECTIONAL;
+  out[0].color[0] = out[0].color[1] = out[0].color[2] = 0.8;
+  out[0].direction[0] = 1.0;
+  out[0].direction[1] = -2.0;
+  out[0].direction[2] = -1.0;
+  out[0].eye_space = 1;
+  out[0].shadow = 1;
+  out[1].kind = ZS_LIGHT_AMBIENT;
+  out[1].color[0] = out[1].color[1] = out[1].color[2] = 0.2;
+  return 2;
+}

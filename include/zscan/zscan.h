@@ -44,6 +44,9 @@
  *   zs_render_opts.znear, .zfar       0: from the scene's bounds
  *   zs_render_opts.filter             0: each material's own texture filter
  *   zs_render_opts.lights, .nlights   NULL: the scene's lights, else the headlight
+ *   zs_render_opts.shadows            0: only lights marked shadow cast them
+ *   zs_render_opts.shadow_size        0: maps of 1024 x 1024 texels
+ *   zs_render_opts.has_shadow_bias    0: ZS_SHADOW_BIAS_UNITS, _SLOPE
  *   zs_load_opts.allow_empty          0: a model without faces is an error
  *   zs_load_opts.skip_missing_textures  0: a texture that cannot be opened
  *                                     is an error; else the material is drawn
@@ -273,6 +276,9 @@ typedef struct zs_light {
                            * outer (half angles, 0 < inner <= outer < 90) */
   int eye_space;          /* position and direction in eye coordinates: the
                            * light moves with the camera (a headlight) */
+  int shadow;             /* directional and spot: casts shadows, where the
+                           * device has its map (zs_device_set_shadow_maps;
+                           * zs_render draws them) */
 } zs_light;
 
 enum { ZS_MAX_LIGHTS = 16 };
@@ -345,6 +351,68 @@ void zs_device_set_camera(zs_device *dev, const double view[16], const double pr
  * direction, a negative colour, a spot's angles out of range or a value
  * not finite is refused (ZS_ERR_ARG, naming the light and its field). */
 zs_status zs_device_set_lights(zs_device *dev, const zs_light *lights, int n, zs_error *err);
+
+/* ---- Shadows (the Phong shading) ----
+ * A shadow map is a z-buffer drawn from a light: the depth buffer
+ * (zs_device_depth_buffer) of a zbuffer-mode device that drew the scene
+ * through the light's camera (zs_shadow_camera).  Where a light has one,
+ * Phong shading (ZS_SHADE_PHONG, and AUTO's Phong) weights its diffuse and
+ * specular light at a pixel by the fraction of a 3 x 3 block of map texels
+ * that do not hide the pixel (percentage-closer filtering in integers):
+ * the pixel's light-space position, interpolated exactly as every
+ * attribute is, is projected into the map (texel tx, ty = floor of its
+ * window x, y there; depth r = floor(z 2^32), window z as the device
+ * stores it), and texel (tx + i, ty + j), i, j in -1 .. 1, lights it when
+ * r - bias <= its depth, or when it lies off the map.  bias = units +
+ * slope m, rounded down, at most 2^32, m = |dz/dx| + |dz/dy|, the
+ * receiving triangle's depth change per texel in the map along x and y
+ * (in depth units): slope 1.5 covers the depth change from the receiver
+ * to the farthest of the nine texels' centres on its own plane, so a
+ * plane does not shadow itself ("shadow acne"); the default 2 leaves a
+ * margin for snapping and curvature.  A pixel behind the light's eye
+ * (w <= 0) is lit.  docs/ALGORITHMS.md shows the bias's
+ * work (shadow acne without it). */
+enum { ZS_MAX_SHADOW_MAPS = 4 };
+#define ZS_SHADOW_BIAS_UNITS 4096.0 /* the defaults zs_render and `zscan render` use */
+#define ZS_SHADOW_BIAS_SLOPE 2.0
+
+typedef struct zs_shadow_map {
+  int light;                 /* the light it belongs to: its index in the list
+                              * given to zs_device_set_lights (directional or spot) */
+  int width, height;         /* 1 .. ZS_MAX_IMAGE_SIDE */
+  const uint32_t *depth;     /* width * height depths, row 0 at the top, as
+                              * zs_device_depth_buffer gives them: the caller's,
+                              * valid until zs_device_finish */
+  double view[16], proj[16]; /* the camera it was drawn with */
+  double bias_units;         /* 0 .. 2^32: bias = units + slope m (above) */
+  double bias_slope;         /* 0 .. 1e6 */
+} zs_shadow_map;
+
+/* The shadow maps of the following draws (copied; the depths are not):
+ * n of them, 0 .. ZS_MAX_SHADOW_MAPS, each for a different directional or
+ * spot light of those set; n = 0: none.  Setting lights drops them.  The
+ * device's shading must be ZS_SHADE_AUTO or ZS_SHADE_PHONG (Gouraud lights
+ * only the corners, flat not by the lights): else ZS_ERR_ARG, as for a map
+ * out of range, naming maps[i] and its field. */
+zs_status zs_device_set_shadow_maps(zs_device *dev, const zs_shadow_map *maps, int n,
+                                    zs_error *err);
+
+/* The camera of light's shadow map over the world box lo..hi, which the
+ * map then holds whole: a directional light looks along its direction
+ * through an orthographic box about the box's bounding sphere, a spot
+ * from its position along its axis with a square frustum of twice its
+ * outer angle, near and far where the sphere begins and ends.  An
+ * eye-space light is placed by view (the camera's, world to eye).
+ * Returns 0 for a point or ambient light (no map: they cast none here). */
+int zs_shadow_camera(const zs_light *light, const double view[16], const double lo[3],
+                     const double hi[3], double light_view[16], double light_proj[16]);
+
+/* The key light of a shadowed scene that has no lights of its own, into
+ * out[0 .. 2): a white directional light of 0.8 from above, to the left
+ * and behind the viewer, travelling (1, -2, -1) in eye space, so that
+ * the shadows fall behind and to the right of what casts them, in view;
+ * it casts shadows; and an ambient light of 0.2.  Returns 2. */
+int zs_lights_key(zs_light out[2]);
 
 /* Starts a frame: clears colour, depth and id, and the counters. */
 void zs_device_clear(zs_device *dev);
@@ -540,6 +608,12 @@ typedef struct zs_render_opts {
   zs_filter filter;        /* every texture's filter; 0: each material's */
   const zs_light *lights;  /* NULL: the scene's lights, or the headlight */
   int nlights;
+  int shadows;             /* 1: every directional and spot light casts
+                            * shadows (with no light given or in the scene:
+                            * the key light, zs_lights_key); 0: those marked */
+  int shadow_size;         /* each map's side in texels; 0: 1024 */
+  int has_shadow_bias;     /* 0: ZS_SHADOW_BIAS_UNITS and _SLOPE */
+  double shadow_bias[2];   /* units, slope (zs_shadow_map) */
 } zs_render_opts;
 
 /* Renders scene into out (allocated here; free it with zs_image_free):

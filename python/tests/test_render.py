@@ -93,6 +93,9 @@ COMBOS = [
     ("teapots", dict(shade="id", algo="depthsort"), ["--shade", "id", "--algo", "depthsort"]),
     ("gltf", dict(eye=(2, 3, 5), fovy=60, near=1, far=20, shade="depth"),
      ["--eye", "2,3,5", "--fovy", "60", "--near", "1", "--far", "20", "--shade", "depth"]),
+    ("teapots", dict(shadows=True), ["--shadows"]),
+    ("teapots", dict(shadows=True, algo="scanline", threads=2),
+     ["--shadows", "--algo", "scanline", "--threads", "2"]),
 ]
 
 

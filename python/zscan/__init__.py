@@ -293,7 +293,8 @@ def _choice(name, value, choices):
 _ARG = 1  # ZS_ERR_ARG
 
 
-def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back):
+def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
+                 shadows=False):
     """The zs_render_opts for render()'s arguments.  Types and names are
     checked here (TypeError, ValueError); values are the library's to judge
     (zscan.Error), except those that zs_render_opts cannot carry: 0 there
@@ -313,6 +314,9 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
     o.algo = _choice("algo", algo, _lib.ALGOS)
     o.shade = _choice("shade", shade, _lib.SHADES)
     o.hidden_line = _choice("style", style, _lib.STYLES)
+    if not isinstance(shadows, bool):
+        raise TypeError("shadows: expected True or False, got %r" % (shadows,))
+    o.shadows = 1 if shadows else 0
     threads = _int("threads", threads)
     if threads < 1:
         raise Error("threads must be 1 to 64", _ARG)
@@ -377,10 +381,10 @@ class Scene:
 
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
                far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
-               cull_back=False):
+               cull_back=False, shadows=False):
         """Renders the scene as zscan.render() does."""
         opts = _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style,
-                            threads, cull_back)
+                            threads, cull_back, shadows)
         im = _lib.zs_image()
         stats = _lib.zs_raster_stats()
         err = _lib.zs_error()
@@ -416,7 +420,7 @@ def load(input=None, allow_empty=False):
 
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
            far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
-           cull_back=False, allow_empty=False):
+           cull_back=False, allow_empty=False, shadows=False):
     """Loads input and renders one frame: the image `zscan render INPUT` makes
     with the same options, byte for byte (its .hash is the CLI's image_hash).
 
@@ -432,6 +436,8 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     style      'solid' or 'hidden-line' (zbuffer and flat only)
     threads    1 .. 64 (depthsort: its walk only)
     cull_back  drop faces turned away from the camera (--cull-back)
+    shadows    every directional and spot light casts shadows, a scene
+               without lights gets the key light (--shadows)
     allow_empty   render a model without faces (--allow-empty)
 
     An argument of the wrong type, an unknown name or a number that is not
@@ -441,8 +447,9 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     .stats, the frame's counters (zs_raster_stats) as a dict.
     """
     # check the options before the (possibly slow) load
-    _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back)
+    _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
+                 shadows)
     with Scene(input, allow_empty=allow_empty) as scene:
         return scene.render(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
                             far=far, algo=algo, shade=shade, style=style, threads=threads,
-                            cull_back=cull_back)
+                            cull_back=cull_back, shadows=shadows)

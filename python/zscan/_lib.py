@@ -76,6 +76,7 @@ class zs_light(ctypes.Structure):
         ("inner_deg", ctypes.c_double),
         ("outer_deg", ctypes.c_double),
         ("eye_space", ctypes.c_int),
+        ("shadow", ctypes.c_int),
     ]
 
 
@@ -100,6 +101,10 @@ class zs_render_opts(ctypes.Structure):
         ("filter", ctypes.c_int),  # zs_filter
         ("lights", ctypes.POINTER(zs_light)),
         ("nlights", ctypes.c_int),
+        ("shadows", ctypes.c_int),
+        ("shadow_size", ctypes.c_int),
+        ("has_shadow_bias", ctypes.c_int),
+        ("shadow_bias", ctypes.c_double * 2),
     ]
 
 

@@ -1,0 +1,17 @@
+/* zscan lib — a scene's instances drawn on a device: the one loop of
+ * draws every frame, map and pass uses. */
+#ifndef ZS_LIB_SCENE_DRAW_H
+#define ZS_LIB_SCENE_DRAW_H
+
+#include "raster/raster.h"
+#include "scene/scene.h"
+
+/* Draws every instance of scene (no clear, no finish). */
+zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
+
+/* A new frame of everything from (view, proj): clears dev, sets its
+ * camera and draws every instance of scene; the caller finishes it. */
+zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
+                            const double proj[16], zs_error *err);
+
+#endif
