@@ -87,7 +87,8 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
                           "slope 0 to 1e6", so->units, so->slope);
   }
   *fo = (zs_frame_opts){width,    height,   o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1,
-                        o->hidden_line, o->filter, o->lights, o->nlights, so};
+                        o->hidden_line, o->filter, o->lights, o->nlights, so,
+                        o->samples, o->supersample};
   return ZS_OK;
 }
 

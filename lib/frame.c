@@ -1,9 +1,11 @@
 /* One frame of a scene into an image (lib/frame.h). */
 #include "lib/frame.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "lib/frame_camera.h"
+#include "lib/samples.h"
 
 typedef struct gather {
   zs_image *im;
@@ -44,6 +46,57 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
   /* every row goes out, kept or not: the shadings that read attributes
    * colour a pixel only when its row does (raster/surface.h) */
   return zs_device_finish(dev, gather_row, &g, err);
+}
+
+static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
+  uint64_t *a = (uint64_t *)sum;
+  const uint64_t *b = (const uint64_t *)s;
+  for (size_t k = 0; k < sizeof *s / sizeof *a; k++) a[k] += b[k];
+}
+
+zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
+                                  const double proj[16], int hidden_line, int samples,
+                                  int per_sample, zs_image *out, zs_raster_stats *stats,
+                                  zs_error *err) {
+  if (samples <= 1) {
+    zs_status st = zs_frame_render_on(dev, scene, view, proj, hidden_line, out, NULL, err);
+    if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
+    return st;
+  }
+  const zs_device_config *cfg = zs_device_config_of(dev);
+  const int w = cfg->width, h = cfg->height;
+  const size_t n = (size_t)w * (size_t)h;
+  const int8_t *pos = zs_sample_positions(samples);
+  uint32_t *sum = calloc(3 * n, sizeof *sum);
+  zs_image one = {0, 0, NULL};
+  zs_raster_stats total;
+  memset(&total, 0, sizeof total);
+  zs_status st = sum ? zs_image_alloc(&one, w, h, err)
+                     : zs_error_set(err, ZS_ERR_NOMEM, "samples: out of memory");
+  zs_device_set_shading_projection(dev, per_sample ? NULL : proj);
+  for (int k = 0; k < samples && st == ZS_OK; k++) {
+    double pk[16];
+    zs_sample_projection(proj, w, h, pos[2 * k], pos[2 * k + 1], pk);
+    st = zs_frame_render_on(dev, scene, view, pk, hidden_line, &one, NULL, err);
+    if (st != ZS_OK) break;
+    add_stats(&total, zs_device_stats(dev));
+    for (size_t i = 0; i < n; i++) {
+      const uint32_t c = one.rgb[i];
+      sum[3 * i] += c >> 16 & 0xFF, sum[3 * i + 1] += c >> 8 & 0xFF, sum[3 * i + 2] += c & 0xFF;
+    }
+  }
+  zs_device_set_shading_projection(dev, NULL);
+  if (st == ZS_OK && out) {
+    const uint32_t half = (uint32_t)samples / 2;
+    for (size_t i = 0; i < n; i++)
+      out->rgb[i] = (sum[3 * i] + half) / (uint32_t)samples << 16 |
+                    (sum[3 * i + 1] + half) / (uint32_t)samples << 8 |
+                    (sum[3 * i + 2] + half) / (uint32_t)samples;
+  }
+  if (st == ZS_OK && stats) *stats = total;
+  zs_image_free(&one);
+  free(sum);
+  return st;
 }
 
 zs_status zs_frame_finish(zs_device *dev, zs_image *out, float *depth, zs_error *err) {
@@ -88,6 +141,13 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG,
                         "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT or ZS_SHADE_AUTO");
+  if (o->samples != 0 && !zs_samples_valid(o->samples))
+    return zs_error_set(err, ZS_ERR_ARG, "samples: %d: expected 1, 2, 4, 8 or 16", o->samples);
+  if (o->samples > 1 && o->shade == ZS_SHADE_ID)
+    return zs_error_set(err, ZS_ERR_ARG, "samples: ids do not average: ZS_SHADE_ID draws one "
+                        "sample a pixel");
+  if (o->samples > 1 && depth)
+    return zs_error_set(err, ZS_ERR_ARG, "samples: a depth map holds one sample a pixel");
   zs_device_config cfg = {o->width,     o->height,  o->algo,           o->shade,
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, (int)o->filter};
   zs_device *dev = NULL;
@@ -99,8 +159,13 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
     return err->code;
   }
   zs_status st = zs_image_alloc(out, o->width, o->height, err);
-  if (st == ZS_OK) st = zs_frame_render_on(dev, scene, view, proj, o->hidden_line, out, depth, err);
-  if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
+  if (st == ZS_OK && o->samples > 1) {
+    st = zs_frame_render_samples(dev, scene, view, proj, o->hidden_line, o->samples,
+                                 o->per_sample, out, stats, err);
+  } else if (st == ZS_OK) {
+    st = zs_frame_render_on(dev, scene, view, proj, o->hidden_line, out, depth, err);
+    if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
+  }
   if (st != ZS_OK) zs_image_free(out);
   zs_device_destroy(dev);
   zs_shadow_set_free(&maps);

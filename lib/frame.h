@@ -26,6 +26,8 @@ typedef struct zs_frame_opts {
   const zs_light *lights; /* NULL: the scene's, else the device's headlight */
   int nlights;
   const zs_shadow_opts *shadows; /* NULL: no shadows (lib/shadow.h) */
+  int samples;      /* 0 or 1: one sample a pixel; 2, 4, 8, 16 */
+  int per_sample;   /* supersampled: shaded at each sample */
 } zs_frame_opts;
 
 /* The lights of a frame: lights[0 .. n) when n > 0, else the scene's
@@ -55,6 +57,20 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
                              const double view[16], const double proj[16], int hidden_line,
                              zs_image *out, float *depth, zs_error *err);
+
+/* The same, anti-aliased: samples (1, 2, 4, 8 or 16) frames, each with
+ * proj moved so that the pixels' centres fall on one of the standard
+ * sample positions (lib/samples.h), and out (allocated by the caller; NULL:
+ * drawn and dropped) each channel's mean over them, (sum + samples / 2) /
+ * samples.  Multisampled (per_sample 0): every sample shaded at the
+ * pixel's centre, from the face that covers the sample (flat shading is
+ * the same either way); supersampled (1): at the sample.  stats, when not
+ * NULL, gets the counters summed over the samples' frames.  samples 1:
+ * zs_frame_render_on's frame. */
+zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
+                                  const double proj[16], int hidden_line, int samples,
+                                  int per_sample, zs_image *out, zs_raster_stats *stats,
+                                  zs_error *err);
 
 /* The eye-space unit normals of what scene shows from (view, proj), into
  * xyz (3 floats a pixel, row 0 at the top; 0, 0, 0 where no face is): one

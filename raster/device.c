@@ -232,6 +232,11 @@ zs_status zs_device_set_lights(zs_device *d, const zs_light *lights, int n, zs_e
   return ZS_OK;
 }
 
+void zs_device_set_shading_projection(zs_device *d, const double proj[16]) {
+  d->has_shade_proj = proj != NULL;
+  if (proj) memcpy(d->shade_proj, proj, sizeof d->shade_proj);
+}
+
 static int finite16(const double m[16]) {
   for (int k = 0; k < 16; k++)
     if (!isfinite(m[k])) return 0;

@@ -23,6 +23,8 @@ struct zs_device {
   zs_device_config cfg;
   zs_simd simd;                   /* the span fill, from cfg.spans and the CPU */
   double view[16], proj[16];
+  double shade_proj[16];   /* zs_device_set_shading_projection's, when has_shade_proj */
+  int has_shade_proj;
   double eye[3];                  /* world position of the eye */
   double znear, zfar;
   int perspective;

@@ -163,7 +163,10 @@ zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[
     /* its triangles noted for the rows' shading (surface.h), on one
      * thread, so that the records keep one list */
     prep.surf = &d->surf;
-    prep.surf_draw = zs_surface_add_draw(&d->surf, mesh, d->view, model, prep.mv, prep.mvp,
+    double shade_mvp[16]; /* where the shading's planes are evaluated */
+    if (d->has_shade_proj) zs_mat_mul(shade_mvp, d->shade_proj, prep.mv);
+    prep.surf_draw = zs_surface_add_draw(&d->surf, mesh, d->view, model, prep.mv,
+                                         d->has_shade_proj ? shade_mvp : prep.mvp,
                                          d->perspective, rgb, d->cfg.shade);
     if (prep.surf_draw < 0) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
     st = zs_set_up_whole(d, mesh, &prep, id_base, rgb, &c->faces, err);

@@ -33,59 +33,67 @@ typedef struct golden_case {
   int hidden_line;
   zs_filter filter;
   int shadows; /* every directional and spot light casts them (zscan render --shadows) */
+  int samples, supersample; /* anti-aliasing (zscan render --samples, --supersample) */
 } golden_case;
 
 /* assimp-testmodels (tools/setup.sh installs it) */
 #define BOX_TEXTURED "/usr/share/assimp/models/glTF2/BoxTextured-glTF"
 
 static const golden_case cases[] = {
-    {"default-flat", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0},
-    {"default-id", "builtin:default", 320, 240, ZS_SHADE_ID, 0, 0, {0}, {0}, 0, 0, 0},
-    {"default-depth", "builtin:default", 320, 240, ZS_SHADE_DEPTH, 0, 0, {0}, {0}, 0, 0, 0},
-    {"default-culled", "builtin:default", 200, 150, ZS_SHADE_ID, 1, 0, {0}, {0}, 0, 0, 0},
-    {"default-close", "builtin:default", 256, 256, ZS_SHADE_FLAT, 0, 1, {1.5, 1.2, 2.0}, {0, 0.5, 0}, 0, 0, 0},
-    {"cubes-4", "builtin:cubes?n=4", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0},
-    {"cubes-4-inside", "builtin:cubes?n=4", 160, 120, ZS_SHADE_ID, 0, 1, {3.1, 3.2, 3.3}, {0, 0, 0}, 0, 0, 0},
-    {"cyclic", "tests/data/scenes/cyclic.obj", 160, 160, ZS_SHADE_ID, 0, 1, {0.3, 0.2, 8}, {0, 0, 0}, 0, 0, 0},
-    {"interpenetrate", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0},
-    {"interpenetrate-depth", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_DEPTH, 0, 0, {0}, {0}, 0, 0, 0},
-    {"sphere-ell", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0},
-    {"sphere-ell-overdraw", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_OVERDRAW, 0, 0, {0}, {0}, 0, 0, 0},
-    {"default-hidden-line", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 1, {12, 9, 16}, {0, 1, 0}, 1, 0, 0},
-    {"cubes-3-hidden-line", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 1, 0, 0},
+    {"default-flat", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-id", "builtin:default", 320, 240, ZS_SHADE_ID, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-depth", "builtin:default", 320, 240, ZS_SHADE_DEPTH, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-culled", "builtin:default", 200, 150, ZS_SHADE_ID, 1, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-close", "builtin:default", 256, 256, ZS_SHADE_FLAT, 0, 1, {1.5, 1.2, 2.0}, {0, 0.5, 0}, 0, 0, 0, 0, 0},
+    {"cubes-4", "builtin:cubes?n=4", 320, 240, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"cubes-4-inside", "builtin:cubes?n=4", 160, 120, ZS_SHADE_ID, 0, 1, {3.1, 3.2, 3.3}, {0, 0, 0}, 0, 0, 0, 0, 0},
+    {"cyclic", "tests/data/scenes/cyclic.obj", 160, 160, ZS_SHADE_ID, 0, 1, {0.3, 0.2, 8}, {0, 0, 0}, 0, 0, 0, 0, 0},
+    {"interpenetrate", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"interpenetrate-depth", "tests/data/scenes/interpenetrate.obj", 200, 150, ZS_SHADE_DEPTH, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"sphere-ell", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"sphere-ell-overdraw", "tests/data/scenes/sphere_ell.obj", 200, 150, ZS_SHADE_OVERDRAW, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-hidden-line", "builtin:default", 320, 240, ZS_SHADE_FLAT, 0, 1, {12, 9, 16}, {0, 1, 0}, 1, 0, 0, 0, 0},
+    {"cubes-3-hidden-line", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 1, 0, 0, 0, 0},
     /* shading from the files' attributes (auto: Phong for a model with them) */
-    {"default-auto", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0},
-    {"default-gouraud", "builtin:default", 320, 240, ZS_SHADE_GOURAUD, 0, 0, {0}, {0}, 0, 0, 0},
-    {"default-normal", "builtin:default", 320, 240, ZS_SHADE_NORMAL, 0, 0, {0}, {0}, 0, 0, 0},
-    {"spheres-auto", "builtin:spheres?count=200", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0},
+    {"default-auto", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-gouraud", "builtin:default", 320, 240, ZS_SHADE_GOURAUD, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"default-normal", "builtin:default", 320, 240, ZS_SHADE_NORMAL, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
+    {"spheres-auto", "builtin:spheres?count=200", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
     {"teapot-textured", "scene/examples/teapot_textured.json", 320, 240, ZS_SHADE_AUTO, 0, 0,
-     {0}, {0}, 0, 0, 0},
+     {0}, {0}, 0, 0, 0, 0, 0},
     {"teapot-textured-gouraud", "scene/examples/teapot_textured.json", 320, 240,
-     ZS_SHADE_GOURAUD, 0, 0, {0}, {0}, 0, 0, 0},
+     ZS_SHADE_GOURAUD, 0, 0, {0}, {0}, 0, 0, 0, 0, 0},
     {"checker-nearest", "scene/examples/checker/checker_plane.json", 320, 240, ZS_SHADE_AUTO, 0,
-     0, {0}, {0}, 0, ZS_FILTER_NEAREST, 0},
+     0, {0}, {0}, 0, ZS_FILTER_NEAREST, 0, 0, 0},
     {"checker-bilinear", "scene/examples/checker/checker_plane.json", 320, 240, ZS_SHADE_AUTO,
-     0, 0, {0}, {0}, 0, ZS_FILTER_BILINEAR, 0},
+     0, 0, {0}, {0}, 0, ZS_FILTER_BILINEAR, 0, 0, 0},
     {"checker-trilinear", "scene/examples/checker/checker_plane.json", 320, 240, ZS_SHADE_AUTO,
-     0, 0, {0}, {0}, 0, ZS_FILTER_TRILINEAR, 0},
+     0, 0, {0}, {0}, 0, ZS_FILTER_TRILINEAR, 0, 0, 0},
     {"crate-obj", "tests/data/scenes/crate.obj", 240, 180, ZS_SHADE_AUTO, 0, 1, {3, 2.5, 4},
-     {0, 0, 0}, 0, 0, 0},
+     {0, 0, 0}, 0, 0, 0, 0, 0},
     {"crate-obj-unlit", "tests/data/scenes/crate.obj", 240, 180, ZS_SHADE_UNLIT, 0, 1,
-     {3, 2.5, 4}, {0, 0, 0}, 0, 0, 0},
+     {3, 2.5, 4}, {0, 0, 0}, 0, 0, 0, 0, 0},
     {"ply-colours", "tests/data/models/rgb_quad.ply", 160, 120, ZS_SHADE_AUTO, 0, 0, {0}, {0},
-     0, 0, 0},
+     0, 0, 0, 0, 0},
     {"ply-colours-unlit", "tests/data/models/rgb_quad.ply", 160, 120, ZS_SHADE_UNLIT, 0, 0,
-     {0}, {0}, 0, 0, 0},
+     {0}, {0}, 0, 0, 0, 0, 0},
     {"gltf-painted", "tests/data/models/painted_triangle.gltf", 160, 120, ZS_SHADE_AUTO, 0, 0,
-     {0}, {0}, 0, 0, 0},
+     {0}, {0}, 0, 0, 0, 0, 0},
     {"gltf-box-textured", BOX_TEXTURED "/BoxTextured.gltf", 240, 180, ZS_SHADE_AUTO, 0, 0, {0},
-     {0}, 0, 0, 0},
+     {0}, 0, 0, 0, 0, 0},
     {"glb-box-textured", BOX_TEXTURED "-Binary/BoxTextured.glb", 240, 180, ZS_SHADE_AUTO, 0, 0,
-     {0}, {0}, 0, 0, 0},
+     {0}, {0}, 0, 0, 0, 0, 0},
     /* shadow maps: the key light's from above left, a spot's of the scene file */
-    {"default-shadows", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 1},
+    {"default-shadows", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 1, 0, 0},
     {"spot-shadow", "scene/examples/spotlight.json", 240, 180, ZS_SHADE_AUTO, 0, 0, {0},
-     {0}, 0, 0, 0},
+     {0}, 0, 0, 0, 0, 0},
+    /* anti-aliased: multisampled, supersampled, hidden lines */
+    {"default-msaa4", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0, 4, 0},
+    {"default-ssaa4", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0, 4, 1},
+    {"checker-msaa8", "scene/examples/checker/checker_plane.json", 320, 240, ZS_SHADE_AUTO, 0,
+     0, {0}, {0}, 0, 0, 0, 8, 0},
+    {"cubes-3-hidden-line-aa16", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0},
+     1, 0, 0, 16, 0},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 
@@ -131,7 +139,7 @@ static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_
   const zs_camera cam = case_camera(c, s);
   const zs_shadow_opts so = {c->shadows, 0, ZS_SHADOW_BIAS_UNITS, ZS_SHADOW_BIAS_SLOPE};
   zs_frame_opts o = {c->width,  c->height, algo, c->shade, c->cull_back,
-                     threads,   c->hidden_line, c->filter, NULL, 0, &so};
+                     threads,   c->hidden_line, c->filter, NULL, 0, &so, c->samples, c->supersample};
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
@@ -161,7 +169,8 @@ static uint64_t render_case_spans(const golden_case *c, const zs_scene *s, zs_al
                 "%s", err.msg);
   zs_image im;
   ck_assert_int_eq(zs_image_alloc(&im, c->width, c->height, &err), ZS_OK);
-  ck_assert_msg(zs_frame_render_on(d, s, view, proj, c->hidden_line, &im, NULL, &err) == ZS_OK,
+  ck_assert_msg(zs_frame_render_samples(d, s, view, proj, c->hidden_line, c->samples,
+                                        c->supersample, &im, NULL, &err) == ZS_OK,
                 "%s", err.msg);
   const uint64_t h = zs_image_hash(&im);
   zs_image_free(&im);

@@ -23,6 +23,7 @@
 #include "lib/image.h"
 #include "lib/input.h"
 #include "lib/outfile.h"
+#include "lib/samples.h"
 #include "lib/svg.h"
 #include "tools/viewopts.h"
 
@@ -47,6 +48,10 @@ static const char usage_tail[] =
     "                      shines), point:X,Y,Z, spot:X,Y,Z:DX,DY,DZ:INNER,OUTER,\n"
     "                      each with :R,G,B (linear, default 1,1,1), or\n"
     "                      ambient:R,G,B\n"
+    "  --samples N         anti-alias: N samples a pixel (2, 4, 8 or 16, at D3D's\n"
+    "                      and Vulkan's standard positions), each pixel their mean;\n"
+    "                      shaded once a pixel, at its centre (multisampling)\n"
+    "  --supersample       with --samples: shade each sample where it lies\n"
     "  --shadows           every directional and spot light casts shadows (a scene\n"
     "                      without lights gets a key light from the upper left)\n"
     "  --shadow-size N     each shadow map's side, 16 to 8192 texels (default 1024)\n"
@@ -111,6 +116,17 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
   if (o->shadows && !(o->shade == ZS_SHADE_AUTO || o->shade == ZS_SHADE_PHONG))
     return zs_error_set(err, ZS_ERR_ARG, "--shadows needs --shade auto or phong (lit at each "
                         "pixel), not %s", zs_shade_name(o->shade));
+  if (o->supersample && o->samples < 2)
+    return zs_error_set(err, ZS_ERR_ARG, "--supersample needs --samples 2, 4, 8 or 16");
+  if (o->samples > 1) {
+    const char *alone = o->shade == ZS_SHADE_ID ? "--shade id (ids do not average)"
+                        : o->cull >= 0          ? "--cull"
+                        : o->out_layer          ? "--layer"
+                        : o->out_pfm            ? "--depth"
+                                                : NULL;
+    if (alone)
+      return zs_error_set(err, ZS_ERR_ARG, "--samples: not with %s: one sample a pixel", alone);
+  }
   if (o->shadows && o->hidden_line)
     return zs_error_set(err, ZS_ERR_ARG, "--shadows: the hidden-line style draws no light");
   if (o->overlay && o->cull < 0)
@@ -128,6 +144,8 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
   if (o->svg && !o->hidden_line)
     return zs_error_set(err, ZS_ERR_ARG, "-o: %s: an SVG holds hidden lines (--style hidden-line)",
                         o->out_png);
+  if (o->svg && o->samples > 1)
+    return zs_error_set(err, ZS_ERR_ARG, "--samples: an SVG's lines are vectors, not samples");
   if (!o->svg && zs_cli_output_format("-o", o->out_png, "png", err)) return err->code;
   if (o->out_pfm && zs_cli_output_format("--depth", o->out_pfm, "pfm", err)) return err->code;
   if (zs_cli_output_path("-o", o->out_png, err)) return err->code;
@@ -253,6 +271,13 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
         return zs_error_set(err, ZS_ERR_ARG, "--light: at most %d lights", ZS_MAX_LIGHTS);
       if (zs_cli_light("--light", v, &o->lights[o->nlights], err)) return err->code;
       o->nlights++;
+    } else if (strcmp(a, "--samples") == 0) {
+      VALUE();
+      if (zs_cli_int(a, v, 1, 16, &o->samples, err)) return err->code;
+      if (!zs_samples_valid(o->samples))
+        return zs_error_set(err, ZS_ERR_ARG, "--samples: expected 1, 2, 4, 8 or 16, got %s", v);
+    } else if (strcmp(a, "--supersample") == 0) {
+      o->supersample = 1;
     } else if (strcmp(a, "--shadows") == 0) {
       o->shadows = 1;
     } else if (strcmp(a, "--shadow-size") == 0) {
@@ -535,7 +560,7 @@ static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs
 static zs_status painter_error(const zs_cmd_render_opts *o, const zs_scene *model,
                                int64_t *diff_pixels, zs_error *err) {
   zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
-                       o->view.cull_back, 1, 0, 0, NULL, 0, NULL};
+                       o->view.cull_back, 1, 0, 0, NULL, 0, NULL, 0, 0};
   zs_frame_opts mine = ref;
   mine.algo = ZS_ALGO_DEPTHSORT;
   zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
@@ -591,6 +616,8 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   zs_image im = {0, 0, NULL};
   zs_layer layer = {0};
   zs_shadow_set shadows = {0};
+  zs_raster_stats sample_stats; /* --samples: summed over the samples' frames */
+  memset(&sample_stats, 0, sizeof sample_stats);
   float *depth = NULL, *normals = NULL;
   double *times = NULL;
   double view[16], proj[16];
@@ -651,6 +678,10 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
       if ((st = zs_frame_draw_all(dev, &model, view, proj, err)) ||
           (st = zs_frame_finish_into(dev, &im, depth, into, err)))
         goto done;
+    } else if (o->samples > 1) {
+      if ((st = zs_frame_render_samples(dev, &model, view, proj, o->hidden_line, o->samples,
+                                        o->supersample, &im, &sample_stats, err)))
+        goto done;
     } else if ((st = zs_frame_render_on(dev, &model, view, proj, o->hidden_line, &im, depth,
                                         err))) {
       goto done;
@@ -695,7 +726,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   cull_report cr = {o->cull >= 0 ? zs_cull_method_name((zs_cull_method)o->cull) : NULL, &cs,
                     have_tree ? tree.nnodes : 0, have_tree && tree.flat};
   if (o->stats)
-    print_stats(o, &model, zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
+    print_stats(o, &model, o->samples > 1 ? &sample_stats : zs_device_stats(dev), dev, zs_image_hash(&im), median, load_ms,
                 diff_pixels, o->cull >= 0 ? &cr : NULL, &used);
   else if (!o->quiet) /* one line for a person; --stats is the line for programs */
     fprintf(stderr, "zscan render: wrote %s: %dx%d, %llu faces, %.1f ms%s%s%s%s%s%s\n",

@@ -34,6 +34,8 @@ typedef struct zs_cmd_render_opts {
   int shadow_size;     /* --shadow-size: texels a side; 0: the default */
   int has_shadow_bias; /* --shadow-bias UNITS,SLOPE */
   double shadow_bias[2];
+  int samples;         /* --samples: 0 or 1, 2, 4, 8, 16 */
+  int supersample;     /* --supersample: shaded at each sample */
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
   int skip_missing_textures; /* --skip-missing-textures */
   zs_query_bounds bounds;

@@ -77,7 +77,7 @@ zs_status zs_crosscheck_colours(const zs_colour_case *c, const char *path, int w
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   if (!st) st = zs_mesa_create(w, h, &mesa, err);
   if (!st) st = zs_mesa_unlit(mesa, &s, view, proj, c->filter, gl, err);
-  zs_frame_opts o = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_UNLIT, 0, 1, 0, c->filter, NULL, 0, NULL};
+  zs_frame_opts o = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_UNLIT, 0, 1, 0, c->filter, NULL, 0, NULL, 0, 0};
   if (!st) st = zs_frame_render(&s, &s.camera, &o, &ours, NULL, NULL, err);
   o.shade = ZS_SHADE_ID;
   if (!st) st = zs_frame_render(&s, &s.camera, &o, &ids, NULL, NULL, err);

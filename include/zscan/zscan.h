@@ -47,6 +47,8 @@
  *   zs_render_opts.shadows            0: only lights marked shadow cast them
  *   zs_render_opts.shadow_size        0: maps of 1024 x 1024 texels
  *   zs_render_opts.has_shadow_bias    0: ZS_SHADOW_BIAS_UNITS, _SLOPE
+ *   zs_render_opts.samples            0: one sample a pixel (no anti-aliasing)
+ *   zs_render_opts.supersample        0: multisampled, shaded once a pixel
  *   zs_load_opts.allow_empty          0: a model without faces is an error
  *   zs_load_opts.skip_missing_textures  0: a texture that cannot be opened
  *                                     is an error; else the material is drawn
@@ -352,6 +354,14 @@ void zs_device_set_camera(zs_device *dev, const double view[16], const double pr
  * not finite is refused (ZS_ERR_ARG, naming the light and its field). */
 zs_status zs_device_set_lights(zs_device *dev, const zs_light *lights, int n, zs_error *err);
 
+/* The projection at which the shadings that read attributes evaluate a
+ * triangle's attributes, from the next draw on, in place of the camera's
+ * (which still decides coverage and depth); NULL: the camera's.  A
+ * multisampled frame (zs_render_opts.samples) draws each sample with the
+ * camera's projection moved by the sample's offset and shades every
+ * sample at the pixel's centre with this. */
+void zs_device_set_shading_projection(zs_device *dev, const double proj[16]);
+
 /* ---- Shadows (the Phong shading) ----
  * A shadow map is a z-buffer drawn from a light: the depth buffer
  * (zs_device_depth_buffer) of a zbuffer-mode device that drew the scene
@@ -614,6 +624,13 @@ typedef struct zs_render_opts {
   int shadow_size;         /* each map's side in texels; 0: 1024 */
   int has_shadow_bias;     /* 0: ZS_SHADOW_BIAS_UNITS and _SLOPE */
   double shadow_bias[2];   /* units, slope (zs_shadow_map) */
+  int samples;             /* anti-aliasing: 0 or 1 one sample a pixel, else 2,
+                            * 4, 8 or 16 at the standard positions (D3D's and
+                            * Vulkan's), the pixel the mean of its samples,
+                            * (sum + samples / 2) / samples a channel; not
+                            * with ZS_SHADE_ID or a depth map */
+  int supersample;         /* with samples: shade each sample where it lies;
+                            * 0: at the pixel's centre (multisampling) */
 } zs_render_opts;
 
 /* Renders scene into out (allocated here; free it with zs_image_free):

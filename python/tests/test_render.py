@@ -96,6 +96,8 @@ COMBOS = [
     ("teapots", dict(shadows=True), ["--shadows"]),
     ("teapots", dict(shadows=True, algo="scanline", threads=2),
      ["--shadows", "--algo", "scanline", "--threads", "2"]),
+    ("teapots", dict(samples=4), ["--samples", "4"]),
+    ("inter", dict(samples=8, supersample=True), ["--samples", "8", "--supersample"]),
 ]
 
 

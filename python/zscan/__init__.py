@@ -294,7 +294,7 @@ _ARG = 1  # ZS_ERR_ARG
 
 
 def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
-                 shadows=False):
+                 shadows=False, samples=1, supersample=False):
     """The zs_render_opts for render()'s arguments.  Types and names are
     checked here (TypeError, ValueError); values are the library's to judge
     (zscan.Error), except those that zs_render_opts cannot carry: 0 there
@@ -317,6 +317,12 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
     if not isinstance(shadows, bool):
         raise TypeError("shadows: expected True or False, got %r" % (shadows,))
     o.shadows = 1 if shadows else 0
+    samples = _int("samples", samples)
+    if samples not in (1, 2, 4, 8, 16):
+        raise Error("samples: %d: expected 1, 2, 4, 8 or 16" % samples, _ARG)
+    if not isinstance(supersample, bool):
+        raise TypeError("supersample: expected True or False, got %r" % (supersample,))
+    o.samples, o.supersample = samples, 1 if supersample else 0
     threads = _int("threads", threads)
     if threads < 1:
         raise Error("threads must be 1 to 64", _ARG)
@@ -381,10 +387,10 @@ class Scene:
 
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
                far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
-               cull_back=False, shadows=False):
+               cull_back=False, shadows=False, samples=1, supersample=False):
         """Renders the scene as zscan.render() does."""
         opts = _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style,
-                            threads, cull_back, shadows)
+                            threads, cull_back, shadows, samples, supersample)
         im = _lib.zs_image()
         stats = _lib.zs_raster_stats()
         err = _lib.zs_error()
@@ -420,7 +426,7 @@ def load(input=None, allow_empty=False):
 
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
            far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
-           cull_back=False, allow_empty=False, shadows=False):
+           cull_back=False, allow_empty=False, shadows=False, samples=1, supersample=False):
     """Loads input and renders one frame: the image `zscan render INPUT` makes
     with the same options, byte for byte (its .hash is the CLI's image_hash).
 
@@ -438,6 +444,8 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     cull_back  drop faces turned away from the camera (--cull-back)
     shadows    every directional and spot light casts shadows, a scene
                without lights gets the key light (--shadows)
+    samples    anti-aliasing: 1, 2, 4, 8 or 16 samples a pixel (--samples)
+    supersample   shade each sample, not each pixel (--supersample)
     allow_empty   render a model without faces (--allow-empty)
 
     An argument of the wrong type, an unknown name or a number that is not
@@ -448,8 +456,9 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     """
     # check the options before the (possibly slow) load
     _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
-                 shadows)
+                 shadows, samples, supersample)
     with Scene(input, allow_empty=allow_empty) as scene:
         return scene.render(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
                             far=far, algo=algo, shade=shade, style=style, threads=threads,
-                            cull_back=cull_back, shadows=shadows)
+                            cull_back=cull_back, shadows=shadows, samples=samples,
+                            supersample=supersample)

@@ -105,6 +105,8 @@ class zs_render_opts(ctypes.Structure):
         ("shadow_size", ctypes.c_int),
         ("has_shadow_bias", ctypes.c_int),
         ("shadow_bias", ctypes.c_double * 2),
+        ("samples", ctypes.c_int),
+        ("supersample", ctypes.c_int),
     ]
 
 
