@@ -72,6 +72,11 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
   if (o->nlights < 0 || (o->nlights > 0 && !o->lights))
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.lights: %d lights at %s", o->nlights,
                         o->lights ? "an array" : "NULL");
+  if (o->hidden_line && o->wireframe)
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts: hidden_line and wireframe: one style");
+  const zs_frame_style style = o->hidden_line ? ZS_STYLE_HIDDEN_LINE
+                               : o->wireframe ? ZS_STYLE_WIREFRAME
+                                              : ZS_STYLE_SOLID;
   if (o->shadow_size != 0 &&
       (o->shadow_size < ZS_SHADOW_MIN_SIZE || o->shadow_size > ZS_SHADOW_MAX_SIZE))
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.shadow_size: %d: %d to %d (0: %d)",
@@ -87,7 +92,7 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
                           "slope 0 to 1e6", so->units, so->slope);
   }
   *fo = (zs_frame_opts){width,    height,   o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1,
-                        o->hidden_line, o->filter, o->lights, o->nlights, so,
+                        style, o->filter, o->lights, o->nlights, so,
                         o->samples, o->supersample};
   return ZS_OK;
 }

@@ -29,13 +29,15 @@ static void gather_row(void *user, const zs_row *row) {
 }
 
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
-                             const double view[16], const double proj[16], int hidden_line,
+                             const double view[16], const double proj[16], zs_frame_style style,
                              zs_image *out, float *depth, zs_error *err) {
   gather g = {out, depth, NULL, NULL};
   if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
-  if (hidden_line) {
-    /* the faces stay in the depth buffer; the picture is their edges */
-    if (zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err)) return err->code;
+  /* hidden lines: the faces stay in the depth buffer; the picture is
+   * their edges */
+  if (style == ZS_STYLE_HIDDEN_LINE && zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err))
+    return err->code;
+  if (style != ZS_STYLE_SOLID) {
     for (int32_t i = 0; i < scene->ninst; i++) {
       const zs_instance *in = &scene->inst[i];
       if (zs_device_draw_edges(dev, &scene->meshes[in->mesh].mesh, in->model, ZS_HIDDEN_LINE_INK,
@@ -55,11 +57,11 @@ static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
 }
 
 zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
-                                  const double proj[16], int hidden_line, int samples,
+                                  const double proj[16], zs_frame_style style, int samples,
                                   int per_sample, zs_image *out, zs_raster_stats *stats,
                                   zs_error *err) {
   if (samples <= 1) {
-    zs_status st = zs_frame_render_on(dev, scene, view, proj, hidden_line, out, NULL, err);
+    zs_status st = zs_frame_render_on(dev, scene, view, proj, style, out, NULL, err);
     if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
     return st;
   }
@@ -77,7 +79,7 @@ zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const d
   for (int k = 0; k < samples && st == ZS_OK; k++) {
     double pk[16];
     zs_sample_projection(proj, w, h, pos[2 * k], pos[2 * k + 1], pk);
-    st = zs_frame_render_on(dev, scene, view, pk, hidden_line, &one, NULL, err);
+    st = zs_frame_render_on(dev, scene, view, pk, style, &one, NULL, err);
     if (st != ZS_OK) break;
     add_stats(&total, zs_device_stats(dev));
     for (size_t i = 0; i < n; i++) {
@@ -129,6 +131,11 @@ zs_status zs_frame_set_lights(zs_device *dev, const zs_scene *scene, const zs_li
   return zs_frame_lights_and_shadows(dev, scene, lights, n, NULL, NULL, 1, NULL, err);
 }
 
+int zs_frame_wireframe_fits(zs_algo algo, zs_shade shade) {
+  return algo == ZS_ALGO_ZBUFFER && shade != ZS_SHADE_ID && shade != ZS_SHADE_DEPTH &&
+         shade != ZS_SHADE_OVERDRAW;
+}
+
 int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
   return algo == ZS_ALGO_ZBUFFER && (shade == ZS_SHADE_FLAT || shade == ZS_SHADE_AUTO);
 }
@@ -138,9 +145,12 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                           zs_raster_stats *stats, zs_error *err) {
   double view[16], proj[16];
   if (zs_frame_camera(scene, cam, o->width, o->height, view, proj, err)) return err->code;
-  if (o->hidden_line && !zs_frame_hidden_line_fits(o->algo, o->shade))
+  if (o->style == ZS_STYLE_HIDDEN_LINE && !zs_frame_hidden_line_fits(o->algo, o->shade))
     return zs_error_set(err, ZS_ERR_ARG,
                         "hidden_line needs algo ZS_ALGO_ZBUFFER and shade ZS_SHADE_FLAT or ZS_SHADE_AUTO");
+  if (o->style == ZS_STYLE_WIREFRAME && !zs_frame_wireframe_fits(o->algo, o->shade))
+    return zs_error_set(err, ZS_ERR_ARG, "wireframe needs algo ZS_ALGO_ZBUFFER and a shading of "
+                        "the surfaces (not ZS_SHADE_ID, _DEPTH or _OVERDRAW)");
   if (o->samples != 0 && !zs_samples_valid(o->samples))
     return zs_error_set(err, ZS_ERR_ARG, "samples: %d: expected 1, 2, 4, 8 or 16", o->samples);
   if (o->samples > 1 && o->shade == ZS_SHADE_ID)
@@ -160,10 +170,10 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
   }
   zs_status st = zs_image_alloc(out, o->width, o->height, err);
   if (st == ZS_OK && o->samples > 1) {
-    st = zs_frame_render_samples(dev, scene, view, proj, o->hidden_line, o->samples,
+    st = zs_frame_render_samples(dev, scene, view, proj, o->style, o->samples,
                                  o->per_sample, out, stats, err);
   } else if (st == ZS_OK) {
-    st = zs_frame_render_on(dev, scene, view, proj, o->hidden_line, out, depth, err);
+    st = zs_frame_render_on(dev, scene, view, proj, o->style, out, depth, err);
     if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
   }
   if (st != ZS_OK) zs_image_free(out);

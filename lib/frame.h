@@ -16,12 +16,22 @@
 #define ZS_HIDDEN_LINE_PAPER 0xFFFFFFu /* hidden-line style: background */
 #define ZS_HIDDEN_LINE_INK 0x000000u   /* and the lines */
 
+/* What a frame draws: the faces; their visible edges alone, ink on
+ * paper (hidden lines); or the faces with their visible edges over them
+ * in ink (a wireframe over the solid, its edges offset towards the eye as
+ * the hidden lines' are, so that no face stitches through them). */
+typedef enum zs_frame_style {
+  ZS_STYLE_SOLID,
+  ZS_STYLE_HIDDEN_LINE,
+  ZS_STYLE_WIREFRAME
+} zs_frame_style;
+
 typedef struct zs_frame_opts {
   int width, height;
   zs_algo algo;
   zs_shade shade;
   int cull_back, threads;
-  int hidden_line;  /* draw the visible edges of front faces, not the faces */
+  zs_frame_style style;
   zs_filter filter; /* every texture's filter; 0: each material's */
   const zs_light *lights; /* NULL: the scene's, else the device's headlight */
   int nlights;
@@ -41,6 +51,10 @@ zs_status zs_frame_set_lights(zs_device *dev, const zs_scene *scene, const zs_li
  * rule lives here once; the library and the command each word a refusal
  * in their own terms (fields here, flags there). */
 int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade);
+/* The same for the wireframe over the solid: zbuffer mode, and a shading
+ * of the surfaces (the id, depth and overdraw shadings colour a pixel
+ * from the buffers, over any ink). */
+int zs_frame_wireframe_fits(zs_algo algo, zs_shade shade);
 
 /* Renders scene seen by cam (completed from the scene's bounds where it is
  * partial) into out (allocated here), and the window depth (1 = far) into
@@ -55,7 +69,7 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
  * (and then depth too): the frame is rendered, its rows shaded and
  * dropped, and its buffers stay in the device. */
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
-                             const double view[16], const double proj[16], int hidden_line,
+                             const double view[16], const double proj[16], zs_frame_style style,
                              zs_image *out, float *depth, zs_error *err);
 
 /* The same, anti-aliased: samples (1, 2, 4, 8 or 16) frames, each with
@@ -68,7 +82,7 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
  * NULL, gets the counters summed over the samples' frames.  samples 1:
  * zs_frame_render_on's frame. */
 zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
-                                  const double proj[16], int hidden_line, int samples,
+                                  const double proj[16], zs_frame_style style, int samples,
                                   int per_sample, zs_image *out, zs_raster_stats *stats,
                                   zs_error *err);
 

@@ -30,7 +30,7 @@ typedef struct golden_case {
   int cull_back;
   int has_eye;
   double eye[3], target[3];
-  int hidden_line;
+  zs_frame_style style;
   zs_filter filter;
   int shadows; /* every directional and spot light casts them (zscan render --shadows) */
   int samples, supersample; /* anti-aliasing (zscan render --samples, --supersample) */
@@ -94,6 +94,11 @@ static const golden_case cases[] = {
      0, {0}, {0}, 0, 0, 0, 8, 0},
     {"cubes-3-hidden-line-aa16", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0},
      1, 0, 0, 16, 0},
+    /* the visible edges over the faces, flat and Phong, and anti-aliased */
+    {"cubes-3-wireframe", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 2, 0, 0,
+     0, 0},
+    {"default-wireframe-msaa4", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 1,
+     {12, 9, 16}, {0, 1, 0}, 2, 0, 0, 4, 0},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 
@@ -139,7 +144,7 @@ static uint64_t render_case_threads(const golden_case *c, const zs_scene *s, zs_
   const zs_camera cam = case_camera(c, s);
   const zs_shadow_opts so = {c->shadows, 0, ZS_SHADOW_BIAS_UNITS, ZS_SHADOW_BIAS_SLOPE};
   zs_frame_opts o = {c->width,  c->height, algo, c->shade, c->cull_back,
-                     threads,   c->hidden_line, c->filter, NULL, 0, &so, c->samples, c->supersample};
+                     threads,   c->style, c->filter, NULL, 0, &so, c->samples, c->supersample};
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
@@ -169,7 +174,7 @@ static uint64_t render_case_spans(const golden_case *c, const zs_scene *s, zs_al
                 "%s", err.msg);
   zs_image im;
   ck_assert_int_eq(zs_image_alloc(&im, c->width, c->height, &err), ZS_OK);
-  ck_assert_msg(zs_frame_render_samples(d, s, view, proj, c->hidden_line, c->samples,
+  ck_assert_msg(zs_frame_render_samples(d, s, view, proj, c->style, c->samples,
                                         c->supersample, &im, NULL, &err) == ZS_OK,
                 "%s", err.msg);
   const uint64_t h = zs_image_hash(&im);
@@ -247,7 +252,7 @@ START_TEST(golden_case_matches) {
   zs_image im;
   uint64_t hz = render_case(c, &m, ZS_ALGO_ZBUFFER, &im);
   /* hidden-line output draws into the z-buffer's full frame only */
-  uint64_t hs = c->hidden_line ? hz : render_case(c, &m, ZS_ALGO_SCANLINE, NULL);
+  uint64_t hs = c->style != ZS_STYLE_SOLID ? hz : render_case(c, &m, ZS_ALGO_SCANLINE, NULL);
   ck_assert_msg(hz == hs, "%s: zbuffer %016llx != scanline %016llx", c->name,
                 (unsigned long long)hz, (unsigned long long)hs);
   zs_scene shuffled;
@@ -258,7 +263,7 @@ START_TEST(golden_case_matches) {
                 (unsigned long long)hsh, (unsigned long long)hz);
   /* the same bytes and the same counters for every number of threads, in
    * both modes (scanline mode walks bands of rows on threads) */
-  for (int algo = 0; algo < (c->hidden_line ? 1 : 2); algo++) {
+  for (int algo = 0; algo < (c->style != ZS_STYLE_SOLID ? 1 : 2); algo++) {
     const zs_algo a = algo ? ZS_ALGO_SCANLINE : ZS_ALGO_ZBUFFER;
     zs_raster_stats one, many;
     render_case_threads(c, &m, a, 1, NULL, &one);
@@ -273,7 +278,7 @@ START_TEST(golden_case_matches) {
   /* and at every SIMD level of the span fill and the vertex stage */
   const zs_span_fill fills[] = {ZS_SPANS_SCALAR, ZS_SPANS_SSE2, ZS_SPANS_AVX2, ZS_SPANS_BEST};
   for (int f = 0; f < 4; f++)
-    for (int algo = 0; algo < (c->hidden_line ? 1 : 2); algo++) {
+    for (int algo = 0; algo < (c->style != ZS_STYLE_SOLID ? 1 : 2); algo++) {
       const zs_algo a = algo ? ZS_ALGO_SCANLINE : ZS_ALGO_ZBUFFER;
       const uint64_t hf = render_case_spans(c, &m, a, fills[f]);
       ck_assert_msg(hz == hf, "%s, %s: span fill %d gives %016llx, not %016llx", c->name,

@@ -1,5 +1,6 @@
 /* Hidden-line output: edges of front faces over the paper, hidden edges
- * removed by the depth buffer, back faces' edges never drawn. */
+ * removed by the depth buffer, back faces' edges never drawn; and the
+ * wireframe over the solid: the same edges, over the faces. */
 #include <string.h>
 
 #include "raster/raster.h"
@@ -86,12 +87,52 @@ START_TEST(edge_in_front_is_drawn_over) {
 }
 END_TEST
 
+/* Every pixel of the wireframe over the solid is the hidden-line image's
+ * ink where that has ink, and the solid frame's everywhere else: the same
+ * edges, offset the same way, none stitched through by its face. */
+START_TEST(wireframe_is_the_hidden_lines_over_the_solid) {
+  zs_scene *s = NULL;
+  ck_assert_int_eq(zs_scene_load("builtin:cubes?n=3", NULL, &s, &err), ZS_OK);
+  static const zs_shade shades[] = {ZS_SHADE_FLAT, ZS_SHADE_PHONG};
+  for (int k = 0; k < 2; k++) {
+    zs_render_opts o = {0};
+    o.width = 200, o.height = 150;
+    zs_image lines, solid, wire;
+    o.hidden_line = 1;
+    ck_assert_int_eq(zs_render(s, &o, &lines, NULL, NULL, &err), ZS_OK);
+    o.hidden_line = 0, o.shade = shades[k];
+    ck_assert_int_eq(zs_render(s, &o, &solid, NULL, NULL, &err), ZS_OK);
+    o.wireframe = 1;
+    ck_assert_int_eq(zs_render(s, &o, &wire, NULL, NULL, &err), ZS_OK);
+    size_t ink = 0, bad = 0;
+    for (size_t i = 0; i < 200 * 150; i++) {
+      const int inked = lines.rgb[i] == 0x000000;
+      ink += inked;
+      bad += wire.rgb[i] != (inked ? 0x000000u : solid.rgb[i]);
+    }
+    ck_assert_uint_gt(ink, 1000);
+    ck_assert_msg(bad == 0, "%s: %zu pixels are neither", zs_shade_name(shades[k]), bad);
+    zs_image_free(&lines);
+    zs_image_free(&solid);
+    zs_image_free(&wire);
+  }
+  zs_render_opts both = {0};
+  zs_image im;
+  both.hidden_line = both.wireframe = 1;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_render(s, &both, &im, NULL, NULL, &err), ZS_ERR_ARG);
+  ck_assert_str_eq(err.msg, "zs_render_opts: hidden_line and wireframe: one style");
+  zs_scene_destroy(s);
+}
+END_TEST
+
 int main(void) {
   Suite *s = suite_create("lines");
   TCase *tc = tcase_create("hidden-line");
   tcase_add_test(tc, hidden_edges_removed);
   tcase_add_test(tc, back_faces_have_no_edges);
   tcase_add_test(tc, edge_in_front_is_drawn_over);
+  tcase_add_test(tc, wireframe_is_the_hidden_lines_over_the_solid);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

@@ -58,7 +58,9 @@ static const char usage_tail[] =
     "  --shadow-bias U,S   the maps' depth bias: U depth units (2^-32 of the light's\n"
     "                      depth range) plus S times the surface's depth slope per\n"
     "                      texel (default 4096,2)\n"
-    "  --style solid|hidden-line   faces (default), or the visible edges of front faces\n"
+    "  --style S           solid: faces (default); hidden-line: the visible edges of\n"
+    "                      front faces, ink on paper; solid+wireframe: those edges\n"
+    "                      in black over the faces\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --normals FILE.pfm  also write the eye-space unit normals (x, y, z a pixel;\n"
     "                      0, 0, 0 where no face is), as --shade normal finds them\n"
@@ -127,6 +129,12 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
     if (alone)
       return zs_error_set(err, ZS_ERR_ARG, "--samples: not with %s: one sample a pixel", alone);
   }
+  if (o->wireframe && !zs_frame_wireframe_fits(o->algo, o->shade))
+    return zs_error_set(err, ZS_ERR_ARG, "--style solid+wireframe needs --algo zbuffer and a "
+                        "shading of the surfaces (not id, depth or overdraw)");
+  if (o->wireframe && (o->cull >= 0 || o->out_layer))
+    return zs_error_set(err, ZS_ERR_ARG, "--style solid+wireframe: not with %s",
+                        o->cull >= 0 ? "--cull" : "--layer");
   if (o->shadows && o->hidden_line)
     return zs_error_set(err, ZS_ERR_ARG, "--shadows: the hidden-line style draws no light");
   if (o->overlay && o->cull < 0)
@@ -320,9 +328,11 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
       o->overlay = 1;
     } else if (strcmp(a, "--style") == 0) {
       VALUE();
-      if (strcmp(v, "hidden-line") == 0) o->hidden_line = 1;
-      else if (strcmp(v, "solid") != 0)
-        return zs_error_set(err, ZS_ERR_ARG, "--style: expected solid or hidden-line, got '%s'", v);
+      o->hidden_line = strcmp(v, "hidden-line") == 0;
+      o->wireframe = strcmp(v, "solid+wireframe") == 0;
+      if (!o->hidden_line && !o->wireframe && strcmp(v, "solid") != 0)
+        return zs_error_set(err, ZS_ERR_ARG,
+                            "--style: expected solid, hidden-line or solid+wireframe, got '%s'", v);
     } else if (strcmp(a, "--depth") == 0) {
       VALUE();
       o->out_pfm = v;
@@ -662,6 +672,9 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     if ((st = zs_octree_build(&tree, &model, NULL, err))) goto done;
     have_tree = 1;
   }
+  const zs_frame_style style = o->hidden_line ? ZS_STYLE_HIDDEN_LINE
+                               : o->wireframe ? ZS_STYLE_WIREFRAME
+                                              : ZS_STYLE_SOLID;
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
     if (o->cull >= 0) {
@@ -679,10 +692,10 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
           (st = zs_frame_finish_into(dev, &im, depth, into, err)))
         goto done;
     } else if (o->samples > 1) {
-      if ((st = zs_frame_render_samples(dev, &model, view, proj, o->hidden_line, o->samples,
+      if ((st = zs_frame_render_samples(dev, &model, view, proj, style, o->samples,
                                         o->supersample, &im, &sample_stats, err)))
         goto done;
-    } else if ((st = zs_frame_render_on(dev, &model, view, proj, o->hidden_line, &im, depth,
+    } else if ((st = zs_frame_render_on(dev, &model, view, proj, style, &im, depth,
                                         err))) {
       goto done;
     }

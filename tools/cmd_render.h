@@ -36,6 +36,7 @@ typedef struct zs_cmd_render_opts {
   double shadow_bias[2];
   int samples;         /* --samples: 0 or 1, 2, 4, 8, 16 */
   int supersample;     /* --supersample: shaded at each sample */
+  int wireframe;       /* --style solid+wireframe */
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
   int skip_missing_textures; /* --skip-missing-textures */
   zs_query_bounds bounds;

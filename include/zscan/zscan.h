@@ -38,6 +38,7 @@
  *   zs_render_opts.width, .height     0: the scene's own size, else 1024 x 768
  *   zs_render_opts.algo, .shade, .cull_back, .threads   as the device's
  *   zs_render_opts.hidden_line        0: faces; 1: the visible edges
+ *   zs_render_opts.wireframe          0: faces; 1: their visible edges over them
  *   zs_render_opts.has_eye/.eye ...   0: the scene's camera, completed
  *                                     from its bounds (the automatic camera)
  *   zs_render_opts.fovy               0: the scene's, else 45 degrees
@@ -631,6 +632,8 @@ typedef struct zs_render_opts {
                             * with ZS_SHADE_ID or a depth map */
   int supersample;         /* with samples: shade each sample where it lies;
                             * 0: at the pixel's centre (multisampling) */
+  int wireframe;           /* the visible edges of front faces in black over
+                            * the faces (zbuffer mode; not with hidden_line) */
 } zs_render_opts;
 
 /* Renders scene into out (allocated here; free it with zs_image_free):

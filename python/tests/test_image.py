@@ -234,13 +234,13 @@ def test_structs_mirror_the_header(name):
 def test_struct_sizes_and_offsets_are_the_c_compilers():
     # as offsetof and sizeof print them on x86-64 Linux (gcc 12)
     o = _lib.zs_render_opts
-    assert ctypes.sizeof(o) == 192
+    assert ctypes.sizeof(o) == 200
     assert [getattr(o, f).offset for f in ("algo", "hidden_line", "has_up", "eye", "target",
                                            "up", "fovy", "znear", "zfar", "filter", "lights",
                                            "nlights", "shadows", "shadow_size",
                                            "has_shadow_bias", "shadow_bias", "samples",
-                                           "supersample")] == \
-        [8, 24, 36, 40, 64, 88, 112, 120, 128, 136, 144, 152, 156, 160, 164, 168, 184, 188]
+                                           "supersample", "wireframe")] == \
+        [8, 24, 36, 40, 64, 88, 112, 120, 128, 136, 144, 152, 156, 160, 164, 168, 184, 188, 192]
     assert ctypes.sizeof(_lib.zs_light) == 104
     assert ctypes.sizeof(_lib.zs_image) == 16 and _lib.zs_image.rgb.offset == 8
     assert ctypes.sizeof(_lib.zs_error) == 516 and _lib.zs_error.msg.offset == 4

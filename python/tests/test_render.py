@@ -98,6 +98,8 @@ COMBOS = [
      ["--shadows", "--algo", "scanline", "--threads", "2"]),
     ("teapots", dict(samples=4), ["--samples", "4"]),
     ("inter", dict(samples=8, supersample=True), ["--samples", "8", "--supersample"]),
+    ("cubes", dict(style="solid+wireframe", shade="phong"),
+     ["--style", "solid+wireframe", "--shade", "phong"]),
 ]
 
 

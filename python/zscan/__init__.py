@@ -313,7 +313,8 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
         o.width, o.height = w, h
     o.algo = _choice("algo", algo, _lib.ALGOS)
     o.shade = _choice("shade", shade, _lib.SHADES)
-    o.hidden_line = _choice("style", style, _lib.STYLES)
+    k = _choice("style", style, _lib.STYLES)
+    o.hidden_line, o.wireframe = k == 1, k == 2
     if not isinstance(shadows, bool):
         raise TypeError("shadows: expected True or False, got %r" % (shadows,))
     o.shadows = 1 if shadows else 0
@@ -439,7 +440,8 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     shade      'auto' (flat, or phong for a model with normals, colours or
                textures), 'flat', 'unlit', 'gouraud', 'phong', 'normal', 'id',
                'depth' or 'overdraw'
-    style      'solid' or 'hidden-line' (zbuffer and flat only)
+    style      'solid', 'hidden-line' (zbuffer and flat only) or
+               'solid+wireframe' (the edges over the faces; zbuffer only)
     threads    1 .. 64 (depthsort: its walk only)
     cull_back  drop faces turned away from the camera (--cull-back)
     shadows    every directional and spot light casts shadows, a scene

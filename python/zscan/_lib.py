@@ -34,7 +34,7 @@ STATUS_NAMES = (
 # zs_algo and zs_shade, in the header's enum order
 ALGOS = ("zbuffer", "scanline", "depthsort")
 SHADES = ("auto", "flat", "id", "depth", "overdraw", "unlit", "gouraud", "phong", "normal")
-STYLES = ("solid", "hidden-line")
+STYLES = ("solid", "hidden-line", "solid+wireframe")
 
 
 class zs_error(ctypes.Structure):
@@ -107,6 +107,7 @@ class zs_render_opts(ctypes.Structure):
         ("shadow_bias", ctypes.c_double * 2),
         ("samples", ctypes.c_int),
         ("supersample", ctypes.c_int),
+        ("wireframe", ctypes.c_int),
     ]
 
 
