@@ -14,6 +14,17 @@
 
 const char *zs_version(void) { return ZSCAN_VERSION_STRING; }
 
+int zs_pixel_version(void) { return ZSCAN_PIXEL_VERSION; }
+
+/* docs/CHANGES.md, a line a version, from 1 */
+static const char *const pixel_changes[ZSCAN_PIXEL_VERSION] = {
+    "the first numbered: every output as zscan 0.9.0 draws it",
+};
+
+const char *zs_pixel_changes(int v) {
+  return v >= 1 && v <= ZSCAN_PIXEL_VERSION ? pixel_changes[v - 1] : NULL;
+}
+
 zs_status zs_scene_load(const char *input, const zs_load_opts *opts, zs_scene **out,
                         zs_error *err) {
   *out = NULL;

@@ -220,6 +220,42 @@ START_TEST(moved_camera_fails_alone_with_a_report) {
 }
 END_TEST
 
+/* update writes the pixel version beside the goldens; a failing check
+ * against goldens of another version, or of none, says so. */
+START_TEST(failing_check_names_the_goldens_pixel_version) {
+  write_manifest("m.json", "", 0.3);
+  ck_assert_int_eq(golden("update", in_dir("m.json"), NULL, NULL, NULL, NULL), 0);
+  char *v = slurp(in_dir("golden/PIXEL-VERSION"));
+  char want[256];
+  snprintf(want, sizeof want, "%d\n", ZSCAN_PIXEL_VERSION);
+  ck_assert_str_eq(v, want);
+  free(v);
+  ck_assert_str_eq(zs_pixel_changes(1), "the first numbered: every output as zscan 0.9.0 draws it");
+  ck_assert_ptr_null(zs_pixel_changes(0));
+  ck_assert_ptr_null(zs_pixel_changes(ZSCAN_PIXEL_VERSION + 1));
+  write_manifest("moved.json", "", 0.31);
+  /* the same version: no word of it */
+  ck_assert_int_eq(golden("check", in_dir("moved.json"), "--dir", in_dir("golden"), NULL, NULL), 1);
+  ck_assert_ptr_null(strstr(out, "pixel version"));
+  /* goldens of a later zscan */
+  char later[64];
+  snprintf(later, sizeof later, "%d\n", ZSCAN_PIXEL_VERSION + 1);
+  write_text(in_dir("golden/PIXEL-VERSION"), later);
+  ck_assert_int_eq(golden("check", in_dir("moved.json"), "--dir", in_dir("golden"), NULL, NULL), 1);
+  snprintf(want, sizeof want, "made with pixel version %d; this zscan draws pixel version %d (an "
+           "older zscan)\n", ZSCAN_PIXEL_VERSION + 1, ZSCAN_PIXEL_VERSION);
+  ck_assert_msg(strstr(out, want) != NULL, "%s", out);
+  /* goldens that carry none */
+  unlink(in_dir("golden/PIXEL-VERSION"));
+  ck_assert_int_eq(golden("check", in_dir("moved.json"), "--dir", in_dir("golden"), NULL, NULL), 1);
+  ck_assert_msg(strstr(out, "PIXEL-VERSION is missing: the goldens' pixel version is unknown")
+                    != NULL, "%s", out);
+  /* a passing check says nothing of it */
+  ck_assert_int_eq(golden("check", in_dir("m.json"), "--dir", in_dir("golden"), NULL, NULL), 0);
+  ck_assert_ptr_null(strstr(out, "pixel version"));
+}
+END_TEST
+
 START_TEST(shards_check_every_case_once) {
   write_manifest("m.json", "", 0.3);
   ck_assert_int_eq(golden("update", in_dir("m.json"), NULL, NULL, NULL, NULL), 0);
@@ -329,6 +365,7 @@ int main(void) {
   tcase_add_test(tc, update_then_check_passes);
   tcase_add_test(tc, an_array_of_strings_repeats_its_option);
   tcase_add_test(tc, moved_camera_fails_alone_with_a_report);
+  tcase_add_test(tc, failing_check_names_the_goldens_pixel_version);
   tcase_add_test(tc, shards_check_every_case_once);
   tcase_add_test(tc, bad_manifests_named_by_json_path);
   tcase_add_test(tc, diff_tolerances_and_pictures);

@@ -32,9 +32,11 @@
 static const char usage[] =
     "usage: zscan golden update MANIFEST [--dir DIR]\n"
     "       zscan golden check MANIFEST [--dir DIR] [--report OUT] [--shard K/N] [--jobs J]\n"
-    "  update              render every case and write DIR/NAME.png\n"
+    "  update              render every case and write DIR/NAME.png, and zscan's\n"
+    "                      pixel version to DIR/PIXEL-VERSION\n"
     "  check               render every case and compare it with DIR/NAME.png: exit 0\n"
-    "                      when all pass, 1 when any differs or lacks its golden\n"
+    "                      when all pass, 1 when any differs or lacks its golden (and\n"
+    "                      then, if DIR/PIXEL-VERSION is another, what changed since)\n"
     "  MANIFEST            JSON: {\"cases\": [{\"name\": ..., \"input\": ..., OPTION: VALUE,\n"
     "                      ...}]}, OPTION any long option of zscan render without\n"
     "                      its dashes; max_channel_diff and max_diff_pixels: the\n"
@@ -468,6 +470,50 @@ static zs_status write_report(const golden_run *r, int tests, int failures, doub
   return write_html(r, p, tests, failures, err);
 }
 
+/* ---- the pixel version the goldens were made with ---------------------- */
+
+/* DIR/PIXEL-VERSION, written by update beside the goldens. */
+static void version_path(const golden_run *r, char *buf, size_t cap) {
+  snprintf(buf, cap, "%s/PIXEL-VERSION", r->dir);
+}
+
+static zs_status write_version(const golden_run *r, zs_error *err) {
+  char p[8400];
+  version_path(r, p, sizeof p);
+  zs_out o;
+  if (zs_out_open(&o, p, err)) return err->code;
+  fprintf(o.fp, "%d\n", zs_pixel_version());
+  return zs_out_commit(&o, err);
+}
+
+/* The goldens' pixel version: 0 when the file is missing, -1 unreadable. */
+static int read_version(const golden_run *r) {
+  char p[8400];
+  version_path(r, p, sizeof p);
+  FILE *f = fopen(p, "r");
+  if (!f) return 0;
+  int v = -1;
+  if (fscanf(f, "%d", &v) != 1 || v < 1) v = -1;
+  fclose(f);
+  return v;
+}
+
+/* After a failed check: whether the goldens are of another pixel version,
+ * and then what changed since theirs, a line a version. */
+static void explain_version(const golden_run *r) {
+  const int theirs = read_version(r), ours = zs_pixel_version();
+  if (theirs == ours) return;
+  if (theirs <= 0) {
+    printf("golden check: %s/PIXEL-VERSION %s: the goldens' pixel version is unknown; this "
+           "zscan draws pixel version %d\n", r->dir, theirs ? "is unreadable" : "is missing",
+           ours);
+    return;
+  }
+  printf("golden check: the goldens were made with pixel version %d; this zscan draws pixel "
+         "version %d%s\n", theirs, ours, theirs < ours ? ", which changed:" : " (an older zscan)");
+  for (int v = theirs + 1; v <= ours; v++) printf("  pixel version %d: %s\n", v, zs_pixel_changes(v));
+}
+
 /* ---- the command ------------------------------------------------------ */
 
 static int usage_error(const char *fmt, const char *arg) {
@@ -565,6 +611,8 @@ int zs_cmd_golden(int argc, char **argv) {
              (unsigned long long)c->diff.differing);
   }
   if (!r.update && r.report && write_report(&r, tests, failures, total_ms, &err)) goto done;
+  if (r.update && failures < tests && write_version(&r, &err)) goto done;
+  if (!r.update && failures) explain_version(&r);
   printf("golden %s: %d passed, %d failed%s\n", r.update ? "update" : "check", tests - failures,
          failures, r.shard_n > 1 ? " (this shard)" : "");
   status = failures ? 1 : 0;

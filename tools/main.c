@@ -10,6 +10,7 @@
  * optional parts compiled in. */
 static int version(void) {
   printf("zscan %s (library %s)\n", ZSCAN_VERSION_STRING, zs_version());
+  printf("pixel version: %d\n", zs_pixel_version());
   printf("span fill: %s\n", zs_simd_name(zs_span_simd_level(ZS_SIMD_AVX512)));
   printf("features:%s%s\n", ZS_FEATURES[0] ? " " : " none", ZS_FEATURES);
   return 0;

@@ -59,7 +59,8 @@
  * STABILITY: before 1.0 the names and structs here may still change
  * between minor versions (0.x); the ABI is tied to the major version
  * (SONAME libzscan.so.0).  Images and hashes change only with a reason in
- * the release notes.  The extras (zscan/walk.h, zscan/clock.h,
+ * the release notes and a new pixel version (ZSCAN_PIXEL_VERSION below,
+ * docs/CHANGES.md).  The extras (zscan/walk.h, zscan/clock.h,
  * zscan/trace.h, zscan/depthsort.h) may change more often.
  *
  * CONVENTIONS
@@ -99,6 +100,18 @@ extern "C" {
 /* The library's version, "MAJOR.MINOR.PATCH": compare it with
  * ZSCAN_VERSION_STRING to tell the library from the header. */
 const char *zs_version(void);
+
+/* The pixel version: a number raised whenever any output of an unchanged
+ * input and options changes (an image's bytes, a counter, a modelled
+ * time, a printed camera), and only then, so that a golden made with
+ * another number is known to differ on purpose.  docs/CHANGES.md lists
+ * each version's changes; zs_pixel_changes gives them. */
+#define ZSCAN_PIXEL_VERSION 1
+int zs_pixel_version(void);
+/* What changed in the outputs of pixel version v against v - 1, one
+ * line; NULL for a version this library does not know (v < 1 or later
+ * than its own). */
+const char *zs_pixel_changes(int v);
 
 enum {
   ZS_MAX_IMAGE_SIDE = 16384, /* width and height, each */
