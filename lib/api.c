@@ -17,9 +17,15 @@ const char *zs_version(void) { return ZSCAN_VERSION_STRING; }
 int zs_pixel_version(void) { return ZSCAN_PIXEL_VERSION; }
 
 /* docs/CHANGES.md, a line a version, from 1 */
-static const char *const pixel_changes[ZSCAN_PIXEL_VERSION] = {
+static const char *const pixel_changes[] = {
     "the first numbered: every output as zscan 0.9.0 draws it",
+    "zscan render --stats prints its modelled milliseconds from the integer picoseconds, "
+    "rounded to the nearest nanosecond, halves up: a time ending in exactly half a "
+    "nanosecond may print one more in its last digit",
 };
+
+_Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,
+               "a line in pixel_changes (and docs/CHANGES.md) for each pixel version");
 
 const char *zs_pixel_changes(int v) {
   return v >= 1 && v <= ZSCAN_PIXEL_VERSION ? pixel_changes[v - 1] : NULL;
@@ -80,7 +86,7 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
   zs_frame_size(scene, o->width, o->height, &width, &height);
   if ((unsigned)o->filter > ZS_FILTER_TRILINEAR)
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.filter: unknown filter %d", (int)o->filter);
-  if (o->nlights < 0 || (o->nlights > 0 && !o->lights))
+  if (o->nlights < 0 || o->nlights > ZS_MAX_LIGHTS || (o->nlights > 0 && !o->lights))
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.lights: %d lights at %s", o->nlights,
                         o->lights ? "an array" : "NULL");
   if (o->hidden_line && o->wireframe)

@@ -62,10 +62,12 @@ void zs_shadow_set_free(zs_shadow_set *s) {
 }
 
 /* The depth buffer of scene drawn through (lv, lp) at size x size: the
- * map's texels, both sides of every face (a back face casts too). */
+ * map's texels, both sides of every face (a back face casts too), with
+ * the frame's span fill (every level gives the same depths). */
 static zs_status draw_map(const zs_scene *scene, const double lv[16], const double lp[16],
-                          int size, int threads, uint32_t **out, zs_error *err) {
-  const zs_device_config cfg = {size, size, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, threads, 0, 0, 0};
+                          int size, int threads, zs_span_fill spans, uint32_t **out,
+                          zs_error *err) {
+  const zs_device_config cfg = {size, size, ZS_ALGO_ZBUFFER, ZS_SHADE_FLAT, 0, threads, 0, spans, 0};
   zs_device *dev = NULL;
   *out = NULL;
   zs_status st = zs_device_create(&cfg, &dev, err);
@@ -85,6 +87,9 @@ zs_status zs_frame_lights_and_shadows(zs_device *dev, const zs_scene *scene,
                                       zs_error *err) {
   zs_light chosen[ZS_MAX_LIGHTS];
   int nchosen = 0;
+  if (n > 0 && !lights) return zs_error_set(err, ZS_ERR_ARG, "lights: NULL with n = %d", n);
+  zs_status checked = zs_lights_check(lights, n, err);
+  if (checked != ZS_OK) return checked;
   if (n > 0) memcpy(chosen, lights, (size_t)(nchosen = n) * sizeof *chosen);
   else if (scene->nlights > 0)
     memcpy(chosen, scene->lights, (size_t)(nchosen = scene->nlights) * sizeof *chosen);
@@ -115,7 +120,8 @@ zs_status zs_frame_lights_and_shadows(zs_device *dev, const zs_scene *scene,
     }
     zs_shadow_map *m = &out->map[out->n];
     if (!zs_shadow_camera(&chosen[i], view, scene->lo, scene->hi, m->view, m->proj)) continue;
-    zs_status st = draw_map(scene, m->view, m->proj, size, threads, &out->depth[out->n], err);
+    zs_status st = draw_map(scene, m->view, m->proj, size, threads,
+                            zs_device_config_of(dev)->spans, &out->depth[out->n], err);
     if (st != ZS_OK) {
       zs_shadow_set_free(out);
       return st;

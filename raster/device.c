@@ -249,6 +249,9 @@ zs_status zs_device_set_shadow_maps(zs_device *d, const zs_shadow_map *maps, int
     return zs_error_set(err, ZS_ERR_ARG, "shadow maps: %d maps: 0 to %d may be set", n,
                         ZS_MAX_SHADOW_MAPS);
   if (n > 0 && !maps) return zs_error_set(err, ZS_ERR_ARG, "shadow maps: NULL with n = %d", n);
+  if (d->surf.ndraws > 0)
+    return zs_error_set(err, ZS_ERR_ARG, "shadow maps: set before a frame's first draw (after "
+                        "zs_device_clear), not between its draws");
   if (n > 0 && d->cfg.shade != ZS_SHADE_AUTO && d->cfg.shade != ZS_SHADE_PHONG)
     return zs_error_set(err, ZS_ERR_ARG, "shadow maps need the Phong shading (auto or phong), "
                         "not %s", zs_shade_name(d->cfg.shade));

@@ -384,19 +384,25 @@ static inline int map_window(const zs_shadow_map *m, const double c[4], double o
 }
 
 /* The triangle's bias in map m from its corners' clip coordinates c:
- * units + slope (|dz/dx| + |dz/dy|), rounded down (zscan.h);
- * units alone where a corner lies behind the light, 2^32 where the
- * triangle is edge-on to it. */
+ * units + slope (|dz/dx| + |dz/dy|), rounded down (zscan.h).  The
+ * triangle's plane holds the clip points a X + b Y + c Z + d W = 0, (a, b,
+ * c, d) the 4-D cross product of the corners, so in the window z is affine
+ * in x and y with slopes -a / c and -b / c (scaled to texels and depth
+ * units) wherever the plane lies in front of the light, a corner behind it
+ * or not; 2^32 where the triangle is edge-on to the light. */
 static int64_t shadow_bias(const zs_shadow_map *m, const double c[3][4]) {
-  double v[3][3];
-  for (int i = 0; i < 3; i++)
-    if (!map_window(m, c[i], v[i])) return (int64_t)m->bias_units;
-  const double a[3] = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
-  const double b[3] = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
-  const double nx = a[1] * b[2] - a[2] * b[1], ny = a[2] * b[0] - a[0] * b[2],
-               nz = a[0] * b[1] - a[1] * b[0];
-  if (!(nz != 0.0)) return (int64_t)DEPTH_ONE;
-  const double bias = m->bias_units + m->bias_slope * (fabs(nx / nz) + fabs(ny / nz));
+  const double *u = c[0], *v = c[1], *w = c[2];
+  /* the 3 x 3 minors of the rows u, v, w without column k */
+#define MINOR(i, j, k)                                                             \
+  (u[i] * (v[j] * w[k] - v[k] * w[j]) - u[j] * (v[i] * w[k] - v[k] * w[i]) +      \
+   u[k] * (v[i] * w[j] - v[j] * w[i]))
+  const double pa = MINOR(1, 2, 3), pb = -MINOR(0, 2, 3), pc = MINOR(0, 1, 3);
+#undef MINOR
+  if (!(pc != 0.0)) return (int64_t)DEPTH_ONE;
+  /* z in depth units over x, y in texels: (DEPTH_ONE / 2) / (width / 2) */
+  const double sx = fabs(pa / pc) * DEPTH_ONE / m->width,
+               sy = fabs(pb / pc) * DEPTH_ONE / m->height;
+  const double bias = m->bias_units + m->bias_slope * (sx + sy);
   return bias < DEPTH_ONE ? (int64_t)bias : (int64_t)DEPTH_ONE;
 }
 

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "tests/testutil.h"
+#include "tools/cli.h"
 #include "tools/clockfile.h"
 #include "tools/commands.h"
 #include "lib/image.h"
@@ -1469,6 +1470,22 @@ START_TEST(query_counts_owned_pixels_and_box_samples) {
 }
 END_TEST
 
+/* Modelled milliseconds printed from integer picoseconds: to the nearest
+ * nanosecond, halves away from zero, the same text on every target. */
+START_TEST(milliseconds_of_picoseconds) {
+  char b[32];
+  ck_assert_str_eq(zs_cli_ms_of_ps(35495500, b), "0.035496");
+  ck_assert_str_eq(zs_cli_ms_of_ps(35495499, b), "0.035495");
+  ck_assert_str_eq(zs_cli_ms_of_ps(0, b), "0.000000");
+  ck_assert_str_eq(zs_cli_ms_of_ps(499, b), "0.000000");
+  ck_assert_str_eq(zs_cli_ms_of_ps(-1500, b), "-0.000002");
+  ck_assert_str_eq(zs_cli_ms_of_ps(-400, b), "0.000000");
+  ck_assert_str_eq(zs_cli_ms_of_ps(13086716000, b), "13.086716");
+  ck_assert_str_eq(zs_cli_ms_of_ps(INT64_MAX, b), "9223372036.854776");
+  ck_assert_str_eq(zs_cli_ms_of_ps(INT64_MIN, b), "-9223372036.854776");
+}
+END_TEST
+
 START_TEST(unknown_command) {
   const char *args[] = {"paint", NULL};
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
@@ -1515,6 +1532,7 @@ int main(void) {
   tcase_add_test(tc, bench_depthsort_coherence_pays_where_depths_are_kept);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, walk_csv_same_bytes_every_run_but_wall_time);
+  tcase_add_test(tc, milliseconds_of_picoseconds);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
   suite_add_tcase(s, tc);

@@ -245,6 +245,17 @@ START_TEST(failing_check_names_the_goldens_pixel_version) {
   snprintf(want, sizeof want, "made with pixel version %d; this zscan draws pixel version %d (an "
            "older zscan)\n", ZSCAN_PIXEL_VERSION + 1, ZSCAN_PIXEL_VERSION);
   ck_assert_msg(strstr(out, want) != NULL, "%s", out);
+  /* goldens of an older version: the versions since, each with its changes */
+  write_text(in_dir("golden/PIXEL-VERSION"), "1\n");
+  ck_assert_int_eq(golden("check", in_dir("moved.json"), "--dir", in_dir("golden"), NULL, NULL), 1);
+  snprintf(want, sizeof want, "made with pixel version 1; this zscan draws pixel version %d, "
+           "which changed:\n", ZSCAN_PIXEL_VERSION);
+  ck_assert_msg(strstr(out, want) != NULL, "%s", out);
+  for (int k = 2; k <= ZSCAN_PIXEL_VERSION; k++) {
+    char line[1024];
+    snprintf(line, sizeof line, "  pixel version %d: %s\n", k, zs_pixel_changes(k));
+    ck_assert_msg(strstr(out, line) != NULL, "%s", out);
+  }
   /* goldens that carry none */
   unlink(in_dir("golden/PIXEL-VERSION"));
   ck_assert_int_eq(golden("check", in_dir("moved.json"), "--dir", in_dir("golden"), NULL, NULL), 1);

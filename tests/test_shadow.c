@@ -122,6 +122,28 @@ START_TEST(shadow_falls_below_the_tile) {
 }
 END_TEST
 
+/* A spot light low over a floor that reaches behind it: the floor's
+ * corners lie behind the light's eye (w <= 0 in its clip space), and its
+ * bias still holds its slope, so the lit floor is as without shadows. */
+START_TEST(plane_behind_a_spot_does_not_shadow_itself) {
+  zs_scene *s = load("tests/data/scenes/spot_over_floor.json");
+  zs_light unmarked[2];
+  memcpy(unmarked, s->lights, sizeof unmarked);
+  ck_assert(unmarked[0].shadow);
+  unmarked[0].shadow = 0;
+  zs_render_opts o = {0};
+  const zs_image shadowed = render(s, &o);
+  o.lights = unmarked, o.nlights = 2;
+  const zs_image plain = render(s, &o);
+  zs_diff_result d;
+  ck_assert_int_eq(zs_image_diff(&shadowed, &plain, NULL, &d, &err), ZS_OK);
+  ck_assert_msg(d.differing == 0, "%llu pixels of the floor shadow it", (unsigned long long)d.differing);
+  zs_image_free((zs_image *)&shadowed);
+  zs_image_free((zs_image *)&plain);
+  zs_scene_destroy(s);
+}
+END_TEST
+
 /* --shadows on a scene without lights: the key light, casting; the same
  * bytes as that light given by hand and marked. */
 START_TEST(key_light_of_a_scene_without_lights) {
@@ -232,6 +254,23 @@ START_TEST(bad_shadow_maps_refused) {
     ck_assert_int_eq(zs_device_set_shadow_maps(d, b, n, &err), ZS_ERR_ARG);
     ck_assert_str_eq(err.msg, bad[i].message);
   }
+  /* maps hold for a frame: not set between its draws */
+  {
+    double pos[9] = {0, 0, -2, 1, 0, -2, 0, 1, -2}, v[16], p[16];
+    int32_t start[2] = {0, 3}, fv[3] = {0, 1, 2};
+    zs_mesh tri = {pos, 3, start, fv, 1, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    zs_mat_identity(v);
+    zs_mat_perspective(p, 60, 4.0 / 3, 0.5, 10);
+    zs_device_set_camera(phong, v, p);
+    zs_device_clear(phong);
+    ck_assert_int_eq(zs_device_draw(phong, &tri, NULL, 0, 0xFFFFFF, &err), ZS_OK);
+    zs_error_clear(&err);
+    ck_assert_int_eq(zs_device_set_shadow_maps(phong, m, 2, &err), ZS_ERR_ARG);
+    ck_assert_str_eq(err.msg, "shadow maps: set before a frame's first draw (after "
+                              "zs_device_clear), not between its draws");
+    ck_assert_int_eq(zs_device_finish(phong, NULL, NULL, &err), ZS_OK);
+    zs_device_clear(phong);
+  }
   /* a point light marked to cast is refused with the lights */
   lights[1].kind = ZS_LIGHT_POINT, lights[1].shadow = 1;
   zs_error_clear(&err);
@@ -266,6 +305,7 @@ int main(void) {
   TCase *tc = tcase_create("maps");
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, shadow_falls_below_the_tile);
+  tcase_add_test(tc, plane_behind_a_spot_does_not_shadow_itself);
   tcase_add_test(tc, key_light_of_a_scene_without_lights);
   tcase_add_test(tc, shadow_cameras_hold_the_bounds);
   tcase_add_test(tc, bad_shadow_maps_refused);

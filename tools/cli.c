@@ -276,3 +276,12 @@ double zs_wall_ms(void) {
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
+
+const char *zs_cli_ms_of_ps(int64_t ps, char *buf) {
+  /* |ps| as unsigned, so that INT64_MIN negates */
+  const uint64_t mag = ps < 0 ? 0 - (uint64_t)ps : (uint64_t)ps;
+  const uint64_t ns = mag / 1000 + (mag % 1000 >= 500);
+  snprintf(buf, 32, "%s%llu.%06llu", ps < 0 && ns ? "-" : "", (unsigned long long)(ns / 1000000),
+           (unsigned long long)(ns % 1000000));
+  return buf;
+}

@@ -8,6 +8,7 @@
 #define ZS_TOOLS_CLI_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "zscan/zscan.h"
 
@@ -45,6 +46,11 @@ const char *zs_cli_extension(const char *path);
  * or a device is taken as it is. */
 zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
                                zs_error *err);
+/* Picoseconds as milliseconds with six decimals ("12.345679"), rounded to
+ * the nearest nanosecond (halves away from zero), by integer arithmetic
+ * alone, so the text is the same wherever doubles would round otherwise;
+ * buf holds at least 32 bytes. */
+const char *zs_cli_ms_of_ps(int64_t ps, char *buf);
 /* zs_cli_value, then zs_cli_int or zs_cli_size on the value: an option
  * taking a whole number, or a size. */
 zs_status zs_cli_int_value(int argc, char **argv, int *i, long lo, long hi, int *out,

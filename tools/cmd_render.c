@@ -125,6 +125,7 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
                         : o->cull >= 0          ? "--cull"
                         : o->out_layer          ? "--layer"
                         : o->out_pfm            ? "--depth"
+                        : o->out_normals        ? "--normals"
                                                 : NULL;
     if (alone)
       return zs_error_set(err, ZS_ERR_ARG, "--samples: not with %s: one sample a pixel", alone);
@@ -463,14 +464,18 @@ static void print_stats(const zs_cmd_render_opts *o, const zs_scene *sc, const z
            (unsigned long long)cr->st->queries_hidden, (unsigned long long)cr->st->objects_drawn,
            (unsigned long long)cr->st->faces_drawn, (unsigned long long)cr->st->draws_measured);
   const zs_clock_stats *k = zs_device_clock(dev);
-  printf("\"queries\":%llu,\"query_waits\":%llu,\"stalls\":%llu,\"stall_ms\":%.6f,"
-         "\"sync_ms\":%.6f,\"gpu_ms\":%.6f,\"cpu_ms\":%.6f,\"modelled_ms\":%.6f,",
+  /* modelled times from the integer picoseconds, by integer formatting */
+  char t[9][32];
+  printf("\"queries\":%llu,\"query_waits\":%llu,\"stalls\":%llu,\"stall_ms\":%s,"
+         "\"sync_ms\":%s,\"gpu_ms\":%s,\"cpu_ms\":%s,\"modelled_ms\":%s,",
          (unsigned long long)k->queries, (unsigned long long)k->query_waits,
-         (unsigned long long)k->stalls, k->stall_ps * 1e-9, k->sync_ps * 1e-9, k->gpu_ps * 1e-9,
-         k->cpu_ps * 1e-9, zs_device_frame_ps(dev) * 1e-9);
+         (unsigned long long)k->stalls, zs_cli_ms_of_ps(k->stall_ps, t[0]),
+         zs_cli_ms_of_ps(k->sync_ps, t[1]), zs_cli_ms_of_ps(k->gpu_ps, t[2]),
+         zs_cli_ms_of_ps(k->cpu_ps, t[3]), zs_cli_ms_of_ps(zs_device_frame_ps(dev), t[4]));
   const zs_gpu_split gs = zs_clock_gpu_split(dev);
-  printf("\"gpu_draw_ms\":%.6f,\"gpu_query_ms\":%.6f,\"gpu_switch_ms\":%.6f,\"gpu_idle_ms\":%.6f,",
-         gs.draw_ps * 1e-9, gs.query_ps * 1e-9, gs.switch_ps * 1e-9, gs.idle_ps * 1e-9);
+  printf("\"gpu_draw_ms\":%s,\"gpu_query_ms\":%s,\"gpu_switch_ms\":%s,\"gpu_idle_ms\":%s,",
+         zs_cli_ms_of_ps(gs.draw_ps, t[5]), zs_cli_ms_of_ps(gs.query_ps, t[6]),
+         zs_cli_ms_of_ps(gs.switch_ps, t[7]), zs_cli_ms_of_ps(gs.idle_ps, t[8]));
   zs_device_memory mem = zs_device_memory_of(dev);
   printf("\"buffer_bytes\":%zu,\"table_bytes\":%zu,\"vertex_bytes\":%zu,", mem.pixel_buffers,
          mem.tables, mem.vertices);

@@ -5,7 +5,16 @@
  * first omitted term is below 2^-60 of the result. */
 #include "util/exactmath.h"
 
+#include <float.h>
 #include <math.h> /* floor, frexp, ldexp: exact; the constants HUGE_VAL, NAN */
+
+/* Every output is a function of correctly rounded double operations: a
+ * target that keeps intermediates in more precision (the x87's
+ * FLT_EVAL_METHOD 2, or one that cannot say) would round them otherwise.
+ * 32-bit x86 builds with -msse2 -mfpmath=sse (CMakeLists.txt). */
+#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
+#error "zscan needs FLT_EVAL_METHOD 0 (each operation rounded to its type): on 32-bit x86 build with -msse2 -mfpmath=sse"
+#endif
 
 #define PI 3.14159265358979323846
 /* ln 2 in two parts: LN2_HI has its low 32 bits zero, so k * LN2_HI is

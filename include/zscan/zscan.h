@@ -89,9 +89,9 @@
 #include "zscan/error.h"
 
 #define ZSCAN_VERSION_MAJOR 0
-#define ZSCAN_VERSION_MINOR 9
+#define ZSCAN_VERSION_MINOR 10
 #define ZSCAN_VERSION_PATCH 0
-#define ZSCAN_VERSION_STRING "0.9.0"
+#define ZSCAN_VERSION_STRING "0.10.0"
 
 #ifdef __cplusplus
 extern "C" {
@@ -106,7 +106,7 @@ const char *zs_version(void);
  * time, a printed camera), and only then, so that a golden made with
  * another number is known to differ on purpose.  docs/CHANGES.md lists
  * each version's changes; zs_pixel_changes gives them. */
-#define ZSCAN_PIXEL_VERSION 1
+#define ZSCAN_PIXEL_VERSION 2
 int zs_pixel_version(void);
 /* What changed in the outputs of pixel version v against v - 1, one
  * line; NULL for a version this library does not know (v < 1 or later
@@ -406,15 +406,18 @@ typedef struct zs_shadow_map {
   int width, height;         /* 1 .. ZS_MAX_IMAGE_SIDE */
   const uint32_t *depth;     /* width * height depths, row 0 at the top, as
                               * zs_device_depth_buffer gives them: the caller's,
-                              * valid until zs_device_finish */
+                              * valid while the device holds the map (until
+                              * maps or lights are set again, or it is
+                              * destroyed) */
   double view[16], proj[16]; /* the camera it was drawn with */
   double bias_units;         /* 0 .. 2^32: bias = units + slope m (above) */
   double bias_slope;         /* 0 .. 1e6 */
 } zs_shadow_map;
 
-/* The shadow maps of the following draws (copied; the depths are not):
- * n of them, 0 .. ZS_MAX_SHADOW_MAPS, each for a different directional or
- * spot light of those set; n = 0: none.  Setting lights drops them.  The
+/* The shadow maps of the frames from the next on (copied; the depths are
+ * not), set before a frame's first draw (after zs_device_clear): n of
+ * them, 0 .. ZS_MAX_SHADOW_MAPS, each for a different directional or spot
+ * light of those set; n = 0: none.  Setting lights drops them.  The
  * device's shading must be ZS_SHADE_AUTO or ZS_SHADE_PHONG (Gouraud lights
  * only the corners, flat not by the lights): else ZS_ERR_ARG, as for a map
  * out of range, naming maps[i] and its field. */
@@ -634,7 +637,8 @@ typedef struct zs_render_opts {
   int nlights;
   int shadows;             /* 1: every directional and spot light casts
                             * shadows (with no light given or in the scene:
-                            * the key light, zs_lights_key); 0: those marked */
+                            * the key light, zs_lights_key); 0: those marked;
+                            * at most ZS_MAX_SHADOW_MAPS lights cast them */
   int shadow_size;         /* each map's side in texels; 0: 1024 */
   int has_shadow_bias;     /* 0: ZS_SHADOW_BIAS_UNITS and _SLOPE */
   double shadow_bias[2];   /* units, slope (zs_shadow_map) */
