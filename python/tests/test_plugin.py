@@ -47,8 +47,9 @@ def test_missing_then_update_then_pass(pytester):
 
     r = run(pytester)
     r.assert_outcomes(passed=1)
-    # a pass leaves nothing beside the golden but the golden
-    assert sorted(os.listdir(pytester.path / "golden")) == ["view.png"]
+    # a pass leaves nothing beside the golden but the golden and its version
+    assert sorted(os.listdir(pytester.path / "golden")) == ["PIXEL-VERSION", "view.png"]
+    assert (pytester.path / "golden" / "PIXEL-VERSION").read_text() == "%d\n" % zscan.pixel_version()
 
 
 def test_a_changed_image_fails_with_counts_and_files(pytester):
@@ -77,7 +78,7 @@ def test_a_changed_image_fails_with_counts_and_files(pytester):
     # accepting the change, then passing, clears the actual and diff images
     run(pytester, "--zscan-update").assert_outcomes(passed=1)
     run(pytester).assert_outcomes(passed=1)
-    assert sorted(os.listdir(golden_dir)) == ["view.png"]
+    assert sorted(os.listdir(golden_dir)) == ["PIXEL-VERSION", "view.png"]
 
 
 def test_output_directory(pytester):
@@ -87,7 +88,27 @@ def test_output_directory(pytester):
     r = run(pytester, "--zscan-output", "report")
     r.assert_outcomes(failed=1)
     assert sorted(os.listdir(pytester.path / "report")) == ["view.actual.png", "view.diff.png"]
-    assert sorted(os.listdir(pytester.path / "golden")) == ["view.png"]
+    assert sorted(os.listdir(pytester.path / "golden")) == ["PIXEL-VERSION", "view.png"]
+
+
+def test_goldens_of_an_older_pixel_version_say_what_changed(pytester):
+    write_test(pytester)
+    run(pytester, "--zscan-update").assert_outcomes(passed=1)
+    version = pytester.path / "golden" / "PIXEL-VERSION"
+    write_test(pytester, eye=(6.5, 5, 9))
+    r = run(pytester)
+    r.assert_outcomes(failed=1)
+    assert "pixel version" not in r.stdout.str()   # the same version: no word of it
+    version.write_text("1\n")
+    r = run(pytester)
+    r.assert_outcomes(failed=1)
+    out = " ".join(r.stdout.str().split())
+    ours = zscan.pixel_version()
+    assert "the goldens were made with pixel version 1; this zscan draws version %d, which " \
+        "changed:" % ours in out, out
+    for v in range(2, ours + 1):
+        assert " ".join(("%d: %s" % (v, zscan.pixel_changes(v))).split()) in out, out
+    assert zscan.pixel_changes(0) is None and zscan.pixel_changes(ours + 1) is None
 
 
 def test_another_size_fails_with_both_sizes(pytester):

@@ -31,6 +31,8 @@ __all__ = [
     "diff",
     "library_path",
     "load",
+    "pixel_changes",
+    "pixel_version",
     "read_png",
     "render",
 ]
@@ -45,6 +47,19 @@ def __getattr__(name):
     if name == "__version__":
         return _lib.load().zs_version().decode("ascii")
     raise AttributeError("module 'zscan' has no attribute %r" % name)
+
+
+def pixel_version():
+    """The library's pixel version (zs_pixel_version): raised whenever any
+    output of an unchanged input changes; docs/CHANGES.md lists them."""
+    return _lib.load().zs_pixel_version()
+
+
+def pixel_changes(version):
+    """What changed in pixel version `version` against the one before, or
+    None for a version this library does not know."""
+    s = _lib.load().zs_pixel_changes(_int("version", version))
+    return None if s is None else s.decode("utf-8", "replace")
 
 
 def library_path():

@@ -138,6 +138,8 @@ _p_image = ctypes.POINTER(zs_image)
 # name: (restype, argtypes)
 _SIGNATURES = {
     "zs_version": (ctypes.c_char_p, []),
+    "zs_pixel_version": (ctypes.c_int, []),
+    "zs_pixel_changes": (ctypes.c_char_p, [ctypes.c_int]),
     "zs_algo_parse": (ctypes.c_int, [ctypes.c_char_p]),
     "zs_scene_load": (
         _c_status,

@@ -13,8 +13,12 @@ largest channel difference, and writes teapot.actual.png and
 teapot.diff.png (zs_image_diff's picture: equal pixels a darkened grey,
 differing ones red) beside the golden, or into --zscan-output DIR.
 
-    pytest --zscan-update        writes (or rewrites) the goldens
+    pytest --zscan-update        writes (or rewrites) the goldens, and
+                                 golden/PIXEL-VERSION beside them
     pytest --zscan-output DIR    actual and diff images into DIR
+
+A mismatch against goldens of another pixel version (zscan.pixel_version)
+says so, with what changed in the versions since.
 
 The library is loaded only when the fixture is used, so registering this
 plugin never breaks a test run that does not use it.
@@ -60,6 +64,27 @@ def _check_name(name):
         )
 
 
+def _version_note(golden_dir):
+    """'' when golden_dir's PIXEL-VERSION is this zscan's, else a sentence
+    naming both versions and the changes between."""
+    import zscan
+
+    ours = zscan.pixel_version()
+    try:
+        with open(os.path.join(golden_dir, "PIXEL-VERSION")) as f:
+            theirs = int(f.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return " (the goldens carry no PIXEL-VERSION: made before zscan kept one?)"
+    if theirs == ours:
+        return ""
+    if theirs > ours:
+        return (" (the goldens were made with pixel version %d; this zscan draws version %d, "
+                "an older one)" % (theirs, ours))
+    changes = "; ".join("%d: %s" % (v, zscan.pixel_changes(v)) for v in range(theirs + 1, ours + 1))
+    return (" (the goldens were made with pixel version %d; this zscan draws version %d, "
+            "which changed: %s)" % (theirs, ours, changes))
+
+
 def _remove(path):
     try:
         os.remove(path)
@@ -91,6 +116,8 @@ def zscan_golden(request):
         if update:
             os.makedirs(golden_dir, exist_ok=True)
             image.save(golden)
+            with open(os.path.join(golden_dir, "PIXEL-VERSION"), "w") as f:
+                f.write("%d\n" % zscan.pixel_version())
             _remove(actual)
             _remove(diff_png)
             return
@@ -121,8 +148,9 @@ def zscan_golden(request):
             pytest.fail(
                 "zscan_golden %s: %d of %d pixels differ from %s, largest channel "
                 "difference %d; actual image: %s, diff image: %s (run pytest with "
-                "--zscan-update to accept it)"
-                % (name, d.differing, d.total, golden, d.max_channel_diff, actual, diff_png),
+                "--zscan-update to accept it)%s"
+                % (name, d.differing, d.total, golden, d.max_channel_diff, actual, diff_png,
+                   _version_note(golden_dir)),
                 pytrace=False,
             )
         # a pass clears what an earlier failure left
