@@ -1470,6 +1470,24 @@ START_TEST(query_counts_owned_pixels_and_box_samples) {
 }
 END_TEST
 
+/* Shadows asked for where nothing casts them: drawn, with a warning. */
+START_TEST(shadow_options_that_cast_nothing_warn) {
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-shadow-warn.png", ZS_BINARY_DIR);
+  const char *a[] = {"render", zs_test_src("scene/examples/spotlight.json"), "--size", "64x48",
+                     "--shade", "gouraud", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(a, out, sizeof out, err, sizeof err), 0);
+  ck_assert_msg(strncmp(err, "zscan render: warning: --shade gouraud shows no shadows (auto and "
+                             "phong do): the lights marked \"shadow\" cast none\n", 114) == 0,
+                "%s", err);
+  const char *b[] = {"render", "builtin:default", "--size", "64x48", "--shadows", "--light",
+                     "point:0,5,0", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(b, out, sizeof out, err, sizeof err), 0);
+  ck_assert_msg(strstr(err, "zscan render: warning: --shadows: no directional or spot light casts "
+                            "shadows\n") == err, "%s", err);
+}
+END_TEST
+
 /* Modelled milliseconds printed from integer picoseconds: to the nearest
  * nanosecond, halves away from zero, the same text on every target. */
 START_TEST(milliseconds_of_picoseconds) {
@@ -1532,6 +1550,7 @@ int main(void) {
   tcase_add_test(tc, bench_depthsort_coherence_pays_where_depths_are_kept);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, walk_csv_same_bytes_every_run_but_wall_time);
+  tcase_add_test(tc, shadow_options_that_cast_nothing_warn);
   tcase_add_test(tc, milliseconds_of_picoseconds);
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);

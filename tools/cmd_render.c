@@ -655,6 +655,18 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   if ((st = zs_frame_lights_and_shadows(dev, &model, o->lights, o->nlights, &so, view,
                                         o->threads, &shadows, err)))
     goto done;
+  if (shadows.n == 0 && !o->quiet && !keep) { /* asked for, and nothing casts */
+    int marked = 0;
+    const zs_light *ls = o->nlights ? o->lights : model.lights;
+    for (int i = 0; i < (o->nlights ? o->nlights : model.nlights); i++) marked |= ls[i].shadow;
+    const int phong = o->shade == ZS_SHADE_AUTO || o->shade == ZS_SHADE_PHONG;
+    if (marked && !phong)
+      fprintf(stderr, "zscan render: warning: --shade %s shows no shadows (auto and phong do): "
+              "the lights marked \"shadow\" cast none\n", zs_shade_name(o->shade));
+    else if (o->shadows || o->shadow_size || o->has_shadow_bias)
+      fprintf(stderr, "zscan render: warning: %s: no directional or spot light casts shadows\n",
+              o->shadows ? "--shadows" : o->shadow_size ? "--shadow-size" : "--shadow-bias");
+  }
   /* the camera is the whole scene's: a part's frame composites with the others' */
   if (o->nparts && (st = keep_objects(o, &model, err))) goto done;
   if ((st = zs_device_set_clock(dev, &o->clock, err))) goto done;
