@@ -91,9 +91,7 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
                         o->lights ? "an array" : "NULL");
   if (o->hidden_line && o->wireframe)
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts: hidden_line and wireframe: one style");
-  const zs_frame_style style = o->hidden_line ? ZS_STYLE_HIDDEN_LINE
-                               : o->wireframe ? ZS_STYLE_WIREFRAME
-                                              : ZS_STYLE_SOLID;
+  const zs_frame_style style = zs_frame_style_of(o->hidden_line, o->wireframe);
   if (o->shadow_size != 0 &&
       (o->shadow_size < ZS_SHADOW_MIN_SIZE || o->shadow_size > ZS_SHADOW_MAX_SIZE))
     return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.shadow_size: %d: %d to %d (0: %d)",

@@ -26,6 +26,12 @@ typedef enum zs_frame_style {
   ZS_STYLE_WIREFRAME
 } zs_frame_style;
 
+/* The style the options' two flags ask for (both: hidden lines; callers
+ * refuse that first). */
+static inline zs_frame_style zs_frame_style_of(int hidden_line, int wireframe) {
+  return hidden_line ? ZS_STYLE_HIDDEN_LINE : wireframe ? ZS_STYLE_WIREFRAME : ZS_STYLE_SOLID;
+}
+
 typedef struct zs_frame_opts {
   int width, height;
   zs_algo algo;

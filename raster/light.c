@@ -45,7 +45,7 @@ void zs_light_set_make(const zs_light *lights, int n, const double view[16], int
     e->kind = l->kind;
     e->shadow = -1;
     for (int j = 0; j < nmaps; j++)
-      if (maps[j].light == i) e->shadow = j, out->shadowed++;
+      if (maps[j].light == i) e->shadow = j;
     memcpy(e->color, l->color, sizeof e->color);
     double dir[3], pos4[4];
     if (l->eye_space) {

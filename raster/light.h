@@ -33,7 +33,6 @@ typedef struct zs_light_set {
   int n;
   double ambient[3];   /* the ambient lights' sum */
   int perspective;     /* the view vector is towards the eye point (else +z) */
-  int shadowed;        /* lights with a shadow map */
 } zs_light_set;
 
 /* The lights in the eye space of view; a light marked eye_space is taken

@@ -689,9 +689,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     if ((st = zs_octree_build(&tree, &model, NULL, err))) goto done;
     have_tree = 1;
   }
-  const zs_frame_style style = o->hidden_line ? ZS_STYLE_HIDDEN_LINE
-                               : o->wireframe ? ZS_STYLE_WIREFRAME
-                                              : ZS_STYLE_SOLID;
+  const zs_frame_style style = zs_frame_style_of(o->hidden_line, o->wireframe);
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
     if (o->cull >= 0) {
