@@ -22,6 +22,9 @@ static const char *const pixel_changes[] = {
     "zscan render --stats prints its modelled milliseconds from the integer picoseconds, "
     "rounded to the nearest nanosecond, halves up: a time ending in exactly half a "
     "nanosecond may print one more in its last digit",
+    "transparent faces (material, texture or vertex-colour alpha below 255) are composited "
+    "in depth order over the opaque surface, where they were drawn opaque before: models "
+    "with such alpha change, opaque ones do not",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

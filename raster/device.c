@@ -117,6 +117,7 @@ zs_status zs_device_create(const zs_device_config *given, zs_device **out,
     }
   }
   zs_surfaces_init(&d->surf, cfg->width, cfg->height, (zs_filter)cfg->filter);
+  zs_abuffer_init(&d->abuf, cfg->width, cfg->height, cfg->threads);
   d->reads_attrs = zs_shade_reads_attrs(cfg->shade);
   d->gx = 1.0 + (double)(1 << 15) / cfg->width;
   d->gy = 1.0 + (double)(1 << 15) / cfg->height;
@@ -152,6 +153,8 @@ zs_status zs_device_set_normals(zs_device *d, int on, zs_error *err) {
 void zs_device_destroy(zs_device *d) {
   if (!d) return;
   zs_surfaces_free(&d->surf);
+  zs_abuffer_free(&d->abuf);
+  zs_batch_free(&d->frag_batch);
   free(d->depth);
   free(d->id);
   free(d->rgb);
@@ -328,7 +331,7 @@ static void clear_frame_in_parts(zs_device *d) {
 
 zs_target zs_raster_frame_target(const zs_device *d) {
   zs_target t = {d->depth, d->id,  d->rgb,  d->count, d->cfg.width,
-                 d->cfg.width, 0, d->fresh, d->cfg.background};
+                 d->cfg.width, 0, d->fresh, d->cfg.background, d->abuf.rows};
   return t;
 }
 
@@ -365,6 +368,7 @@ void zs_device_clear(zs_device *d) {
   zs_depthsort_clear(d->depthsort);
   if (d->hzb) zs_hzb_invalidate(d->hzb);
   zs_surfaces_clear(&d->surf);
+  zs_abuffer_clear(&d->abuf);
   d->clear_buffers(d);
 }
 
@@ -446,11 +450,14 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
   if (d->row_depth) m.pixel_buffers += 4 * w * sizeof(uint32_t);
   if (d->band_rows) m.pixel_buffers += zs_finish_bands_bytes(d);
   m.pixel_buffers += w * sizeof(uint32_t); /* the shaded row */
+  m.pixel_buffers += zs_abuffer_bytes(&d->abuf);
   m.tables = (size_t)d->batch.cap_polys * sizeof(zs_poly) +
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + zs_scan_scratch_bytes(&d->scratch);
   if (d->band_scratch)
     for (int i = 0; i < ZS_MAX_BANDS; i++) m.tables += zs_scan_scratch_bytes(&d->band_scratch[i]);
   m.tables += zs_defer_bytes(d) + (d->hzb ? zs_hzb_bytes(d->hzb) : 0) + zs_surfaces_bytes(&d->surf);
+  m.tables += (size_t)d->frag_batch.cap_polys * sizeof(zs_poly) +
+              (size_t)d->frag_batch.cap_edges * sizeof(zs_edge);
   m.vertices = zs_vert_scratch_bytes(&d->verts);
   return m;
 }

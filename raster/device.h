@@ -84,6 +84,10 @@ struct zs_device {
   /* the shadings that read attributes (surface.h): the frame's records */
   int reads_attrs;
   zs_surfaces surf;
+  /* transparent faces: their fragments (abuffer.h), and the batch they
+   * are set up into, apart from the opaque faces' */
+  zs_abuffer abuf;
+  zs_batch frag_batch;
   /* zs_device_keep_line_runs: the hidden lines as vectors (lines.c) */
   int keep_runs;
   int nomem_runs;                 /* a run could not be kept */

@@ -273,6 +273,11 @@ static zs_status setup_surface_faces(const zs_draw_prep *pr, const zs_vert_scrat
   zs_setup_params sp = pr->sp;
   for (int32_t f = f0; f < f1; f++) {
     const int32_t s = mesh->face_start[f], nv = mesh->face_start[f + 1] - s;
+    /* a draw of opaque and transparent faces is set up twice, once for
+     * each kind (now.c): each face counts in one */
+    if (pr->faces != ZS_FACES_ALL &&
+        zs_face_transparent(mesh, f) != (pr->faces == ZS_FACES_TRANSPARENT))
+      continue;
     fc->in++;
     if (nv < 3 || nv > ZS_MAX_POLY_VERTS) {
       fc->degenerate++;

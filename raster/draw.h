@@ -49,7 +49,11 @@ struct zs_draw_prep {
    * (surface.h), and its number there; NULL for any other draw */
   zs_surfaces *surf;
   int32_t surf_draw;
+  int faces;                        /* of a draw that reads attributes, which
+                                     * faces are set up: ZS_FACES_* */
 };
+
+enum { ZS_FACES_ALL, ZS_FACES_OPAQUE, ZS_FACES_TRANSPARENT };
 
 /* The counters the set-up of a range of faces adds. */
 typedef struct zs_face_counts {

@@ -53,6 +53,7 @@ static void emit_surfaces(zs_device *d, int y, const uint32_t *depth, const uint
   const uint32_t *out = rgb;
   if (d->surf.nrecs > 0) {
     zs_surface_shade_row(&d->surf, 0, y, rgb, d->row_out);
+    zs_abuffer_resolve_row(&d->abuf, &d->surf, 0, y, depth, id, d->row_out);
     out = d->row_out;
   }
   zs_row row = {y, d->cfg.width, out, depth, id, NULL, d->row_normal};
@@ -92,7 +93,8 @@ static void end_row(void *user, int y) {
 static zs_status finish_scan(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
   row_emit e = {d, sink, user};
   zs_row_hooks hooks = {begin_row, end_row, &e};
-  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, 0, NULL, 0};
+  zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, 0, NULL, 0,
+                 NULL};
   zs_command c = {.kind = ZS_CMD_FRAME_SCAN, .issued_ps = -1};
   if (!zs_scan_batch(&d->drawing->traversal, &d->batch, &t, 0, d->cfg.height, &hooks, d->trace,
                      &d->scratch, &c.scan))
@@ -146,7 +148,7 @@ static zs_target band_target(const zs_device *d, int t, int row0) {
   const size_t n = (size_t)d->band_max_rows * (size_t)d->cfg.width;
   uint32_t *base = d->band_rows + 4 * n * (size_t)t;
   return (zs_target){base, base + n, base + 2 * n, base + 3 * n, d->cfg.width, d->cfg.width,
-                     row0, NULL, 0};
+                     row0, NULL, 0, NULL};
 }
 
 /* A band's row is cleared just before the scan reaches it, not the band
@@ -185,8 +187,10 @@ static void scan_band_rows(void *ctx, int t) {
    * their normals go out too: the rows keep their records for that) */
   if (j->ok[b] && d->surf.nrecs > 0 && !d->row_normal)
     for (int y = y0; y < y1; y++) {
-      uint32_t *row = tg.rgb + (size_t)(y - y0) * (size_t)d->cfg.width;
-      zs_surface_shade_row(&d->surf, t, y, row, row);
+      const size_t off = (size_t)(y - y0) * (size_t)d->cfg.width;
+      zs_surface_shade_row(&d->surf, t, y, tg.rgb + off, tg.rgb + off);
+      zs_abuffer_resolve_row(&d->abuf, &d->surf, t, y, tg.depth + off, tg.id + off,
+                             tg.rgb + off);
     }
 }
 
@@ -249,8 +253,10 @@ static void shade_part(void *ctx, int part) {
             y1 = (int)zs_part_start(d->cfg.height, part + 1, j->nparts);
   for (int y = y0; y < y1; y++)
     if (!d->fresh[y]) {
-      uint32_t *row = d->rgb + (size_t)y * (size_t)d->cfg.width;
-      zs_surface_shade_row(&d->surf, part, y, row, row);
+      const size_t off = (size_t)y * (size_t)d->cfg.width;
+      zs_surface_shade_row(&d->surf, part, y, d->rgb + off, d->rgb + off);
+      zs_abuffer_resolve_row(&d->abuf, &d->surf, part, y, d->depth + off, d->id + off,
+                             d->rgb + off);
     }
 }
 

@@ -146,6 +146,46 @@ zs_status zs_set_up_split(zs_device *d, const zs_mesh *mesh, const zs_draw_prep 
 
 /* ---- a draw ---- */
 
+/* A draw with transparent faces (abuffer.h): its opaque faces set up and
+ * rasterized as any draw's, then its transparent ones into a batch of
+ * their own, traversed with the fragment kernel into the A-buffer against
+ * the depth drawn so far: the full frame in zbuffer mode, nothing (a far
+ * row) in scanline mode, whose rows are drawn at finish; the resolve
+ * drops what the final opaque surface hides. */
+static zs_status draw_with_transparency(zs_device *d, const zs_mesh *mesh, zs_draw_prep *prep,
+                                        uint32_t id_base, uint32_t rgb,
+                                        const zs_kernel_state *ks, zs_command *c,
+                                        zs_error *err) {
+  if (d->painter)
+    return zs_error_set(err, ZS_ERR_ARG,
+                        "draw: transparent faces need the zbuffer or scanline mode, not "
+                        "depthsort");
+  if (!zs_abuffer_ready(&d->abuf)) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  prep->faces = ZS_FACES_OPAQUE;
+  zs_status st = zs_set_up_whole(d, mesh, prep, id_base, rgb, &c->faces, err);
+  if (st != ZS_OK) return st;
+  if (!d->rasterize(d, &ks->traversal, &c->scan))
+    return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  prep->faces = ZS_FACES_TRANSPARENT;
+  st = zs_draw_setup(prep, &d->verts, mesh, 0, mesh->nfaces, id_base, rgb, NULL, &d->frag_batch,
+                     &c->faces, err);
+  zs_target t = zs_raster_frame_target(d);
+  if (d->cfg.algo != ZS_ALGO_ZBUFFER) {
+    zs_clear_pixels(d->row_depth, d->row_id, d->row_rgb, NULL, (size_t)d->cfg.width, 0);
+    t = (zs_target){d->row_depth, d->row_id, NULL, NULL, 0, d->cfg.width, 0, NULL, 0,
+                    d->abuf.rows};
+  }
+  zs_scan_counts counts = {0, 0, 0};
+  if (st == ZS_OK &&
+      !zs_polyorder_batch(&d->state_of[ZS_KERNEL_FRAGMENT].traversal, &d->frag_batch, &t, 0,
+                          d->cfg.height, &d->scratch, &counts))
+    st = zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+  zs_batch_reset(&d->frag_batch);
+  if (st != ZS_OK) return st;
+  zs_scan_counts_add(&c->scan, &counts);
+  return zs_abuffer_check(&d->abuf, err);
+}
+
 zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[16],
                           uint32_t id_base, uint32_t rgb, const zs_kernel_state *ks,
                           zs_command *c, zs_error *err) {
@@ -169,6 +209,11 @@ zs_status zs_draw_at_once(zs_device *d, const zs_mesh *mesh, const double model[
                                          d->has_shade_proj ? shade_mvp : prep.mvp,
                                          d->perspective, rgb, d->cfg.shade);
     if (prep.surf_draw < 0) return zs_error_set(err, ZS_ERR_NOMEM, "draw: out of memory");
+    if (d->cfg.shade != ZS_SHADE_NORMAL && zs_mesh_transparent(mesh)) {
+      st = draw_with_transparency(d, mesh, &prep, id_base, rgb, ks, c, err);
+      if (st == ZS_OK) c->reached = ZS_COMPLETED;
+      return st;
+    }
     st = zs_set_up_whole(d, mesh, &prep, id_base, rgb, &c->faces, err);
   } else {
     st = d->set_up(d, mesh, &prep, id_base, rgb, &c->faces, err);

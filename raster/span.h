@@ -25,12 +25,14 @@ static inline uint32_t zs_depth_of(int64_t z, int shift, int64_t zfar) {
 /* One row of the target: where a row's spans land. */
 typedef struct zs_row_ptrs {
   uint32_t *depth, *id, *rgb, *count;
+  zs_fragment_row *frags; /* the fragment kernel's */
 } zs_row_ptrs;
 
 static inline zs_row_ptrs zs_row_of(const zs_target *t, int32_t y) {
   const int64_t off = t->row_stride * (y - t->row0);
   zs_row_ptrs r = {t->depth ? t->depth + off : NULL, t->id ? t->id + off : NULL,
-                   t->rgb ? t->rgb + off : NULL, t->count ? t->count + off : NULL};
+                   t->rgb ? t->rgb + off : NULL, t->count ? t->count + off : NULL,
+                   t->frags ? &t->frags[y] : NULL};
   return r;
 }
 
@@ -65,6 +67,20 @@ static inline void zs_fill_span(const zs_kernel k, const zs_row_ptrs *row, int x
       for (int x = x0; x < x1; x++, z += dz) w += (uint32_t)(z >> shift) <= zr[x];
     else
       for (int x = x0; x < x1; x++, z += dz) w += zs_depth_of(z, shift, zfar) <= zr[x];
+    *written += w;
+    return;
+  }
+  if (k == ZS_KERNEL_FRAGMENT) {
+    const uint32_t *zr = row->depth, *ir = row->id;
+    zs_fragment_row *fr = row->frags;
+    if (!zs_fragment_reserve(fr, x1 - x0)) return;
+    zs_fragment *f = fr->f + fr->n;
+    for (int x = x0; x < x1; x++, z += dz) {
+      const uint32_t d = zs_depth_of(z, shift, zfar), zb = zr[x];
+      if (d < zb || (d == zb && a->id < ir[x])) *f++ = (zs_fragment){x, d, a->id, a->rgb};
+    }
+    w = (uint64_t)(f - (fr->f + fr->n));
+    fr->n += (int32_t)w;
     *written += w;
     return;
   }

@@ -80,8 +80,40 @@ int zs_surface_grow_recs(zs_surfaces *s) {
   return zs_grow((void **)&s->recs, &s->cap_recs, (int64_t)s->nrecs + 1, sizeof *s->recs);
 }
 
+static int material_transparent(const zs_mesh *m, const zs_material *mat) {
+  return !mat->ignore_alpha &&
+         (mat->base[3] < 255 ||
+          (mat->base_texture && m->uv && !zs_texture_opaque(mat->base_texture)));
+}
+
+int zs_face_transparent(const zs_mesh *m, int32_t f) {
+  const zs_material *mat = zs_face_material(m, f);
+  if (mat && mat->ignore_alpha) return 0;
+  if (mat && material_transparent(m, mat)) return 1;
+  if (!m->color) return 0;
+  const int32_t s = m->face_start[f], nv = m->face_start[f + 1] - s;
+  if (nv < 3 || nv > ZS_MAX_POLY_VERTS) return 0;
+  for (int32_t c = s; c < s + nv; c++) {
+    const int32_t a = m->corner_attr ? m->corner_attr[c] : m->face_vert[c];
+    if (a >= 0 && a < m->nattrs && m->color[4 * (size_t)a + 3] < 255) return 1;
+  }
+  return 0;
+}
+
+int zs_mesh_transparent(const zs_mesh *m) {
+  int all_ignore = m->materials && m->nmaterials > 0;
+  for (int32_t k = 0; m->materials && k < m->nmaterials; k++) {
+    if (material_transparent(m, &m->materials[k])) return 1;
+    all_ignore &= m->materials[k].ignore_alpha;
+  }
+  for (int32_t a = 0; m->color && !all_ignore && a < m->nattrs; a++)
+    if (m->color[4 * (size_t)a + 3] < 255) return 1;
+  return 0;
+}
+
 int zs_surface_reads(const zs_surfaces *s, zs_shade shade, const zs_mesh *mesh) {
-  if (shade == ZS_SHADE_AUTO) return mesh->normal || mesh->color || mesh->uv || s->lights_given;
+  if (shade == ZS_SHADE_AUTO)
+    return mesh->normal || mesh->color || mesh->uv || s->lights_given || zs_mesh_transparent(mesh);
   return shade >= ZS_SHADE_UNLIT;
 }
 
@@ -149,7 +181,7 @@ typedef void (*run_fn)(const tri *t, int y, int x0, int x1, uint32_t *out);
 
 struct tri {
   int32_t rec;                   /* the record it is, -1: an empty slot */
-  run_fn run;
+  run_fn run, run_alpha;         /* opaque, and with alpha (the A-buffer's) */
   int32_t ox, oy;                /* the planes' origin pixel */
   int64_t A[3], B[3], C[3];      /* lambda_i = A_i (x - ox) + B_i (y - oy) + C_i */
   int32_t col[3][4];             /* unlit: base x vertex colour, 8 bits; lit:
@@ -437,10 +469,12 @@ static inline void shadows_at(const tri *t, const int64_t b[3], double *lit) {
 
 /* The pixels [x0, x1) of row y, one loop per shading and texturing; the
  * constants fold each copy's branches away. */
+/* alpha: the pixels' alpha goes out too, as A << 24 (abuffer.h) */
 __attribute__((always_inline)) static inline void shade_run(const tri *t, int y, int x0, int x1,
                                                             uint32_t *out, const zs_shade sh,
                                                             const int textured,
-                                                            const int shadowed) {
+                                                            const int shadowed,
+                                                            const int alpha) {
   int64_t raw[3];
   planes_at(t, x0, y, raw);
   for (int x = x0; x < x1; x++, raw[0] += t->A[0], raw[1] += t->A[1], raw[2] += t->A[2]) {
@@ -448,13 +482,18 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
     uint8_t tx[4] = {255, 255, 255, 255};
     weights_of(raw, l, b);
     if (textured) texel_at(t, l, b, tx);
+    uint32_t a8 = 0;
+    if (alpha) {
+      a8 = (uint32_t)interp(b, t->col[0][3], t->col[1][3], t->col[2][3]);
+      if (textured) a8 = (a8 * tx[3] + 127) / 255;
+    }
     if (sh == ZS_SHADE_UNLIT) {
       uint32_t c[3];
       for (int k = 0; k < 3; k++) {
         c[k] = (uint32_t)interp(b, t->col[0][k], t->col[1][k], t->col[2][k]);
         if (textured) c[k] = (c[k] * tx[k] + 127) / 255;
       }
-      out[x] = rgb_of(c[0], c[1], c[2]);
+      out[x] = (a8 << 24) | rgb_of(c[0], c[1], c[2]);
     } else if (sh == ZS_SHADE_GOURAUD) {
       uint32_t c[3];
       for (int k = 0; k < 3; k++) {
@@ -462,7 +501,7 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
         if (textured) d = (d * zs_srgb_to_linear16[tx[k]] + 32767) / 65535;
         c[k] = zs_linear16_to_srgb(clamp16(d + interp(b, t->s16[0][k], t->s16[1][k], t->s16[2][k])));
       }
-      out[x] = rgb_of(c[0], c[1], c[2]);
+      out[x] = (a8 << 24) | rgb_of(c[0], c[1], c[2]);
     } else if (sh == ZS_SHADE_PHONG) {
       double n[3], p[3], base[3], d[3], s[3];
       for (int k = 0; k < 3; k++) {
@@ -476,7 +515,7 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
       double lit[ZS_MAX_LIGHTS];
       if (shadowed) shadows_at(t, b, lit);
       zs_light_at(t->lights, &t->refl, p, n, base, shadowed ? lit : NULL, d, s);
-      out[x] = rgb_of(zs_linear16_to_srgb(to16(d[0] + s[0])), zs_linear16_to_srgb(to16(d[1] + s[1])),
+      out[x] = (a8 << 24) | rgb_of(zs_linear16_to_srgb(to16(d[0] + s[0])), zs_linear16_to_srgb(to16(d[1] + s[1])),
                       zs_linear16_to_srgb(to16(d[2] + s[2])));
     } else { /* ZS_SHADE_NORMAL */
       double n[3];
@@ -486,14 +525,20 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
         const double v = n[k] * 127.5 + 128.0;
         c[k] = v < 0.0 ? 0 : v >= 255.0 ? 255 : (uint32_t)v;
       }
-      out[x] = rgb_of(c[0], c[1], c[2]);
+      out[x] = (a8 << 24) | rgb_of(c[0], c[1], c[2]);
     }
   }
 }
 
-#define RUN(name, sh, tex, shadowed)                                          \
-  static void name(const tri *t, int y, int x0, int x1, uint32_t *out) {      \
-    shade_run(t, y, x0, x1, out, sh, tex, shadowed);                         \
+/* Each shading's copies: with a texture or without, under shadow maps
+ * or not; opaque (the colour words of rows) or with alpha (the A-buffer's
+ * fragments).  Chosen once per triangle, when it is prepared. */
+#define RUN(name, sh, tex, shadowed)                                                \
+  static void name(const tri *t, int y, int x0, int x1, uint32_t *out) {            \
+    shade_run(t, y, x0, x1, out, sh, tex, shadowed, 0);                            \
+  }                                                                                 \
+  static void name##_alpha(const tri *t, int y, int x0, int x1, uint32_t *out) {    \
+    shade_run(t, y, x0, x1, out, sh, tex, shadowed, 1);                            \
   }
 RUN(run_unlit, ZS_SHADE_UNLIT, 0, 0)
 RUN(run_unlit_tex, ZS_SHADE_UNLIT, 1, 0)
@@ -506,15 +551,20 @@ RUN(run_phong_tex_shadowed, ZS_SHADE_PHONG, 1, 1)
 RUN(run_normal, ZS_SHADE_NORMAL, 0, 0)
 #undef RUN
 
-static run_fn run_for(zs_shade sh, int textured, int shadowed) {
-  switch (sh) {
-    case ZS_SHADE_UNLIT: return textured ? run_unlit_tex : run_unlit;
-    case ZS_SHADE_GOURAUD: return textured ? run_gouraud_tex : run_gouraud;
-    case ZS_SHADE_NORMAL: return run_normal;
-    default:
-      if (shadowed) return textured ? run_phong_tex_shadowed : run_phong_shadowed;
-      return textured ? run_phong_tex : run_phong;
-  }
+/* index: shading (unlit, gouraud, phong, normal), textured, shadowed, alpha */
+static run_fn run_for(zs_shade sh, int textured, int shadowed, int alpha) {
+  static const run_fn runs[4][2][2][2] = {
+      {{{run_unlit, run_unlit_alpha}, {run_unlit, run_unlit_alpha}},
+       {{run_unlit_tex, run_unlit_tex_alpha}, {run_unlit_tex, run_unlit_tex_alpha}}},
+      {{{run_gouraud, run_gouraud_alpha}, {run_gouraud, run_gouraud_alpha}},
+       {{run_gouraud_tex, run_gouraud_tex_alpha}, {run_gouraud_tex, run_gouraud_tex_alpha}}},
+      {{{run_phong, run_phong_alpha}, {run_phong_shadowed, run_phong_shadowed_alpha}},
+       {{run_phong_tex, run_phong_tex_alpha},
+        {run_phong_tex_shadowed, run_phong_tex_shadowed_alpha}}},
+      {{{run_normal, run_normal_alpha}, {run_normal, run_normal_alpha}},
+       {{run_normal, run_normal_alpha}, {run_normal, run_normal_alpha}}}};
+  const int i = sh == ZS_SHADE_UNLIT ? 0 : sh == ZS_SHADE_GOURAUD ? 1 : sh == ZS_SHADE_NORMAL ? 3 : 2;
+  return runs[i][textured != 0][shadowed != 0][alpha != 0];
 }
 
 /* A texture coordinate in 2^-16, finite and within 2^40 so llrint is
@@ -645,7 +695,8 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
                          : (int32_t)(((uint32_t)zs_srgb_to_linear16[base8[k]] *
                                           zs_srgb_to_linear16[v] + 32767) / 65535);
     }
-    t->col[i][3] = 255;
+    /* alpha, linear: the material's times the vertex colour's */
+    t->col[i][3] = (int32_t)(((mat ? mat->base[3] : 255u) * (vc ? vc[3] : 255u) + 127) / 255);
     /* texture coordinates, t down the image */
     if (textured) {
       const float *uv = a >= 0 ? &m->uv[2 * (size_t)a] : NULL;
@@ -668,7 +719,8 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
       }
     }
   }
-  t->run = run_for(dr->shade, textured, t->nshadowed > 0);
+  t->run = run_for(dr->shade, textured, t->nshadowed > 0, 0);
+  t->run_alpha = run_for(dr->shade, textured, t->nshadowed > 0, 1);
 }
 
 static void cache_empty(void *cache) {
@@ -742,6 +794,13 @@ static inline void normal_visit(const tri *t, uint32_t v, int y, int x0, int x1,
 
 void zs_surface_shade_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, uint32_t *out) {
   each_run(s, slot, y, rgb, shade_visit, out);
+}
+
+void zs_surface_shade_rgba(zs_surfaces *s, int slot, int y, uint32_t word, int x0, int x1,
+                           uint32_t *out) {
+  tri spare;
+  const tri *t = prepared(s, slot, (int32_t)(word & ~ZS_SURFACE_BIT), &spare);
+  t->run_alpha(t, y, x0, x1, out);
 }
 
 void zs_surface_normal_row(zs_surfaces *s, int slot, int y, const uint32_t *rgb, float *xyz) {

@@ -135,6 +135,18 @@ static inline uint32_t zs_face_base_rgb(const zs_mesh *m, const zs_material *mat
          : m->face_rgb ? m->face_rgb[f] : ZS_DEFAULT_RGB;
 }
 
+/* Whether face f of m is transparent (zscan.h): its material's alpha or
+ * its base texture's (with texture coordinates to read it), or a corner's
+ * vertex colour alpha, below 255. */
+int zs_face_transparent(const zs_mesh *m, int32_t f);
+/* Whether any face of m may be: a material or a vertex colour is. */
+int zs_mesh_transparent(const zs_mesh *m);
+
+/* The words of a run [x0, x1) of row y naming one record (word) shaded
+ * into out[x0 .. x1) as A << 24 | RGB, with their alpha (abuffer.h). */
+void zs_surface_shade_rgba(zs_surfaces *s, int slot, int y, uint32_t word, int x0, int x1,
+                           uint32_t *out);
+
 /* Row y's colour words (rgb) shaded into out, width pixels (out may be
  * rgb itself); slot: the calling thread's own cache, 0 .. 63.  Rows may
  * be shaded on several threads at once, each with a slot of its own. */

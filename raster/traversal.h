@@ -13,6 +13,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "raster/abuffer.h"
 #include "raster/table.h"
 
 static inline void zs_fill_u32(uint32_t *p, size_t n, uint32_t v) {
@@ -35,6 +36,8 @@ typedef enum zs_kernel {
   ZS_KERNEL_DRAW,      /* less-with-id test; write depth, id, colour */
   ZS_KERNEL_OVERDRAW,  /* count every fragment, no test */
   ZS_KERNEL_QUERY,     /* less-or-equal test, no writes: count passes */
+  ZS_KERNEL_FRAGMENT,  /* less-with-id test, no writes: keep the fragment
+                        * in its row of the A-buffer (abuffer.h) */
   ZS_KERNELS
 } zs_kernel;
 
@@ -52,6 +55,7 @@ typedef struct zs_target {
    * no count) when a scan first reaches it; NULL: every row is ready. */
   uint8_t *fresh;
   uint32_t background;
+  zs_fragment_row *frags; /* the fragment kernel's rows, by image row y */
 } zs_target;
 
 typedef struct zs_scan_counts {

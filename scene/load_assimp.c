@@ -498,8 +498,10 @@ static zs_status find_material(loader *L, unsigned mi, int32_t *out) {
 #ifdef AI_MATKEY_GLTF_ALPHAMODE
   struct aiString mode;
   if (aiGetMaterialString(mat, AI_MATKEY_GLTF_ALPHAMODE, &mode) == aiReturn_SUCCESS &&
-      strcmp(mode.data, "OPAQUE") == 0)
+      strcmp(mode.data, "OPAQUE") == 0) {
     zm.base[3] = 255;
+    zm.ignore_alpha = 1; /* the texture's and the vertex colours' too */
+  }
 #endif
   /* a highlight: its colour (times its strength) and exponent; none at
    * shininess 0, which assimp defines as Gouraud shading, or when the

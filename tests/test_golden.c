@@ -99,6 +99,11 @@ static const golden_case cases[] = {
      0, 0},
     {"default-wireframe-msaa4", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 1,
      {12, 9, 16}, {0, 1, 0}, 2, 0, 0, 4, 0},
+    /* transparent panes and a glass ball, composited in the A-buffer */
+    {"glass", "scene/examples/glass.json", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0, 0,
+     0},
+    {"glass-gouraud-msaa4", "scene/examples/glass.json", 240, 180, ZS_SHADE_GOURAUD, 0, 0, {0},
+     {0}, 0, 0, 0, 4, 0},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 

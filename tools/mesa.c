@@ -12,6 +12,7 @@
 #endif
 #include <string.h>
 
+#include "lib/frame.h"
 #include "raster/raster.h"
 #include "raster/surface.h"
 #include "util/lights.h"
@@ -193,12 +194,27 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
                         const double proj[16], zs_filter filter, uint32_t *rgb, zs_error *err) {
   (void)err;
   begin_frame(m, proj);
+  /* zscan's background, which transparent faces are blended over */
+  glClearColor((ZS_BACKGROUND_RGB >> 16 & 255) / 255.0f, (ZS_BACKGROUND_RGB >> 8 & 255) / 255.0f,
+               (ZS_BACKGROUND_RGB & 255) / 255.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
   glShadeModel(GL_SMOOTH);
+  /* the opaque faces, then the transparent ones blended over them
+   * (SRC_ALPHA, ONE_MINUS_SRC_ALPHA, no depth writes) in the scene's
+   * order: zscan's A-buffer is the same where they do not overlap, as in
+   * the cross-check's scenes */
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass) {
+      glEnable(GL_BLEND);
+      glDepthMask(GL_FALSE);
+    }
   for (int32_t i = 0; i < s->ninst; i++) {
     const zs_instance *in = &s->inst[i];
     load_modelview(view, in->model);
     const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
     for (int32_t f = 0; f < mesh->nfaces; f++) {
+      if (zs_face_transparent(mesh, f) != pass) continue;
       const zs_material *mat = zs_face_material(mesh, f);
       const uint32_t base = zs_face_base_rgb(mesh, mat, f, in->rgb);
       const zs_filter fl = filter != ZS_FILTER_DEFAULT ? filter
@@ -213,12 +229,14 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
       for (int32_t k = mesh->face_start[f]; k < mesh->face_start[f + 1]; k++) {
         int32_t a = mesh->corner_attr ? mesh->corner_attr[k] : mesh->face_vert[k];
         if (a >= mesh->nattrs) a = -1;
-        GLubyte c[3];
+        GLubyte c[4];
         for (int ch = 0; ch < 3; ch++) {
           const uint32_t v = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + ch] : 255;
           c[ch] = (GLubyte)(((base >> (16 - 8 * ch) & 255) * v + 127) / 255);
         }
-        glColor3ubv(c);
+        const uint32_t va = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + 3] : 255;
+        c[3] = (GLubyte)(((mat ? mat->base[3] : 255u) * va + 127) / 255);
+        glColor4ubv(c);
         if (a >= 0 && mesh->uv) glTexCoord2fv(&mesh->uv[2 * (size_t)a]);
         glVertex3dv(&mesh->pos[3 * mesh->face_vert[k]]);
       }
@@ -229,6 +247,9 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
       }
     }
   }
+  }
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
   glFinish();
   for (int y = 0; y < m->h; y++)
     for (int x = 0; x < m->w; x++) {

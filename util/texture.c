@@ -54,6 +54,8 @@ zs_status zs_texture_create(int width, int height, const uint8_t *rgba, zs_textu
   }
   uint8_t *p = t->texels;
   memcpy(p, rgba, 4 * (size_t)width * (size_t)height);
+  t->opaque = 1;
+  for (size_t i = 3; i < 4 * (size_t)width * (size_t)height; i += 4) t->opaque &= p[i] == 255;
   for (int k = 0; k < n; k++) {
     t->level[k].rgba = p;
     if (k + 1 < n)
@@ -75,6 +77,7 @@ void zs_texture_destroy(zs_texture *t) {
 int zs_texture_width(const zs_texture *t) { return t->level[0].width; }
 int zs_texture_height(const zs_texture *t) { return t->level[0].height; }
 int zs_texture_levels(const zs_texture *t) { return t->levels; }
+int zs_texture_opaque(const zs_texture *t) { return t->opaque; }
 
 const uint8_t *zs_texture_level(const zs_texture *t, int k, int *width, int *height) {
   if (k < 0 || k >= t->levels) return NULL;

@@ -19,6 +19,7 @@ struct zs_texture {
   int32_t levels;
   zs_texlevel level[ZS_TEXTURE_MAX_LEVELS];
   uint8_t *texels; /* every level, base first */
+  int opaque;      /* every texel's alpha is 255 */
 };
 
 #endif

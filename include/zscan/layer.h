@@ -7,7 +7,9 @@
  * with the same camera, is the per-pixel least (depth, id) of the layers:
  * zs_layer_composite gives, byte for byte, the frame of the whole scene
  * (the building block of sort-last parallel rendering,
- * docs/ARCHITECTURE.md).
+ * docs/ARCHITECTURE.md).  A transparent surface is kept blended over its
+ * layer's own opaque surface, so that holds where each transparent
+ * surface is in the layer of everything behind it.
  *
  * The file, version 1: a text header of six lines,
  *

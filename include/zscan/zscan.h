@@ -89,9 +89,9 @@
 #include "zscan/error.h"
 
 #define ZSCAN_VERSION_MAJOR 0
-#define ZSCAN_VERSION_MINOR 10
+#define ZSCAN_VERSION_MINOR 11
 #define ZSCAN_VERSION_PATCH 0
-#define ZSCAN_VERSION_STRING "0.10.0"
+#define ZSCAN_VERSION_STRING "0.11.0"
 
 #ifdef __cplusplus
 extern "C" {
@@ -106,7 +106,7 @@ const char *zs_version(void);
  * time, a printed camera), and only then, so that a golden made with
  * another number is known to differ on purpose.  docs/CHANGES.md lists
  * each version's changes; zs_pixel_changes gives them. */
-#define ZSCAN_PIXEL_VERSION 2
+#define ZSCAN_PIXEL_VERSION 3
 int zs_pixel_version(void);
 /* What changed in the outputs of pixel version v against v - 1, one
  * line; NULL for a version this library does not know (v < 1 or later
@@ -262,12 +262,32 @@ struct zs_material {
   const zs_texture *base_texture; /* multiplies the base colour; NULL: none */
   zs_wrap wrap_s, wrap_t;   /* across and up the texture */
   zs_filter filter;         /* ZS_FILTER_DEFAULT: trilinear */
+  uint8_t ignore_alpha;     /* every alpha ignored, the faces opaque (glTF's
+                             * OPAQUE mode); 0: alpha below 255 is transparent */
 };
 
 enum { ZS_MAX_SHININESS = 4096 };
 
 /* A mid-grey (0xB4B4B4), opaque, no highlight, double-sided, untextured. */
 zs_material zs_material_default(void);
+
+/* Transparency.  A face is transparent where its material's alpha
+ * (base[3]), its base texture's alpha or its vertex colours' alpha is
+ * below 255 (unless its material ignores alpha), under the shadings that read attributes (AUTO, UNLIT,
+ * GOURAUD, PHONG; NORMAL draws every face opaque).  Its pixels are kept
+ * in an A-buffer and composited over the opaque surface in depth order,
+ * in integers, when the frame's rows go out, so the image depends on the
+ * surfaces drawn, never on the order of drawing (docs/ALGORITHMS.md
+ * gives the arithmetic).  A transparent face writes no depth: occlusion
+ * queries count its pixels, and it occludes nothing.  zbuffer and
+ * scanline modes; depthsort refuses it.  Each row of the image keeps at
+ * most ZS_FRAGMENTS_PER_PIXEL x width transparent fragments lying in
+ * front of the opaque surface drawn before them; the draw that passes
+ * that fails with ZS_ERR_LIMIT. */
+enum { ZS_FRAGMENTS_PER_PIXEL = 16 };
+
+/* Whether every texel of tex has alpha 255. */
+int zs_texture_opaque(const zs_texture *tex);
 
 /* ---- Lights (the lit shadings: AUTO, GOURAUD, PHONG) ----
  *
