@@ -93,11 +93,24 @@ static int make_owners(frame_ctx *f, oracle *o) {
   return 1;
 }
 
+/* Whether instance i draws transparent faces on the method's device:
+ * they occlude nothing, so the oracle's image of ids leaves it out. */
+static int draws_transparent(const frame_ctx *f, int32_t i) {
+  return zs_device_draws_transparent(f->dev, &f->s->meshes[f->s->inst[i].mesh].mesh);
+}
+
+static int find_sampled_where(frame_ctx *f, oracle *o, int only_transparent);
+
 /* Draws the full image on the oracle and flags the instances that own a
- * pixel of it; 0 when it fails. */
+ * pixel of it; an instance with transparent faces is not drawn there
+ * (it would hide what shows through it) and is flagged when its query
+ * bounds have a sample against that image (its opaque faces then hide
+ * nothing from the oracle: it may draw more, never less); 0 when it
+ * fails. */
 static int find_owners(frame_ctx *f, oracle *o, void (*draw)(frame_ctx *f, oracle *o, int32_t i)) {
   if (!oracle_begin(f, o)) return 0;
-  for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) draw(f, o, i);
+  for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++)
+    if (!draws_transparent(f, i)) draw(f, o, i);
   if (f->status) return 0;
   if (!o->owner && !make_owners(f, o)) {
     cull_out_of_memory(f);
@@ -110,16 +123,17 @@ static int find_owners(frame_ctx *f, oracle *o, void (*draw)(frame_ctx *f, oracl
   for (size_t p = 0; p < npx; p++)
     if (ids[p] < o->nowner) owned[o->owner[ids[p]]]++;
   for (int32_t i = 0; i < f->s->ninst; i++) o->owns_pixel[i] = owned[i] > 0;
-  return 1;
+  return find_sampled_where(f, o, 1);
 }
 
-/* Flags also the instances whose query bounds have a sample against the
- * full image's depth buffer (a box holds its instance, so every owner is
- * one of them); 0 when it fails. */
-static int find_sampled(frame_ctx *f, oracle *o) {
+/* Flags also the instances (only_transparent: those with transparent
+ * faces) whose query bounds have a sample against the full image's depth
+ * buffer (a box holds its instance, so every owner is one of them); 0
+ * when it fails. */
+static int find_sampled_where(frame_ctx *f, oracle *o, int only_transparent) {
   for (int32_t i = 0; i < f->s->ninst && f->status == ZS_OK; i++) {
     zs_query q;
-    if (o->owns_pixel[i]) continue;
+    if (o->owns_pixel[i] || (only_transparent && !draws_transparent(f, i))) continue;
     int32_t nbox = 0;
     if (!cull_add_query_boxes(f, object_elem(i), &nbox)) {
       cull_out_of_memory(f);
@@ -157,7 +171,8 @@ static void ideal_frame(frame_ctx *f) {
 
 static void ideal_box_frame(frame_ctx *f) {
   oracle *o = f->c->own;
-  if (f->s->ninst == 0 || !find_owners(f, o, oracle_draw_timed) || !find_sampled(f, o)) return;
+  if (f->s->ninst == 0 || !find_owners(f, o, oracle_draw_timed) || !find_sampled_where(f, o, 0))
+    return;
   compare_sets(f, o);
   cull_draw_front_to_back(f, o->owns_pixel);
 }

@@ -399,6 +399,11 @@ static zs_status draw_queued(zs_device *d, const zs_mesh *mesh, const double mod
   return zs_defer_push(d, mesh, model, id_base, rgb, err);
 }
 
+int zs_device_draws_transparent(const zs_device *d, const zs_mesh *mesh) {
+  return d->reads_attrs && d->cfg.shade != ZS_SHADE_NORMAL &&
+         zs_surface_reads(&d->surf, d->cfg.shade, mesh) && zs_mesh_transparent(mesh);
+}
+
 zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh, const double model[16],
                          uint32_t id_base, uint32_t rgb, zs_error *err) {
   return d->draw(d, mesh, model, id_base, rgb, err);

@@ -137,6 +137,12 @@ zs_status zs_device_hzb_test(zs_device *dev, const double (*lo)[3], const double
                              uint8_t *maybe_visible, zs_error *err);
 
 
+/* Whether a draw of mesh on dev would keep transparent fragments: the
+ * device's shading reads attributes, not as normals, and a face of the
+ * mesh may be transparent (zscan.h, Transparency).  The oracles of
+ * culling draw such meshes apart: they occlude nothing. */
+int zs_device_draws_transparent(const zs_device *dev, const zs_mesh *mesh);
+
 /* The memory a device holds now, in bytes: pixel buffers (full-frame in
  * zbuffer mode; one row in scanline and depthsort modes), the polygon and
  * edge tables with the scan's scratch (which grow with the polygons of a
