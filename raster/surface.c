@@ -192,6 +192,7 @@ struct tri {
   double p[3][3];                /* eye-space positions */
   zs_sampler sampler;
   int mipmapped;                 /* the filter needs the level of detail */
+  uint32_t cutoff;               /* the material's alpha cut-off, 0: none */
   zs_reflectance refl;
   const zs_light_set *lights;
   /* Phong under shadow maps: for each shadowed light k, its index in the
@@ -486,6 +487,7 @@ __attribute__((always_inline)) static inline void shade_run(const tri *t, int y,
     if (alpha) {
       a8 = (uint32_t)interp(b, t->col[0][3], t->col[1][3], t->col[2][3]);
       if (textured) a8 = (a8 * tx[3] + 127) / 255;
+      if (t->cutoff) a8 = a8 >= t->cutoff ? 255 : 0; /* glTF's MASK */
     }
     if (sh == ZS_SHADE_UNLIT) {
       uint32_t c[3];
@@ -624,6 +626,7 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   const uint32_t rgb = zs_face_base_rgb(m, mat, r->face, dr->rgb);
   const uint8_t base8[3] = {(uint8_t)(rgb >> 16), (uint8_t)(rgb >> 8), (uint8_t)rgb};
 
+  t->cutoff = mat ? mat->alpha_cutoff : 0;
   /* the geometric normal, for corners without one */
   double geo[3] = {0, 0, 1};
   if (normals) {

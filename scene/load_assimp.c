@@ -501,6 +501,15 @@ static zs_status find_material(loader *L, unsigned mi, int32_t *out) {
       strcmp(mode.data, "OPAQUE") == 0) {
     zm.base[3] = 255;
     zm.ignore_alpha = 1; /* the texture's and the vertex colours' too */
+  } else if (strcmp(mode.data, "MASK") == 0) {
+    /* the least 8-bit alpha a that passes a / 255 >= c in float, as a GPU
+     * compares it; a cut-off that 0 passes keeps every pixel (opaque) */
+    ai_real cut = 0.5;
+    aiGetMaterialFloatArray(mat, AI_MATKEY_GLTF_ALPHACUTOFF, &cut, NULL);
+    int a = 0;
+    while (a < 255 && !((float)a / 255.0f >= (float)cut)) a++;
+    if (a == 0) zm.ignore_alpha = 1;
+    else zm.alpha_cutoff = (uint8_t)a;
   }
 #endif
   /* a highlight: its colour (times its strength) and exponent; none at

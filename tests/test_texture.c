@@ -534,6 +534,43 @@ START_TEST(gltf_missing_texture_is_refused) {
 }
 END_TEST
 
+/* glTF's alpha modes: the painted triangle's BLEND turned into OPAQUE
+ * (every alpha ignored) and MASK with a cut-off of 0.6 (an 8-bit alpha of
+ * 153 passes: 153 / 255 >= 0.6 in float, as a GPU compares it), and its
+ * default of 0.5 (128). */
+START_TEST(gltf_alpha_modes) {
+  if (!have_assimp()) return;
+  size_t n = 0;
+  char *text = (char *)zs_test_slurp(zs_test_src("tests/data/models/painted_triangle.gltf"), &n);
+  ck_assert_ptr_nonnull(text);
+  const char *blend = "\"alphaMode\": \"BLEND\",";
+  char *at = strstr(text, blend);
+  ck_assert_ptr_nonnull(at);
+  static const char *const modes[3] = {"\"alphaMode\": \"OPAQUE\",",
+                                       "\"alphaMode\": \"MASK\", \"alphaCutoff\": 0.6,",
+                                       "\"alphaMode\": \"MASK\","};
+  const int ignore[3] = {1, 0, 0}, cutoff[3] = {0, 153, 128};
+  for (int k = 0; k < 3; k++) {
+    char path[PATH_LEN];
+    snprintf(path, sizeof path, "%s/alpha_mode_%d.gltf", out_dir(), k);
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    fwrite(text, 1, (size_t)(at - text), f);
+    fputs(modes[k], f);
+    fputs(at + strlen(blend), f);
+    fclose(f);
+    zs_model m;
+    load_model(path, &m);
+    ck_assert_int_eq(m.mesh.nmaterials, 1);
+    ck_assert_int_eq(m.mesh.materials[0].ignore_alpha, ignore[k]);
+    ck_assert_int_eq(m.mesh.materials[0].alpha_cutoff, cutoff[k]);
+    ck_assert_int_eq(m.mesh.materials[0].base[3], k == 0 ? 255 : 128);
+    zs_model_free(&m);
+  }
+  free(text);
+}
+END_TEST
+
 START_TEST(gltf_vertex_colours_and_material) {
   if (!have_assimp()) return;
   char path[PATH_LEN];
@@ -672,6 +709,7 @@ static Suite *suite(void) {
   tcase_add_test(assimp, glb_embedded_texture_same_texels);
   tcase_add_test(assimp, gltf_missing_texture_is_refused);
   tcase_add_test(assimp, gltf_vertex_colours_and_material);
+  tcase_add_test(assimp, gltf_alpha_modes);
   tcase_add_test(assimp, ply_vertex_colours);
   tcase_add_test(assimp, no_attributes_no_arrays);
   tcase_add_test(assimp, node_transform_turns_normals);

@@ -240,7 +240,8 @@ END_TEST
 
 /* A texture's alpha: a 2 x 1 texture, its left texel clear and its right
  * one opaque, over the wall: the left half shows the wall exactly, the
- * right the texel; ignoring alpha, both texels show.  A mesh whose
+ * right the texel; ignoring alpha, both texels show; cut off (glTF's
+ * MASK), each pixel all or nothing.  A mesh whose
  * vertex colours have alpha 0 leaves no trace. */
 START_TEST(texture_and_vertex_alpha) {
   static frame wall, got;
@@ -286,6 +287,18 @@ START_TEST(texture_and_vertex_alpha) {
   for (int p = 0; p < W * H; p++)
     ck_assert_uint_eq(got.rgb[p], p % W < W / 2 ? 0xFF0000u : 0x0AC81Eu);
   mat.ignore_alpha = 0;
+
+  /* glTF's MASK: the material's alpha 150 times the texel's; cut off at
+   * 128 the right half is the texel, opaque; at 160 nothing is left */
+  mat.base[3] = 150;
+  for (int cut = 128; cut <= 160; cut += 32) {
+    mat.alpha_cutoff = (uint8_t)cut;
+    render(d, both, 2, &got);
+    for (int p = 0; p < W * H; p++)
+      ck_assert_uint_eq(got.rgb[p], p % W < W / 2 || cut == 160 ? wall.rgb[p] : 0x0AC81Eu);
+  }
+  mat.base[3] = 255;
+  mat.alpha_cutoff = 0;
 
   /* vertex colours of alpha 0 */
   uint8_t clear[16] = {255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 0};

@@ -264,6 +264,9 @@ struct zs_material {
   zs_filter filter;         /* ZS_FILTER_DEFAULT: trilinear */
   uint8_t ignore_alpha;     /* every alpha ignored, the faces opaque (glTF's
                              * OPAQUE mode); 0: alpha below 255 is transparent */
+  uint8_t alpha_cutoff;     /* 1 .. 255: a pixel's alpha at or above it is
+                             * opaque, below it clear (glTF's MASK mode, its
+                             * alphaCutoff c as ceil(255 c)); 0: alpha blends */
 };
 
 enum { ZS_MAX_SHININESS = 4096 };
