@@ -164,6 +164,9 @@ __attribute__((always_inline)) static inline void paint(const zs_batch *b, const
                                                         const zs_table *table,
                                                         const zs_scan_scratch *s,
                                                         zs_scan_counts *counts) {
+#ifndef ZS_HAVE_AVX512_SPANS
+  (void)small; /* no edge-function copy without AVX-512 */
+#endif
   const zs_poly *polys = b->polys;
   const zs_edge *edges = b->edges;
   /* The target by value: read through t, its buffers, stride and width

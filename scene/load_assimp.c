@@ -507,7 +507,10 @@ static zs_status find_material(loader *L, unsigned mi, int32_t *out) {
     ai_real cut = 0.5;
     aiGetMaterialFloatArray(mat, AI_MATKEY_GLTF_ALPHACUTOFF, &cut, NULL);
     int a = 0;
-    while (a < 255 && !((float)a / 255.0f >= (float)cut)) a++;
+    for (; a < 255; a++) {
+      const float alpha = (float)a / 255.0f; /* rounded to float here, on every target */
+      if (alpha >= (float)cut) break;
+    }
     if (a == 0) zm.ignore_alpha = 1;
     else zm.alpha_cutoff = (uint8_t)a;
   }

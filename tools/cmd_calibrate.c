@@ -345,7 +345,12 @@ static int walled_boxes(int g, int side, const double proj[16], zs_scene *walls,
       double o[4];
       zs_mat_apply(proj, p, o);
       const double xw = (o[0] / o[3] + 1.0) * 0.5 * side, yw = (o[1] / o[3] + 1.0) * 0.5 * side;
-      x0 = fmin(x0, xw), x1 = fmax(x1, xw), y0 = fmin(y0, yw), y1 = fmax(y1, yw);
+      /* compares, not fmin and fmax: gcc 12's loop vectorizer for aarch64
+       * fails on their reduction at -O3 (an internal compiler error) */
+      if (xw < x0) x0 = xw;
+      if (xw > x1) x1 = xw;
+      if (yw < y0) y0 = yw;
+      if (yw > y1) y1 = yw;
     }
     /* the wall at z = -10 over those pixels, a quarter pixel more */
     const double u0 = ((x0 - 0.25) * 2.0 / side - 1.0) * 10.0 / f;

@@ -9,11 +9,14 @@
 #include <math.h> /* floor, frexp, ldexp: exact; the constants HUGE_VAL, NAN */
 
 /* Every output is a function of correctly rounded double operations: a
- * target that keeps intermediates in more precision (the x87's
- * FLT_EVAL_METHOD 2, or one that cannot say) would round them otherwise.
- * 32-bit x86 builds with -msse2 -mfpmath=sse (CMakeLists.txt). */
-#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
-#error "zscan needs FLT_EVAL_METHOD 0 (each operation rounded to its type): on 32-bit x86 build with -msse2 -mfpmath=sse"
+ * target that keeps doubles in more precision (the x87's FLT_EVAL_METHOD
+ * 2, or one that cannot say) would round them otherwise.  32-bit x86
+ * builds with -msse2 -mfpmath=sse (CMakeLists.txt).  FLT_EVAL_METHOD 1
+ * (s390x: floats evaluated as doubles) rounds every double as 0 does;
+ * zscan computes in double and keeps floats as storage, a float quotient
+ * assigned to a float before use (it then rounds once, as in float). */
+#if !defined(FLT_EVAL_METHOD) || (FLT_EVAL_METHOD != 0 && FLT_EVAL_METHOD != 1)
+#error "zscan needs FLT_EVAL_METHOD 0 or 1 (each double operation rounded to double): on 32-bit x86 build with -msse2 -mfpmath=sse"
 #endif
 
 #define PI 3.14159265358979323846
