@@ -4,7 +4,15 @@
 # (as root, with apt-get; `apt-get update` first), then configures and
 # builds in $ZS_BUILD_DIR (default build/).
 #
+# With ZS_CROSS (targets, e.g. "aarch64 s390x i686"), also what
+# tools/cross-check.sh needs: each target's cross compiler, qemu-user, and
+# its libraries from Debian's packages, unpacked (apt-get download,
+# dpkg-deb -x) into $ZS_CROSS_ROOT/TARGET, where multiarch installs would
+# clash with the native ones' versions.
+#
 # Environment:
+#   ZS_CROSS         cross targets to set up (default: none)
+#   ZS_CROSS_ROOT    where their libraries go (default: /opt/zscan-cross)
 #   ZS_BUILD_DIR     build directory (default: build)
 #   ZS_BUILD_TYPE    CMake build type (default: Release)
 #   ZS_CMAKE_ARGS    extra CMake arguments (e.g. -DZS_SANITIZE=ON)
@@ -47,6 +55,54 @@ if [ ${#zs_missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${zs_missing[@]}" >&2
+fi
+
+# A cross target's Debian architecture, compiler triplet and qemu.
+zs_cross_arch() {
+  case "$1" in
+    aarch64) echo "arm64 aarch64-linux-gnu qemu-aarch64-static" ;;
+    s390x) echo "s390x s390x-linux-gnu qemu-s390x-static" ;;
+    i686) echo "i386 i686-linux-gnu qemu-i386-static" ;;
+    *) echo "setup: unknown cross target '$1' (aarch64, s390x, i686)" >&2; return 1 ;;
+  esac
+}
+# What the library and its golden test link against on the target (no
+# assimp: its dependencies are many, and the goldens of its formats are
+# checked natively)
+zs_cross_libs=(libpng-dev libpng16-16 libjpeg62-turbo-dev libjpeg62-turbo libcjson-dev libcjson1
+               zlib1g zlib1g-dev check libsubunit-dev libsubunit0)
+if [ -n "${ZS_CROSS:-}" ]; then
+  zs_cross_root=${ZS_CROSS_ROOT:-/opt/zscan-cross}
+  zs_need=()
+  zs_missing_cross=()
+  for t in $ZS_CROSS; do
+    zs_cross_arch "$t" >/dev/null || exit 2
+    read -r deb triplet _ <<<"$(zs_cross_arch "$t")"
+    [ -d "$zs_cross_root/$t/usr" ] || zs_need+=("$t")
+    command -v "$triplet-gcc" >/dev/null || zs_missing_cross+=("gcc-$triplet")
+    [ -e "/usr/$triplet/lib/crti.o" ] || zs_missing_cross+=("libc6-dev-$deb-cross")
+    dpkg --print-foreign-architectures | grep -qx "$deb" || dpkg --add-architecture "$deb"
+  done
+  command -v qemu-aarch64-static >/dev/null || zs_missing_cross+=(qemu-user-static)
+  if [ ${#zs_missing_cross[@]} -gt 0 ] || [ ${#zs_need[@]} -gt 0 ]; then
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+  fi
+  if [ ${#zs_missing_cross[@]} -gt 0 ]; then
+    echo "setup: installing ${zs_missing_cross[*]}" >&2
+    apt-get install -y -qq --no-install-recommends "${zs_missing_cross[@]}" >&2
+  fi
+  for t in "${zs_need[@]}"; do
+    read -r deb _ _ <<<"$(zs_cross_arch "$t")"
+    echo "setup: the $t libraries into $zs_cross_root/$t" >&2
+    zs_debs=$(mktemp -d)
+    (cd "$zs_debs" && apt-get download -qq "${zs_cross_libs[@]/%/:$deb}") >&2
+    rm -rf "$zs_cross_root/$t.part"
+    mkdir -p "$zs_cross_root/$t.part"
+    for d in "$zs_debs"/*.deb; do dpkg-deb -x "$d" "$zs_cross_root/$t.part"; done
+    rm -rf "$zs_debs"
+    mv "$zs_cross_root/$t.part" "$zs_cross_root/$t" # whole, or not at all
+  done
 fi
 
 ZS_BUILD_DIR=${ZS_BUILD_DIR:-"$zs_root/build"}

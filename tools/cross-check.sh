@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# The same bytes on other CPUs: for each target (aarch64, s390x with its
+# big-endian words, i686 with SSE2 arithmetic), zscan and its golden test
+# cross-built with Debian's cross compiler against the target's own
+# libraries (tools/setup.sh unpacks them, ZS_CROSS), then run under
+# qemu-user: every golden image's hash must be tests/golden/hashes.txt's,
+# and every counter, modelled time and image hash `zscan render --stats`
+# and `zscan walk --csv` print for a set of scenes, modes, shadings and
+# culling methods must be the native build's, byte for byte (their wall
+# times aside, and on i686 the memory sizes, which a 32-bit device's
+# pointers make its own).  Models of assimp's formats are left to the native tests.
+#
+#   tools/cross-check.sh [TARGET ...]     (default: aarch64 s390x i686)
+#
+# Environment: ZS_CROSS_ROOT (as tools/setup.sh), ZS_BUILD_DIR (the
+# native build, default build/), ZS_CROSS_BUILD (default build-cross).
+set -euo pipefail
+
+zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(aarch64 s390x i686)
+ZS_CROSS="${targets[*]}" "$zs_root/tools/setup.sh"
+source_root=${ZS_CROSS_ROOT:-/opt/zscan-cross}
+native=${ZS_BUILD_DIR:-"$zs_root/build"}/zscan
+out=${ZS_CROSS_BUILD:-"$zs_root/build-cross"}
+mkdir -p "$out"
+
+# The cases: what a renderer's user compares, through every mode and
+# style, the shadings that read attributes, shadows, samples, transparency
+# and the culling methods; and a walk with moving objects.
+renders=(
+  "builtin:default --algo zbuffer"         "builtin:default --algo scanline"
+  "builtin:default --algo depthsort"       "builtin:default --shade id"
+  "builtin:default --shade depth"          "builtin:default --style hidden-line"
+  "builtin:default --shade phong --shadows" "builtin:default --samples 4"
+  "builtin:cubes,n=4 --cull chc"           "builtin:cubes,n=4 --cull hzb --shade id"
+  "builtin:teapots,count=60 --cull chcpp"  "builtin:teapots,count=60 --algo depthsort"
+  "builtin:spheres,count=200 --shade gouraud" "builtin:city --cull nohc"
+  "builtin:plant,detail=0.1 --algo scanline" "builtin:plant,detail=0.1 --cull chc-prob"
+  "scene/examples/glass.json"              "scene/examples/glass.json --algo scanline --samples 2"
+  "scene/examples/spotlight.json"          "scene/examples/teapot_textured.json --shade gouraud"
+)
+walk="builtin:teapots,count=80,moving=20 --cull chc,chcpp,hzb --frames 12 --algos scanline,depthsort"
+
+# Every line the cases print, wall times dropped; $1 runs zscan.
+run_cases() {
+  local zscan=$1 i=0
+  for r in "${renders[@]}"; do
+    # shellcheck disable=SC2086
+    (cd "$zs_root" && $zscan render $r --size 200x150 -o "$out/case-$i.png" --stats -q) |
+      sed 's/,"timing":{[^}]*}//'
+    i=$((i + 1))
+  done
+  # shellcheck disable=SC2086
+  (cd "$zs_root" && $zscan walk $walk --size 160x120 --csv "$out/walk.csv" --quiet >/dev/null)
+  cut -d, -f1-5,7- "$out/walk.csv"
+}
+
+run_cases "$native" >"$out/native.txt"
+status=0
+for t in "${targets[@]}"; do
+  case "$t" in
+    aarch64) triplet=aarch64-linux-gnu qemu=qemu-aarch64-static ;;
+    s390x) triplet=s390x-linux-gnu qemu=qemu-s390x-static ;;
+    i686) triplet=i686-linux-gnu qemu=qemu-i386-static ;;
+    *) echo "cross-check: unknown target '$t' (aarch64, s390x, i686)" >&2; exit 2 ;;
+  esac
+  multiarch=${triplet/i686/i386} # Debian's library directories: i386-linux-gnu
+  root="$source_root/$t"
+  build="$out/$t"
+  rm -rf "$build" # the toolchain's flags take at a first configure only
+  mkdir -p "$build"
+  cat >"$build/toolchain.cmake" <<TOOLCHAIN
+set(CMAKE_SYSTEM_NAME Linux)
+set(CMAKE_SYSTEM_PROCESSOR $t)
+set(CMAKE_C_COMPILER $triplet-gcc)
+set(CMAKE_CXX_COMPILER $triplet-g++)
+set(CMAKE_CROSSCOMPILING_EMULATOR $qemu)
+set(CMAKE_FIND_ROOT_PATH $root /usr/$triplet)
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+set(CMAKE_C_FLAGS_INIT "-isystem $root/usr/include/$multiarch")
+set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,-rpath-link,$root/lib/$multiarch -Wl,-rpath-link,$root/usr/lib/$multiarch")
+set(CMAKE_SHARED_LINKER_FLAGS_INIT "\${CMAKE_EXE_LINKER_FLAGS_INIT}")
+TOOLCHAIN
+  echo "cross-check: $t: building" >&2
+  PKG_CONFIG_LIBDIR="$root/usr/lib/$multiarch/pkgconfig:$root/usr/share/pkgconfig" \
+    PKG_CONFIG_SYSROOT_DIR="$root" \
+    cmake -S "$zs_root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$build/toolchain.cmake" \
+    -DCMAKE_BUILD_TYPE=Release -DZS_WERROR=ON -DZS_ASSIMP=OFF >"$build/configure.log" 2>&1 ||
+    { cat "$build/configure.log" >&2; exit 1; }
+  cmake --build "$build" -j "$(nproc)" --target zscan test_golden >"$build/build.log" 2>&1 ||
+    { cat "$build/build.log" >&2; exit 1; }
+  export QEMU_LD_PREFIX="/usr/$triplet"
+  export LD_LIBRARY_PATH="$root/usr/lib/$multiarch:$root/lib/$multiarch"
+  # i686 runs on this CPU itself where the kernel runs 32-bit programs
+  # (through the cross libc's loader: a real SSE2 unit, and many times
+  # faster than emulated), else under qemu like the others
+  run="$qemu"
+  if [ "$t" = i686 ]; then
+    loader="/usr/$triplet/lib/ld-linux.so.2 --library-path $LD_LIBRARY_PATH:/usr/$triplet/lib"
+    # shellcheck disable=SC2086
+    if $loader "$build/zscan" --version >/dev/null 2>&1; then run=$loader; fi
+  fi
+  echo "cross-check: $t: the golden images (${run%% *})" >&2
+  # shellcheck disable=SC2086
+  if ! (cd "$build" && CK_DEFAULT_TIMEOUT=0 $run ./test_golden >golden.log 2>&1); then
+    grep -v "skipped$" "$build/golden.log" >&2
+    echo "cross-check: $t: golden images differ (above)" >&2
+    status=1
+  fi
+  echo "cross-check: $t: ${#renders[@]} renders and a walk against the native build" >&2
+  run_cases "$run $build/zscan" >"$build/cases.txt"
+  want="$out/native.txt"
+  if [ "$t" = i686 ]; then
+    # the memory a 32-bit device holds is its own (pointers of 4 bytes)
+    bytes='s/"\(buffer\|table\|vertex\)_bytes":[0-9]*,//g'
+    sed "$bytes" "$out/native.txt" >"$build/native.txt"
+    sed -i "$bytes" "$build/cases.txt"
+    want="$build/native.txt"
+  fi
+  if ! diff "$want" "$build/cases.txt" >"$build/cases.diff"; then
+    head -20 "$build/cases.diff" >&2
+    echo "cross-check: $t: the outputs differ from the native build's ($build/cases.diff)" >&2
+    status=1
+  else
+    echo "cross-check: $t: $(grep -c . "$want") lines, every one the native build's" >&2
+  fi
+  unset QEMU_LD_PREFIX LD_LIBRARY_PATH
+done
+exit $status
