@@ -130,6 +130,9 @@ void zs_abuffer_resolve_row(zs_abuffer *a, zs_surfaces *s, int slot, int y,
                            const uint32_t *depth, const uint32_t *id, uint32_t *rgb) {
   if (!a->rows || a->rows[y].n == 0) return;
   const zs_fragment_row *r = &a->rows[y];
+  /* a row whose draw failed (its error returned) stays opaque: the room
+   * was made for rows that held */
+  if (r->failed || r->n > a->work[slot].cap) return;
   zs_fragment *f = a->work[slot].f; /* room made by zs_abuffer_check */
   /* 1. in front of the final opaque surface */
   int32_t n = 0;

@@ -94,8 +94,8 @@ int zs_face_transparent(const zs_mesh *m, int32_t f) {
   const int32_t s = m->face_start[f], nv = m->face_start[f + 1] - s;
   if (nv < 3 || nv > ZS_MAX_POLY_VERTS) return 0;
   for (int32_t c = s; c < s + nv; c++) {
-    const int32_t a = m->corner_attr ? m->corner_attr[c] : m->face_vert[c];
-    if (a >= 0 && a < m->nattrs && m->color[4 * (size_t)a + 3] < 255) return 1;
+    const int32_t a = zs_corner_attr(m, c);
+    if (a >= 0 && m->color[4 * (size_t)a + 3] < 255) return 1;
   }
   return 0;
 }
@@ -550,8 +550,11 @@ RUN(run_phong, ZS_SHADE_PHONG, 0, 0)
 RUN(run_phong_tex, ZS_SHADE_PHONG, 1, 0)
 RUN(run_phong_shadowed, ZS_SHADE_PHONG, 0, 1)
 RUN(run_phong_tex_shadowed, ZS_SHADE_PHONG, 1, 1)
-RUN(run_normal, ZS_SHADE_NORMAL, 0, 0)
 #undef RUN
+/* the normal shading draws every face opaque: no alpha copy */
+static void run_normal(const tri *t, int y, int x0, int x1, uint32_t *out) {
+  shade_run(t, y, x0, x1, out, ZS_SHADE_NORMAL, 0, 0, 0);
+}
 
 /* index: shading (unlit, gouraud, phong, normal), textured, shadowed, alpha */
 static run_fn run_for(zs_shade sh, int textured, int shadowed, int alpha) {
@@ -563,8 +566,8 @@ static run_fn run_for(zs_shade sh, int textured, int shadowed, int alpha) {
       {{{run_phong, run_phong_alpha}, {run_phong_shadowed, run_phong_shadowed_alpha}},
        {{run_phong_tex, run_phong_tex_alpha},
         {run_phong_tex_shadowed, run_phong_tex_shadowed_alpha}}},
-      {{{run_normal, run_normal_alpha}, {run_normal, run_normal_alpha}},
-       {{run_normal, run_normal_alpha}, {run_normal, run_normal_alpha}}}};
+      {{{run_normal, run_normal}, {run_normal, run_normal}},
+       {{run_normal, run_normal}, {run_normal, run_normal}}}};
   const int i = sh == ZS_SHADE_UNLIT ? 0 : sh == ZS_SHADE_GOURAUD ? 1 : sh == ZS_SHADE_NORMAL ? 3 : 2;
   return runs[i][textured != 0][shadowed != 0][alpha != 0];
 }
@@ -669,8 +672,7 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
 
   double nrm[3][3];
   for (int i = 0; i < 3; i++) {
-    int32_t a = m->corner_attr ? m->corner_attr[r->corner[i]] : m->face_vert[r->corner[i]];
-    if (a >= m->nattrs) a = -1;
+    const int32_t a = zs_corner_attr(m, r->corner[i]);
     /* normal */
     if (normals) {
       double n[3] = {0, 0, 0};

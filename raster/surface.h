@@ -135,6 +135,13 @@ static inline uint32_t zs_face_base_rgb(const zs_mesh *m, const zs_material *mat
          : m->face_rgb ? m->face_rgb[f] : ZS_DEFAULT_RGB;
 }
 
+/* The attribute vertex of corner c (an index of face_vert), -1 for none
+ * (zscan.h, zs_mesh: corner_attr, else the position's own). */
+static inline int32_t zs_corner_attr(const zs_mesh *m, int32_t c) {
+  const int32_t a = m->corner_attr ? m->corner_attr[c] : m->face_vert[c];
+  return a < m->nattrs ? a : -1;
+}
+
 /* Whether face f of m is transparent (zscan.h): its material's alpha or
  * its base texture's (with texture coordinates to read it), or a corner's
  * vertex colour alpha, below 255. */

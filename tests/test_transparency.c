@@ -75,6 +75,11 @@ typedef struct frame {
   uint32_t rgb[W * H], depth[W * H], id[W * H];
 } frame;
 
+static void keep_rgb(void *user, const zs_row *row) {
+  memcpy((uint32_t *)user + (size_t)row->y * (size_t)row->width, row->rgb,
+         (size_t)row->width * sizeof(uint32_t));
+}
+
 static void keep_row(void *user, const zs_row *row) {
   frame *f = user;
   memcpy(&f->rgb[row->y * W], row->rgb, W * sizeof(uint32_t));
@@ -394,6 +399,12 @@ START_TEST(budget_and_refusals) {
     } else {
       ck_assert_int_eq(st, ZS_ERR_LIMIT);
       ck_assert_str_eq(err.msg, "draw: row 0 holds more than 128 transparent fragments (16 a pixel)");
+      /* a caller that finishes the frame anyway gets it opaque, safely */
+      zs_error_clear(&err);
+      ck_assert_int_eq(zs_device_finish(d, NULL, NULL, &err), ZS_OK);
+      uint32_t rows[8 * 4];
+      ck_assert_int_eq(zs_device_finish(d, keep_rgb, rows, &err), ZS_OK);
+      ck_assert_uint_eq(rows[0], 0);
     }
     /* sixteen layers fit */
     stack.nfaces = 16;
@@ -423,10 +434,6 @@ END_TEST
  * does, byte for byte, from cameras around it: what lies behind glass is
  * not culled (a transparent surface occludes nothing), and the glass
  * behind an opaque object drops out alone. */
-static void keep_rgb(void *user, const zs_row *row) {
-  memcpy((uint32_t *)user + (size_t)row->y * (size_t)row->width, row->rgb,
-         (size_t)row->width * sizeof(uint32_t));
-}
 
 START_TEST(culling_sees_through_glass) {
   static const zs_cull_method exact[] = {

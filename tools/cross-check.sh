@@ -17,8 +17,11 @@
 set -euo pipefail
 
 zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# shellcheck source=tools/cross-targets.sh
+. "$zs_root/tools/cross-targets.sh"
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(aarch64 s390x i686)
+for t in "${targets[@]}"; do zs_cross_target "$t" >/dev/null || exit 2; done
 ZS_CROSS="${targets[*]}" "$zs_root/tools/setup.sh"
 source_root=${ZS_CROSS_ROOT:-/opt/zscan-cross}
 native=${ZS_BUILD_DIR:-"$zs_root/build"}/zscan
@@ -59,13 +62,7 @@ run_cases() {
 run_cases "$native" >"$out/native.txt"
 status=0
 for t in "${targets[@]}"; do
-  case "$t" in
-    aarch64) triplet=aarch64-linux-gnu qemu=qemu-aarch64-static ;;
-    s390x) triplet=s390x-linux-gnu qemu=qemu-s390x-static ;;
-    i686) triplet=i686-linux-gnu qemu=qemu-i386-static ;;
-    *) echo "cross-check: unknown target '$t' (aarch64, s390x, i686)" >&2; exit 2 ;;
-  esac
-  multiarch=${triplet/i686/i386} # Debian's library directories: i386-linux-gnu
+  read -r _ triplet qemu multiarch <<<"$(zs_cross_target "$t")"
   root="$source_root/$t"
   build="$out/$t"
   rm -rf "$build" # the toolchain's flags take at a first configure only

@@ -209,44 +209,43 @@ zs_status zs_mesa_unlit(zs_mesa *m, const zs_scene *s, const double view[16],
       glEnable(GL_BLEND);
       glDepthMask(GL_FALSE);
     }
-  for (int32_t i = 0; i < s->ninst; i++) {
-    const zs_instance *in = &s->inst[i];
-    load_modelview(view, in->model);
-    const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
-    for (int32_t f = 0; f < mesh->nfaces; f++) {
-      if (zs_face_transparent(mesh, f) != pass) continue;
-      const zs_material *mat = zs_face_material(mesh, f);
-      const uint32_t base = zs_face_base_rgb(mesh, mat, f, in->rgb);
-      const zs_filter fl = filter != ZS_FILTER_DEFAULT ? filter
-                           : mat && mat->filter != ZS_FILTER_DEFAULT ? mat->filter
-                                                                     : ZS_FILTER_TRILINEAR;
-      GLuint tex = 0;
-      if (mat && mat->base_texture) {
-        tex = texture_of(mat->base_texture, mat, fl);
-        glEnable(GL_TEXTURE_2D);
-      }
-      glBegin(GL_POLYGON);
-      for (int32_t k = mesh->face_start[f]; k < mesh->face_start[f + 1]; k++) {
-        int32_t a = mesh->corner_attr ? mesh->corner_attr[k] : mesh->face_vert[k];
-        if (a >= mesh->nattrs) a = -1;
-        GLubyte c[4];
-        for (int ch = 0; ch < 3; ch++) {
-          const uint32_t v = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + ch] : 255;
-          c[ch] = (GLubyte)(((base >> (16 - 8 * ch) & 255) * v + 127) / 255);
+    for (int32_t i = 0; i < s->ninst; i++) {
+      const zs_instance *in = &s->inst[i];
+      load_modelview(view, in->model);
+      const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
+      for (int32_t f = 0; f < mesh->nfaces; f++) {
+        if (zs_face_transparent(mesh, f) != pass) continue;
+        const zs_material *mat = zs_face_material(mesh, f);
+        const uint32_t base = zs_face_base_rgb(mesh, mat, f, in->rgb);
+        const zs_filter fl = filter != ZS_FILTER_DEFAULT ? filter
+                             : mat && mat->filter != ZS_FILTER_DEFAULT ? mat->filter
+                                                                       : ZS_FILTER_TRILINEAR;
+        GLuint tex = 0;
+        if (mat && mat->base_texture) {
+          tex = texture_of(mat->base_texture, mat, fl);
+          glEnable(GL_TEXTURE_2D);
         }
-        const uint32_t va = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + 3] : 255;
-        c[3] = (GLubyte)(((mat ? mat->base[3] : 255u) * va + 127) / 255);
-        glColor4ubv(c);
-        if (a >= 0 && mesh->uv) glTexCoord2fv(&mesh->uv[2 * (size_t)a]);
-        glVertex3dv(&mesh->pos[3 * mesh->face_vert[k]]);
-      }
-      glEnd();
-      if (tex) {
-        glDisable(GL_TEXTURE_2D);
-        glDeleteTextures(1, &tex);
+        glBegin(GL_POLYGON);
+        for (int32_t k = mesh->face_start[f]; k < mesh->face_start[f + 1]; k++) {
+          const int32_t a = zs_corner_attr(mesh, k);
+          GLubyte c[4];
+          for (int ch = 0; ch < 3; ch++) {
+            const uint32_t v = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + ch] : 255;
+            c[ch] = (GLubyte)(((base >> (16 - 8 * ch) & 255) * v + 127) / 255);
+          }
+          const uint32_t va = a >= 0 && mesh->color ? mesh->color[4 * (size_t)a + 3] : 255;
+          c[3] = (GLubyte)(((mat ? mat->base[3] : 255u) * va + 127) / 255);
+          glColor4ubv(c);
+          if (a >= 0 && mesh->uv) glTexCoord2fv(&mesh->uv[2 * (size_t)a]);
+          glVertex3dv(&mesh->pos[3 * mesh->face_vert[k]]);
+        }
+        glEnd();
+        if (tex) {
+          glDisable(GL_TEXTURE_2D);
+          glDeleteTextures(1, &tex);
+        }
       }
     }
-  }
   }
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);

@@ -57,15 +57,8 @@ if [ ${#zs_missing[@]} -gt 0 ]; then
   apt-get install -y -qq --no-install-recommends "${zs_missing[@]}" >&2
 fi
 
-# A cross target's Debian architecture, compiler triplet and qemu.
-zs_cross_arch() {
-  case "$1" in
-    aarch64) echo "arm64 aarch64-linux-gnu qemu-aarch64-static" ;;
-    s390x) echo "s390x s390x-linux-gnu qemu-s390x-static" ;;
-    i686) echo "i386 i686-linux-gnu qemu-i386-static" ;;
-    *) echo "setup: unknown cross target '$1' (aarch64, s390x, i686)" >&2; return 1 ;;
-  esac
-}
+# shellcheck source=tools/cross-targets.sh
+. "$zs_root/tools/cross-targets.sh"
 # What the library and its golden test link against on the target (no
 # assimp: its dependencies are many, and the goldens of its formats are
 # checked natively)
@@ -76,8 +69,8 @@ if [ -n "${ZS_CROSS:-}" ]; then
   zs_need=()
   zs_missing_cross=()
   for t in $ZS_CROSS; do
-    zs_cross_arch "$t" >/dev/null || exit 2
-    read -r deb triplet _ <<<"$(zs_cross_arch "$t")"
+    zs_cross_target "$t" >/dev/null || exit 2
+    read -r deb triplet _ _ <<<"$(zs_cross_target "$t")"
     [ -d "$zs_cross_root/$t/usr" ] || zs_need+=("$t")
     command -v "$triplet-gcc" >/dev/null || zs_missing_cross+=("gcc-$triplet")
     [ -e "/usr/$triplet/lib/crti.o" ] || zs_missing_cross+=("libc6-dev-$deb-cross")
@@ -93,7 +86,7 @@ if [ -n "${ZS_CROSS:-}" ]; then
     apt-get install -y -qq --no-install-recommends "${zs_missing_cross[@]}" >&2
   fi
   for t in "${zs_need[@]}"; do
-    read -r deb _ _ <<<"$(zs_cross_arch "$t")"
+    read -r deb _ _ _ <<<"$(zs_cross_target "$t")"
     echo "setup: the $t libraries into $zs_cross_root/$t" >&2
     zs_debs=$(mktemp -d)
     (cd "$zs_debs" && apt-get download -qq "${zs_cross_libs[@]/%/:$deb}") >&2
