@@ -25,6 +25,9 @@ static const char *const pixel_changes[] = {
     "transparent faces (material, texture or vertex-colour alpha below 255) are composited "
     "in depth order over the opaque surface, where they were drawn opaque before: models "
     "with such alpha change, opaque ones do not",
+    "a model's lines and points (OBJ l and p, glTF LINES and POINTS, PLY edges and point "
+    "clouds) are drawn, by GL's rules for aliased lines and points, where they were dropped "
+    "before: models with them change, models without them do not",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,
@@ -109,9 +112,18 @@ static zs_status settle(const zs_scene *scene, const zs_render_opts *opts, zs_ca
       return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.shadow_bias: %g, %g: units 0 to 2^32, "
                           "slope 0 to 1e6", so->units, so->slope);
   }
+  if (o->line_width != 0.0 && !(o->line_width > 0.0 && o->line_width <= ZS_MAX_LINE_WIDTH))
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.line_width: %g: above 0 and at most %d "
+                        "(0: 1)", o->line_width, ZS_MAX_LINE_WIDTH);
+  if (o->point_size != 0.0 && !(o->point_size > 0.0 && o->point_size <= ZS_MAX_POINT_SIZE))
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.point_size: %g: above 0 and at most %d "
+                        "(0: 1)", o->point_size, ZS_MAX_POINT_SIZE);
+  if ((unsigned)o->point_shape > ZS_POINT_DISC)
+    return zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.point_shape: unknown shape %d",
+                        (int)o->point_shape);
   *fo = (zs_frame_opts){width,    height,   o->algo, o->shade, o->cull_back, o->threads ? o->threads : 1,
                         style, o->filter, o->lights, o->nlights, so,
-                        o->samples, o->supersample};
+                        o->samples, o->supersample, o->line_width, o->point_size, o->point_shape};
   return ZS_OK;
 }
 
@@ -128,7 +140,10 @@ zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image 
   float *d = NULL;
   if (depth && !(d = malloc((size_t)fo.width * (size_t)fo.height * sizeof *d)))
     return zs_error_set(err, ZS_ERR_NOMEM, "zs_render: out of memory");
-  st = zs_frame_render(scene, &cam, &fo, out, d, stats, err);
+  if (fo.algo != ZS_ALGO_ZBUFFER && zs_scene_has_prims(scene))
+    st = zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.algo: the scene's lines and points need "
+                      "ZS_ALGO_ZBUFFER");
+  else st = zs_frame_render(scene, &cam, &fo, out, d, stats, err);
   if (st != ZS_OK || !depth) free(d);
   else *depth = d;
   return st;

@@ -29,10 +29,18 @@ static void gather_row(void *user, const zs_row *row) {
 }
 
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
-                             const double view[16], const double proj[16], zs_frame_style style,
-                             zs_image *out, float *depth, zs_error *err) {
+                             const double view[16], const double proj[16],
+                             const zs_frame_look *look, zs_image *out, float *depth,
+                             zs_error *err) {
   gather g = {out, depth, NULL, NULL};
+  const zs_frame_look solid = {ZS_STYLE_SOLID, 1.0, 1.0, ZS_POINT_SQUARE};
+  if (!look) look = &solid;
+  const zs_frame_style style = look->style;
   if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
+  if (zs_frame_draw_prims(dev, scene, look->line_width > 0.0 ? look->line_width : 1.0,
+                          look->point_size > 0.0 ? look->point_size : 1.0, look->point_shape,
+                          err))
+    return err->code;
   /* hidden lines: the faces stay in the depth buffer; the picture is
    * their edges */
   if (style == ZS_STYLE_HIDDEN_LINE && zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err))
@@ -57,11 +65,11 @@ static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
 }
 
 zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
-                                  const double proj[16], zs_frame_style style, int samples,
+                                  const double proj[16], const zs_frame_look *look, int samples,
                                   int per_sample, zs_image *out, zs_raster_stats *stats,
                                   zs_error *err) {
   if (samples <= 1) {
-    zs_status st = zs_frame_render_on(dev, scene, view, proj, style, out, NULL, err);
+    zs_status st = zs_frame_render_on(dev, scene, view, proj, look, out, NULL, err);
     if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
     return st;
   }
@@ -79,7 +87,7 @@ zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const d
   for (int k = 0; k < samples && st == ZS_OK; k++) {
     double pk[16];
     zs_sample_projection(proj, w, h, pos[2 * k], pos[2 * k + 1], pk);
-    st = zs_frame_render_on(dev, scene, view, pk, style, &one, NULL, err);
+    st = zs_frame_render_on(dev, scene, view, pk, look, &one, NULL, err);
     if (st != ZS_OK) break;
     add_stats(&total, zs_device_stats(dev));
     for (size_t i = 0; i < n; i++) {
@@ -168,12 +176,13 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
     zs_device_destroy(dev);
     return err->code;
   }
+  const zs_frame_look look = {o->style, o->line_width, o->point_size, o->point_shape};
   zs_status st = zs_image_alloc(out, o->width, o->height, err);
   if (st == ZS_OK && o->samples > 1) {
-    st = zs_frame_render_samples(dev, scene, view, proj, o->style, o->samples,
+    st = zs_frame_render_samples(dev, scene, view, proj, &look, o->samples,
                                  o->per_sample, out, stats, err);
   } else if (st == ZS_OK) {
-    st = zs_frame_render_on(dev, scene, view, proj, o->style, out, depth, err);
+    st = zs_frame_render_on(dev, scene, view, proj, &look, out, depth, err);
     if (st == ZS_OK && stats) *stats = *zs_device_stats(dev);
   }
   if (st != ZS_OK) zs_image_free(out);

@@ -32,6 +32,15 @@ static inline zs_frame_style zs_frame_style_of(int hidden_line, int wireframe) {
   return hidden_line ? ZS_STYLE_HIDDEN_LINE : wireframe ? ZS_STYLE_WIREFRAME : ZS_STYLE_SOLID;
 }
 
+/* How a frame draws: its style, and the width of its lines and the size
+ * and shape of its points (zs_device_draw_lines, _points); NULL where
+ * one is taken: solid, 1, 1, squares. */
+typedef struct zs_frame_look {
+  zs_frame_style style;
+  double line_width, point_size; /* pixels; 0: 1 */
+  zs_point_shape point_shape;
+} zs_frame_look;
+
 typedef struct zs_frame_opts {
   int width, height;
   zs_algo algo;
@@ -44,6 +53,8 @@ typedef struct zs_frame_opts {
   const zs_shadow_opts *shadows; /* NULL: no shadows (lib/shadow.h) */
   int samples;      /* 0 or 1: one sample a pixel; 2, 4, 8, 16 */
   int per_sample;   /* supersampled: shaded at each sample */
+  double line_width, point_size; /* zs_frame_look's */
+  zs_point_shape point_shape;
 } zs_frame_opts;
 
 /* The lights of a frame: lights[0 .. n) when n > 0, else the scene's
@@ -75,8 +86,9 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
  * (and then depth too): the frame is rendered, its rows shaded and
  * dropped, and its buffers stay in the device. */
 zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
-                             const double view[16], const double proj[16], zs_frame_style style,
-                             zs_image *out, float *depth, zs_error *err);
+                             const double view[16], const double proj[16],
+                             const zs_frame_look *look, zs_image *out, float *depth,
+                             zs_error *err);
 
 /* The same, anti-aliased: samples (1, 2, 4, 8 or 16) frames, each with
  * proj moved so that the pixels' centres fall on one of the standard
@@ -88,7 +100,7 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
  * NULL, gets the counters summed over the samples' frames.  samples 1:
  * zs_frame_render_on's frame. */
 zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
-                                  const double proj[16], zs_frame_style style, int samples,
+                                  const double proj[16], const zs_frame_look *look, int samples,
                                   int per_sample, zs_image *out, zs_raster_stats *stats,
                                   zs_error *err);
 

@@ -35,10 +35,10 @@ zs_status zs_input_load(const char *spec, int flags, zs_scene *out, zs_error *er
     st = zs_obj_load_flags(spec, skip ? ZS_OBJ_SKIP_MISSING_TEXTURES : 0, &m, err);
   else st = zs_assimp_load_flags(spec, skip ? ZS_ASSIMP_SKIP_MISSING_TEXTURES : 0, &m, err);
   if (st != ZS_OK) return st;
-  if (m.nsource_faces == 0 && !(flags & ZS_INPUT_ALLOW_EMPTY)) {
-    /* an empty file, vertices or points only: nothing would be drawn */
+  if (!zs_model_drawable(&m) && !(flags & ZS_INPUT_ALLOW_EMPTY)) {
+    /* an empty file, or vertices only: nothing would be drawn */
     zs_model_free(&m);
-    return zs_error_set(err, ZS_ERR_PARSE, "%s: no faces", spec);
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: no faces, lines or points", spec);
   }
   if ((st = zs_scene_from_model(out, &m, err)) == ZS_OK) st = zs_scene_finish(out, err);
   if (st != ZS_OK) zs_scene_free(out);

@@ -13,8 +13,8 @@
  *   FILE.ply, .stl, ...    through assimp, likewise
  *   builtin:NAME[,k=v,..]  a generated scene (scene/generate.h): default,
  *                          teapots, spheres, city, plant, cubes
- * A model file without a face (empty, vertices or points only) is refused
- * with "FILE: no faces". */
+ * A model file without a face, a line or a point (empty, or vertices
+ * only) is refused with "FILE: no faces, lines or points". */
 zs_status zs_input_load_scene(const char *spec, zs_scene *out, zs_error *err);
 
 /* Flags of zs_input_load (0: as zs_input_load_scene). */

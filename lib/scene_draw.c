@@ -15,6 +15,28 @@ zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *e
   return st;
 }
 
+int zs_scene_has_prims(const zs_scene *scene) {
+  for (int32_t i = 0; i < scene->ninst; i++) {
+    const zs_mesh *m = &scene->meshes[scene->inst[i].mesh].mesh;
+    if (m->nlines > 0 || m->npoints > 0) return 1;
+  }
+  return 0;
+}
+
+zs_status zs_frame_draw_prims(zs_device *dev, const zs_scene *scene, double line_width,
+                              double point_size, zs_point_shape shape, zs_error *err) {
+  zs_status st = ZS_OK;
+  for (int32_t i = 0; i < scene->ninst && st == ZS_OK; i++) {
+    const zs_instance *in = &scene->inst[i];
+    const zs_mesh *m = &scene->meshes[in->mesh].mesh;
+    if (m->nlines > 0)
+      st = zs_device_draw_lines(dev, m, in->model, in->id_base, in->rgb, line_width, err);
+    if (st == ZS_OK && m->npoints > 0)
+      st = zs_device_draw_points(dev, m, in->model, in->id_base, in->rgb, point_size, shape, err);
+  }
+  return st;
+}
+
 zs_status zs_frame_draw_all(zs_device *dev, const zs_scene *scene, const double view[16],
                             const double proj[16], zs_error *err) {
   zs_device_clear(dev);

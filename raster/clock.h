@@ -33,7 +33,8 @@ typedef enum zs_command_kind {
   ZS_CMD_FRAME_SCAN,    /* scanline and depthsort modes at finish: the pixels */
   ZS_CMD_HZB_BUILD,     /* a compute pass: the pyramid's texels */
   ZS_CMD_HZB_TEST,      /* a compute pass: boxes and the texels they read */
-  ZS_CMD_EDGES,         /* hidden-line edges: the pixels written, no clock */
+  ZS_CMD_EDGES,         /* hidden-line edges, lines and points: the pixels
+                         * written, no clock */
   ZS_CMD_CPU_WORK       /* the culler's own work on the CPU */
 } zs_command_kind;
 

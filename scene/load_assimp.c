@@ -259,6 +259,7 @@ typedef struct loader {
   int32_t ntex, cap_tex;
   int need_normals;        /* a mesh has colours or uvs but no normals */
   int flags;               /* ZS_ASSIMP_* */
+  int point_cloud;         /* read without assimp's validation (a mesh without faces) */
 } loader;
 
 /* 4x4 row-major doubles from an aiMatrix4x4 (also row-major, column
@@ -651,6 +652,40 @@ static void object_name(const struct aiNode *nd, unsigned mi, const struct aiMes
   else snprintf(buf, cap, "%s", node);
 }
 
+/* The colour of a line or point from vertex v: its first colour when the
+ * mesh has colours, else the mesh's material colour rgb. */
+static uint32_t vertex_colour(const struct aiMesh *mesh, unsigned v, uint32_t rgb) {
+  const struct aiColor4D *c = mesh->mColors[0];
+  return c ? channel(c[v].r) << 16 | channel(c[v].g) << 8 | channel(c[v].b) : rgb;
+}
+
+/* The mesh's faces of one and two vertices as points and lines (glTF's
+ * POINTS and LINES, a PLY's edges), each in the colour of its first
+ * vertex; a mesh without faces (a point cloud, L->point_cloud) as a
+ * point at each vertex. */
+static zs_status add_lines_and_points(loader *L, const struct aiMesh *mesh, unsigned mi,
+                                      int32_t base) {
+  const uint32_t rgb = mesh_colour(L->scene, mesh);
+  zs_status st = ZS_OK;
+  if (mesh->mNumFaces == 0 && L->point_cloud)
+    for (unsigned v = 0; v < mesh->mNumVertices && st == ZS_OK; v++)
+      st = zs_model_add_point(L->m, base + (int32_t)v, vertex_colour(mesh, v, rgb));
+  for (unsigned f = 0; f < mesh->mNumFaces && st == ZS_OK; f++) {
+    const struct aiFace *face = &mesh->mFaces[f];
+    const unsigned n = face->mNumIndices;
+    if (n == 0 || n > 2) continue;
+    for (unsigned k = 0; k < n; k++)
+      if (face->mIndices[k] >= mesh->mNumVertices)
+        return set_error(L->err, ZS_ERR_PARSE, "%s: mesh %u face %u: vertex index %u out of range",
+                         L->path, mi, f, face->mIndices[k]);
+    const int32_t a = base + (int32_t)face->mIndices[0];
+    const uint32_t c = vertex_colour(mesh, face->mIndices[0], rgb);
+    st = n == 1 ? zs_model_add_point(L->m, a, c)
+                : zs_model_add_line(L->m, a, base + (int32_t)face->mIndices[1], c);
+  }
+  return st == ZS_OK ? ZS_OK : set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
+}
+
 static zs_status add_mesh(loader *L, const struct aiNode *nd, unsigned j, const double xf[16]) {
   unsigned mi = nd->mMeshes[j];
   if (mi >= L->scene->mNumMeshes || !L->scene->mMeshes[mi])
@@ -683,10 +718,11 @@ static zs_status add_mesh(loader *L, const struct aiNode *nd, unsigned j, const 
       return set_error(L->err, ZS_ERR_NOMEM, "%s: out of memory", L->path);
   }
   L->vertices += mesh->mNumVertices;
-  /* attributes and a material only for a mesh with polygons (points and
-   * lines are skipped); attribute vertices only for a mesh that has
-   * attributes, so that a file without any keeps a mesh without
-   * attribute arrays */
+  zs_status pst = add_lines_and_points(L, mesh, mi, base);
+  if (pst != ZS_OK) return pst;
+  /* attributes and a material only for a mesh with polygons; attribute
+   * vertices only for a mesh that has attributes, so that a file without
+   * any keeps a mesh without attribute arrays */
   int polygons = 0;
   for (unsigned f = 0; f < mesh->mNumFaces && !polygons; f++)
     polygons = mesh->mFaces[f].mNumIndices >= 3;
@@ -783,6 +819,15 @@ zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_er
                                 aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                     aiProcess_ValidateDataStructure,
                                 &sc, err);
+  /* A point cloud (a PLY of vertices alone) is a mesh without faces,
+   * which assimp's validation refuses: read it again without, and take
+   * each vertex as a point (add_mesh checks what it reads itself). */
+  int point_cloud = 0;
+  if (st != ZS_OK && strstr(err->msg, "contains no faces")) {
+    zs_error_clear(err);
+    st = import_checked(path, 0, &sc, err);
+    point_cloud = st == ZS_OK;
+  }
   if (st != ZS_OK) return st;
   if ((sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || sc->mNumMeshes == 0 || !sc->mRootNode) {
     unsigned cameras = sc->mNumCameras;
@@ -794,7 +839,7 @@ zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_er
                        path, cameras, cameras == 1 ? "" : "s");
     return set_error(err, ZS_ERR_PARSE, "%s: no meshes", path);
   }
-  loader L = {path, sc, out, 0, 0, err, zs_load_dir(path), NULL, NULL, 0, 0, 0, flags};
+  loader L = {path, sc, out, 0, 0, err, zs_load_dir(path), NULL, NULL, 0, 0, 0, flags, point_cloud};
   if (sc->mNumMaterials) L.material = malloc(sc->mNumMaterials * sizeof *L.material);
   if (!L.dir || (sc->mNumMaterials && !L.material)) {
     st = set_error(err, ZS_ERR_NOMEM, "%s: out of memory", path);
@@ -803,8 +848,8 @@ zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_er
     double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     st = walk(&L, sc->mRootNode, identity, 0);
   }
-  if (st == ZS_OK && out->nsource_faces == 0)
-    st = set_error(err, ZS_ERR_PARSE, "%s: no polygons (only points or lines)", path);
+  if (st == ZS_OK && !zs_model_drawable(out))
+    st = set_error(err, ZS_ERR_PARSE, "%s: no faces, lines or points", path);
   /* zscan's own normals, the same bytes everywhere, where the file has
    * none (never assimp's aiProcess_GenNormals) */
   if (st == ZS_OK && L.need_normals && !zs_model_compute_normals(out, 60.0))

@@ -714,6 +714,28 @@ static zs_status parse_face(obj_parser *p) {
   return ZS_OK;
 }
 
+/* l v1 v2 ... (a polyline: a line between each two consecutive vertices,
+ * texture coordinates after '/' read and dropped) and p v1 v2 ... (points),
+ * in the colour of the current material, as faces take it. */
+static zs_status parse_lines_or_points(obj_parser *p, int lines) {
+  int n = 0;
+  int32_t prev = -1;
+  for (char *w; (w = next_word(&p->r)) != NULL; n++) {
+    int32_t c[3] = {-1, -1, -1};
+    zs_status st = parse_face_vertex(p, w, c);
+    if (st != ZS_OK) return st;
+    if (lines && n > 0) st = zs_model_add_line(p->m, prev, c[0], p->slot);
+    if (!lines) st = zs_model_add_point(p->m, c[0], p->slot);
+    if (st != ZS_OK) return st == ZS_ERR_NOMEM ? out_of_memory(p)
+                                               : line_error(&p->r, st, "rejected by the model");
+    prev = c[0];
+  }
+  if (lines && n < 2)
+    return line_error(&p->r, ZS_ERR_PARSE, "line with %d vertices (at least 2 needed)", n);
+  if (!lines && n < 1) return line_error(&p->r, ZS_ERR_PARSE, "point statement without a vertex");
+  return ZS_OK;
+}
+
 /* o and g: name NULL returns to no object. */
 static zs_status set_object(obj_parser *p, const char *name) {
   if (!name) {
@@ -793,6 +815,8 @@ static zs_status parse_line(obj_parser *p) {
   if (strcmp(kw, "vn") == 0) return parse_normal(p);
   if (strcmp(kw, "vt") == 0) return parse_texcoord(p);
   if (strcmp(kw, "f") == 0) return parse_face(p);
+  if (strcmp(kw, "l") == 0) return parse_lines_or_points(p, 1);
+  if (strcmp(kw, "p") == 0) return parse_lines_or_points(p, 0);
   if (strcmp(kw, "o") == 0) return set_object(p, rest_of_line(&p->r));
   if (strcmp(kw, "g") == 0) return set_object(p, next_word(&p->r));
   if (strcmp(kw, "usemtl") == 0) return use_material(p, rest_of_line(&p->r));
@@ -908,6 +932,9 @@ static zs_status resolve_materials(obj_parser *p) {
   zs_mesh *mesh = &p->m->mesh;
   if (st == ZS_OK)
     for (int32_t f = 0; f < mesh->nfaces; f++) mesh->face_rgb[f] = rgb[mesh->face_rgb[f]];
+  for (int32_t k = 0; st == ZS_OK && k < mesh->nlines; k++) mesh->line_rgb[k] = rgb[mesh->line_rgb[k]];
+  for (int32_t k = 0; st == ZS_OK && k < mesh->npoints; k++)
+    mesh->point_rgb[k] = rgb[mesh->point_rgb[k]];
   free(rgb);
   if (st == ZS_OK) st = material_for_the_rest(p);
   /* smooth across edges of up to 60 degrees: a cube keeps its edges */

@@ -314,7 +314,7 @@ static zs_status load_mesh_file(reader *r, const char *file, zs_model *m) {
           ? zs_obj_load_flags(full, skip ? ZS_OBJ_SKIP_MISSING_TEXTURES : 0, m, &inner)
           : zs_assimp_load_flags(full, skip ? ZS_ASSIMP_SKIP_MISSING_TEXTURES : 0, m, &inner);
   if (st != ZS_OK) return fail(r, st, "%s", inner.msg);
-  if (m->nsource_faces == 0) return fail(r, ZS_ERR_PARSE, "%s: no faces", full);
+  if (!zs_model_drawable(m)) return fail(r, ZS_ERR_PARSE, "%s: no faces, lines or points", full);
   /* the file's notes follow the path, as its errors do */
   char prefix[PATH_MAX_CHARS + 4096];
   where(r, prefix, sizeof prefix);

@@ -44,6 +44,10 @@ void zs_model_free(zs_model *m) {
   free(m->mesh.color);
   free(m->mesh.uv);
   free(m->mesh.face_material);
+  free(m->mesh.line_vert);
+  free(m->mesh.line_rgb);
+  free(m->mesh.point_vert);
+  free(m->mesh.point_rgb);
   free(m->materials);
   for (int32_t i = 0; i < m->ntextures; i++) zs_texture_destroy(m->textures[i]);
   free(m->textures);
@@ -509,6 +513,46 @@ zs_status zs_model_add_face(zs_model *m, const int32_t *idx, const int32_t *attr
   m->cur_idx = m->cur_attr = NULL;
   m->cur_n = 0;
   m->nsource_faces++;
+  m->mesh.prim_id = m->nsource_faces;
+  return ZS_OK;
+}
+
+/* ---- lines and points ------------------------------------------------- */
+
+/* Room for one more primitive of `per` vertex indices in the parallel
+ * arrays *vert and *rgb, which hold n and share *cap; and the mesh's
+ * face_start made, so that a mesh of lines alone has its one entry. */
+static int reserve_prims(zs_mesh *mesh, int32_t **vert, uint32_t **rgb, int32_t *cap, int32_t n,
+                         int per) {
+  if (!mesh->face_start && !(mesh->face_start = calloc(1, sizeof *mesh->face_start))) return 0;
+  int32_t c_vert = *cap, c_rgb = *cap;
+  if (!zs_grow((void **)vert, &c_vert, (int64_t)n + 1, (size_t)per * sizeof **vert) ||
+      !zs_grow((void **)rgb, &c_rgb, (int64_t)n + 1, sizeof **rgb))
+    return 0;
+  *cap = c_vert < c_rgb ? c_vert : c_rgb;
+  return 1;
+}
+
+zs_status zs_model_add_line(zs_model *m, int32_t a, int32_t b, uint32_t rgb) {
+  zs_mesh *mesh = &m->mesh;
+  if (a < 0 || a >= mesh->nverts || b < 0 || b >= mesh->nverts) return ZS_ERR_ARG;
+  if (!reserve_prims(mesh, &mesh->line_vert, &mesh->line_rgb, &m->cap_lines, mesh->nlines, 2))
+    return ZS_ERR_NOMEM;
+  mesh->line_vert[2 * mesh->nlines] = a;
+  mesh->line_vert[2 * mesh->nlines + 1] = b;
+  mesh->line_rgb[mesh->nlines++] = rgb;
+  mesh->prim_id = m->nsource_faces;
+  return ZS_OK;
+}
+
+zs_status zs_model_add_point(zs_model *m, int32_t v, uint32_t rgb) {
+  zs_mesh *mesh = &m->mesh;
+  if (v < 0 || v >= mesh->nverts) return ZS_ERR_ARG;
+  if (!reserve_prims(mesh, &mesh->point_vert, &mesh->point_rgb, &m->cap_points, mesh->npoints, 1))
+    return ZS_ERR_NOMEM;
+  mesh->point_vert[mesh->npoints] = v;
+  mesh->point_rgb[mesh->npoints++] = rgb;
+  mesh->prim_id = m->nsource_faces;
   return ZS_OK;
 }
 

@@ -55,7 +55,7 @@ typedef struct zs_model {
   zs_notes notes;         /* of its load, until a scene takes them */
   /* capacities (private) */
   int32_t cap_verts, cap_faces, cap_face_verts, cap_objects;
-  int32_t cap_attrs, cap_materials, cap_textures;
+  int32_t cap_attrs, cap_materials, cap_textures, cap_lines, cap_points;
   /* the polygon being added: its corners' positions and attributes, from
    * which each piece of it takes its corners' attributes (private) */
   const int32_t *cur_idx, *cur_attr;
@@ -85,6 +85,19 @@ int32_t zs_model_object(zs_model *m, const char *name);
  * n < 3, ZS_ERR_NOMEM. */
 zs_status zs_model_add_polygon(zs_model *m, const int32_t *idx, int n,
                                uint32_t rgb, int32_t obj);
+
+/* Adds the line from position a to position b (mesh.line_vert), colour
+ * rgb, or the point at position v (mesh.point_vert).  Their ids follow the
+ * faces' (mesh.prim_id = nsource_faces, kept up to date): lines and
+ * points are numbered in the order they are added.  ZS_ERR_ARG for an
+ * index out of range, ZS_ERR_NOMEM. */
+zs_status zs_model_add_line(zs_model *m, int32_t a, int32_t b, uint32_t rgb);
+zs_status zs_model_add_point(zs_model *m, int32_t v, uint32_t rgb);
+
+/* Whether the model has anything to draw: a face, a line or a point. */
+static inline int zs_model_drawable(const zs_model *m) {
+  return m->nsource_faces > 0 || m->mesh.nlines > 0 || m->mesh.npoints > 0;
+}
 
 /* Appends an attribute vertex (zscan.h, zs_mesh): normal (3 floats),
  * rgba (4 bytes) and uv (2 floats), each NULL for none ((0, 0, 0), white

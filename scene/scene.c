@@ -131,13 +131,16 @@ void zs_scene_instance_bounds(const zs_scene *s, int32_t i, double lo[3], double
   }
 }
 
-/* The ids a mesh's faces take from an instance's id_base: nsource_faces,
- * or more when its face ids are not 0 .. n-1 (the parts of
- * zs_scene_from_model keep their file's face numbers). */
+/* The ids a mesh's faces, lines and points take from an instance's
+ * id_base: nsource_faces, or more when its face ids are not 0 .. n-1 (the
+ * parts of zs_scene_from_model keep their file's face numbers), or its
+ * lines' and points' (which follow prim_id). */
 static uint64_t id_span(const zs_model *m) {
   int64_t span = m->nsource_faces > 0 ? m->nsource_faces : 0;
   for (int32_t f = 0; f < m->mesh.nfaces; f++)
     if (m->mesh.face_id && (int64_t)m->mesh.face_id[f] + 1 > span) span = m->mesh.face_id[f] + 1;
+  const int64_t prims = (int64_t)m->mesh.prim_id + m->mesh.nlines + m->mesh.npoints;
+  if (m->mesh.nlines + (int64_t)m->mesh.npoints > 0 && prims > span) span = prims;
   return (uint64_t)span;
 }
 
@@ -273,6 +276,29 @@ static zs_status extract_faces(const zs_model *src, const int32_t *face, int32_t
   return ZS_OK;
 }
 
+/* The model's lines and points into dst, with the vertices they use
+ * (remap: -1 per vertex of m, left so), numbered as in m. */
+static zs_status extract_prims(const zs_model *src, zs_model *dst, int32_t *remap) {
+  const zs_mesh *m = &src->mesh;
+  zs_status st = ZS_OK;
+  for (int32_t k = 0; k < 2 * m->nlines + m->npoints && st == ZS_OK; k++) {
+    const int32_t v = k < 2 * m->nlines ? m->line_vert[k] : m->point_vert[k - 2 * m->nlines];
+    if (remap[v] < 0 && (remap[v] = zs_model_add_vertex(dst, m->pos[3 * (size_t)v],
+                                                        m->pos[3 * (size_t)v + 1],
+                                                        m->pos[3 * (size_t)v + 2])) < 0)
+      st = ZS_ERR_NOMEM;
+  }
+  for (int32_t k = 0; k < m->nlines && st == ZS_OK; k++)
+    st = zs_model_add_line(dst, remap[m->line_vert[2 * k]], remap[m->line_vert[2 * k + 1]],
+                           m->line_rgb ? m->line_rgb[k] : ZS_GREY);
+  for (int32_t k = 0; k < m->npoints && st == ZS_OK; k++)
+    st = zs_model_add_point(dst, remap[m->point_vert[k]], m->point_rgb ? m->point_rgb[k] : ZS_GREY);
+  dst->mesh.prim_id = m->prim_id;
+  for (int32_t k = 0; k < 2 * m->nlines + m->npoints; k++)
+    remap[k < 2 * m->nlines ? m->line_vert[k] : m->point_vert[k - 2 * m->nlines]] = -1;
+  return st;
+}
+
 zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err) {
   zs_status st = ZS_OK;
   face_groups g = {NULL, NULL};
@@ -312,6 +338,17 @@ zs_status zs_scene_from_model(zs_scene *s, zs_model *m, zs_error *err) {
       break;
     }
     s->inst[ii].id_base = 0; /* ids are the model's own face numbers */
+  }
+  /* the lines and points, of whatever object: one more instance */
+  if (st == ZS_OK && m->mesh.nlines + (int64_t)m->mesh.npoints > 0) {
+    zs_model part;
+    zs_model_init(&part);
+    st = extract_prims(m, &part, remap);
+    int32_t mi = st == ZS_OK ? zs_scene_add_mesh(s, &part) : -1;
+    int32_t ii = mi >= 0 ? zs_scene_add_instance(s, mi, NULL, ZS_RGB_MESH, "(lines and points)") : -1;
+    zs_model_free(&part);
+    if (ii < 0) st = zs_error_set(err, ZS_ERR_NOMEM, "scene: out of memory");
+    else s->inst[ii].id_base = 0;
   }
   free(g.first);
   free(g.face);

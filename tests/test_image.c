@@ -840,7 +840,7 @@ START_TEST(crosscheck_tells_ties_from_coverage) {
   ck_assert_msg(zs_input_load_scene(path, &s, &err) == ZS_OK, "%s", err.msg);
   double view[16], proj[16];
   ck_assert_int_eq(zs_frame_camera(&s, &s.camera, W, H, view, proj, &err), ZS_OK);
-  zs_frame_opts o = {W, H, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, 0, 1, 0, 0, NULL, 0, NULL, 0, 0};
+  zs_frame_opts o = {.width = W, .height = H, .algo = ZS_ALGO_ZBUFFER, .shade = ZS_SHADE_ID, .threads = 1};
   zs_image im;
   ck_assert_int_eq(zs_frame_render(&s, &s.camera, &o, &im, NULL, NULL, &err), ZS_OK);
   /* zscan's own faces: nothing differs */

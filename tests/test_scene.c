@@ -1462,7 +1462,6 @@ static const struct {
     {"nan.off", ": mesh 0 vertex 0: not a finite number"},
     {"not_a_model.off", ": "},
     {"overflow_transform.gltf", ": mesh 0 vertex 0: not a finite number"},
-    {"points_only.ply", ": "},
     {"truncated.stl", ": "},
 };
 

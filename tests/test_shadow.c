@@ -258,7 +258,7 @@ START_TEST(bad_shadow_maps_refused) {
   {
     double pos[9] = {0, 0, -2, 1, 0, -2, 0, 1, -2}, v[16], p[16];
     int32_t start[2] = {0, 3}, fv[3] = {0, 1, 2};
-    zs_mesh tri = {pos, 3, start, fv, 1, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    zs_mesh tri = {.pos = pos, .nverts = 3, .face_start = start, .face_vert = fv, .nfaces = 1};
     zs_mat_identity(v);
     zs_mat_perspective(p, 60, 4.0 / 3, 0.5, 10);
     zs_device_set_camera(phong, v, p);

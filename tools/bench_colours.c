@@ -13,7 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "lib/outfile.h"
+#include "tools/bench_report.h"
 #include "tools/cli.h"
 #include "tools/crosscheck_colours.h"
 #include "tools/mesa.h"
@@ -64,22 +64,23 @@ static void write_table(FILE *f, const row *rows, int n, int md) {
   }
 }
 
+typedef struct table_of {
+  const row *rows;
+  int n;
+} table_of;
+
+static void write_rows(FILE *f, const void *t, int md) {
+  const table_of *tt = t;
+  write_table(f, tt->rows, tt->n, md);
+}
+
 int zs_cmd_bench_colours(int argc, char **argv) {
   if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   zs_error err;
   zs_error_clear(&err);
   int w = 512, h = 384, parsing = 1;
   const char *md = NULL;
-  zs_status st = ZS_OK;
-  for (int i = 1; i < argc && !st; i++) {
-    if (strcmp(argv[i], "--size") == 0)
-      st = zs_cli_size_value(argc, argv, &i, ZS_MAX_IMAGE_SIDE, &w, &h, &err);
-    else if (strcmp(argv[i], "--md") == 0)
-      st = zs_cli_output_value(argc, argv, &i, &md, &err);
-    else
-      st = zs_error_set(&err, ZS_ERR_ARG, "%s '%s' (see zscan bench colours --help)",
-                        argv[i][0] == '-' ? "unknown option" : "unexpected argument", argv[i]);
-  }
+  zs_status st = zs_bench_size_md_args(argc, argv, "colours", &w, &h, &md, &err);
   if (!st && !zs_mesa_available())
     st = zs_error_set(&err, ZS_ERR_UNSUPPORTED,
                       "zscan was built without OSMesa (install libosmesa6-dev, rebuild)");
@@ -106,21 +107,11 @@ int zs_cmd_bench_colours(int argc, char **argv) {
       err = e;
     }
   }
-  FILE *report = stdout;
-  const char *outs[] = {md};
-  if (!st) st = zs_out_report(outs, 1, "--md", &report, &err);
   if (!st) {
-    fprintf(report, "zscan unlit and llvmpipe at %dx%d, pixels zscan covers\n", w, h);
-    write_table(report, rows, n, 0);
-  }
-  if (!st && md) {
-    zs_out out;
-    if (!(st = zs_out_open(&out, md, &err))) {
-      write_table(out.fp, rows, n, 1);
-      st = zs_out_commit(&out, &err);
-    }
-    if (st) zs_out_error_option(&err, "--md");
-    else if (!zs_out_is_stdout(md)) fprintf(report, "wrote %s\n", md);
+    char title[96];
+    snprintf(title, sizeof title, "zscan unlit and llvmpipe at %dx%d, pixels zscan covers", w, h);
+    const table_of t = {rows, n};
+    st = zs_bench_report(md, title, write_rows, &t, &err);
   }
   return st ? zs_cli_fail("zscan bench colours", &err, parsing) : 0;
 }

@@ -10,6 +10,8 @@
  *                           beside llvmpipe's equivalent state;
  *   colours.md              bench colours: the unlit colours against
  *                           llvmpipe's, pixel by pixel;
+ *   lines.md                bench lines: wide lines and points against
+ *                           llvmpipe's, pixel by pixel;
  *   raster-threads.csv, .md, .png, .txt   the same on N threads (every CPU
  *                           by default), zscan's speed-up over one thread
  *                           (--speedup), and llvmpipe on as many threads (a
@@ -61,6 +63,7 @@
 #include "tools/bench_depthsort.h"
 #include "tools/bench_octree.h"
 #include "tools/bench_colours.h"
+#include "tools/bench_lines.h"
 #include "tools/bench_raster.h"
 #include "tools/bench_tradeoff.h"
 #include "tools/callgrind.h"
@@ -184,6 +187,8 @@ static const struct placeholder {
     {"shade.phong.llvmpipe", 1},
     {"colours.command", 1},
     {"colours.table", 1},
+    {"lines.command", 1},
+    {"lines.table", 1},
 };
 enum { NPLACEHOLDERS = sizeof placeholders / sizeof placeholders[0] };
 
@@ -321,6 +326,7 @@ typedef struct files {
   char walk[2][3][PATH]; /* each large walk's csv, md, txt */
   char shade[3][PATH];   /* each shading's md */
   char colours[PATH];    /* bench colours' md */
+  char lines[PATH];      /* bench lines' md */
 } files;
 
 static void raster_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -370,6 +376,11 @@ static void shade_args(const suite *s, const files *fs, int k, how h, arglist *a
 static void colours_args(const files *fs, how h, arglist *a) {
   arg(a, "colours");
   if (h.files) arg2(a, "--md", fs->colours);
+}
+
+static void lines_args(const files *fs, how h, arglist *a) {
+  arg(a, "lines");
+  if (h.files) arg2(a, "--md", fs->lines);
 }
 
 static void calibrate_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -652,13 +663,13 @@ static zs_status plot_walks(const suite *s, const files *fs, zs_error *err) {
 }
 
 /* The benchmarks in turn: raster, on N threads, the three shadings, the
- * colours (with llvmpipe), memory, calibrate, two walks, tradeoff,
+ * colours and the lines (with llvmpipe), memory, calibrate, two walks, tradeoff,
  * depthsort, octree.  1: a benchmark run here failed
  * (it said why); -1: an error in err. */
 static int run_all(suite *s, const files *fs, zs_error *err) {
   zs_progress progress;
   int done = 0;
-  zs_progress_start(&progress, "bench suite", "benchmark", 11 + s->run_threads + s->mesa,
+  zs_progress_start(&progress, "bench suite", "benchmark", 11 + s->run_threads + 2 * s->mesa,
                     s->quiet);
   const how h = as_run(s);
   arglist a = {0};
@@ -681,6 +692,10 @@ static int run_all(suite *s, const files *fs, zs_error *err) {
     a = (arglist){0};
     colours_args(fs, h, &a);
     if (run(zs_cmd_bench_colours, a.v)) return 1;
+    zs_progress_step(&progress, ++done);
+    a = (arglist){0};
+    lines_args(fs, h, &a);
+    if (run(zs_cmd_bench_lines, a.v)) return 1;
     zs_progress_step(&progress, ++done);
   }
   if (run_memory(s, err)) return -1;
@@ -951,7 +966,7 @@ static zs_status fill_device(suite *s, const files *fs, zs_error *err) {
 }
 
 /* bench raster's scenes in each shading beside llvmpipe's, and bench
- * colours' cross-check. */
+ * colours' and bench lines' cross-checks. */
 static zs_status fill_shading(suite *s, const files *fs, zs_error *err) {
   for (int k = 0; k < 3; k++) {
     char name[64], md[64];
@@ -970,6 +985,12 @@ static zs_status fill_shading(suite *s, const files *fs, zs_error *err) {
   if (set_command(s, "colours.command", "zscan bench", a.v, err) ||
       (s->mesa ? set_table(s, "colours.table", "colours.md", 0, 0, err)
                : set_text(s, "colours.table", not_measured, err)))
+    return err->code;
+  a = (arglist){0};
+  lines_args(fs, as_shown, &a);
+  if (set_command(s, "lines.command", "zscan bench", a.v, err) ||
+      (s->mesa ? set_table(s, "lines.table", "lines.md", 0, 0, err)
+               : set_text(s, "lines.table", not_measured, err)))
     return err->code;
   return ZS_OK;
 }
@@ -1288,6 +1309,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   for (int k = 0; k < NFILES; k++) in_dir(fs.path[k], &s, file_names[k]);
   for (int k = 0; k < 3; k++) in_dir_named(fs.shade[k], &s, "shade-%s.md", shadings[k]);
   in_dir(fs.colours, &s, "colours.md");
+  in_dir(fs.lines, &s, "lines.md");
   for (int w = 0; w < 2; w++) {
     in_dir_named(fs.walk[w][0], &s, "walk-%s.csv", walks[w][0]);
     in_dir_named(fs.walk[w][1], &s, "walk-%s.md", walks[w][0]);

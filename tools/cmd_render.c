@@ -61,6 +61,12 @@ static const char usage_tail[] =
     "  --style S           solid: faces (default); hidden-line: the visible edges of\n"
     "                      front faces, ink on paper; solid+wireframe: those edges\n"
     "                      in black over the faces\n"
+    "  --line-width W      the model's lines (OBJ l, glTF LINES), W pixels wide,\n"
+    "                      rounded as GL rounds an aliased width (default 1, at\n"
+    "                      most 64; zbuffer mode)\n"
+    "  --point-size S      its points (OBJ p, a PLY point cloud), S pixels a side\n"
+    "                      (default 1, at most 64)\n"
+    "  --point-shape SHAPE square (default, GL's aliased point) or disc\n"
     "  --depth FILE.pfm    also write the depth buffer (window depth, 1 = far)\n"
     "  --normals FILE.pfm  also write the eye-space unit normals (x, y, z a pixel;\n"
     "                      0, 0, 0 where no face is), as --shade normal finds them\n"
@@ -285,6 +291,19 @@ zs_status zs_cmd_render_parse(int argc, char **argv, int in_memory, zs_cmd_rende
       if (zs_cli_int(a, v, 1, 16, &o->samples, err)) return err->code;
       if (!zs_samples_valid(o->samples))
         return zs_error_set(err, ZS_ERR_ARG, "--samples: expected 1, 2, 4, 8 or 16, got %s", v);
+    } else if (strcmp(a, "--line-width") == 0 || strcmp(a, "--point-size") == 0) {
+      VALUE();
+      double *into = a[2] == 'l' ? &o->line_width : &o->point_size;
+      const int most = a[2] == 'l' ? ZS_MAX_LINE_WIDTH : ZS_MAX_POINT_SIZE;
+      if (zs_cli_double(a, v, into, err)) return err->code;
+      if (!(*into > 0.0 && *into <= most))
+        return zs_error_set(err, ZS_ERR_ARG, "%s: expected a number above 0 and at most %d "
+                            "(pixels), got %s", a, most, v);
+    } else if (strcmp(a, "--point-shape") == 0) {
+      VALUE();
+      if (strcmp(v, "square") != 0 && strcmp(v, "disc") != 0)
+        return zs_error_set(err, ZS_ERR_ARG, "--point-shape: expected square or disc, got '%s'", v);
+      o->point_shape = strcmp(v, "disc") == 0 ? ZS_POINT_DISC : ZS_POINT_SQUARE;
     } else if (strcmp(a, "--supersample") == 0) {
       o->supersample = 1;
     } else if (strcmp(a, "--shadows") == 0) {
@@ -574,8 +593,8 @@ static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs
 /* The painter's error: pixels whose face differs from the z-buffer's. */
 static zs_status painter_error(const zs_cmd_render_opts *o, const zs_scene *model,
                                int64_t *diff_pixels, zs_error *err) {
-  zs_frame_opts ref = {o->view.width, o->view.height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID,
-                       o->view.cull_back, 1, 0, 0, NULL, 0, NULL, 0, 0};
+  zs_frame_opts ref = {.width = o->view.width, .height = o->view.height, .algo = ZS_ALGO_ZBUFFER,
+                       .shade = ZS_SHADE_ID, .cull_back = o->view.cull_back, .threads = 1};
   zs_frame_opts mine = ref;
   mine.algo = ZS_ALGO_DEPTHSORT;
   zs_image a = {0, 0, NULL}, b = {0, 0, NULL};
@@ -600,6 +619,11 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   int flags = (o->allow_empty ? ZS_INPUT_ALLOW_EMPTY : 0) |
               (o->skip_missing_textures ? ZS_INPUT_SKIP_MISSING_TEXTURES : 0);
   if (zs_input_load(o->input, flags, &model, err)) return err->code;
+  if (o->algo != ZS_ALGO_ZBUFFER && zs_scene_has_prims(&model)) {
+    zs_scene_free(&model);
+    return zs_error_set(err, ZS_ERR_ARG, "%s: lines and points need --algo zbuffer",
+                        o->input ? o->input : "builtin:default");
+  }
   double load_ms = zs_wall_ms() - t0;
   /* what is drawn otherwise than the input asks, a line each */
   if (!keep && !o->quiet)
@@ -689,7 +713,8 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     if ((st = zs_octree_build(&tree, &model, NULL, err))) goto done;
     have_tree = 1;
   }
-  const zs_frame_style style = zs_frame_style_of(o->hidden_line, o->wireframe);
+  const zs_frame_look look = {zs_frame_style_of(o->hidden_line, o->wireframe), o->line_width,
+                              o->point_size, o->point_shape};
   for (int k = 0; k < o->repeat; k++) {
     double start = zs_wall_ms();
     if (o->cull >= 0) {
@@ -700,17 +725,23 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
           (st = zs_culler_set_bounds(culler, o->bounds, err)) ||
           (st = zs_culler_frame(culler, dev, &model, &tree, view, proj, &cs, err)))
         goto done;
+      /* the lines and points are not culled: every one is drawn */
+      if ((st = zs_frame_draw_prims(dev, &model, o->line_width, o->point_size, o->point_shape,
+                                    err)))
+        goto done;
       if (o->overlay && (st = draw_overlay(dev, culler, &tree, err))) goto done;
       if ((st = zs_frame_finish_into(dev, &im, depth, into, err))) goto done;
     } else if (into) { /* no hidden lines: the faces' frame */
       if ((st = zs_frame_draw_all(dev, &model, view, proj, err)) ||
+          (st = zs_frame_draw_prims(dev, &model, o->line_width, o->point_size, o->point_shape,
+                                    err)) ||
           (st = zs_frame_finish_into(dev, &im, depth, into, err)))
         goto done;
     } else if (o->samples > 1) {
-      if ((st = zs_frame_render_samples(dev, &model, view, proj, style, o->samples,
+      if ((st = zs_frame_render_samples(dev, &model, view, proj, &look, o->samples,
                                         o->supersample, &im, &sample_stats, err)))
         goto done;
-    } else if ((st = zs_frame_render_on(dev, &model, view, proj, style, &im, depth,
+    } else if ((st = zs_frame_render_on(dev, &model, view, proj, &look, &im, depth,
                                         err))) {
       goto done;
     }

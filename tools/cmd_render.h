@@ -37,6 +37,9 @@ typedef struct zs_cmd_render_opts {
   int samples;         /* --samples: 0 or 1, 2, 4, 8, 16 */
   int supersample;     /* --supersample: shaded at each sample */
   int wireframe;       /* --style solid+wireframe */
+  double line_width;   /* --line-width: pixels; 0: 1 */
+  double point_size;   /* --point-size: pixels; 0: 1 */
+  zs_point_shape point_shape; /* --point-shape */
   int threads, repeat, stats, hidden_line, cull, overlay, allow_empty;
   int skip_missing_textures; /* --skip-missing-textures */
   zs_query_bounds bounds;

@@ -77,7 +77,8 @@ zs_status zs_crosscheck_colours(const zs_colour_case *c, const char *path, int w
     st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   if (!st) st = zs_mesa_create(w, h, &mesa, err);
   if (!st) st = zs_mesa_unlit(mesa, &s, view, proj, c->filter, gl, err);
-  zs_frame_opts o = {w, h, ZS_ALGO_ZBUFFER, ZS_SHADE_UNLIT, 0, 1, 0, c->filter, NULL, 0, NULL, 0, 0};
+  zs_frame_opts o = {.width = w, .height = h, .algo = ZS_ALGO_ZBUFFER, .shade = ZS_SHADE_UNLIT,
+                     .threads = 1, .filter = c->filter};
   if (!st) st = zs_frame_render(&s, &s.camera, &o, &ours, NULL, NULL, err);
   o.shade = ZS_SHADE_ID;
   if (!st) st = zs_frame_render(&s, &s.camera, &o, &ids, NULL, NULL, err);

@@ -131,6 +131,50 @@ static void load_modelview(const double view[16], const double model[16]) {
   glLoadMatrixd(g);
 }
 
+/* The frame's ids out of GL's colour buffer (its row 0 is the bottom). */
+static void read_ids(const zs_mesa *m, uint32_t *ids) {
+  glFinish();
+  for (int y = 0; y < m->h; y++)
+    for (int x = 0; x < m->w; x++) {
+      const unsigned char *q = &m->rgba[4 * ((size_t)(m->h - 1 - y) * m->w + x)];
+      ids[(size_t)y * m->w + x] = (uint32_t)q[0] << 16 | (uint32_t)q[1] << 8 | q[2];
+    }
+}
+
+static void colour_id(uint32_t id) { glColor3ub((GLubyte)(id >> 16), (GLubyte)(id >> 8), (GLubyte)id); }
+
+zs_status zs_mesa_prim_ids(zs_mesa *m, const zs_scene *s, const double view[16],
+                           const double proj[16], double width, double size, uint32_t *ids,
+                           zs_error *err) {
+  (void)err;
+  begin_frame(m, proj);
+  glDisable(GL_LINE_SMOOTH);
+  glDisable(GL_POINT_SMOOTH);
+  glLineWidth((GLfloat)width);
+  glPointSize((GLfloat)size);
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_instance *in = &s->inst[i];
+    load_modelview(view, in->model);
+    const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
+    const uint32_t first = in->id_base + (uint32_t)mesh->prim_id + 1;
+    glBegin(GL_LINES);
+    for (int32_t k = 0; k < mesh->nlines; k++) {
+      colour_id(first + (uint32_t)k);
+      glVertex3dv(&mesh->pos[3 * mesh->line_vert[2 * k]]);
+      glVertex3dv(&mesh->pos[3 * mesh->line_vert[2 * k + 1]]);
+    }
+    glEnd();
+    glBegin(GL_POINTS);
+    for (int32_t k = 0; k < mesh->npoints; k++) {
+      colour_id(first + (uint32_t)(mesh->nlines + k));
+      glVertex3dv(&mesh->pos[3 * mesh->point_vert[k]]);
+    }
+    glEnd();
+  }
+  read_ids(m, ids);
+  return ZS_OK;
+}
+
 zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], const double proj[16],
                       uint32_t *ids, zs_error *err) {
   (void)err;
@@ -140,20 +184,14 @@ zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], cons
     load_modelview(view, in->model);
     const zs_mesh *mesh = &s->meshes[in->mesh].mesh;
     for (int32_t f = 0; f < mesh->nfaces; f++) {
-      uint32_t id = in->id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f) + 1;
-      glColor3ub((GLubyte)(id >> 16), (GLubyte)(id >> 8), (GLubyte)id);
+      colour_id(in->id_base + (uint32_t)(mesh->face_id ? mesh->face_id[f] : f) + 1);
       glBegin(GL_POLYGON);
       for (int32_t k = mesh->face_start[f]; k < mesh->face_start[f + 1]; k++)
         glVertex3dv(&mesh->pos[3 * mesh->face_vert[k]]);
       glEnd();
     }
   }
-  glFinish();
-  for (int y = 0; y < m->h; y++) /* GL's row 0 is the bottom */
-    for (int x = 0; x < m->w; x++) {
-      const unsigned char *q = &m->rgba[4 * ((size_t)(m->h - 1 - y) * m->w + x)];
-      ids[(size_t)y * m->w + x] = (uint32_t)q[0] << 16 | (uint32_t)q[1] << 8 | q[2];
-    }
+  read_ids(m, ids);
   return ZS_OK;
 }
 
@@ -574,6 +612,13 @@ void zs_mesa_destroy(zs_mesa *m) { (void)m; }
 zs_status zs_mesa_ids(zs_mesa *m, const zs_scene *s, const double view[16], const double proj[16],
                       uint32_t *ids, zs_error *err) {
   (void)m, (void)s, (void)view, (void)proj, (void)ids;
+  return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: zscan was built without OSMesa");
+}
+
+zs_status zs_mesa_prim_ids(zs_mesa *m, const zs_scene *s, const double view[16],
+                           const double proj[16], double width, double size, uint32_t *ids,
+                           zs_error *err) {
+  (void)m, (void)s, (void)view, (void)proj, (void)width, (void)size, (void)ids;
   return zs_error_set(err, ZS_ERR_UNSUPPORTED, "mesa: zscan was built without OSMesa");
 }
 

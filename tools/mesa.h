@@ -23,6 +23,13 @@ int zs_mesa_available(void);
 zs_status zs_mesa_create(int w, int h, zs_mesa **out, zs_error *err);
 void zs_mesa_destroy(zs_mesa *m);
 
+/* The ids (id + 1, 0 where nothing) of the lines and points of scene s
+ * alone, as zs_mesa_ids draws faces: GL_LINES at glLineWidth(width) and
+ * GL_POINTS at glPointSize(size), aliased, in id order. */
+zs_status zs_mesa_prim_ids(zs_mesa *m, const zs_scene *s, const double view[16],
+                           const double proj[16], double width, double size, uint32_t *ids,
+                           zs_error *err);
+
 /* The face ids (id + 1, 0 where nothing) of scene s drawn with view and
  * proj (zscan's row-major matrices): one flat colour per face, a "less"
  * depth test, faces in id order, immediate mode.  ids: w * h, row 0 at

@@ -89,9 +89,9 @@
 #include "zscan/error.h"
 
 #define ZSCAN_VERSION_MAJOR 0
-#define ZSCAN_VERSION_MINOR 11
+#define ZSCAN_VERSION_MINOR 12
 #define ZSCAN_VERSION_PATCH 0
-#define ZSCAN_VERSION_STRING "0.11.0"
+#define ZSCAN_VERSION_STRING "0.12.0"
 
 #ifdef __cplusplus
 extern "C" {
@@ -106,7 +106,7 @@ const char *zs_version(void);
  * time, a printed camera), and only then, so that a golden made with
  * another number is known to differ on purpose.  docs/CHANGES.md lists
  * each version's changes; zs_pixel_changes gives them. */
-#define ZSCAN_PIXEL_VERSION 3
+#define ZSCAN_PIXEL_VERSION 4
 int zs_pixel_version(void);
 /* What changed in the outputs of pixel version v against v - 1, one
  * line; NULL for a version this library does not know (v < 1 or later
@@ -161,7 +161,22 @@ typedef struct zs_mesh {
                          * or none when nmaterials is 0 */
   const zs_material *materials;
   int32_t nmaterials;
+  /* Lines and points (zs_device_draw_lines, _points), both optional:
+   * line k joins positions line_vert[2k] and line_vert[2k + 1], point k
+   * is position point_vert[k]; line_rgb and point_rgb give each its
+   * 0xRRGGBB (NULL: the grey of a face without
+   * a colour, 0xB4B4B4).  Line k takes the id prim_id + k
+   * and point k the id prim_id + nlines + k (after the faces' ids, when
+   * the caller sets prim_id past them), for the depth tie-break. */
+  int32_t *line_vert;
+  int32_t nlines;
+  uint32_t *line_rgb;
+  int32_t *point_vert;
+  int32_t npoints;
+  uint32_t *point_rgb;
+  int32_t prim_id;
 } zs_mesh;
+
 
 typedef enum zs_algo {
   ZS_ALGO_ZBUFFER,  /* immediate mode: each draw into full-frame buffers */
@@ -537,6 +552,42 @@ zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh, const double
 zs_status zs_device_draw_box_lines(zs_device *dev, const double lo[3], const double hi[3],
                                    uint32_t rgb, zs_error *err);
 
+/* ---- Lines and points (zbuffer mode) ----
+ * The mesh's lines and points (zs_mesh.line_vert, .point_vert) by GL's
+ * rules for aliased wide lines and points, each pixel tested against the
+ * depth buffer as a face's is (less, then the lower id) and written with
+ * its depth and id, so that faces drawn later hide them too; drawn after
+ * the faces queued before them (the call flushes).  rgb is ZS_RGB_MESH
+ * (each line's or point's own colour) or one colour for all.  A width or
+ * size is rounded to the nearest integer (halves up), as GL rounds an
+ * aliased one, and must lie in (0, ZS_MAX_LINE_WIDTH] or (0,
+ * ZS_MAX_POINT_SIZE].
+ *   A line covers, along its major axis (x when |dx| >= |dy|), the pixels
+ *   whose centres lie from its start (included) to its end (excluded), and
+ *   at each of them the w pixels across it whose centres lie within w / 2
+ *   of the exact line, by the top-left rule: GL's wide line, its ends cut
+ *   square to the major axis (butt caps).  Its depth at each pixel is the
+ *   line's at the major-axis centre.
+ *   A point covers the pixels whose centres lie in the square of side s
+ *   centred on it (GL's aliased point), or, a disc, strictly within s / 2
+ *   of it; its depth is the point's.  GL clips a point by its centre: one
+ *   whose centre is outside the view is not drawn.
+ * Every position is snapped to 1/256 pixel and every test is in integers,
+ * so the pixels are the same on every machine; docs/ALGORITHMS.md draws
+ * them.  Occlusion queries do not count them. */
+enum { ZS_MAX_LINE_WIDTH = 64, ZS_MAX_POINT_SIZE = 64 };
+
+typedef enum zs_point_shape {
+  ZS_POINT_SQUARE, /* GL's aliased point */
+  ZS_POINT_DISC    /* the pixels within size / 2 of it */
+} zs_point_shape;
+
+zs_status zs_device_draw_lines(zs_device *dev, const zs_mesh *mesh, const double model[16],
+                               uint32_t id_base, uint32_t rgb, double width, zs_error *err);
+zs_status zs_device_draw_points(zs_device *dev, const zs_mesh *mesh, const double model[16],
+                                uint32_t id_base, uint32_t rgb, double size,
+                                zs_point_shape shape, zs_error *err);
+
 /* ---- Matrices (OpenGL conventions, exact trigonometry) ---- */
 void zs_mat_identity(double m[16]);
 void zs_mat_mul(double out[16], const double a[16], const double b[16]);
@@ -674,6 +725,9 @@ typedef struct zs_render_opts {
                             * 0: at the pixel's centre (multisampling) */
   int wireframe;           /* the visible edges of front faces in black over
                             * the faces (zbuffer mode; not with hidden_line) */
+  double line_width;       /* the scene's lines, pixels (0: 1; zs_device_draw_lines) */
+  double point_size;       /* its points, pixels (0: 1) */
+  zs_point_shape point_shape; /* squares (0) or discs */
 } zs_render_opts;
 
 /* Renders scene into out (allocated here; free it with zs_image_free):

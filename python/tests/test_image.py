@@ -181,6 +181,7 @@ CTYPE_OF = {
     "int": ctypes.c_int, "double": ctypes.c_double, "uint64_t": ctypes.c_uint64,
     "uint32_t": ctypes.c_uint32, "zs_algo": ctypes.c_int, "zs_shade": ctypes.c_int,
     "zs_status": ctypes.c_int, "zs_filter": ctypes.c_int, "const zs_light": _lib.zs_light,
+    "zs_point_shape": ctypes.c_int,
 }
 
 
@@ -234,7 +235,7 @@ def test_structs_mirror_the_header(name):
 def test_struct_sizes_and_offsets_are_the_c_compilers():
     # as offsetof and sizeof print them on x86-64 Linux (gcc 12)
     o = _lib.zs_render_opts
-    assert ctypes.sizeof(o) == 200
+    assert ctypes.sizeof(o) == 224
     assert [getattr(o, f).offset for f in ("algo", "hidden_line", "has_up", "eye", "target",
                                            "up", "fovy", "znear", "zfar", "filter", "lights",
                                            "nlights", "shadows", "shadow_size",

@@ -39,7 +39,7 @@ def test_from_the_environment():
     lib = os.environ["ZSCAN_LIBRARY"]
     p = run(PYTHON_DIR, lib)
     assert p.returncode == 0, p.stderr
-    assert p.stdout.split() == [lib, "0.11.0"]
+    assert p.stdout.split() == [lib, "0.12.0"]
 
 
 def test_a_wrong_environment_variable_is_an_error(tmp_path):

@@ -309,7 +309,8 @@ _ARG = 1  # ZS_ERR_ARG
 
 
 def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
-                 shadows=False, samples=1, supersample=False):
+                 shadows=False, samples=1, supersample=False, line_width=1, point_size=1,
+                 point_shape="square"):
     """The zs_render_opts for render()'s arguments.  Types and names are
     checked here (TypeError, ValueError); values are the library's to judge
     (zscan.Error), except those that zs_render_opts cannot carry: 0 there
@@ -339,6 +340,13 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
     if not isinstance(supersample, bool):
         raise TypeError("supersample: expected True or False, got %r" % (supersample,))
     o.samples, o.supersample = samples, 1 if supersample else 0
+    for name, v in (("line_width", line_width), ("point_size", point_size)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise TypeError("%s: expected a number of pixels, got %r" % (name, v))
+        if not (0 < v <= 64):
+            raise Error("zs_render_opts.%s: %g: above 0 and at most 64 (0: 1)" % (name, v), _ARG)
+    o.line_width, o.point_size = float(line_width), float(point_size)
+    o.point_shape = _choice("point_shape", point_shape, _lib.POINT_SHAPES)
     threads = _int("threads", threads)
     if threads < 1:
         raise Error("threads must be 1 to 64", _ARG)
@@ -403,10 +411,12 @@ class Scene:
 
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
                far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
-               cull_back=False, shadows=False, samples=1, supersample=False):
+               cull_back=False, shadows=False, samples=1, supersample=False, line_width=1,
+               point_size=1, point_shape="square"):
         """Renders the scene as zscan.render() does."""
         opts = _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style,
-                            threads, cull_back, shadows, samples, supersample)
+                            threads, cull_back, shadows, samples, supersample, line_width,
+                            point_size, point_shape)
         im = _lib.zs_image()
         stats = _lib.zs_raster_stats()
         err = _lib.zs_error()
@@ -442,7 +452,8 @@ def load(input=None, allow_empty=False):
 
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
            far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
-           cull_back=False, allow_empty=False, shadows=False, samples=1, supersample=False):
+           cull_back=False, allow_empty=False, shadows=False, samples=1, supersample=False,
+           line_width=1, point_size=1, point_shape="square"):
     """Loads input and renders one frame: the image `zscan render INPUT` makes
     with the same options, byte for byte (its .hash is the CLI's image_hash).
 
@@ -463,6 +474,9 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
                without lights gets the key light (--shadows)
     samples    anti-aliasing: 1, 2, 4, 8 or 16 samples a pixel (--samples)
     supersample   shade each sample, not each pixel (--supersample)
+    line_width, point_size   the model's lines and points, pixels (--line-width,
+               --point-size; GL's rounding; zbuffer only)
+    point_shape   'square' (GL's aliased point) or 'disc' (--point-shape)
     allow_empty   render a model without faces (--allow-empty)
 
     An argument of the wrong type, an unknown name or a number that is not
@@ -473,9 +487,10 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     """
     # check the options before the (possibly slow) load
     _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
-                 shadows, samples, supersample)
+                 shadows, samples, supersample, line_width, point_size, point_shape)
     with Scene(input, allow_empty=allow_empty) as scene:
         return scene.render(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
                             far=far, algo=algo, shade=shade, style=style, threads=threads,
                             cull_back=cull_back, shadows=shadows, samples=samples,
-                            supersample=supersample)
+                            supersample=supersample, line_width=line_width,
+                            point_size=point_size, point_shape=point_shape)

@@ -15,7 +15,7 @@ import threading
 # The header this binding mirrors (ZSCAN_VERSION_STRING).  Before 1.0 the
 # structs may change between minor versions, so the library's MAJOR.MINOR
 # must be this one's.
-BINDING_VERSION = "0.11.0"
+BINDING_VERSION = "0.12.0"
 
 ZS_ERROR_MSG_MAX = 512
 ZS_MAX_IMAGE_SIDE = 16384
@@ -35,6 +35,7 @@ STATUS_NAMES = (
 ALGOS = ("zbuffer", "scanline", "depthsort")
 SHADES = ("auto", "flat", "id", "depth", "overdraw", "unlit", "gouraud", "phong", "normal")
 STYLES = ("solid", "hidden-line", "solid+wireframe")
+POINT_SHAPES = ("square", "disc")  # zs_point_shape
 
 
 class zs_error(ctypes.Structure):
@@ -108,6 +109,9 @@ class zs_render_opts(ctypes.Structure):
         ("samples", ctypes.c_int),
         ("supersample", ctypes.c_int),
         ("wireframe", ctypes.c_int),
+        ("line_width", ctypes.c_double),
+        ("point_size", ctypes.c_double),
+        ("point_shape", ctypes.c_int),  # zs_point_shape
     ]
 
 

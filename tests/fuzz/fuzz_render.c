@@ -10,7 +10,7 @@
 static uint64_t render(const zs_scene *s, zs_algo algo) {
   zs_camera cam;
   zs_camera_default(&cam);
-  zs_frame_opts o = {64, 48, algo, ZS_SHADE_ID, 0, 1, 0, 0, NULL, 0, NULL, 0, 0};
+  zs_frame_opts o = {.width = 64, .height = 48, .algo = algo, .shade = ZS_SHADE_ID, .threads = 1};
   zs_image im;
   zs_error err;
   zs_error_clear(&err);
