@@ -132,7 +132,10 @@ static uint64_t draw_line(zs_device *d, const zs_snap_vert *p, const zs_snap_ver
     }
     if (lo < 0) lo = 0;
     if (hi > minor_n - 1) hi = minor_n - 1;
-    const uint32_t z = (uint32_t)(L.z0 + floor_div(L.dz * (c - L.a0) * s, da));
+    /* (a start inside its diamond but past the column's centre puts the
+     * centre before the line: its depth, extrapolated, kept in range) */
+    const int64_t zc = L.z0 + floor_div(L.dz * (c - L.a0) * s, da);
+    const uint32_t z = zc < 0 ? 0u : zc > (int64_t)ZS_DEPTH_FAR ? ZS_DEPTH_FAR : (uint32_t)zc;
     for (int64_t j = lo; j <= hi; j++) {
       const size_t i = major_x ? (size_t)j * (size_t)d->cfg.width + (size_t)k
                                : (size_t)k * (size_t)d->cfg.width + (size_t)j;

@@ -187,6 +187,26 @@ START_TEST(lines_and_faces_share_the_depth_test) {
 }
 END_TEST
 
+/* A line whose start lies inside its pixel's diamond, past the column's
+ * centre, at the near plane: that column's depth is the line's extended
+ * back to the centre, kept at 0, never wrapped round to far. */
+START_TEST(extended_depth_stays_in_range) {
+  zs_device *d = pixel_device(ZS_ALGO_ZBUFFER);
+  double pos[] = {2.6, 8.5, 0, 12.3, 8.5, -50};
+  int32_t lv[] = {0, 1};
+  zs_mesh m = {.pos = pos, .nverts = 2, .line_vert = lv, .nlines = 1};
+  double model[16];
+  zs_mat_identity(model);
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_int_eq(zs_device_draw_lines(d, &m, model, 0, ZS_RGB_MESH, 1, &err), ZS_OK);
+  const uint32_t *depth = zs_device_depth_buffer(d);
+  ck_assert_uint_eq(depth[7 * W + 2], 0);
+  ck_assert_uint_lt(depth[7 * W + 3], depth[7 * W + 4]);
+  zs_device_destroy(d);
+}
+END_TEST
+
 /* Two lines crossing at one depth: the lower id wins the crossing in
  * either order of drawing. */
 START_TEST(crossing_lines_tie_by_id) {
@@ -340,6 +360,7 @@ int main(void) {
   tcase_add_test(tc, points_are_squares_or_discs);
   tcase_add_test(tc, lines_and_faces_share_the_depth_test);
   tcase_add_test(tc, crossing_lines_tie_by_id);
+  tcase_add_test(tc, extended_depth_stays_in_range);
   tcase_add_test(tc, bad_widths_sizes_and_modes_refused);
   tcase_add_test(tc, models_bring_their_lines_and_points);
   tcase_add_test(tc, bad_obj_lines_refused);
