@@ -1544,7 +1544,6 @@ int main(void) {
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);
   tcase_add_test(tc, bench_raster_writes_csv_and_table);
   tcase_add_test(tc, bench_raster_counts_instructions);
-  tcase_add_test(tc, bench_suite_writes_every_file);
   tcase_add_test(tc, bench_depthsort_coherence_pays_where_depths_are_kept);
   tcase_add_test(tc, walk_compares_hidden_surface_modes);
   tcase_add_test(tc, walk_csv_same_bytes_every_run_but_wall_time);
@@ -1553,5 +1552,11 @@ int main(void) {
   tcase_add_test(tc, unknown_command);
   tcase_add_test(tc, query_counts_owned_pixels_and_box_samples);
   suite_add_tcase(s, tc);
+  /* the whole quick suite, every benchmark in turn: under the sanitizers,
+   * beside another test, it has run past 300 s */
+  TCase *suite_tc = tcase_create("suite");
+  tcase_set_timeout(suite_tc, 900);
+  tcase_add_test(suite_tc, bench_suite_writes_every_file);
+  suite_add_tcase(s, suite_tc);
   return zs_test_run(s);
 }

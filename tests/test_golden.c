@@ -217,6 +217,7 @@ static void shuffle_scene(zs_scene *s, uint64_t seed) {
   for (int32_t k = 0; k < s->nmeshes; k++) {
     zs_mesh *m = &s->meshes[k].mesh;
     int32_t n = m->nfaces;
+    if (n == 0) continue; /* lines or points alone: no faces to shuffle */
     int32_t *perm = malloc((size_t)(n ? n : 1) * sizeof *perm);
     int32_t *start = malloc((size_t)(n + 1) * sizeof *start);
     int32_t *vert = malloc((size_t)(m->face_start[n] ? m->face_start[n] : 1) * sizeof *vert);
