@@ -31,8 +31,10 @@ if [ -z "$py" ]; then
   echo "run-tests.sh: no python3 with pytest (Debian: apt-get install python3-pytest python3-numpy)" >&2
   exit 1
 fi
-"$py" -c 'import numpy' >/dev/null 2>&1 ||
-  echo "run-tests.sh: warning: $py has no numpy; the Image.array tests are skipped" >&2
+if ! "$py" -c 'import numpy' >/dev/null 2>&1; then
+  echo "run-tests.sh: $py has no numpy, which meshes from arrays need (Debian: apt-get install python3-numpy)" >&2
+  exit 1
+fi
 
 ZSCAN_LIBRARY=$build/libzscan.so
 ZSCAN_BUILD_DIR=$build

@@ -912,13 +912,6 @@ static zs_status material_for_the_rest(obj_parser *p) {
   return ZS_OK;
 }
 
-/* Whether some face is textured. */
-static int any_textured_face(const zs_mesh *mesh) {
-  for (int32_t f = 0; mesh->face_material && f < mesh->nfaces; f++)
-    if (mesh->materials[mesh->face_material[f]].base_texture) return 1;
-  return 0;
-}
-
 /* Once every library is read: each face's usemtl number becomes the
  * material's colour, each used name a material (its texture read), the
  * faces without usemtl a grey material when there are others, and a mesh
@@ -937,10 +930,7 @@ static zs_status resolve_materials(obj_parser *p) {
     mesh->point_rgb[k] = rgb[mesh->point_rgb[k]];
   free(rgb);
   if (st == ZS_OK) st = material_for_the_rest(p);
-  /* smooth across edges of up to 60 degrees: a cube keeps its edges */
-  if (st == ZS_OK && (mesh->corner_attr || any_textured_face(mesh)) &&
-      !zs_model_compute_normals(p->m, 60.0))
-    st = end_nomem(p);
+  if (st == ZS_OK && !zs_model_complete_normals(p->m)) st = end_nomem(p);
   return st;
 }
 

@@ -133,6 +133,13 @@ zs_status zs_model_add_face(zs_model *m, const int32_t *idx, const int32_t *attr
  * added at its end). */
 int zs_model_compute_normals(zs_model *m, double crease_deg);
 
+/* What a model read from a file (or given as arrays) gets when some of
+ * its corners have attributes or some face a texture: the normals it
+ * lacks, computed with a crease of 60 degrees (a cube keeps its edges).
+ * A model with neither is drawn flat and stays as it is.  0 when out of
+ * memory. */
+int zs_model_complete_normals(zs_model *m);
+
 /* Axis-aligned bounds of all vertices; returns 0 when there are none. */
 int zs_model_bounds(const zs_model *m, double lo[3], double hi[3]);
 

@@ -328,3 +328,18 @@ int zs_model_compute_normals(zs_model *m, double crease_deg) {
   ctx_free(&c);
   return ok;
 }
+
+/* Whether some face's material (-1 or no array: material 0) has a texture. */
+static int any_textured_face(const zs_mesh *mesh) {
+  for (int32_t f = 0; mesh->nmaterials > 0 && f < mesh->nfaces; f++) {
+    const int32_t k = mesh->face_material && mesh->face_material[f] >= 0 ? mesh->face_material[f] : 0;
+    if (mesh->materials[k].base_texture) return 1;
+  }
+  return 0;
+}
+
+int zs_model_complete_normals(zs_model *m) {
+  const zs_mesh *mesh = &m->mesh;
+  if (!mesh->corner_attr && !any_textured_face(mesh)) return 1;
+  return zs_model_compute_normals(m, 60.0);
+}

@@ -5,6 +5,7 @@
  * `zscan render` for every model of tests/data and of assimp's test
  * models. */
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -234,6 +235,122 @@ START_TEST(library_errors_name_its_options_not_flags) {
     ck_assert_ptr_null(im.rgb);
   }
   zs_scene_destroy(scene);
+}
+END_TEST
+
+/* A scene built in code from arrays draws what the OBJ file of the same
+ * data draws, byte for byte: the crate (corner normals, texture
+ * coordinates, a PNG texture, one material), in flat and lit shadings. */
+START_TEST(scene_from_arrays_equals_the_obj) {
+  static const double pos[] = {-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1,
+                               -1, -1, 1,  1, -1, 1,  1, 1, 1,  -1, 1, 1};
+  static const float uv4[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  static const float nrm6[] = {0, 0, -1, 0, 0, 1, 0, -1, 0, 0, 1, 0, -1, 0, 0, 1, 0, 0};
+  static const int32_t faces[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5},
+                                      {4, 8, 7, 3}, {1, 5, 8, 4}, {2, 3, 7, 6}};
+  /* attribute vertex 4 f + k: face f's normal, texture corner k */
+  float normal[24 * 3], uv[24 * 2];
+  int32_t start[7], verts[24], attr[24];
+  for (int f = 0; f < 6; f++) {
+    start[f] = 4 * f;
+    for (int k = 0; k < 4; k++) {
+      const int c = 4 * f + k;
+      verts[c] = faces[f][k] - 1;
+      attr[c] = c;
+      memcpy(normal + 3 * c, nrm6 + 3 * f, 3 * sizeof *normal);
+      memcpy(uv + 2 * c, uv4 + 2 * k, 2 * sizeof *uv);
+    }
+  }
+  start[6] = 24;
+  zs_error err = {0};
+  zs_image png = {0};
+  ck_assert_msg(zs_png_read(zs_test_src("tests/data/scenes/crate.png"), &png, &err) == ZS_OK,
+                "%s", err.msg);
+  uint8_t *rgba = malloc(4 * (size_t)png.width * (size_t)png.height);
+  ck_assert_ptr_nonnull(rgba);
+  for (int i = 0; i < png.width * png.height; i++) {
+    rgba[4 * i] = (uint8_t)(png.rgb[i] >> 16), rgba[4 * i + 1] = (uint8_t)(png.rgb[i] >> 8);
+    rgba[4 * i + 2] = (uint8_t)png.rgb[i], rgba[4 * i + 3] = 255;
+  }
+  zs_texture *tex = NULL;
+  ck_assert_int_eq(zs_texture_create(png.width, png.height, rgba, &tex, &err), ZS_OK);
+  zs_material mat = zs_material_default();
+  mat.base[0] = mat.base[1] = mat.base[2] = 255;
+  mat.specular[0] = mat.specular[1] = mat.specular[2] = 77; /* Ks 0.3 */
+  mat.shininess = 20;
+  mat.base_texture = tex;
+  uint32_t white[6] = {0xFFFFFF, 0xFFFFFF, 0xFFFFFF, 0xFFFFFF, 0xFFFFFF, 0xFFFFFF};
+  int32_t face_mat[6] = {0};
+  zs_mesh mesh = {.pos = (double *)pos, .nverts = 8, .face_start = start, .face_vert = verts,
+                  .nfaces = 6, .face_rgb = white, .nattrs = 24, .corner_attr = attr,
+                  .normal = normal, .uv = uv, .face_material = face_mat, .materials = &mat,
+                  .nmaterials = 1};
+  zs_scene *built = NULL, *loaded = NULL;
+  ck_assert_int_eq(zs_scene_create(&built, &err), ZS_OK);
+  ck_assert_msg(zs_scene_add_object(built, &mesh, NULL, "crate", &err) == ZS_OK, "%s", err.msg);
+  ck_assert_int_eq(zs_scene_objects(built), 1);
+  ck_assert_uint_eq(zs_scene_faces(built), 6);
+  ck_assert_msg(zs_scene_load(zs_test_src("tests/data/scenes/crate.obj"), NULL, &loaded, &err) ==
+                    ZS_OK, "%s", err.msg);
+  const zs_shade shades[] = {ZS_SHADE_AUTO, ZS_SHADE_FLAT, ZS_SHADE_UNLIT, ZS_SHADE_PHONG,
+                             ZS_SHADE_ID};
+  for (size_t k = 0; k < sizeof shades / sizeof *shades; k++) {
+    zs_render_opts o = {.width = 96, .height = 72, .shade = shades[k], .eye = {2.5, 2, 3.5},
+                        .has_eye = 1};
+    zs_image a = {0}, b = {0};
+    ck_assert_msg(zs_render(built, &o, &a, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+    ck_assert_msg(zs_render(loaded, &o, &b, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+    ck_assert_msg(zs_image_hash(&a) == zs_image_hash(&b), "shade %d: %016llx from arrays, "
+                  "%016llx from the file", (int)shades[k], (unsigned long long)zs_image_hash(&a),
+                  (unsigned long long)zs_image_hash(&b));
+    zs_image_free(&a);
+    zs_image_free(&b);
+  }
+  zs_scene_destroy(built);
+  zs_scene_destroy(loaded);
+  zs_texture_destroy(tex);
+  free(rgba);
+  zs_image_free(&png);
+}
+END_TEST
+
+/* Bad arrays are refused with the array and its element named, and the
+ * scene keeps what it had. */
+START_TEST(scene_from_arrays_names_the_bad_element) {
+  double pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  int32_t start[] = {0, 3}, verts[] = {0, 1, 2};
+  zs_mesh good = {.pos = pos, .nverts = 3, .face_start = start, .face_vert = verts, .nfaces = 1};
+  zs_error err = {0};
+  zs_scene *s = NULL;
+  ck_assert_int_eq(zs_scene_create(&s, &err), ZS_OK);
+  ck_assert_msg(zs_scene_add_object(s, &good, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+  static const struct {
+    int what;
+    const char *msg;
+  } cases[] = {
+      {0, "zs_mesh.face_vert[2]: vertex 3 out of range (3 vertices)"},
+      {1, "zs_mesh.pos[4]: not a finite number"},
+      {2, "zs_mesh face 0: 2 corners (at least 3 needed)"},
+      {3, "zs_scene_add_object: model[3] is not a finite number"},
+      {4, "zs_scene_add_object: no faces, lines or points"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    double p[9], model[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    int32_t st2[2] = {0, 3}, v[3] = {0, 1, 2};
+    memcpy(p, pos, sizeof p);
+    zs_mesh m = {.pos = p, .nverts = 3, .face_start = st2, .face_vert = v, .nfaces = 1};
+    if (cases[k].what == 0) v[2] = 3;
+    if (cases[k].what == 1) p[4] = NAN;
+    if (cases[k].what == 2) st2[1] = 2;
+    if (cases[k].what == 3) model[3] = INFINITY;
+    if (cases[k].what == 4) m.nfaces = 0;
+    zs_error_clear(&err);
+    ck_assert_int_eq(zs_scene_add_object(s, &m, model, NULL, &err), ZS_ERR_ARG);
+    ck_assert_str_eq(err.msg, cases[k].msg);
+  }
+  ck_assert_int_eq(zs_scene_objects(s), 1);
+  ck_assert_uint_eq(zs_scene_faces(s), 1);
+  zs_scene_destroy(s);
 }
 END_TEST
 
@@ -514,6 +631,8 @@ int main(void) {
   tcase_add_test(tc, zero_config_renders);
   tcase_add_test(tc, library_errors_name_its_options_not_flags);
   tcase_add_test(tc, scene_notes_name_a_skipped_texture);
+  tcase_add_test(tc, scene_from_arrays_equals_the_obj);
+  tcase_add_test(tc, scene_from_arrays_names_the_bad_element);
   tcase_add_test(tc, render_hash_equals_the_command);
   tcase_add_test(tc, cxx_example_queries);
   tcase_add_test(tc, query_objects_equal_the_command);

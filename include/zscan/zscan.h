@@ -695,6 +695,28 @@ uint64_t zs_scene_faces(const zs_scene *scene);
  * (zs_load_opts.skip_missing_textures).  Valid while the scene is. */
 const char *zs_scene_notes(const zs_scene *scene);
 
+/* Scenes built in code.  zs_scene_create makes an empty scene (no
+ * objects, the default camera, no lights); zs_scene_add_object copies
+ * mesh into it as one object (instance) placed by model (local to world,
+ * row-major as zs_device_draw takes it; NULL: identity), named name
+ * (NULL: "object N").  The copy goes through what the OBJ reader does
+ * with a file of the same data, so the two draw the same bytes: face f
+ * of mesh is the object's face f, whatever face_id says (a concave or
+ * non-planar face is split, each piece keeping its number); face_rgb
+ * NULL is grey; attributes given for some corners and none for normals
+ * get normals computed (a crease of 60 degrees, as for files), and so do
+ * textured faces.  Its face ids follow those of the objects before it.
+ * materials are copied, but not their textures: each base_texture must
+ * outlive the scene.  Bad input (a count below 0, a NULL array, a
+ * position, normal or uv not finite, an index out of range, a face of
+ * fewer than 3 corners, a mesh with nothing to draw) is ZS_ERR_ARG with a
+ * message naming the array and its element, e.g.
+ * "zs_mesh.face_vert[7]: vertex 12 out of range (8 vertices)"; the scene
+ * is then as it was. */
+zs_status zs_scene_create(zs_scene **out, zs_error *err);
+zs_status zs_scene_add_object(zs_scene *scene, const zs_mesh *mesh, const double model[16],
+                              const char *name, zs_error *err);
+
 typedef struct zs_render_opts {
   int width, height;       /* 0: the scene's size, else 1024 x 768 */
   zs_algo algo;

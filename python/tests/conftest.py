@@ -23,6 +23,10 @@ CLI = os.path.join(BUILD_DIR, "zscan")
 if not os.environ.get("ZSCAN_LIBRARY"):
     os.environ["ZSCAN_LIBRARY"] = os.path.join(BUILD_DIR, "libzscan.so")
 
+# The zscan command runs without the sanitizer runtime that a sanitized
+# library needs preloaded into Python (the command links its own).
+CLI_ENV = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+
 MODEL_SUFFIXES = (".obj", ".ply", ".stl", ".off", ".gltf")
 
 
@@ -75,7 +79,8 @@ def cli():
         key = tuple(cmd)
         if out == os.devnull and key in cache:
             return cache[key]
-        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=SOURCE_DIR, timeout=120)
+        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=SOURCE_DIR, timeout=120,
+                              env=CLI_ENV)
         cache[key] = result = CliResult(proc)
         return result
 

@@ -181,8 +181,12 @@ CTYPE_OF = {
     "int": ctypes.c_int, "double": ctypes.c_double, "uint64_t": ctypes.c_uint64,
     "uint32_t": ctypes.c_uint32, "zs_algo": ctypes.c_int, "zs_shade": ctypes.c_int,
     "zs_status": ctypes.c_int, "zs_filter": ctypes.c_int, "const zs_light": _lib.zs_light,
-    "zs_point_shape": ctypes.c_int,
+    "zs_point_shape": ctypes.c_int, "int32_t": ctypes.c_int32, "uint8_t": ctypes.c_uint8,
+    "uint16_t": ctypes.c_uint16, "float": ctypes.c_float, "const zs_material": _lib.zs_material,
+    "zs_wrap": ctypes.c_int,
 }
+# pointers to opaque types are void pointers here
+OPAQUE = {"const zs_texture"}
 
 
 def header_fields(struct_name):
@@ -193,7 +197,8 @@ def header_fields(struct_name):
         with open(os.path.join(SOURCE_DIR, "include", "zscan", h)) as f:
             text += f.read()
     text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
-    m = re.search(r"typedef struct %s \{(.*?)\} %s;" % (struct_name, struct_name), text, re.S)
+    m = re.search(r"typedef struct %s \{(.*?)\} %s;" % (struct_name, struct_name), text, re.S) or \
+        re.search(r"\nstruct %s \{(.*?)\};" % struct_name, text, re.S)
     assert m, struct_name
     out = []
     for decl in m.group(1).split(";"):
@@ -212,13 +217,15 @@ def header_fields(struct_name):
 
 
 @pytest.mark.parametrize("name", ["zs_render_opts", "zs_image", "zs_error", "zs_diff_result",
-                                  "zs_load_opts", "zs_raster_stats"])
+                                  "zs_load_opts", "zs_raster_stats", "zs_mesh", "zs_material"])
 def test_structs_mirror_the_header(name):
     ours = getattr(_lib, name)._fields_
     theirs = header_fields(name)
     assert [f[0] for f in ours] == [f[0] for f in theirs]
     for (fname, ctype), (_, ctype_c, count) in zip(ours, theirs):
-        if ctype_c.endswith("*"):
+        if ctype_c.endswith("*") and ctype_c.rstrip("*").strip() in OPAQUE:
+            assert ctype is ctypes.c_void_p, fname
+        elif ctype_c.endswith("*"):
             assert issubclass(ctype, ctypes._Pointer), fname
             assert ctype._type_ is CTYPE_OF[ctype_c.rstrip("*").strip()], fname
         elif count is not None:
@@ -248,5 +255,12 @@ def test_struct_sizes_and_offsets_are_the_c_compilers():
     assert ctypes.sizeof(_lib.zs_diff_result) == 24
     assert _lib.zs_diff_result.max_channel_diff.offset == 16
     assert ctypes.sizeof(_lib.zs_raster_stats) == 96
+    assert ctypes.sizeof(_lib.zs_mesh) == 176
+    assert [_lib.zs_mesh.corner_attr.offset, _lib.zs_mesh.materials.offset,
+            _lib.zs_mesh.prim_id.offset] == [64, 104, 168]
+    assert ctypes.sizeof(_lib.zs_material) == 40
+    assert [_lib.zs_material.base_texture.offset, _lib.zs_material.wrap_s.offset,
+            _lib.zs_material.filter.offset, _lib.zs_material.ignore_alpha.offset,
+            _lib.zs_material.alpha_cutoff.offset] == [16, 24, 32, 36, 37]
     assert ctypes.sizeof(_lib.zs_load_opts) == 8
     assert _lib.zs_load_opts.skip_missing_textures.offset == 4

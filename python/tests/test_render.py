@@ -10,7 +10,7 @@ import subprocess
 import pytest
 
 import zscan
-from conftest import CLI, DATA_DIR, PYTHON_DIR, model_files
+from conftest import CLI, CLI_ENV, DATA_DIR, PYTHON_DIR, model_files
 
 SIZE = (64, 48)
 STAT_KEYS = ("draws", "polygons_in", "polygons_outside", "polygons_clipped",
@@ -231,7 +231,7 @@ def test_scene_renders_again_and_counts(cli):
 
 
 def test_version_is_the_librarys_and_the_packages(cli):
-    out = subprocess.run([CLI, "--version"], capture_output=True, text=True).stdout
+    out = subprocess.run([CLI, "--version"], capture_output=True, text=True, env=CLI_ENV).stdout
     m = re.search(r"library (\d+\.\d+\.\d+)", out)
     assert m, out
     assert zscan.__version__ == m.group(1)

@@ -21,13 +21,18 @@ import sys
 
 from . import _lib
 from ._lib import LibraryError
+from ._mesh import Light, Material, Mesh, Texture
 
 __all__ = [
     "DiffResult",
     "Error",
     "Image",
     "LibraryError",
+    "Light",
+    "Material",
+    "Mesh",
     "Scene",
+    "Texture",
     "diff",
     "library_path",
     "load",
@@ -127,7 +132,7 @@ class Image:
     at the top).  Images come from render() and read_png(), or from
     Image(width, height, rgb)."""
 
-    __slots__ = ("width", "height", "rgb", "stats", "_hash")
+    __slots__ = ("width", "height", "rgb", "stats", "depth", "shade", "_hash")
 
     def __init__(self, width, height, rgb, _hash=None):
         width, height = int(width), int(height)
@@ -143,6 +148,8 @@ class Image:
         self.height = height
         self.rgb = rgb
         self.stats = None
+        self.depth = None  # render(depth=True): float32 (height, width), 1 = far
+        self.shade = None  # the shading it was rendered with
         self._hash = _hash
 
     def _as_zs_image(self):
@@ -185,6 +192,29 @@ class Image:
         return numpy.frombuffer(self.rgb, dtype=numpy.uint8).reshape(
             self.height, self.width, 3
         ).copy()
+
+    @property
+    def ids(self):
+        """The face ids of an image rendered with shade='id', as a new numpy
+        int32 array of shape (height, width): -1 where no face is (the
+        colour of id i is i + 1 as 24 bits, the background 0)."""
+        if self.shade != "id":
+            raise ValueError("Image.ids: the image was not rendered with shade='id'")
+        import numpy
+
+        a = numpy.frombuffer(self.rgb, dtype=numpy.uint8).reshape(self.height, self.width, 3)
+        a = a.astype(numpy.int32)
+        return (a[:, :, 0] << 16 | a[:, :, 1] << 8 | a[:, :, 2]) - 1
+
+    def _repr_png_(self):
+        """The PNG bytes, for notebooks (IPython shows the image inline)."""
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "image.png")
+            self.save(path)
+            with open(path, "rb") as f:
+                return f.read()
 
     def pixel(self, x, y):
         """(R, G, B) of the pixel in column x, row y (row 0 at the top)."""
@@ -377,22 +407,65 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
 
 
 class Scene:
-    """A loaded model or scene (zs_scene_load), to render several times.
-    Close it (or use it in a with block) to free it at once; otherwise it is
-    freed when collected."""
+    """A scene to render several times: loaded from a file or a generated
+    scene (zscan.load(input), or Scene(input)), or built in code: Scene()
+    is empty, scene.add(mesh, transform) places a zscan.Mesh in it as an
+    object, scene.lights (a list of zscan.Light) and scene.camera (a dict
+    of render()'s eye, target, up, fovy, near, far) are the defaults of
+    its renders.  Close it (or use it in a with block) to free it at once;
+    otherwise it is freed when collected."""
 
     def __init__(self, input=None, allow_empty=False):
         lib = _lib.load()
         self._lib = lib
         self._ptr = None
+        self._meshes = []  # what the scene's textures belong to
         self.input = input
+        self.lights = None
+        self.camera = {}
         handle = ctypes.c_void_p()
-        opts = _lib.zs_load_opts(1 if allow_empty else 0)
         err = _lib.zs_error()
-        arg = None if input is None else _path_arg(input)
-        if lib.zs_scene_load(arg, ctypes.byref(opts), ctypes.byref(handle), ctypes.byref(err)):
+        if input is None:
+            status = lib.zs_scene_create(ctypes.byref(handle), ctypes.byref(err))
+        else:
+            opts = _lib.zs_load_opts(1 if allow_empty else 0)
+            status = lib.zs_scene_load(_path_arg(input), ctypes.byref(opts), ctypes.byref(handle),
+                                       ctypes.byref(err))
+        if status:
             _raise(err)
         self._ptr = handle
+
+    def add(self, mesh, transform=None, name=None):
+        """Adds mesh (a zscan.Mesh, or anything shaped like a trimesh mesh)
+        as one object, placed by transform (4 x 4, local to world, acting
+        on column vectors as numpy's matrices do; None: identity).  Its
+        face ids follow those of the objects added before it."""
+        if not isinstance(mesh, Mesh):
+            if hasattr(mesh, "vertices") and hasattr(mesh, "faces"):
+                mesh = Mesh.from_trimesh(mesh)
+            else:
+                raise TypeError("mesh: expected a zscan.Mesh or a trimesh-like mesh, got %r"
+                                % type(mesh).__name__)
+        model = None
+        if transform is not None:
+            import numpy
+
+            t = numpy.asarray(transform, dtype=numpy.float64)
+            if t.shape != (4, 4):
+                raise ValueError("transform: expected a 4 x 4 matrix, got shape %s" % (t.shape,))
+            bad = ~numpy.isfinite(t)
+            if bad.any():
+                i, j = numpy.argwhere(bad)[0]
+                raise ValueError("transform[%d, %d]: %r is not a finite number" % (i, j, t[i, j]))
+            model = (ctypes.c_double * 16)(*t.reshape(-1).tolist())
+        c = mesh._c()
+        err = _lib.zs_error()
+        if self._lib.zs_scene_add_object(self._handle(), ctypes.byref(c), model,
+                                         None if name is None else str(name).encode("utf-8"),
+                                         ctypes.byref(err)):
+            _raise(err)
+        self._meshes.append(mesh)
+        return self
 
     def _handle(self):
         if self._ptr is None:
@@ -412,19 +485,58 @@ class Scene:
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
                far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
                cull_back=False, shadows=False, samples=1, supersample=False, line_width=1,
-               point_size=1, point_shape="square"):
-        """Renders the scene as zscan.render() does."""
-        opts = _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style,
-                            threads, cull_back, shadows, samples, supersample, line_width,
-                            point_size, point_shape)
+               point_size=1, point_shape="square", lights=None, depth=False):
+        """Renders the scene as zscan.render() does; lights (a list of
+        zscan.Light, None: scene.lights, else the scene's own or the
+        headlight) and the camera arguments left None take the scene's.
+        depth=True also gives image.depth, the window depth of each pixel
+        as a float32 (height, width) array (1 = far)."""
+        cam = dict(self.camera or {})
+        given = dict(eye=eye, target=target, up=up, fovy=fovy, near=near, far=far)
+        for k, v in given.items():
+            if k not in cam or v is not None:
+                cam[k] = v
+        unknown = set(cam) - set(given)
+        if unknown:
+            raise ValueError("scene.camera: unknown key %r (eye, target, up, fovy, near, far)"
+                             % sorted(unknown)[0])
+        opts = _render_opts(size, cam["eye"], cam["target"], cam["up"], cam["fovy"], cam["near"],
+                            cam["far"], algo, shade, style, threads, cull_back, shadows, samples,
+                            supersample, line_width, point_size, point_shape)
+        lights = self.lights if lights is None else lights
+        if lights is not None:
+            lights = list(lights)
+            for i, l in enumerate(lights):
+                if not isinstance(l, Light):
+                    raise TypeError("lights[%d]: expected a zscan.Light, got %r"
+                                    % (i, type(l).__name__))
+            if not 1 <= len(lights) <= _lib.ZS_MAX_LIGHTS:
+                raise ValueError("lights: %d lights: 1 to %d" % (len(lights), _lib.ZS_MAX_LIGHTS))
+            arr = (_lib.zs_light * len(lights))(*[l._c for l in lights])
+            opts.lights = arr
+            opts.nlights = len(lights)
+        if not isinstance(depth, bool):
+            raise TypeError("depth: expected True or False, got %r" % (depth,))
         im = _lib.zs_image()
         stats = _lib.zs_raster_stats()
         err = _lib.zs_error()
-        if self._lib.zs_render(self._handle(), ctypes.byref(opts), ctypes.byref(im), None,
-                               ctypes.byref(stats), ctypes.byref(err)):
+        dp = ctypes.POINTER(ctypes.c_float)()
+        if self._lib.zs_render(self._handle(), ctypes.byref(opts), ctypes.byref(im),
+                               ctypes.byref(dp) if depth else None, ctypes.byref(stats),
+                               ctypes.byref(err)):
             _raise(err)
         image = _take(im)
+        image.shade = shade
         image.stats = {name: getattr(stats, name) for name, _ in _lib.zs_raster_stats._fields_}
+        if depth:
+            try:
+                import numpy
+
+                n = image.width * image.height
+                image.depth = numpy.ctypeslib.as_array(dp, shape=(n,)).reshape(
+                    image.height, image.width).copy()
+            finally:
+                _lib.free(dp)
         return image
 
     def close(self):
@@ -447,13 +559,13 @@ def load(input=None, allow_empty=False):
     """Loads a model (FILE.obj, .ply, .stl, .off, .gltf, ... through assimp
     when the library has it), a scene file (FILE.json) or builtin:NAME[?k=v];
     None is builtin:default.  Raises zscan.Error with the library's message."""
-    return Scene(input, allow_empty=allow_empty)
+    return Scene("builtin:default" if input is None else input, allow_empty=allow_empty)
 
 
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
            far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
            cull_back=False, allow_empty=False, shadows=False, samples=1, supersample=False,
-           line_width=1, point_size=1, point_shape="square"):
+           line_width=1, point_size=1, point_shape="square", lights=None, depth=False):
     """Loads input and renders one frame: the image `zscan render INPUT` makes
     with the same options, byte for byte (its .hash is the CLI's image_hash).
 
@@ -478,6 +590,11 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
                --point-size; GL's rounding; zbuffer only)
     point_shape   'square' (GL's aliased point) or 'disc' (--point-shape)
     allow_empty   render a model without faces (--allow-empty)
+    lights     a list of zscan.Light (None: the scene's, else the headlight)
+    depth      also give image.depth, float32 (height, width), 1 = far
+
+    input may also be a zscan.Mesh, or anything shaped like a trimesh mesh,
+    rendered as the one object of a scene.
 
     An argument of the wrong type, an unknown name or a number that is not
     finite raises TypeError or ValueError; whatever the library refuses (a
@@ -488,9 +605,15 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     # check the options before the (possibly slow) load
     _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
                  shadows, samples, supersample, line_width, point_size, point_shape)
-    with Scene(input, allow_empty=allow_empty) as scene:
+    if isinstance(input, Mesh) or (hasattr(input, "vertices") and hasattr(input, "faces")):
+        scene = Scene()
+        scene.add(input)
+    else:
+        scene = Scene("builtin:default" if input is None else input, allow_empty=allow_empty)
+    with scene:
         return scene.render(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
                             far=far, algo=algo, shade=shade, style=style, threads=threads,
                             cull_back=cull_back, shadows=shadows, samples=samples,
                             supersample=supersample, line_width=line_width,
-                            point_size=point_size, point_shape=point_shape)
+                            point_size=point_size, point_shape=point_shape, lights=lights,
+                            depth=depth)

@@ -115,6 +115,61 @@ class zs_render_opts(ctypes.Structure):
     ]
 
 
+class zs_material(ctypes.Structure):
+    _fields_ = [
+        ("base", ctypes.c_uint8 * 4),
+        ("specular", ctypes.c_uint8 * 3),
+        ("emissive", ctypes.c_uint8 * 3),
+        ("shininess", ctypes.c_uint16),
+        ("double_sided", ctypes.c_uint8),
+        ("base_texture", ctypes.c_void_p),  # const zs_texture *
+        ("wrap_s", ctypes.c_int),  # zs_wrap
+        ("wrap_t", ctypes.c_int),
+        ("filter", ctypes.c_int),  # zs_filter
+        ("ignore_alpha", ctypes.c_uint8),
+        ("alpha_cutoff", ctypes.c_uint8),
+    ]
+
+
+_p_i32 = ctypes.POINTER(ctypes.c_int32)
+_p_u32 = ctypes.POINTER(ctypes.c_uint32)
+
+
+class zs_mesh(ctypes.Structure):
+    _fields_ = [
+        ("pos", ctypes.POINTER(ctypes.c_double)),
+        ("nverts", ctypes.c_int32),
+        ("face_start", _p_i32),
+        ("face_vert", _p_i32),
+        ("nfaces", ctypes.c_int32),
+        ("face_rgb", _p_u32),
+        ("face_id", _p_i32),
+        ("nattrs", ctypes.c_int32),
+        ("corner_attr", _p_i32),
+        ("normal", ctypes.POINTER(ctypes.c_float)),
+        ("color", ctypes.POINTER(ctypes.c_uint8)),
+        ("uv", ctypes.POINTER(ctypes.c_float)),
+        ("face_material", _p_i32),
+        ("materials", ctypes.POINTER(zs_material)),
+        ("nmaterials", ctypes.c_int32),
+        ("line_vert", _p_i32),
+        ("nlines", ctypes.c_int32),
+        ("line_rgb", _p_u32),
+        ("point_vert", _p_i32),
+        ("npoints", ctypes.c_int32),
+        ("point_rgb", _p_u32),
+        ("prim_id", ctypes.c_int32),
+    ]
+
+
+WRAPS = ("repeat", "clamp", "mirror")  # zs_wrap
+FILTERS = ("default", "nearest", "bilinear", "trilinear")  # zs_filter
+LIGHT_KINDS = ("directional", "point", "spot", "ambient")  # zs_light_kind
+ZS_MAX_LIGHTS = 16
+ZS_MAX_TEXTURE_SIDE = 8192
+ZS_MAX_SHININESS = 4096
+
+
 class zs_raster_stats(ctypes.Structure):
     _fields_ = [
         (name, ctypes.c_uint64)
@@ -163,6 +218,18 @@ _SIGNATURES = {
             _p_error,
         ],
     ),
+    "zs_scene_create": (_c_status, [ctypes.POINTER(ctypes.c_void_p), _p_error]),
+    "zs_scene_add_object": (
+        _c_status,
+        [ctypes.c_void_p, ctypes.POINTER(zs_mesh), ctypes.POINTER(ctypes.c_double),
+         ctypes.c_char_p, _p_error],
+    ),
+    "zs_texture_create": (
+        _c_status,
+        [ctypes.c_int, ctypes.c_int, ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p), _p_error],
+    ),
+    "zs_texture_destroy": (None, [ctypes.c_void_p]),
+    "zs_material_default": (zs_material, []),
     "zs_image_alloc": (_c_status, [_p_image, ctypes.c_int, ctypes.c_int, _p_error]),
     "zs_image_free": (None, [_p_image]),
     "zs_image_hash": (ctypes.c_uint64, [_p_image]),
@@ -260,6 +327,16 @@ def _declare(lib):
             ) from None
         fn.restype = restype
         fn.argtypes = argtypes
+
+
+_libc = ctypes.CDLL(None)
+_libc.free.argtypes = [ctypes.c_void_p]
+_libc.free.restype = None
+
+
+def free(p):
+    """free() of what the library allocated (zs_render's depth)."""
+    _libc.free(ctypes.cast(p, ctypes.c_void_p))
 
 
 def load():

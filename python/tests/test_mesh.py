@@ -1,0 +1,237 @@
+"""Meshes from numpy arrays: the same bytes as the OBJ file of the same data
+and as a trimesh-shaped object; bad arrays refused with the argument and
+element named; depth and ids as arrays."""
+
+import os
+import types
+
+import numpy as np
+import pytest
+
+import zscan
+
+SIZE = (96, 72)
+EYE = (1.2, -1.6, 1.8)
+
+
+def hill(n=6):
+    """A height field of (n+1)^2 vertices over [-1, 1]^2: smooth normals,
+    vertex colours (floats 0..1, alpha too), texture coordinates, triangles."""
+    t = np.linspace(-1.0, 1.0, n + 1)
+    x, y = np.meshgrid(t, t)
+    z = 0.3 * (1.0 - x * x) * (1.0 - y * y)
+    vertices = np.stack([x, y, z], axis=-1).reshape(-1, 3)
+    # the surface's normal: (-dz/dx, -dz/dy, 1), unit length
+    dzdx, dzdy = -0.6 * x * (1.0 - y * y), -0.6 * y * (1.0 - x * x)
+    normals = np.stack([-dzdx, -dzdy, np.ones_like(x)], axis=-1).reshape(-1, 3)
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    colors = np.stack([(x + 1) / 2, (y + 1) / 2, 0.25 + 0 * x], axis=-1).reshape(-1, 3)
+    uvs = np.stack([(x + 1) / 2, (y + 1) / 2], axis=-1).reshape(-1, 2)
+    faces = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            faces.append([a, a + 1, a + n + 2])
+            faces.append([a, a + n + 2, a + n + 1])
+    return vertices, np.array(faces, np.int64), colors, normals, uvs
+
+
+def checker():
+    k = (np.arange(8)[:, None] // 2 + np.arange(8)[None, :] // 2) % 2
+    tex = np.zeros((8, 8, 3), np.uint8)
+    tex[k == 0] = (230, 200, 40)
+    tex[k == 1] = (30, 60, 200)
+    return tex
+
+
+def write_obj(path, vertices, faces, colors=None, normals=None, uvs=None, texture=None,
+              face_colors=None):
+    """The OBJ (and MTL, PNG) of the arrays: numbers written with repr, which
+    reads back as the same double."""
+    d = os.path.dirname(path)
+    lines = []
+    if texture is not None or face_colors is not None:
+        lines.append("mtllib m.mtl")
+    for i, v in enumerate(vertices):
+        c = "" if colors is None else " " + " ".join(repr(float(x)) for x in colors[i])
+        lines.append("v " + " ".join(repr(float(x)) for x in v) + c)
+    for t in uvs if uvs is not None else ():
+        lines.append("vt " + " ".join(repr(float(x)) for x in t))
+    for nrm in normals if normals is not None else ():
+        lines.append("vn " + " ".join(repr(float(x)) for x in nrm))
+    mtl = []
+    if texture is not None:
+        zscan.Image(texture.shape[1], texture.shape[0], texture.tobytes()).save(
+            os.path.join(d, "tex.png"))
+        mtl += ["newmtl textured", "Kd 1 1 1", "map_Kd tex.png"]
+        lines.append("usemtl textured")
+    for f, face in enumerate(faces):
+        if face_colors is not None:
+            mtl += ["newmtl c%d" % f, "Kd " + " ".join(repr(float(x)) for x in face_colors[f])]
+            lines.append("usemtl c%d" % f)
+        corner = []
+        for v in face:
+            v = int(v) + 1
+            vt = str(v) if uvs is not None else ""
+            vn = "/" + str(v) if normals is not None else ""
+            corner.append(str(v) + ("/" + vt + vn if (vt or vn) else ""))
+        lines.append("f " + " ".join(corner))
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    if mtl:
+        with open(os.path.join(d, "m.mtl"), "w") as f:
+            f.write("\n".join(mtl) + "\n")
+
+
+def trimesh_shaped(vertices, faces, colors, normals, uvs):
+    """What trimesh.Trimesh looks like to zscan, without trimesh."""
+    rgba = np.concatenate([np.floor(colors * 255 + 0.5), np.full((len(colors), 1), 255)], axis=1)
+    visual = types.SimpleNamespace(kind="vertex", vertex_colors=rgba.astype(np.uint8), uv=uvs)
+    return types.SimpleNamespace(vertices=vertices, faces=faces, visual=visual,
+                                 vertex_normals=normals)
+
+
+@pytest.mark.parametrize("shade", ["auto", "flat", "unlit", "gouraud", "phong", "normal", "id"])
+def test_arrays_trimesh_and_obj_give_one_hash(tmp_path, shade):
+    vertices, faces, colors, normals, uvs = hill()
+    tex = checker()
+    obj = str(tmp_path / "hill.obj")
+    write_obj(obj, vertices, faces, colors, normals, uvs, tex)
+    from_file = zscan.render(obj, size=SIZE, eye=EYE, shade=shade)
+    mesh = zscan.Mesh(vertices, faces, vertex_colors=colors, normals=normals, uvs=uvs,
+                      texture=tex)
+    from_arrays = zscan.render(mesh, size=SIZE, eye=EYE, shade=shade)
+    shaped = trimesh_shaped(vertices, faces, colors, normals, uvs)
+    scene = zscan.Scene()
+    scene.add(zscan.Mesh.from_trimesh(shaped, texture=tex))
+    from_trimesh = scene.render(size=SIZE, eye=EYE, shade=shade)
+    assert from_arrays.hash == from_file.hash == from_trimesh.hash
+    # and the picture is not empty: the hill covers much of the frame
+    assert from_file.stats["pixels_written"] > SIZE[0] * SIZE[1] // 4
+
+
+def test_face_colours_and_polygons_equal_the_obj(tmp_path):
+    vertices = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
+                         [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], np.float64)
+    quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [3, 7, 6, 2], [0, 4, 7, 3], [1, 2, 6, 5]]
+    colours = np.array([[0.9, 0.1, 0.1], [0.1, 0.9, 0.1], [0.1, 0.1, 0.9],
+                        [0.9, 0.9, 0.1], [0.1, 0.9, 0.9], [0.5, 0.5, 0.5]])
+    obj = str(tmp_path / "cube.obj")
+    write_obj(obj, vertices, quads, face_colors=colours)
+    for shade in ("flat", "id"):
+        a = zscan.render(obj, size=SIZE, eye=(3, 2.5, 4), shade=shade)
+        b = zscan.render(zscan.Mesh(vertices, quads, face_colors=colours), size=SIZE,
+                         eye=(3, 2.5, 4), shade=shade)
+        assert a.hash == b.hash, shade
+    # a list of polygons of mixed sizes: the cube as 5 quads and 2 triangles
+    mixed = quads[:5] + [[1, 2, 6], [1, 6, 5]]
+    m = zscan.Mesh(vertices, mixed)
+    assert zscan.render(m, size=SIZE).stats["polygons_in"] == 7
+
+
+def test_objects_with_transforms_number_their_faces_in_turn():
+    vertices, faces, *_ = hill(2)
+    scene = zscan.Scene()
+    mesh = zscan.Mesh(vertices, faces)
+    left, right = np.eye(4), np.eye(4)
+    left[0, 3], right[0, 3] = -1.2, 1.2
+    scene.add(mesh, transform=left, name="left").add(mesh, transform=right, name="right")
+    assert scene.objects == 2 and scene.faces == 2 * len(faces)
+    scene.camera = {"eye": (0, -1, 5)}
+    im = scene.render(size=SIZE, shade="id", depth=True)
+    ids = im.ids
+    assert ids.dtype == np.int32 and ids.shape == (SIZE[1], SIZE[0])
+    assert ids[SIZE[1] // 2, 5] == -1  # the background between and around
+    left_ids = set(ids[:, : SIZE[0] // 2].ravel()) - {-1}
+    right_ids = set(ids[:, SIZE[0] // 2:].ravel()) - {-1}
+    assert left_ids and max(left_ids) < len(faces) <= min(right_ids)
+    assert im.depth.dtype == np.float32 and im.depth.shape == ids.shape
+    assert ((im.depth < 1) == (ids >= 0)).all()
+    png = im._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_lights_from_python_change_the_picture():
+    vertices, faces, colors, normals, uvs = hill()
+    mesh = zscan.Mesh(vertices, faces, vertex_colors=colors, normals=normals)
+    head = zscan.render(mesh, size=SIZE, eye=EYE, shade="phong")
+    red = zscan.render(mesh, size=SIZE, eye=EYE, shade="phong",
+                       lights=[zscan.Light("directional", color=(1, 0, 0), direction=(0, 0, -1))])
+    assert head.hash != red.hash
+    r, g, b = red.pixel(SIZE[0] // 2, SIZE[1] // 2)
+    assert r > 0 and g == 0 and b == 0
+
+
+V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float64)
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    (dict(vertices=np.zeros((3, 2)), faces=[[0, 1, 2]]), ValueError,
+     "vertices: expected shape (N, 3), got (3, 2)"),
+    (dict(vertices=[["a", "b", "c"]] * 3, faces=[[0, 1, 2]]), TypeError,
+     "vertices: expected numbers, got an array of <U1"),
+    (dict(vertices=np.array([[0, 0, 0], [1, np.nan, 0], [0, 1, 0]]), faces=[[0, 1, 2]]),
+     ValueError, "vertices[1, 1]: nan is not a finite number"),
+    (dict(vertices=V, faces=[[0, 1, 3]]), ValueError,
+     "faces[0, 2]: vertex 3 out of range (3 vertices)"),
+    (dict(vertices=V, faces=[[0, 1, 2], [0, -1, 2, 1]]), ValueError,
+     "faces[1, 1]: vertex -1 out of range (3 vertices)"),
+    (dict(vertices=V, faces=[[0, 1]]), ValueError,
+     "faces: expected shape (M, 3), (M, 4) or (M, k), k >= 3, or a list of polygons, got shape (1, 2)"),
+    (dict(vertices=V, faces=[[0, 1, 2], [0, 1]]), ValueError,
+     "faces[1]: 2 corners (at least 3 needed)"),
+    (dict(vertices=V, faces=np.array([[0.0, 1.0, 2.0]])), TypeError,
+     "faces: expected integers, got an array of float64"),
+    (dict(vertices=V, faces=[[0, 1, 2]], face_colors=[[255, 0, 300]]), ValueError,
+     "face_colors[0, 2]: 300 is not a colour byte 0..255 (or give floats 0..1)"),
+    (dict(vertices=V, faces=[[0, 1, 2]], face_colors=[[1, 0, 0], [0, 1, 0]]), ValueError,
+     "face_colors: 2 rows for 1 faces"),
+    (dict(vertices=V, faces=[[0, 1, 2]], vertex_colors=np.ones((3, 5))), ValueError,
+     "vertex_colors: expected shape (N, 3 or 4), got (3, 5)"),
+    (dict(vertices=V, faces=[[0, 1, 2]], normals=np.array([[0, 0, 1]] * 2, np.float32)),
+     ValueError, "normals: 2 rows for 3 vertices"),
+    (dict(vertices=V, faces=[[0, 1, 2]], uvs=np.array([[0, 0], [1, np.inf], [0, 1]])),
+     ValueError, "uvs[1, 1]: inf is not a finite number"),
+    (dict(vertices=V, faces=[[0, 1, 2]], texture=np.zeros((4, 4, 3), np.uint8)), ValueError,
+     "texture: needs uvs, the texture coordinates of the vertices"),
+    (dict(vertices=V, faces=[[0, 1, 2]], uvs=np.zeros((3, 2)),
+          texture=np.zeros((4, 4), np.uint8)), ValueError,
+     "texture: expected shape (H, W, 3) or (H, W, 4), got (4, 4)"),
+    (dict(vertices=V, faces=[[0, 1, 2]], uvs=np.zeros((3, 2)),
+          texture=np.zeros((4, 4, 3), np.float32)), TypeError,
+     "texture: expected a uint8 array, got float32"),
+    (dict(vertices=np.asfortranarray(np.ones((3, 3))), faces=[[0, 1, 2]], copy=False),
+     ValueError, "vertices: copy=False needs a C-contiguous float64 array, got float64 (not C-contiguous)"),
+    (dict(vertices=V.astype(np.float32), faces=[[0, 1, 2]], copy=False), ValueError,
+     "vertices: copy=False needs a C-contiguous float64 array, got float32"),
+    (dict(vertices=V, faces=None), ValueError, "faces: a mesh needs faces, lines or points"),
+    (dict(vertices=V, faces=None, lines=[[0, 3]]), ValueError,
+     "lines[0, 1]: vertex 3 out of range (3 vertices)"),
+])
+def test_bad_arrays_name_the_argument_and_element(kwargs, error, message):
+    with pytest.raises(error) as e:
+        zscan.Mesh(**kwargs)
+    assert str(e.value) == message
+
+
+def test_arrays_in_the_librarys_layout_are_not_copied():
+    faces = np.array([[0, 1, 2]], np.int32)
+    m = zscan.Mesh(V, faces, copy=False)
+    assert m.vertices is V
+    assert np.shares_memory(m.face_vert, faces)
+
+
+def test_bad_transforms_and_meshes_in_a_scene():
+    scene = zscan.Scene()
+    m = zscan.Mesh(V, [[0, 1, 2]])
+    t = np.eye(4)
+    t[2, 1] = np.nan
+    with pytest.raises(ValueError, match=r"^transform\[2, 1\]: nan is not a finite number$"):
+        scene.add(m, transform=t)
+    with pytest.raises(ValueError, match=r"^transform: expected a 4 x 4 matrix, got shape \(3, 3\)$"):
+        scene.add(m, transform=np.eye(3))
+    with pytest.raises(TypeError, match="^mesh: expected a zscan.Mesh or a trimesh-like mesh"):
+        scene.add("cube.obj")
+    assert scene.objects == 0
+    scene.add(m)
+    assert scene.objects == 1 and scene.faces == 1
