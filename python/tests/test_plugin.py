@@ -134,3 +134,133 @@ def test_bad(zscan_golden):
     run(pytester).assert_outcomes(passed=1)
     r = run(pytester, "--help")
     r.stdout.fnmatch_lines(["*--zscan-update*", "*--zscan-output*"])
+
+
+# ---- the zscan_compare marker, pytest-mpl's way ----
+
+MARKED = """
+import pytest
+import zscan
+
+@pytest.mark.zscan_compare
+def test_view():
+    return zscan.render({model!r}, size={size!r}, eye={eye!r})
+
+@pytest.mark.zscan_compare(filename="still.png")
+@pytest.mark.parametrize("n", [2, 3])
+def test_cubes(n):
+    return zscan.render("builtin:cubes?n=%d" % n, size={size!r})
+"""
+
+
+def write_marked(pytester, eye=(6, 5, 9)):
+    return pytester.makepyfile(test_marked=MARKED.format(model=MODEL, size=SIZE, eye=eye))
+
+
+def accept_command(out):
+    m = re.search(r"to accept it: (pytest .*?)(?: \(the |$)", out, re.M)
+    assert m, out
+    return m.group(1).split()
+
+
+def test_marker_baselines_generated_compared_and_accepted(pytester):
+    write_marked(pytester)
+    r = run(pytester)
+    r.assert_outcomes(failed=3)
+    out = r.stdout.str()
+    assert "no baseline image" in out and str(pytester.path / "baseline" / "test_view.png") in out
+    cmd = accept_command(out)
+    assert cmd[-1] == "--zscan-generate-path=baseline"
+
+    # the command the failure gives, for the whole file: writes the baselines
+    run(pytester, "--zscan-generate-path=baseline").assert_outcomes(passed=3)
+    assert sorted(os.listdir(pytester.path / "baseline")) == ["still.png", "test_view.png"]
+    assert zscan.read_png(pytester.path / "baseline" / "test_view.png") == \
+        zscan.render(MODEL, size=SIZE, eye=(6, 5, 9))
+    # run twice: passes twice, and no warning about a test returning a value
+    for _ in range(2):
+        r = run(pytester, "-W", "error::pytest.PytestReturnNotNoneWarning", "-k", "view")
+        r.assert_outcomes(passed=1)
+
+
+def test_marker_change_fails_with_results_and_summary(pytester):
+    write_marked(pytester)
+    run(pytester, "--zscan-generate-path=baseline", "-k", "view").assert_outcomes(passed=1)
+    write_marked(pytester, eye=(6.5, 5, 9))
+    r = run(pytester, "-k", "view", "--zscan-results-path=results", "--zscan-summary=html",
+            "--zscan-summary=json")
+    r.assert_outcomes(failed=1)
+    out = r.stdout.str()
+    assert re.search(r"zscan_compare test_view: \d+ of 3072 pixels differ", out)
+    results = pytester.path / "results"
+    one = results / "test_marked.py__test_view"
+    assert sorted(os.listdir(one)) == ["test_view-baseline.png", "test_view-diff.png",
+                                       "test_view-result.png"]
+    assert zscan.read_png(one / "test_view-result.png") == \
+        zscan.render(MODEL, size=SIZE, eye=(6.5, 5, 9))
+    page = (results / "summary.html").read_text()
+    for name in ("test_view-baseline.png", "test_view-result.png", "test_view-diff.png"):
+        assert 'src="test_marked.py__test_view/%s"' % name in page
+    assert "1 tests, 1 failed" in page
+    import json
+    rows = json.loads((results / "summary.json").read_text())
+    assert [(r["key"], r["status"]) for r in rows] == [("test_marked.test_view", "failed")]
+    assert "summary of 1 marked tests in %s" % results in out
+    # accepting it as the message says makes it pass
+    cmd = accept_command(out)
+    assert cmd[0] == "pytest" and cmd[-1] == "--zscan-generate-path=baseline"
+    run(pytester, *cmd[1:]).assert_outcomes(passed=1)
+    run(pytester, "-k", "view").assert_outcomes(passed=1)
+
+
+def test_hash_library_instead_of_images(pytester):
+    write_marked(pytester)
+    lib = pytester.path / "hashes.json"
+    run(pytester, "--zscan-generate-hash-library=hashes.json").assert_outcomes(passed=3)
+    import json
+    hashes = json.loads(lib.read_text())
+    assert hashes == {
+        "test_marked.test_view": zscan.render(MODEL, size=SIZE, eye=(6, 5, 9)).hash,
+        "test_marked.test_cubes[2]": zscan.render("builtin:cubes?n=2", size=SIZE).hash,
+        "test_marked.test_cubes[3]": zscan.render("builtin:cubes?n=3", size=SIZE).hash,
+        "zscan-pixel-version": zscan.pixel_version(),
+    }
+    assert not (pytester.path / "baseline").exists()  # hashes alone, no images
+    for _ in range(2):
+        run(pytester, "--zscan-hash-library=hashes.json").assert_outcomes(passed=3)
+
+    write_marked(pytester, eye=(6.5, 5, 9))
+    r = run(pytester, "--zscan-hash-library=hashes.json", "--zscan-results-path=res",
+            "--zscan-summary=html")
+    r.assert_outcomes(passed=2, failed=1)
+    out = r.stdout.str()
+    new = zscan.render(MODEL, size=SIZE, eye=(6.5, 5, 9)).hash
+    assert "zscan_compare test_view: hash %s, the library %s has %s" % (
+        new, lib, hashes["test_marked.test_view"]) in out
+    assert (pytester.path / "res" / "summary.html").exists()
+    cmd = accept_command(out)
+    assert cmd[-1] == "--zscan-generate-hash-library=hashes.json"
+    run(pytester, *cmd[1:]).assert_outcomes(passed=1)
+    updated = json.loads(lib.read_text())
+    assert updated["test_marked.test_view"] == new
+    assert updated["test_marked.test_cubes[2]"] == hashes["test_marked.test_cubes[2]"]
+    run(pytester, "--zscan-hash-library=hashes.json").assert_outcomes(passed=3)
+
+
+def test_hash_library_of_another_pixel_version_says_so(pytester):
+    write_marked(pytester)
+    run(pytester, "--zscan-generate-hash-library=hashes.json").assert_outcomes(passed=3)
+    import json
+    lib = pytester.path / "hashes.json"
+    h = json.loads(lib.read_text())
+    h["test_marked.test_view"] = "0" * 16
+    h["zscan-pixel-version"] = zscan.pixel_version() - 1
+    lib.write_text(json.dumps(h))
+    r = run(pytester, "--zscan-hash-library=hashes.json", "-k", "view")
+    r.assert_outcomes(failed=1)
+    v = zscan.pixel_version()
+    assert "the hashes were made with pixel version %d; this zscan draws version %d, which " \
+           "changed: %d: %s" % (v - 1, v, v, zscan.pixel_changes(v)) in r.stdout.str()
+    r = run(pytester, "--zscan-hash-library=missing.json")
+    assert r.ret == 4  # pytest's usage error
+    assert "--zscan-hash-library: %s: no such file" % (pytester.path / "missing.json") in r.stderr.str()
