@@ -36,9 +36,13 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   valgrind                    instruction counts: zscan bench raster --callgrind and its test
 #   chromium                    headless, reads the pages zscan writes (the golden report) in tests
 #   python3-pytest python3-numpy   the Python binding's tests (python/)
+#   python3-venv python3-pip python3-setuptools python3-wheel
+#                               the Python package built and installed offline
+#                               into a fresh virtual environment (tools/check-wheel.sh)
 zs_packages=(cmake gcc g++ make pkg-config libpng-dev libjpeg62-turbo-dev check clang libcjson-dev
              libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind chromium
-             python3-pytest python3-numpy)
+             python3-pytest python3-numpy python3-venv python3-pip python3-setuptools
+             python3-wheel)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do

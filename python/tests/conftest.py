@@ -20,8 +20,22 @@ DATA_DIR = os.path.join(SOURCE_DIR, "tests", "data")
 BUILD_DIR = os.path.abspath(os.environ.get("ZSCAN_BUILD_DIR") or os.path.join(SOURCE_DIR, "build"))
 CLI = os.path.join(BUILD_DIR, "zscan")
 
-if not os.environ.get("ZSCAN_LIBRARY"):
+# ZSCAN_TEST_INSTALLED=1: the package under test is an installed one, with
+# the library inside it (tools/check-wheel.sh), found without ZSCAN_LIBRARY
+INSTALLED = os.environ.get("ZSCAN_TEST_INSTALLED") == "1"
+if INSTALLED:
+    os.environ.pop("ZSCAN_LIBRARY", None)
+elif not os.environ.get("ZSCAN_LIBRARY"):
     os.environ["ZSCAN_LIBRARY"] = os.path.join(BUILD_DIR, "libzscan.so")
+
+
+def library_file():
+    """The libzscan under test: $ZSCAN_LIBRARY's, or the installed package's."""
+    if not INSTALLED:
+        return os.environ["ZSCAN_LIBRARY"]
+    import zscan
+
+    return zscan.library_path()
 
 # The zscan command runs without the sanitizer runtime that a sanitized
 # library needs preloaded into Python (the command links its own).

@@ -10,7 +10,9 @@ import sys
 
 import pytest
 
-from conftest import PYTHON_DIR
+import zscan
+from zscan import _lib
+from conftest import INSTALLED, PYTHON_DIR, SOURCE_DIR, library_file
 
 PACKAGE = os.path.join(PYTHON_DIR, "zscan")
 
@@ -36,7 +38,7 @@ def copy_package(dest):
 
 
 def test_from_the_environment():
-    lib = os.environ["ZSCAN_LIBRARY"]
+    lib = library_file()
     p = run(PYTHON_DIR, lib)
     assert p.returncode == 0, p.stderr
     assert p.stdout.split() == [lib, "0.12.0"]
@@ -50,7 +52,7 @@ def test_a_wrong_environment_variable_is_an_error(tmp_path):
 
 def test_beside_the_package(tmp_path):
     pkg = copy_package(tmp_path)
-    shutil.copy(os.environ["ZSCAN_LIBRARY"], os.path.join(pkg, "libzscan.so.0"))
+    shutil.copy(library_file(), os.path.join(pkg, "libzscan.so.0"))
     p = run(str(tmp_path), None)
     assert p.returncode == 0, p.stderr
     assert p.stdout.split()[0] == os.path.join(pkg, "libzscan.so.0")
@@ -60,7 +62,7 @@ def test_the_checkouts_build_directory(tmp_path):
     # tmp/python/zscan finds tmp/build/libzscan.so
     copy_package(tmp_path / "python")
     os.makedirs(tmp_path / "build")
-    shutil.copy(os.environ["ZSCAN_LIBRARY"], tmp_path / "build" / "libzscan.so")
+    shutil.copy(library_file(), tmp_path / "build" / "libzscan.so")
     p = run(str(tmp_path / "python"), None)
     assert p.returncode == 0, p.stderr
     assert p.stdout.split()[0] == str(tmp_path / "build" / "libzscan.so")
@@ -86,3 +88,14 @@ def test_import_and_plugin_need_no_library(tmp_path):
     p = run(str(tmp_path / "python"), None, code)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "render"
+
+
+@pytest.mark.skipif(not INSTALLED, reason="for an installed package (tools/check-wheel.sh)")
+def test_the_installed_package_holds_its_library():
+    # neither the checkout nor an environment variable: the library inside
+    # the package, which is not the checkout's
+    assert "ZSCAN_LIBRARY" not in os.environ
+    package = os.path.dirname(os.path.abspath(zscan.__file__))
+    assert not package.startswith(SOURCE_DIR + os.sep)
+    assert zscan.library_path() == os.path.join(package, "libzscan.so.0")
+    assert zscan.__version__ == _lib.BINDING_VERSION
