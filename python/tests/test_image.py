@@ -183,7 +183,8 @@ CTYPE_OF = {
     "zs_status": ctypes.c_int, "zs_filter": ctypes.c_int, "const zs_light": _lib.zs_light,
     "zs_point_shape": ctypes.c_int, "int32_t": ctypes.c_int32, "uint8_t": ctypes.c_uint8,
     "uint16_t": ctypes.c_uint16, "float": ctypes.c_float, "const zs_material": _lib.zs_material,
-    "zs_wrap": ctypes.c_int,
+    "zs_wrap": ctypes.c_int, "zs_span_fill": ctypes.c_int, "int64_t": ctypes.c_int64,
+    "const uint32_t": ctypes.c_uint32, "const float": ctypes.c_float,
 }
 # pointers to opaque types are void pointers here
 OPAQUE = {"const zs_texture"}
@@ -193,7 +194,7 @@ def header_fields(struct_name):
     """[(field, C type, array length or None)] of a typedef struct in the
     public headers, in order."""
     text = ""
-    for h in ("zscan.h", "error.h"):
+    for h in ("zscan.h", "error.h", "clock.h"):
         with open(os.path.join(SOURCE_DIR, "include", "zscan", h)) as f:
             text += f.read()
     text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
@@ -217,7 +218,9 @@ def header_fields(struct_name):
 
 
 @pytest.mark.parametrize("name", ["zs_render_opts", "zs_image", "zs_error", "zs_diff_result",
-                                  "zs_load_opts", "zs_raster_stats", "zs_mesh", "zs_material"])
+                                  "zs_load_opts", "zs_raster_stats", "zs_mesh", "zs_material",
+                                  "zs_device_config", "zs_row", "zs_clock_params",
+                                  "zs_clock_stats"])
 def test_structs_mirror_the_header(name):
     ours = getattr(_lib, name)._fields_
     theirs = header_fields(name)

@@ -22,8 +22,10 @@ import sys
 from . import _lib
 from ._lib import LibraryError
 from ._mesh import Light, Material, Mesh, Texture
+from ._device import Device
 
 __all__ = [
+    "Device",
     "DiffResult",
     "Error",
     "Image",

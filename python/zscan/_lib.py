@@ -166,6 +166,7 @@ WRAPS = ("repeat", "clamp", "mirror")  # zs_wrap
 FILTERS = ("default", "nearest", "bilinear", "trilinear")  # zs_filter
 LIGHT_KINDS = ("directional", "point", "spot", "ambient")  # zs_light_kind
 ZS_MAX_LIGHTS = 16
+ZS_RGB_MESH = 0xFF000000
 ZS_MAX_TEXTURE_SIDE = 8192
 ZS_MAX_SHININESS = 4096
 
@@ -190,9 +191,75 @@ class zs_raster_stats(ctypes.Structure):
     ]
 
 
+class zs_device_config(ctypes.Structure):
+    _fields_ = [
+        ("width", ctypes.c_int),
+        ("height", ctypes.c_int),
+        ("algo", ctypes.c_int),  # zs_algo
+        ("shade", ctypes.c_int),  # zs_shade
+        ("cull_back", ctypes.c_int),
+        ("threads", ctypes.c_int),
+        ("background", ctypes.c_uint32),
+        ("spans", ctypes.c_int),  # zs_span_fill
+        ("filter", ctypes.c_int),
+    ]
+
+
+class zs_row(ctypes.Structure):
+    _fields_ = [
+        ("y", ctypes.c_int),
+        ("width", ctypes.c_int),
+        ("rgb", ctypes.POINTER(ctypes.c_uint32)),
+        ("depth", ctypes.POINTER(ctypes.c_uint32)),
+        ("id", ctypes.POINTER(ctypes.c_uint32)),
+        ("count", ctypes.POINTER(ctypes.c_uint32)),
+        ("normal", ctypes.POINTER(ctypes.c_float)),
+    ]
+
+
+zs_row_sink = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.POINTER(zs_row))
+
+
+class zs_clock_params(ctypes.Structure):
+    _fields_ = [
+        (name, ctypes.c_double)
+        for name in (
+            "per_call_ns", "per_vertex_ns", "per_polygon_ns", "per_span_ns", "per_pixel_ns",
+            "per_write_ns", "per_query_pixel_ns", "switch_ns", "query_latency_ns",
+            "cpu_per_call_ns", "cpu_per_query_ns", "cpu_per_node_ns", "cpu_per_frustum_ns",
+            "cpu_per_cost_eval_ns", "hzb_pass_ns", "hzb_per_texel_ns", "hzb_per_box_ns",
+            "hzb_per_read_ns",
+        )
+    ]
+
+
+class zs_clock_stats(ctypes.Structure):
+    _fields_ = [
+        ("queries", ctypes.c_uint64),
+        ("query_waits", ctypes.c_uint64),
+        ("stalls", ctypes.c_uint64),
+        ("query_pixels", ctypes.c_uint64),
+        ("switches", ctypes.c_uint64),
+        ("sync_ps", ctypes.c_int64),
+        ("stall_ps", ctypes.c_int64),
+        ("gpu_ps", ctypes.c_int64),
+        ("cpu_ps", ctypes.c_int64),
+        ("draw_ps", ctypes.c_int64),
+        ("query_ps", ctypes.c_int64),
+        ("switch_ps", ctypes.c_int64),
+        ("hzb_texels", ctypes.c_uint64),
+        ("hzb_boxes", ctypes.c_uint64),
+        ("hzb_reads", ctypes.c_uint64),
+    ]
+
+
+CPU_WORK = ("node", "frustum_test", "cost_eval")  # zs_cpu_work
+
 _c_status = ctypes.c_int
 _p_error = ctypes.POINTER(zs_error)
 _p_image = ctypes.POINTER(zs_image)
+_p_d16 = ctypes.POINTER(ctypes.c_double)
+_p_d3 = ctypes.POINTER(ctypes.c_double)
 
 # name: (restype, argtypes)
 _SIGNATURES = {
@@ -230,6 +297,40 @@ _SIGNATURES = {
     ),
     "zs_texture_destroy": (None, [ctypes.c_void_p]),
     "zs_material_default": (zs_material, []),
+    "zs_device_create": (
+        _c_status,
+        [ctypes.POINTER(zs_device_config), ctypes.POINTER(ctypes.c_void_p), _p_error],
+    ),
+    "zs_device_destroy": (None, [ctypes.c_void_p]),
+    "zs_device_config_of": (ctypes.POINTER(zs_device_config), [ctypes.c_void_p]),
+    "zs_device_set_camera": (None, [ctypes.c_void_p, _p_d16, _p_d16]),
+    "zs_device_set_lights": (
+        _c_status, [ctypes.c_void_p, ctypes.POINTER(zs_light), ctypes.c_int, _p_error]),
+    "zs_device_clear": (None, [ctypes.c_void_p]),
+    "zs_device_draw": (
+        _c_status,
+        [ctypes.c_void_p, ctypes.POINTER(zs_mesh), _p_d16, ctypes.c_uint32, ctypes.c_uint32,
+         _p_error],
+    ),
+    "zs_device_finish": (_c_status, [ctypes.c_void_p, zs_row_sink, ctypes.c_void_p, _p_error]),
+    "zs_device_stats": (ctypes.POINTER(zs_raster_stats), [ctypes.c_void_p]),
+    "zs_device_depth_buffer": (ctypes.POINTER(ctypes.c_uint32), [ctypes.c_void_p]),
+    "zs_device_id_buffer": (ctypes.POINTER(ctypes.c_uint32), [ctypes.c_void_p]),
+    "zs_device_query_begin": (
+        _c_status, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_uint32), _p_error]),
+    "zs_device_query_end": (_c_status, [ctypes.c_void_p, _p_error]),
+    "zs_device_query_box": (_c_status, [ctypes.c_void_p, _p_d3, _p_d3, _p_error]),
+    "zs_device_query_ready": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32]),
+    "zs_device_query_result": (ctypes.c_uint64, [ctypes.c_void_p, ctypes.c_uint32]),
+    "zs_clock_params_default": (None, [ctypes.POINTER(zs_clock_params)]),
+    "zs_device_set_clock": (
+        _c_status, [ctypes.c_void_p, ctypes.POINTER(zs_clock_params), _p_error]),
+    "zs_device_cpu_work": (None, [ctypes.c_void_p, ctypes.c_int, ctypes.c_uint64]),
+    "zs_device_clock": (ctypes.POINTER(zs_clock_stats), [ctypes.c_void_p]),
+    "zs_device_frame_ps": (ctypes.c_int64, [ctypes.c_void_p]),
+    "zs_mat_look_at": (ctypes.c_int, [_p_d16, _p_d3, _p_d3, _p_d3]),
+    "zs_mat_perspective": (
+        None, [_p_d16, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double]),
     "zs_image_alloc": (_c_status, [_p_image, ctypes.c_int, ctypes.c_int, _p_error]),
     "zs_image_free": (None, [_p_image]),
     "zs_image_hash": (ctypes.c_uint64, [_p_image]),
