@@ -12,6 +12,8 @@
  *                           llvmpipe's, pixel by pixel;
  *   lines.md                bench lines: wide lines and points against
  *                           llvmpipe's, pixel by pixel;
+ *   arrays.md               bench arrays: a mesh built from arrays beside
+ *                           the same mesh loaded from its OBJ file;
  *   raster-threads.csv, .md, .png, .txt   the same on N threads (every CPU
  *                           by default), zscan's speed-up over one thread
  *                           (--speedup), and llvmpipe on as many threads (a
@@ -63,6 +65,7 @@
 #include "tools/bench_depthsort.h"
 #include "tools/bench_octree.h"
 #include "tools/bench_colours.h"
+#include "tools/bench_arrays.h"
 #include "tools/bench_lines.h"
 #include "tools/bench_raster.h"
 #include "tools/bench_tradeoff.h"
@@ -189,6 +192,8 @@ static const struct placeholder {
     {"colours.table", 1},
     {"lines.command", 1},
     {"lines.table", 1},
+    {"arrays.command", 1},
+    {"arrays.table", 1},
 };
 enum { NPLACEHOLDERS = sizeof placeholders / sizeof placeholders[0] };
 
@@ -327,6 +332,7 @@ typedef struct files {
   char shade[3][PATH];   /* each shading's md */
   char colours[PATH];    /* bench colours' md */
   char lines[PATH];      /* bench lines' md */
+  char arrays[PATH];     /* bench arrays' md */
 } files;
 
 static void raster_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -381,6 +387,11 @@ static void colours_args(const files *fs, how h, arglist *a) {
 static void lines_args(const files *fs, how h, arglist *a) {
   arg(a, "lines");
   if (h.files) arg2(a, "--md", fs->lines);
+}
+
+static void arrays_args(const files *fs, how h, arglist *a) {
+  arg(a, "arrays");
+  if (h.files) arg2(a, "--md", fs->arrays);
 }
 
 static void calibrate_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -663,13 +674,13 @@ static zs_status plot_walks(const suite *s, const files *fs, zs_error *err) {
 }
 
 /* The benchmarks in turn: raster, on N threads, the three shadings, the
- * colours and the lines (with llvmpipe), memory, calibrate, two walks, tradeoff,
+ * colours and the lines (with llvmpipe), arrays, memory, calibrate, two walks, tradeoff,
  * depthsort, octree.  1: a benchmark run here failed
  * (it said why); -1: an error in err. */
 static int run_all(suite *s, const files *fs, zs_error *err) {
   zs_progress progress;
   int done = 0;
-  zs_progress_start(&progress, "bench suite", "benchmark", 11 + s->run_threads + 2 * s->mesa,
+  zs_progress_start(&progress, "bench suite", "benchmark", 12 + s->run_threads + 2 * s->mesa,
                     s->quiet);
   const how h = as_run(s);
   arglist a = {0};
@@ -698,6 +709,10 @@ static int run_all(suite *s, const files *fs, zs_error *err) {
     if (run(zs_cmd_bench_lines, a.v)) return 1;
     zs_progress_step(&progress, ++done);
   }
+  a = (arglist){0};
+  arrays_args(fs, h, &a);
+  if (run(zs_cmd_bench_arrays, a.v)) return 1;
+  zs_progress_step(&progress, ++done);
   if (run_memory(s, err)) return -1;
   zs_progress_step(&progress, ++done);
   char calibrate_txt[PATH];
@@ -991,6 +1006,11 @@ static zs_status fill_shading(suite *s, const files *fs, zs_error *err) {
   if (set_command(s, "lines.command", "zscan bench", a.v, err) ||
       (s->mesa ? set_table(s, "lines.table", "lines.md", 0, 0, err)
                : set_text(s, "lines.table", not_measured, err)))
+    return err->code;
+  a = (arglist){0};
+  arrays_args(fs, as_shown, &a);
+  if (set_command(s, "arrays.command", "zscan bench", a.v, err) ||
+      set_table(s, "arrays.table", "arrays.md", 0, 0, err))
     return err->code;
   return ZS_OK;
 }
@@ -1310,6 +1330,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   for (int k = 0; k < 3; k++) in_dir_named(fs.shade[k], &s, "shade-%s.md", shadings[k]);
   in_dir(fs.colours, &s, "colours.md");
   in_dir(fs.lines, &s, "lines.md");
+  in_dir(fs.arrays, &s, "arrays.md");
   for (int w = 0; w < 2; w++) {
     in_dir_named(fs.walk[w][0], &s, "walk-%s.csv", walks[w][0]);
     in_dir_named(fs.walk[w][1], &s, "walk-%s.md", walks[w][0]);
@@ -1321,7 +1342,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   if (s.plots && plot_walks(&s, &fs, &err)) goto fail;
   if (s.docs && (fill_values(&s, &fs, &err) || write_docs(&s, &err))) goto fail;
   if (!s.no_run)
-    printf("\nwrote %s: raster, shading, memory, calibrate, walks, tradeoff (per walk), depthsort and "
+    printf("\nwrote %s: raster, shading, arrays, memory, calibrate, walks, tradeoff (per walk), depthsort and "
          "octree files%s%s%s\n",
          s.dir, s.mesa ? "; llvmpipe beside zscan, colours too" : "",
          s.run_threads ? ", on one thread and on N" : "",

@@ -8,6 +8,8 @@ static const zs_command benchmarks[] = {
      zs_cmd_bench_depthsort},
     {"colours", "", "unlit vertex colours and textures beside llvmpipe's, pixel by pixel",
      zs_cmd_bench_colours},
+    {"arrays", "", "a mesh built from arrays beside the same mesh loaded from its OBJ file",
+     zs_cmd_bench_arrays},
     {"lines", "", "wide lines and points beside llvmpipe's, pixel by pixel", zs_cmd_bench_lines},
     {"raster", "", "throughput: triangles of 4 to 500 pixels and whole scenes", zs_cmd_bench_raster},
     {"tradeoff", "", "run time against error: every method and mode on every walk",
