@@ -7,13 +7,12 @@ import pytest
 import zscan
 
 SIZE = (64, 48)
-BACKGROUND = 0x1E2228  # render()'s
 WALL = zscan.Mesh(np.array([[-2, -2, 0], [2, -2, 0], [2, 2, 0], [-2, 2, 0]], float),
                   [[0, 1, 2, 3]], face_colors=[[200, 100, 50]])
 
 
 def frame(latency_ns=20000.0, boxes=()):
-    dev = zscan.Device(SIZE, background=BACKGROUND, clock={"query_latency_ns": latency_ns})
+    dev = zscan.Device(SIZE, clock={"query_latency_ns": latency_ns})  # render's background
     dev.camera(eye=(0, 0, 8), target=(0, 0, 0), up=(0, 1, 0), fovy=45, near=0.1, far=1000)
     dev.clear()
     dev.draw(WALL)
@@ -25,7 +24,8 @@ def test_a_draw_is_what_render_draws():
     dev, _ = frame()
     im = dev.finish()
     ref = zscan.render(WALL, size=SIZE, eye=(0, 0, 8), target=(0, 0, 0), up=(0, 1, 0), fovy=45,
-                       near=0.1, far=1000, shade="flat")
+                       near=0.1, far=1000)
+    assert ref.pixel(0, 0) == (0x1E, 0x22, 0x28) and zscan.RENDER_BACKGROUND == 0x1E2228
     assert im.hash == ref.hash
     assert dev.stats == ref.stats
     ids = dev.id_buffer

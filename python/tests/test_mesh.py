@@ -183,7 +183,13 @@ V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float64)
     (dict(vertices=V, faces=np.array([[0.0, 1.0, 2.0]])), TypeError,
      "faces: expected integers, got an array of float64"),
     (dict(vertices=V, faces=[[0, 1, 2]], face_colors=[[255, 0, 300]]), ValueError,
-     "face_colors[0, 2]: 300 is not a colour byte 0..255 (or give floats 0..1)"),
+     "face_colors[0, 2]: 300 is outside 0..255 (integers are 0..255, floats 0..1)"),
+    (dict(vertices=V, faces=[[0, 1, 2]], face_colors=[[1.0, 0.5, 1.5]]), ValueError,
+     "face_colors[0, 2]: 1.5 is outside 0..1 (floats are 0..1, integers 0..255)"),
+    (dict(vertices=V, faces=np.array([[0, 1, 2]], np.int32), vertex_colors=np.ones((3, 3)),
+          copy=False), ValueError,
+     "vertex_colors: copy=False needs a C-contiguous uint8 array, got float64 (floats are "
+     "converted to bytes)"),
     (dict(vertices=V, faces=[[0, 1, 2]], face_colors=[[1, 0, 0], [0, 1, 0]]), ValueError,
      "face_colors: 2 rows for 1 faces"),
     (dict(vertices=V, faces=[[0, 1, 2]], vertex_colors=np.ones((3, 5))), ValueError,
@@ -219,6 +225,18 @@ def test_arrays_in_the_librarys_layout_are_not_copied():
     m = zscan.Mesh(V, faces, copy=False)
     assert m.vertices is V
     assert np.shares_memory(m.face_vert, faces)
+
+
+def test_material_colours_by_type_and_alpha_as_a_fraction():
+    red = zscan.Material(color=(1.0, 0.0, 0.0), alpha=1)
+    assert red.color == (255, 0, 0) and red._c.base[3] == 255
+    assert zscan.Material(color=(255, 0, 0)).color == (255, 0, 0)
+    assert zscan.Material(color=(1, 0, 0)).color == (1, 0, 0)  # integers are bytes
+    assert zscan.Material(alpha=0.5)._c.base[3] == 128
+    with pytest.raises(ValueError, match=r"^material.alpha: expected 0 .. 1, got 255$"):
+        zscan.Material(alpha=255)
+    with pytest.raises(ValueError, match=r"is outside 0..1"):
+        zscan.Material(color=(2.0, 0.0, 0.0))
 
 
 def test_bad_transforms_and_meshes_in_a_scene():

@@ -204,7 +204,7 @@ def test_marker_change_fails_with_results_and_summary(pytester):
     assert "1 tests, 1 failed" in page
     import json
     rows = json.loads((results / "summary.json").read_text())
-    assert [(r["key"], r["status"]) for r in rows] == [("test_marked.test_view", "failed")]
+    assert [(r["key"], r["status"]) for r in rows] == [("test_marked.py::test_view", "failed")]
     assert "summary of 1 marked tests in %s" % results in out
     # accepting it as the message says makes it pass
     cmd = accept_command(out)
@@ -220,9 +220,9 @@ def test_hash_library_instead_of_images(pytester):
     import json
     hashes = json.loads(lib.read_text())
     assert hashes == {
-        "test_marked.test_view": zscan.render(MODEL, size=SIZE, eye=(6, 5, 9)).hash,
-        "test_marked.test_cubes[2]": zscan.render("builtin:cubes?n=2", size=SIZE).hash,
-        "test_marked.test_cubes[3]": zscan.render("builtin:cubes?n=3", size=SIZE).hash,
+        "test_marked.py::test_view": zscan.render(MODEL, size=SIZE, eye=(6, 5, 9)).hash,
+        "test_marked.py::test_cubes[2]": zscan.render("builtin:cubes?n=2", size=SIZE).hash,
+        "test_marked.py::test_cubes[3]": zscan.render("builtin:cubes?n=3", size=SIZE).hash,
         "zscan-pixel-version": zscan.pixel_version(),
     }
     assert not (pytester.path / "baseline").exists()  # hashes alone, no images
@@ -236,15 +236,28 @@ def test_hash_library_instead_of_images(pytester):
     out = r.stdout.str()
     new = zscan.render(MODEL, size=SIZE, eye=(6.5, 5, 9)).hash
     assert "zscan_compare test_view: hash %s, the library %s has %s" % (
-        new, lib, hashes["test_marked.test_view"]) in out
+        new, lib, hashes["test_marked.py::test_view"]) in out
     assert (pytester.path / "res" / "summary.html").exists()
     cmd = accept_command(out)
     assert cmd[-1] == "--zscan-generate-hash-library=hashes.json"
     run(pytester, *cmd[1:]).assert_outcomes(passed=1)
     updated = json.loads(lib.read_text())
-    assert updated["test_marked.test_view"] == new
-    assert updated["test_marked.test_cubes[2]"] == hashes["test_marked.test_cubes[2]"]
+    assert updated["test_marked.py::test_view"] == new
+    assert updated["test_marked.py::test_cubes[2]"] == hashes["test_marked.py::test_cubes[2]"]
     run(pytester, "--zscan-hash-library=hashes.json").assert_outcomes(passed=3)
+
+
+def test_hash_library_keys_are_test_ids(pytester):
+    # two test files of one name in two packages: two keys, neither hiding the other
+    for pkg, eye in (("a", (6, 5, 9)), ("b", (6.5, 5, 9))):
+        d = pytester.mkpydir(pkg)
+        (d / "test_x.py").write_text(MARKED.format(model=MODEL, size=SIZE, eye=eye))
+    run(pytester, "--zscan-generate-hash-library=h.json", "-k", "view").assert_outcomes(passed=2)
+    import json
+    keys = sorted(k for k in json.loads((pytester.path / "h.json").read_text())
+                  if k != "zscan-pixel-version")
+    assert keys == ["a/test_x.py::test_view", "b/test_x.py::test_view"]
+    run(pytester, "--zscan-hash-library=h.json", "-k", "view").assert_outcomes(passed=2)
 
 
 def test_hash_library_of_another_pixel_version_says_so(pytester):
@@ -253,7 +266,7 @@ def test_hash_library_of_another_pixel_version_says_so(pytester):
     import json
     lib = pytester.path / "hashes.json"
     h = json.loads(lib.read_text())
-    h["test_marked.test_view"] = "0" * 16
+    h["test_marked.py::test_view"] = "0" * 16
     h["zscan-pixel-version"] = zscan.pixel_version() - 1
     lib.write_text(json.dumps(h))
     r = run(pytester, "--zscan-hash-library=hashes.json", "-k", "view")

@@ -22,7 +22,7 @@ import sys
 from . import _lib
 from ._lib import LibraryError
 from ._mesh import Light, Material, Mesh, Texture
-from ._device import Device
+from ._device import RENDER_BACKGROUND, Device
 
 __all__ = [
     "Device",
@@ -33,6 +33,7 @@ __all__ = [
     "Light",
     "Material",
     "Mesh",
+    "RENDER_BACKGROUND",
     "Scene",
     "Texture",
     "diff",

@@ -28,9 +28,15 @@ def _matrix(name, transform):
     return (ctypes.c_double * 16)(*t.reshape(-1).tolist())
 
 
+# The background zscan.render draws (and the zscan command), 0xRRGGBB.
+RENDER_BACKGROUND = 0x1E2228
+
+
 class Device:
     """A zscan device of size (width, height): algo 'zbuffer' (queries,
-    depth and id buffers) or 'scanline'; shade as render() takes it;
+    depth and id buffers) or 'scanline'; shade as render() takes it
+    (default 'auto', as render's); background 0xRRGGBB (default
+    zscan.RENDER_BACKGROUND, render's, so that the two draw the same bytes);
     clock a dict of zs_clock_params fields in nanoseconds (the rest the
     documented defaults), e.g. {"query_latency_ns": 50000}.
 
@@ -47,8 +53,8 @@ class Device:
     then); its faces are drawn as given (convex, 3 .. 64 corners), not
     split as a scene splits them."""
 
-    def __init__(self, size=(1024, 768), algo="zbuffer", shade="flat", threads=1,
-                 cull_back=False, background=0, clock=None):
+    def __init__(self, size=(1024, 768), algo="zbuffer", shade="auto", threads=1,
+                 cull_back=False, background=None, clock=None):
         from . import _choice, _int, _raise
 
         lib = _lib.load()
@@ -67,7 +73,8 @@ class Device:
         cfg.shade = _choice("shade", shade, _lib.SHADES)
         cfg.threads = _int("threads", threads)
         cfg.cull_back = 1 if cull_back else 0
-        cfg.background = _int("background", background) & 0xFFFFFF
+        cfg.background = (RENDER_BACKGROUND if background is None
+                          else _int("background", background) & 0xFFFFFF)
         handle = ctypes.c_void_p()
         err = _lib.zs_error()
         if lib.zs_device_create(ctypes.byref(cfg), ctypes.byref(handle), ctypes.byref(err)):

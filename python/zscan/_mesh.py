@@ -90,8 +90,16 @@ def _bytes_of_colours(name, value, widths, copy):
     np = _numpy()
     a = value if isinstance(value, np.ndarray) else np.asarray(value)
     if np.issubdtype(a.dtype, np.floating):
+        if copy is False:
+            raise ValueError("%s: copy=False needs a C-contiguous uint8 array, got %s (floats "
+                             "are converted to bytes)" % (name, a.dtype))
         a = _array(name, a, np.float64, widths, None)
-        y = np.clip(a, 0.0, 1.0) * 255.0
+        bad = (a < 0.0) | (a > 1.0)
+        if bad.any():
+            at = tuple(np.argwhere(bad)[0])
+            raise ValueError("%s%s: %r is outside 0..1 (floats are 0..1, integers 0..255)"
+                             % (name, _where(at), a[at].item()))
+        y = a * 255.0
         r = np.floor(y)
         # lround: half away from zero (y - r is exact for 0 <= y <= 255)
         return np.ascontiguousarray(r + (y - r >= 0.5), dtype=np.uint8)
@@ -99,7 +107,7 @@ def _bytes_of_colours(name, value, widths, copy):
     bad = (a < 0) | (a > 255)
     if bad.any():
         at = tuple(np.argwhere(bad)[0])
-        raise ValueError("%s%s: %d is not a colour byte 0..255 (or give floats 0..1)"
+        raise ValueError("%s%s: %d is outside 0..255 (integers are 0..255, floats 0..1)"
                          % (name, _where(at), a[at]))
     if a.dtype == np.uint8 and a.flags.c_contiguous:
         return a
@@ -170,8 +178,9 @@ def _flag(name, v):
 
 
 class Material:
-    """A surface's material (zs_material): colours as bytes 0..255 or floats
-    0..1 (as arrays are read), alpha 0..1 or 0..255 likewise.  The defaults
+    """A surface's material (zs_material): each colour three integers 0..255
+    or three floats 0..1, as arrays are read (so (1, 0, 0) is nearly black
+    and (1.0, 0, 0) red); alpha a number 0..1.  The defaults
     are zs_material_default's (mid grey, opaque, no highlight,
     double-sided), so Material(color=(1.0, 1.0, 1.0)) is what an MTL
     `Kd 1 1 1` gives."""
@@ -183,7 +192,10 @@ class Material:
         if color is not None:
             m.base[0:3] = _colour("material.color", color, 4)[:3]
         if alpha is not None:
-            m.base[3] = _colour("material.alpha", [alpha] * 3, 3)[0]
+            a = _number("material.alpha", alpha)
+            if not 0.0 <= a <= 1.0:
+                raise ValueError("material.alpha: expected 0 .. 1, got %r" % (alpha,))
+            m.base[3] = _colour("material.alpha", [a] * 3, 3)[0]
         if specular is not None:
             m.specular[:] = _colour("material.specular", specular, 3)
         if emissive is not None:

@@ -288,8 +288,9 @@ class _Compare:
         test_dir = os.path.dirname(str(item.path if hasattr(item, "path") else item.fspath))
         baseline_dir = os.path.join(test_dir, mark.kwargs.get("baseline_dir", "baseline"))
         filename = mark.kwargs.get("filename") or _safe(item.name) + ".png"
-        module = str(item.path if hasattr(item, "path") else item.fspath)
-        key = "%s.%s" % (os.path.splitext(os.path.basename(module))[0], item.name)
+        # the test's id from the root directory: two test files of one name
+        # in two folders are two keys
+        key = item.nodeid
         row = {"test": item.nodeid, "key": key, "hash": image.hash, "status": "passed",
                "message": "", "result": None, "baseline": None, "diff": None}
         self.rows.append(row)
