@@ -1,4 +1,4 @@
-/* `zscan bench arrays [--size WxH] [--md FILE]`
+/* `zscan bench arrays [--quick] [--size WxH] [--md FILE]`
  *
  * What a mesh given as arrays costs (zs_scene_add_object, as the Python
  * binding's zscan.Mesh calls it) beside the same mesh read from its OBJ
@@ -22,15 +22,22 @@
 #include "zscan/zscan.h"
 
 static const char usage[] =
-    "usage: zscan bench arrays [--size WxH] [--md FILE]\n"
+    "usage: zscan bench arrays [--quick] [--size WxH] [--md FILE]\n"
     "  a mesh built from arrays (zs_scene_add_object) beside the same mesh loaded\n"
     "  from its OBJ file: load, build and render times (median of 11, wall time)\n"
     "  of a height field with normals, colours and texture coordinates.\n"
+    "  --quick      the smallest mesh only, 3 times: a check that it runs\n"
     "  --size WxH   the image size (default 640x480)\n"
     "  --md FILE    the table in Markdown\n";
 
 static const int grids[] = {32, 128, 256};
-enum { NGRIDS = sizeof grids / sizeof grids[0], REPEAT = 11 };
+enum { NGRIDS = sizeof grids / sizeof grids[0], MAX_REPEAT = 11 };
+
+/* how many times each is measured (--quick: 3) */
+static int repeat = MAX_REPEAT;
+
+/* the rows measured (--quick: 1) */
+static int ngrids = NGRIDS;
 
 typedef struct arrays_row {
   int triangles;
@@ -111,19 +118,19 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 static double median(double *t) {
-  qsort(t, REPEAT, sizeof *t, cmp_double);
-  return t[REPEAT / 2];
+  qsort(t, (size_t)repeat, sizeof *t, cmp_double);
+  return t[repeat / 2];
 }
 
-/* Renders the two scenes REPEAT times each, in turn (so that both see the
+/* Renders the two scenes `repeat` times each, in turn (so that both see the
  * same machine): the median times, and whether the last images match. */
 static zs_status time_renders(const zs_scene *const scenes[2], int w, int h, double ms[2],
                               int *same, zs_error *err) {
   zs_render_opts o = {.width = w, .height = h, .shade = ZS_SHADE_PHONG, .threads = 1,
                       .eye = {1.2, -1.6, 1.8}, .has_eye = 1};
-  double t[2][REPEAT];
+  double t[2][MAX_REPEAT];
   uint64_t hash[2] = {0, 0};
-  for (int r = 0; r < REPEAT; r++)
+  for (int r = 0; r < repeat; r++)
     for (int k = 0; k < 2; k++) {
       zs_image im = {0};
       const double t0 = zs_wall_ms();
@@ -153,10 +160,10 @@ static zs_status measure(int n, int w, int h, const char *dir, arrays_row *row, 
   zs_mesh mesh = {.pos = f.pos, .nverts = f.nverts, .face_start = f.start, .face_vert = f.vert,
                   .nfaces = f.nfaces, .nattrs = f.nverts, .normal = f.normal, .color = f.color,
                   .uv = f.uv};
-  double tl[REPEAT], tb[REPEAT];
+  double tl[MAX_REPEAT], tb[MAX_REPEAT];
   zs_scene *file = NULL, *built = NULL;
   zs_status st = ZS_OK;
-  for (int r = 0; r < REPEAT && !st; r++) {
+  for (int r = 0; r < repeat && !st; r++) {
     zs_scene_destroy(file), zs_scene_destroy(built);
     file = built = NULL;
     double t0 = zs_wall_ms();
@@ -191,7 +198,7 @@ static void write_rows(FILE *f, const void *rows, int md) {
   else
     fprintf(f, "%9s %10s %10s %14s %15s %5s\n", "triangles", "load_ms", "build_ms",
             "render_file_ms", "render_array_ms", "same");
-  for (int i = 0; i < NGRIDS; i++) {
+  for (int i = 0; i < ngrids; i++) {
     if (md)
       fprintf(f, "| %d | %.1f ms | %.1f ms | %.1f ms | %.1f ms | %s |\n", x[i].triangles,
               x[i].load_ms, x[i].build_ms, x[i].render_file_ms, x[i].render_arrays_ms,
@@ -208,6 +215,13 @@ int zs_cmd_bench_arrays(int argc, char **argv) {
   zs_error_clear(&err);
   int w = 640, h = 480, parsing = 1;
   const char *md = NULL;
+  /* --quick anywhere, taken out; the rest as bench lines and colours read them */
+  for (int i = 1; i < argc; i++)
+    if (strcmp(argv[i], "--quick") == 0) {
+      repeat = 3, ngrids = 1;
+      memmove(argv + i, argv + i + 1, (size_t)(argc - i) * sizeof *argv);
+      argc--, i--;
+    }
   zs_status st = zs_bench_size_md_args(argc, argv, "arrays", &w, &h, &md, &err);
   char dir[4096];
   const char *tmpdir = getenv("TMPDIR");
@@ -217,7 +231,7 @@ int zs_cmd_bench_arrays(int argc, char **argv) {
                       strerror(errno));
   if (!st) parsing = 0;
   arrays_row x[NGRIDS];
-  for (int i = 0; i < NGRIDS && !st; i++) st = measure(grids[i], w, h, dir, &x[i], &err);
+  for (int i = 0; i < ngrids && !st; i++) st = measure(grids[i], w, h, dir, &x[i], &err);
   if (!parsing) rmdir(dir);
   if (!st) {
     char title[96];

@@ -391,6 +391,7 @@ static void lines_args(const files *fs, how h, arglist *a) {
 
 static void arrays_args(const files *fs, how h, arglist *a) {
   arg(a, "arrays");
+  if (h.quick) arg(a, "--quick");
   if (h.files) arg2(a, "--md", fs->arrays);
 }
 
