@@ -7,8 +7,9 @@
  * OBJ written with every number's shortest round trip so both are one
  * mesh.  For each size: the time to load the file, to build the scene
  * from the arrays, and to render each scene (Phong, one thread, the two
- * in turn), the median of eleven, wall time on this machine; and whether
- * both images are the same bytes (they must be). */
+ * in turn), each the median of its repeats, and whether both images are
+ * the same bytes (they must be).  The figures: docs/RESULTS.md, from
+ * `zscan bench arrays`. */
 #include "tools/bench_arrays.h"
 
 #include <errno.h>

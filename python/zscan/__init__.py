@@ -409,7 +409,7 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
     return o
 
 
-class Scene:
+class Scene(_lib.Handle):
     """A scene to render several times: loaded from a file or a generated
     scene (zscan.load(input), or Scene(input)), or built in code: Scene()
     is empty, scene.add(mesh, transform) places a zscan.Mesh in it as an
@@ -417,6 +417,8 @@ class Scene:
     of render()'s eye, target, up, fovy, near, far) are the defaults of
     its renders.  Close it (or use it in a with block) to free it at once;
     otherwise it is freed when collected."""
+
+    _DESTROY = "zs_scene_destroy"
 
     def __init__(self, input=None, allow_empty=False):
         lib = _lib.load()
@@ -541,21 +543,6 @@ class Scene:
             finally:
                 _lib.free(dp)
         return image
-
-    def close(self):
-        if self._ptr is not None:
-            self._lib.zs_scene_destroy(self._ptr)
-            self._ptr = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        if getattr(self, "_ptr", None) is not None:
-            self.close()
 
 
 def load(input=None, allow_empty=False):

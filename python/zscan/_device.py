@@ -32,7 +32,7 @@ def _matrix(name, transform):
 RENDER_BACKGROUND = 0x1E2228
 
 
-class Device:
+class Device(_lib.Handle):
     """A zscan device of size (width, height): algo 'zbuffer' (queries,
     depth and id buffers) or 'scanline'; shade as render() takes it
     (default 'auto', as render's); background 0xRRGGBB (default
@@ -52,6 +52,8 @@ class Device:
     A mesh drawn is kept alive until finish (the device reads its arrays
     then); its faces are drawn as given (convex, 3 .. 64 corners), not
     split as a scene splits them."""
+
+    _DESTROY = "zs_device_destroy"
 
     def __init__(self, size=(1024, 768), algo="zbuffer", shade="auto", threads=1,
                  cull_back=False, background=None, clock=None):
@@ -259,18 +261,3 @@ class Device:
     def frame_ps(self):
         """The frame's modelled time so far, integer picoseconds."""
         return self._lib.zs_device_frame_ps(self._handle())
-
-    def close(self):
-        if self._ptr is not None:
-            self._lib.zs_device_destroy(self._ptr)
-            self._ptr = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        if getattr(self, "_ptr", None) is not None:
-            self.close()

@@ -430,6 +430,30 @@ def _declare(lib):
         fn.argtypes = argtypes
 
 
+class Handle:
+    """What owns a library object (self._ptr) and frees it with the library
+    function named by _DESTROY: at close(), at the end of a with block, or
+    when collected."""
+
+    _DESTROY = None
+    _ptr = None
+
+    def close(self):
+        if self._ptr is not None:
+            getattr(self._lib, self._DESTROY)(self._ptr)
+            self._ptr = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        if getattr(self, "_ptr", None) is not None:
+            self.close()
+
+
 _libc = ctypes.CDLL(None)
 _libc.free.argtypes = [ctypes.c_void_p]
 _libc.free.restype = None

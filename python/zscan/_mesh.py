@@ -128,11 +128,13 @@ def _colour(name, value, n):
     return out + [255] * (n - len(out))
 
 
-class Texture:
+class Texture(_lib.Handle):
     """A base-colour texture: an H x W x 3 or x 4 uint8 array (row 0 at the
     top, as an image is read), made into a zs_texture with its mip chain.
     Keep it as long as a scene that uses it (the Mesh and Scene holding it
     do)."""
+
+    _DESTROY = "zs_texture_destroy"
 
     def __init__(self, pixels):
         np = _numpy()
@@ -162,10 +164,6 @@ class Texture:
             raise Error(err.msg.decode("utf-8", "replace"), err.code)
         self._ptr = handle
 
-    def __del__(self):
-        if getattr(self, "_ptr", None) is not None:
-            self._lib.zs_texture_destroy(self._ptr)
-            self._ptr = None
 
     def __repr__(self):
         return "<zscan.Texture %dx%d>" % (self.width, self.height)
