@@ -149,6 +149,28 @@ zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image 
   return st;
 }
 
+zs_status zs_render_normals(const zs_scene *scene, const zs_render_opts *opts, float **xyz,
+                            zs_error *err) {
+  *xyz = NULL;
+  zs_camera cam;
+  zs_frame_opts fo = {0};
+  zs_shadow_opts so;
+  zs_status st = settle(scene, opts, &cam, &fo, &so, err);
+  if (st != ZS_OK) return st;
+  double view[16], proj[16];
+  if ((st = zs_frame_camera(scene, &cam, fo.width, fo.height, view, proj, err))) return st;
+  float *n = calloc(3 * (size_t)fo.width * (size_t)fo.height, sizeof *n);
+  if (!n) return zs_error_set(err, ZS_ERR_NOMEM, "zs_render_normals: out of memory");
+  const zs_device_config cfg = {fo.width,     fo.height,  fo.algo,           ZS_SHADE_NORMAL,
+                                fo.cull_back, fo.threads, ZS_BACKGROUND_RGB, 0, (int)fo.filter};
+  if ((st = zs_frame_render_normals(&cfg, scene, view, proj, n, err))) {
+    free(n);
+    return st;
+  }
+  *xyz = n;
+  return ZS_OK;
+}
+
 zs_status zs_query_objects(const zs_scene *scene, const zs_render_opts *opts,
                            zs_object_visibility **out, int32_t *n, zs_error *err) {
   *out = NULL;

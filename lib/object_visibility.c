@@ -13,6 +13,37 @@ static int by_first_face(const void *a, const void *b) {
   return (x->object > y->object) - (x->object < y->object);
 }
 
+/* One pass for the largest id, one to fill: an id no face, line or point
+ * draws (a gap a file's numbering leaves) stays -1. */
+zs_status zs_scene_id_objects(const zs_scene *s, int32_t **owner, uint32_t *n, zs_error *err) {
+  *owner = NULL;
+  *n = 0;
+  uint64_t nids = 0;
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
+    const uint64_t base = s->inst[i].id_base;
+    for (int32_t f = 0; f < m->nfaces; f++)
+      if (base + (uint32_t)m->face_id[f] + 1 > nids) nids = base + (uint32_t)m->face_id[f] + 1;
+    const uint64_t prims = (uint64_t)m->nlines + (uint64_t)m->npoints;
+    if (prims && base + (uint32_t)m->prim_id + prims > nids) nids = base + (uint32_t)m->prim_id + prims;
+  }
+  if (nids >= ZS_ID_NONE)
+    return zs_error_set(err, ZS_ERR_LIMIT, "zs_scene_id_objects: ids beyond %u", ZS_ID_NONE - 1);
+  int32_t *o = malloc((size_t)(nids ? nids : 1) * sizeof *o);
+  if (!o) return zs_error_set(err, ZS_ERR_NOMEM, "zs_scene_id_objects: out of memory");
+  for (uint64_t id = 0; id < nids; id++) o[id] = -1;
+  for (int32_t i = 0; i < s->ninst; i++) {
+    const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
+    const uint32_t base = s->inst[i].id_base;
+    for (int32_t f = 0; f < m->nfaces; f++) o[base + (uint32_t)m->face_id[f]] = i;
+    const int64_t prims = (int64_t)m->nlines + m->npoints;
+    for (int64_t k = 0; k < prims; k++) o[base + (uint32_t)m->prim_id + (uint32_t)k] = i;
+  }
+  *owner = o;
+  *n = (uint32_t)nids;
+  return ZS_OK;
+}
+
 zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width, int height,
                               int cull_back, zs_object_visibility **out, int32_t *n,
                               zs_error *err) {
@@ -29,8 +60,7 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
   if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);
   if (st == ZS_OK) st = zs_frame_draw_all(dev, s, view, proj, err);
   if (st == ZS_OK) st = zs_device_finish(dev, NULL, NULL, err);
-  /* the instance of every face id, and each instance's first face */
-  uint32_t nids = 0;
+  /* each instance's first face, and the instance of every id */
   for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
     const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
     lines[i].name = s->inst[i].name;
@@ -38,20 +68,15 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
     lines[i].first_face = UINT32_MAX;
     for (int32_t f = 0; f < m->nfaces; f++) {
       uint32_t id = s->inst[i].id_base + (uint32_t)m->face_id[f];
-      if (id + 1 > nids) nids = id + 1;
       if (id < lines[i].first_face) lines[i].first_face = id;
     }
   }
-  if (st == ZS_OK && !(owner = malloc((size_t)(nids ? nids : 1) * sizeof *owner)))
-    st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
-    const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
-    for (int32_t f = 0; f < m->nfaces; f++) owner[s->inst[i].id_base + (uint32_t)m->face_id[f]] = i;
-  }
+  uint32_t nids = 0;
+  if (st == ZS_OK) st = zs_scene_id_objects(s, &owner, &nids, err);
   if (st == ZS_OK) {
     const uint32_t *ids = zs_device_id_buffer(dev);
     for (size_t p = 0; p < (size_t)width * (size_t)height; p++)
-      if (ids[p] < nids) lines[owner[ids[p]]].visible++;
+      if (ids[p] < nids && owner[ids[p]] >= 0) lines[owner[ids[p]]].visible++;
   }
   for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
     zs_query q;

@@ -129,6 +129,8 @@ uint64_t zs_device_query_result(zs_device *d, zs_query q) {
   return d->queries[q].samples;
 }
 
+uint32_t zs_device_queries(const zs_device *d) { return d->nqueries; }
+
 /* ---- the depth pyramid's commands ---- */
 
 zs_status zs_device_hzb_build(zs_device *d, zs_error *err) {

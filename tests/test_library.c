@@ -553,6 +553,86 @@ START_TEST(query_objects_equal_the_command) {
 }
 END_TEST
 
+/* zs_render_normals is `zscan render --normals`, float for float; and
+ * zs_scene_id_objects turns the id image into objects whose pixel counts
+ * are zs_query_objects' (a scene of several objects, and an OBJ whose
+ * objects interleave their faces' ids). */
+START_TEST(normals_and_objects_equal_the_command) {
+  static char out[BIG], cerr[1024];
+  const char *input = "builtin:cubes?n=3";
+  char pfm[4200];
+  snprintf(pfm, sizeof pfm, "%s", zs_test_bin("library-normals.pfm"));
+  const char *args[] = {"render", input, "--size", "160x120", "-o",
+                        zs_test_bin("library-normals.png"), "--normals", pfm, NULL};
+  ck_assert_msg(zs_test_run_zscan(args, out, sizeof out, cerr, sizeof cerr) == 0, "%s", cerr);
+  size_t n = 0;
+  unsigned char *file = zs_test_slurp(pfm, &n);
+  const char *header = "PF\n160 120\n-1.0\n";
+  ck_assert_uint_eq(n, strlen(header) + 160 * 120 * 3 * 4);
+  ck_assert_int_eq(memcmp(file, header, strlen(header)), 0);
+  zs_error err = {0};
+  zs_scene *scene;
+  ck_assert_int_eq(zs_scene_load(input, NULL, &scene, &err), ZS_OK);
+  zs_render_opts o = {0};
+  o.width = 160;
+  o.height = 120;
+  float *xyz = NULL;
+  ck_assert_msg(zs_render_normals(scene, &o, &xyz, &err) == ZS_OK, "%s", err.msg);
+  size_t lit = 0;
+  for (int y = 0; y < 120; y++) /* the file's rows run bottom up */
+    for (int x = 0; x < 3 * 160; x++) {
+      uint32_t bits = 0, mine;
+      const unsigned char *b = file + strlen(header) + 4 * ((size_t)(119 - y) * 480 + (size_t)x);
+      for (int k = 0; k < 4; k++) bits |= (uint32_t)b[k] << (8 * k);
+      memcpy(&mine, &xyz[(size_t)y * 480 + (size_t)x], 4);
+      ck_assert_msg(bits == mine, "pixel %d, %d, channel %d: %08x in the file, %08x here", x / 3,
+                    y, x % 3, bits, mine);
+      lit += mine != 0;
+    }
+  ck_assert_uint_gt(lit, 1000);
+  free(xyz);
+  free(file);
+
+  const char *inputs[] = {input, zs_test_src("tests/data/query/squares.obj")};
+  for (int k = 0; k < 2; k++) {
+    if (k) {
+      zs_scene_destroy(scene);
+      ck_assert_msg(zs_scene_load(inputs[k], NULL, &scene, &err) == ZS_OK, "%s", err.msg);
+    }
+    o.shade = ZS_SHADE_ID;
+    zs_image im;
+    ck_assert_msg(zs_render(scene, &o, &im, NULL, NULL, &err) == ZS_OK, "%s", err.msg);
+    int32_t *owner = NULL;
+    uint32_t nids = 0;
+    ck_assert_msg(zs_scene_id_objects(scene, &owner, &nids, &err) == ZS_OK, "%s", err.msg);
+    uint64_t count[64] = {0};
+    int32_t nobj = zs_scene_objects(scene);
+    ck_assert_int_le(nobj, 64);
+    for (size_t p = 0; p < 160 * 120; p++) {
+      uint32_t rgb = im.rgb[p] & 0xFFFFFFu;
+      if (!rgb) continue;
+      ck_assert_uint_lt(rgb - 1, nids);
+      ck_assert_int_ge(owner[rgb - 1], 0);
+      count[owner[rgb - 1]]++;
+    }
+    zs_object_visibility *v;
+    int32_t nv;
+    o.shade = ZS_SHADE_AUTO;
+    ck_assert_msg(zs_query_objects(scene, &o, &v, &nv, &err) == ZS_OK, "%s", err.msg);
+    ck_assert_int_eq(nv, nobj);
+    ck_assert_int_ge(nobj, 2);
+    for (int32_t i = 0; i < nv; i++)
+      ck_assert_msg(count[v[i].object] == v[i].visible, "%s object %s: %llu pixels by id, %llu",
+                    inputs[k], v[i].name, (unsigned long long)count[v[i].object],
+                    (unsigned long long)v[i].visible);
+    free(v);
+    free(owner);
+    zs_image_free(&im);
+  }
+  zs_scene_destroy(scene);
+}
+END_TEST
+
 /* zs_walk's frames are the rows of `zscan walk --csv` for the same
  * method (wall time aside), moving objects and all. */
 START_TEST(walk_frames_equal_the_command) {
@@ -636,6 +716,7 @@ int main(void) {
   tcase_add_test(tc, render_hash_equals_the_command);
   tcase_add_test(tc, cxx_example_queries);
   tcase_add_test(tc, query_objects_equal_the_command);
+  tcase_add_test(tc, normals_and_objects_equal_the_command);
   tcase_add_test(tc, walk_frames_equal_the_command);
   tcase_add_test(tc, the_example_everywhere_builds_and_runs);
   tcase_add_test(tc, one_version_everywhere);

@@ -538,8 +538,11 @@ zs_status zs_device_query_boxes(zs_device *dev, const double (*lo)[3], const dou
 double zs_device_query_margin(const zs_device *dev, const double lo[3], const double hi[3]);
 /* Whether the result of q is available at the modelled CPU time now. */
 int zs_device_query_ready(const zs_device *dev, zs_query q);
-/* The samples of q (waiting for it, in modelled time, when not ready). */
+/* The samples of q (waiting for it, in modelled time, when not ready);
+ * 0 for a q not issued since the frame's clear. */
 uint64_t zs_device_query_result(zs_device *dev, zs_query q);
+/* The queries begun since the frame's clear: q is one when q < this. */
+uint32_t zs_device_queries(const zs_device *dev);
 
 /* ---- Hidden lines (zbuffer mode) ----
  * After the faces are drawn, zs_device_fill_color paints the colour buffer
@@ -759,6 +762,21 @@ typedef struct zs_render_opts {
  * stats, when not NULL, the frame's counters. */
 zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image *out,
                     float **depth, zs_raster_stats *stats, zs_error *err);
+
+/* The eye-space unit normal at each pixel of the frame zs_render draws
+ * with the same options (its camera, size, algo, cull_back), as
+ * `zscan render --normals` writes them: *xyz receives a malloc'd array of
+ * 3 * width * height floats, x, y, z a pixel, row 0 at the top, 0, 0, 0
+ * where no face is (free() it). */
+zs_status zs_render_normals(const zs_scene *scene, const zs_render_opts *opts, float **xyz,
+                            zs_error *err);
+
+/* The object (instance) each id of the scene's renders belongs to, to turn
+ * a pixel's id (ZS_SHADE_ID's RGB - 1, or zs_row.id) into its object:
+ * *owner receives a malloc'd array of *n entries, entry i the object whose
+ * face, line or point draws id i, -1 where none does (free() it). */
+zs_status zs_scene_id_objects(const zs_scene *scene, int32_t **owner, uint32_t *n,
+                              zs_error *err);
 
 /* Per object (instance) of the scene, as `zscan query` prints it: the
  * pixels of the rendered frame (zbuffer mode, opts as for zs_render) that

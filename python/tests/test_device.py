@@ -62,6 +62,39 @@ def test_queries_count_what_the_wall_leaves_and_wait_for_the_latency():
     assert quick.clock["cpu_ps"] > before
 
 
+def test_a_query_not_begun_is_refused():
+    dev, (q,) = frame(boxes=(((3, -1, -1), (4, 1, 1)),))
+    with pytest.raises(ValueError, match=r"^q: query 1 was not begun in this frame \(0 .. 0 were\)$"):
+        dev.query_result(1)
+    dev.clear()
+    with pytest.raises(ValueError, match=r"^q: query 0 was not begun in this frame \(none was\)$"):
+        dev.query_ready(q)
+
+
+def test_normals_and_ids_from_the_device():
+    hill = zscan.Mesh(np.array([[-2, -2, 0], [2, -2, 0], [0, 2, 1]], float), [[0, 1, 2]],
+                      normals=[[0, 0, 1], [0, 0, 1], [0, 0, 1]])
+    dev = zscan.Device(SIZE, normals=True)  # normals need a shading of attributes
+    dev.camera(eye=(0, 0, 8))
+    dev.clear()
+    dev.draw(hill, id_base=41)
+    im = dev.finish()
+    assert set(np.unique(dev.id_buffer)) == {41, 0xFFFFFFFF}
+    assert im.normals.shape == (SIZE[1], SIZE[0], 3) and im.normals.dtype == np.float32
+    inside = dev.id_buffer == 41
+    assert (np.linalg.norm(im.normals[inside], axis=1) > 0.999).all()
+    assert (im.normals[~inside] == 0).all()
+    ids = zscan.Device(SIZE, shade="id")
+    ids.camera(eye=(0, 0, 8))
+    ids.clear()
+    ids.draw(hill, id_base=41)
+    im = ids.finish()
+    assert set(np.unique(im.ids)) == {-1, 41}
+    with pytest.raises(ValueError, match=r"^Image.objects: only a Scene's render knows"):
+        im.objects
+    assert zscan.Device(SIZE).finish().normals is None
+
+
 def test_bad_device_arguments():
     with pytest.raises(ValueError, match=r"^size: 0x48: each side must be 1 to 16384$"):
         zscan.Device((0, 48))

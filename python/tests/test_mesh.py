@@ -147,6 +147,11 @@ def test_objects_with_transforms_number_their_faces_in_turn():
     assert left_ids and max(left_ids) < len(faces) <= min(right_ids)
     assert im.depth.dtype == np.float32 and im.depth.shape == ids.shape
     assert ((im.depth < 1) == (ids >= 0)).all()
+    objects = im.objects
+    assert objects.dtype == np.int32 and objects.shape == ids.shape
+    assert ((objects == -1) == (ids == -1)).all()
+    assert (objects[ids >= len(faces)] == 1).all() and (objects[(ids >= 0) & (ids < len(faces))] == 0).all()
+    assert set(np.unique(objects[:, : SIZE[0] // 2])) == {-1, 0}
     png = im._repr_png_()
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -253,3 +258,78 @@ def test_bad_transforms_and_meshes_in_a_scene():
     assert scene.objects == 0
     scene.add(m)
     assert scene.objects == 1 and scene.faces == 1
+
+
+def test_objects_of_a_file_count_what_the_command_queries(cli):
+    """image.objects of a loaded scene: each object's pixels are the
+    visible pixels `zscan query` prints for it."""
+    import subprocess
+
+    from conftest import CLI, CLI_ENV
+
+    scene = zscan.load("builtin:cubes?n=2")
+    objects = scene.render(size=(160, 120), shade="id").objects
+    out = subprocess.run([CLI, "query", "builtin:cubes?n=2", "--size", "160x120"],
+                         capture_output=True, text=True, env=CLI_ENV, check=True).stdout
+    names = [line.split()[1] for line in out.splitlines() if line.startswith("object ")]
+    visible = [int(line.split("visible=")[1].split()[0]) for line in out.splitlines()
+               if line.startswith("object ")]
+    assert len(names) == scene.objects == 8 and sum(visible) > 0
+    counts = np.bincount(objects[objects >= 0].ravel(), minlength=8)
+    # the command lists objects by first face, which is their order here
+    assert counts.tolist() == visible
+    with pytest.raises(ValueError, match=r"^Image.ids: the image was not rendered with shade='id'$"):
+        scene.render(size=(16, 12)).objects
+
+
+def test_normals_are_the_commands_float_for_float(tmp_path, cli):
+    """image.normals is `zscan render --normals`'s PFM, bit for bit."""
+    pfm = tmp_path / "n.pfm"
+    r = cli("builtin:cubes?n=2", "--size", "80x60", "--normals", pfm, stats=False)
+    assert r.returncode == 0, r.stderr
+    data = pfm.read_bytes()
+    header = b"PF\n80 60\n-1.0\n"
+    assert data.startswith(header)
+    theirs = np.frombuffer(data[len(header):], "<f4").reshape(60, 80, 3)[::-1]
+    im = zscan.render("builtin:cubes?n=2", size=(80, 60), normals=True)
+    assert im.normals.dtype == np.float32 and im.normals.shape == (60, 80, 3)
+    assert im.normals.tobytes() == np.ascontiguousarray(theirs).tobytes()
+    lit = np.linalg.norm(im.normals, axis=2)
+    assert (lit[lit > 0] > 0.999).all() and (lit == 0).sum() > 0
+    with pytest.raises(TypeError, match=r"^normals: expected True or False, got 1$"):
+        zscan.render("builtin:cubes?n=2", size=(8, 6), normals=1)
+
+
+def test_arrays_changed_after_the_mesh_are_named_as_arguments():
+    """Arrays handed over without a copy are the caller's: a value made bad
+    since is named by its argument, before the library reads it."""
+    vertices = np.array(V)
+    faces = np.array([[0, 1, 2]], np.int32)
+    mesh = zscan.Mesh(vertices, faces, copy=False)
+    faces[0, 2] = 7
+    with pytest.raises(ValueError, match=r"^faces\[0, 2\]: vertex 7 out of range \(3 vertices\) "
+                                         r"\(changed since the Mesh was made\)$"):
+        zscan.render(mesh, size=(8, 8))
+    faces[0, 2] = 2
+    vertices[1, 0] = np.nan
+    with pytest.raises(ValueError, match=r"^vertices\[1, 0\]: nan is not a finite number "):
+        zscan.Scene().add(mesh)
+    vertices[1, 0] = 1.0
+    assert zscan.render(mesh, size=(8, 8)).width == 8
+
+
+def test_scene_lights_and_camera_are_checked_when_set():
+    scene = zscan.Scene()
+    with pytest.raises(ValueError, match=r"^scene.lights: 0 lights: 1 to 16 \(None: "):
+        scene.lights = []
+    with pytest.raises(TypeError, match=r"^scene.lights\[1\]: expected a zscan.Light, got 'str'$"):
+        scene.lights = [zscan.Light("directional", direction=(0, 0, -1)), "sun"]
+    with pytest.raises(ValueError, match=r"^scene.camera: unknown key 'position' \(eye, target, "):
+        scene.camera = {"position": (0, 0, 5)}
+    with pytest.raises(ValueError, match=r"^scene.camera\['eye'\]: expected three numbers"):
+        scene.camera = {"eye": (0, 5)}
+    with pytest.raises(ValueError, match=r"^scene.camera\['fovy'\]: expected a finite number"):
+        scene.camera = {"fovy": float("inf")}
+    assert scene.lights is None and scene.camera == {}
+    scene.camera = {"eye": [0, 0, 5], "fovy": 30}
+    assert scene.camera == {"eye": (0.0, 0.0, 5.0), "fovy": 30.0}

@@ -135,7 +135,8 @@ class Image:
     at the top).  Images come from render() and read_png(), or from
     Image(width, height, rgb)."""
 
-    __slots__ = ("width", "height", "rgb", "stats", "depth", "shade", "_hash")
+    __slots__ = ("width", "height", "rgb", "stats", "depth", "normals", "shade", "_owner",
+                 "_hash")
 
     def __init__(self, width, height, rgb, _hash=None):
         width, height = int(width), int(height)
@@ -152,7 +153,9 @@ class Image:
         self.rgb = rgb
         self.stats = None
         self.depth = None  # render(depth=True): float32 (height, width), 1 = far
+        self.normals = None  # render(normals=True): float32 (height, width, 3)
         self.shade = None  # the shading it was rendered with
+        self._owner = None  # a scene's render with shade='id': the object of each id
         self._hash = _hash
 
     def _as_zs_image(self):
@@ -208,6 +211,21 @@ class Image:
         a = numpy.frombuffer(self.rgb, dtype=numpy.uint8).reshape(self.height, self.width, 3)
         a = a.astype(numpy.int32)
         return (a[:, :, 0] << 16 | a[:, :, 1] << 8 | a[:, :, 2]) - 1
+
+    @property
+    def objects(self):
+        """The objects (their numbers in the scene, from 0, in the order
+        they were loaded or added) of a scene's render with shade='id', as
+        a new numpy int32 array of shape (height, width): -1 where none is."""
+        ids = self.ids
+        if self._owner is None:
+            raise ValueError("Image.objects: only a Scene's render knows its objects (a "
+                             "Device draws meshes, not objects: use Image.ids and id_base)")
+        import numpy
+
+        owner = numpy.concatenate([self._owner, numpy.full(1, -1, numpy.int32)])
+        # ids beyond the table (none, from a scene's render) would read its last entry, -1
+        return owner[numpy.where((ids >= 0) & (ids < len(self._owner)), ids, -1)]
 
     def _repr_png_(self):
         """The PNG bytes, for notebooks (IPython shows the image inline)."""
@@ -409,6 +427,25 @@ def _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, thr
     return o
 
 
+_CAMERA_KEYS = ("eye", "target", "up", "fovy", "near", "far")
+
+
+def _light_list(name, lights):
+    """lights as a checked list of 1 to ZS_MAX_LIGHTS zscan.Light."""
+    try:
+        lights = list(lights)
+    except TypeError:
+        raise TypeError("%s: expected a list of zscan.Light, got %r"
+                        % (name, type(lights).__name__)) from None
+    for i, l in enumerate(lights):
+        if not isinstance(l, Light):
+            raise TypeError("%s[%d]: expected a zscan.Light, got %r" % (name, i, type(l).__name__))
+    if not 1 <= len(lights) <= _lib.ZS_MAX_LIGHTS:
+        raise ValueError("%s: %d lights: 1 to %d (None: the scene's own, else the headlight)"
+                         % (name, len(lights), _lib.ZS_MAX_LIGHTS))
+    return lights
+
+
 class Scene(_lib.Handle):
     """A scene to render several times: loaded from a file or a generated
     scene (zscan.load(input), or Scene(input)), or built in code: Scene()
@@ -426,8 +463,8 @@ class Scene(_lib.Handle):
         self._ptr = None
         self._meshes = []  # what the scene's textures belong to
         self.input = input
-        self.lights = None
-        self.camera = {}
+        self._lights = None
+        self._camera = {}
         handle = ctypes.c_void_p()
         err = _lib.zs_error()
         if input is None:
@@ -478,6 +515,40 @@ class Scene(_lib.Handle):
         return self._ptr
 
     @property
+    def lights(self):
+        """The lights of the renders that give none (a list of zscan.Light,
+        1 to ZS_MAX_LIGHTS), or None: the scene's own, else the headlight.
+        Checked when set."""
+        return None if self._lights is None else list(self._lights)
+
+    @lights.setter
+    def lights(self, lights):
+        self._lights = None if lights is None else _light_list("scene.lights", lights)
+
+    @property
+    def camera(self):
+        """The camera of the renders that give none: a dict of render()'s
+        eye, target, up (three numbers), fovy, near, far (numbers); a key
+        left out, or None, is the scene's own.  Checked when set."""
+        return dict(self._camera)
+
+    @camera.setter
+    def camera(self, camera):
+        if camera is None:
+            camera = {}
+        if not isinstance(camera, dict):
+            raise TypeError("scene.camera: expected a dict, got %r" % type(camera).__name__)
+        checked = {}
+        for k, v in camera.items():
+            if k not in _CAMERA_KEYS:
+                raise ValueError("scene.camera: unknown key %r (%s)" % (k, ", ".join(_CAMERA_KEYS)))
+            if v is not None:
+                v = _vec3 if k in ("eye", "target", "up") else _number
+                v = v("scene.camera[%r]" % k, camera[k])
+            checked[k] = v
+        self._camera = checked
+
+    @property
     def objects(self):
         """Instances (objects) in the scene."""
         return self._lib.zs_scene_objects(self._handle())
@@ -490,38 +561,31 @@ class Scene(_lib.Handle):
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
                far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
                cull_back=False, shadows=False, samples=1, supersample=False, line_width=1,
-               point_size=1, point_shape="square", lights=None, depth=False):
+               point_size=1, point_shape="square", lights=None, depth=False, normals=False):
         """Renders the scene as zscan.render() does; lights (a list of
         zscan.Light, None: scene.lights, else the scene's own or the
         headlight) and the camera arguments left None take the scene's.
         depth=True also gives image.depth, the window depth of each pixel
-        as a float32 (height, width) array (1 = far)."""
-        cam = dict(self.camera or {})
+        as a float32 (height, width) array (1 = far); normals=True
+        image.normals, the eye-space unit normal of each pixel as float32
+        (height, width, 3) (0, 0, 0 where no face is); shade='id' also
+        image.objects."""
+        cam = dict(self._camera)
         given = dict(eye=eye, target=target, up=up, fovy=fovy, near=near, far=far)
         for k, v in given.items():
             if k not in cam or v is not None:
                 cam[k] = v
-        unknown = set(cam) - set(given)
-        if unknown:
-            raise ValueError("scene.camera: unknown key %r (eye, target, up, fovy, near, far)"
-                             % sorted(unknown)[0])
         opts = _render_opts(size, cam["eye"], cam["target"], cam["up"], cam["fovy"], cam["near"],
                             cam["far"], algo, shade, style, threads, cull_back, shadows, samples,
                             supersample, line_width, point_size, point_shape)
-        lights = self.lights if lights is None else lights
+        lights = self._lights if lights is None else _light_list("lights", lights)
         if lights is not None:
-            lights = list(lights)
-            for i, l in enumerate(lights):
-                if not isinstance(l, Light):
-                    raise TypeError("lights[%d]: expected a zscan.Light, got %r"
-                                    % (i, type(l).__name__))
-            if not 1 <= len(lights) <= _lib.ZS_MAX_LIGHTS:
-                raise ValueError("lights: %d lights: 1 to %d" % (len(lights), _lib.ZS_MAX_LIGHTS))
             arr = (_lib.zs_light * len(lights))(*[l._c for l in lights])
             opts.lights = arr
             opts.nlights = len(lights)
-        if not isinstance(depth, bool):
-            raise TypeError("depth: expected True or False, got %r" % (depth,))
+        for name, flag in (("depth", depth), ("normals", normals)):
+            if not isinstance(flag, bool):
+                raise TypeError("%s: expected True or False, got %r" % (name, flag))
         im = _lib.zs_image()
         stats = _lib.zs_raster_stats()
         err = _lib.zs_error()
@@ -542,7 +606,37 @@ class Scene(_lib.Handle):
                     image.height, image.width).copy()
             finally:
                 _lib.free(dp)
+        if normals:
+            image.normals = self._floats(self._lib.zs_render_normals, opts,
+                                         (image.height, image.width, 3))
+        if shade == "id":
+            owner = ctypes.POINTER(ctypes.c_int32)()
+            n = ctypes.c_uint32()
+            if self._lib.zs_scene_id_objects(self._handle(), ctypes.byref(owner), ctypes.byref(n),
+                                             ctypes.byref(err)):
+                _raise(err)
+            try:
+                import numpy
+
+                image._owner = numpy.ctypeslib.as_array(owner, shape=(max(n.value, 1),))[
+                    : n.value].copy()
+            finally:
+                _lib.free(owner)
         return image
+
+    def _floats(self, fn, opts, shape):
+        """The float array fn (zs_render_normals) allocates for opts, as numpy."""
+        import numpy
+
+        p = ctypes.POINTER(ctypes.c_float)()
+        err = _lib.zs_error()
+        if fn(self._handle(), ctypes.byref(opts), ctypes.byref(p), ctypes.byref(err)):
+            _raise(err)
+        try:
+            return numpy.ctypeslib.as_array(p, shape=(int(numpy.prod(shape)),)).reshape(
+                shape).copy()
+        finally:
+            _lib.free(p)
 
 
 def load(input=None, allow_empty=False):
@@ -555,7 +649,8 @@ def load(input=None, allow_empty=False):
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
            far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
            cull_back=False, allow_empty=False, shadows=False, samples=1, supersample=False,
-           line_width=1, point_size=1, point_shape="square", lights=None, depth=False):
+           line_width=1, point_size=1, point_shape="square", lights=None, depth=False,
+           normals=False):
     """Loads input and renders one frame: the image `zscan render INPUT` makes
     with the same options, byte for byte (its .hash is the CLI's image_hash).
 
@@ -582,6 +677,10 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     allow_empty   render a model without faces (--allow-empty)
     lights     a list of zscan.Light (None: the scene's, else the headlight)
     depth      also give image.depth, float32 (height, width), 1 = far
+    normals    also give image.normals, float32 (height, width, 3): the
+               eye-space unit normal of each pixel, 0, 0, 0 where no face is
+    shade='id' gives image.ids (face ids) and image.objects (the object of
+               each pixel), int32 (height, width), -1 where none is
 
     input may also be a zscan.Mesh, or anything shaped like a trimesh mesh,
     rendered as the one object of a scene.
@@ -606,4 +705,4 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
                             cull_back=cull_back, shadows=shadows, samples=samples,
                             supersample=supersample, line_width=line_width,
                             point_size=point_size, point_shape=point_shape, lights=lights,
-                            depth=depth)
+                            depth=depth, normals=normals)

@@ -5,7 +5,7 @@ latency, the modelled clock and the counters."""
 import ctypes
 
 from . import _lib
-from ._mesh import Light, Mesh, _numpy
+from ._mesh import Mesh, _numpy
 
 
 def _d3(name, v):
@@ -38,7 +38,10 @@ class Device(_lib.Handle):
     (default 'auto', as render's); background 0xRRGGBB (default
     zscan.RENDER_BACKGROUND, render's, so that the two draw the same bytes);
     clock a dict of zs_clock_params fields in nanoseconds (the rest the
-    documented defaults), e.g. {"query_latency_ns": 50000}.
+    documented defaults), e.g. {"query_latency_ns": 50000}; normals=True
+    gives finish()'s image .normals, the eye-space unit normal of each
+    pixel as float32 (height, width, 3), 0, 0, 0 where no face shaded from
+    attributes is (zs_device_set_normals).
 
         dev = zscan.Device((320, 240), clock={"query_latency_ns": 20000})
         dev.camera(eye=(0, 0, 8), target=(0, 0, 0))
@@ -56,7 +59,7 @@ class Device(_lib.Handle):
     _DESTROY = "zs_device_destroy"
 
     def __init__(self, size=(1024, 768), algo="zbuffer", shade="auto", threads=1,
-                 cull_back=False, background=None, clock=None):
+                 cull_back=False, background=None, clock=None, normals=False):
         from . import _choice, _int, _raise
 
         lib = _lib.load()
@@ -73,8 +76,11 @@ class Device(_lib.Handle):
                              % (cfg.width, cfg.height, _lib.ZS_MAX_IMAGE_SIDE))
         cfg.algo = _choice("algo", algo, _lib.ALGOS[:2])
         cfg.shade = _choice("shade", shade, _lib.SHADES)
+        self.shade = shade
         cfg.threads = _int("threads", threads)
         cfg.cull_back = 1 if cull_back else 0
+        if not isinstance(normals, bool):
+            raise TypeError("normals: expected True or False, got %r" % (normals,))
         cfg.background = (RENDER_BACKGROUND if background is None
                           else _int("background", background) & 0xFFFFFF)
         handle = ctypes.c_void_p()
@@ -84,6 +90,9 @@ class Device(_lib.Handle):
         self._ptr = handle
         self.width, self.height = cfg.width, cfg.height
         self._drawn = []
+        self._normals = normals
+        if normals:
+            self._check(lib.zs_device_set_normals(handle, 1, ctypes.byref(err)), err)
         if clock is not None:
             self.set_clock(clock)
 
@@ -132,10 +141,11 @@ class Device(_lib.Handle):
     def lights(self, lights):
         """The lights of the lit shadings from the next draw on (a list of
         zscan.Light; [] for the headlight)."""
+        from . import _light_list
+
         lights = list(lights)
-        for i, l in enumerate(lights):
-            if not isinstance(l, Light):
-                raise TypeError("lights[%d]: expected a zscan.Light, got %r" % (i, type(l).__name__))
+        if lights:
+            lights = _light_list("lights", lights)
         arr = (_lib.zs_light * max(1, len(lights)))(*[l._c for l in lights])
         err = _lib.zs_error()
         self._check(self._lib.zs_device_set_lights(self._handle(), arr, len(lights),
@@ -190,11 +200,21 @@ class Device(_lib.Handle):
 
     def query_ready(self, q):
         """Whether q's result is there at the modelled CPU time now."""
-        return bool(self._lib.zs_device_query_ready(self._handle(), q))
+        return bool(self._lib.zs_device_query_ready(self._handle(), self._issued(q)))
 
     def query_result(self, q):
         """q's samples (the modelled CPU waits for them when not ready)."""
-        return self._lib.zs_device_query_result(self._handle(), q)
+        return self._lib.zs_device_query_result(self._handle(), self._issued(q))
+
+    def _issued(self, q):
+        from . import _int
+
+        q = _int("q", q)
+        n = self._lib.zs_device_queries(self._handle())
+        if not 0 <= q < n:
+            raise ValueError("q: query %d was not begun in this frame (%s)"
+                             % (q, "none was" if n == 0 else "0 .. %d were" % (n - 1)))
+        return q
 
     def cpu_work(self, kind, count=1):
         """Reports the caller's own work to the modelled CPU clock: 'node',
@@ -211,12 +231,15 @@ class Device(_lib.Handle):
         np = _numpy()
         w = self.width
         rows = np.zeros((self.height, w, 3), np.uint8)
+        normals = np.zeros((self.height, w, 3), np.float32) if self._normals else None
 
         def sink(_user, row):
             r = row.contents
             px = np.ctypeslib.as_array(r.rgb, shape=(w,))
             for c, shift in enumerate((16, 8, 0)):
                 rows[r.y, :, c] = (px >> shift) & 0xFF
+            if normals is not None and r.normal:
+                normals[r.y] = np.ctypeslib.as_array(r.normal, shape=(w, 3))
 
         cb = _lib.zs_row_sink(sink)
         err = _lib.zs_error()
@@ -224,7 +247,10 @@ class Device(_lib.Handle):
         self._drawn = []
         if status:
             _raise(err)
-        return Image(w, self.height, rows.tobytes())
+        image = Image(w, self.height, rows.tobytes())
+        image.shade = self.shade
+        image.normals = normals
+        return image
 
     def _buffer(self, fn):
         p = fn(self._handle())

@@ -285,6 +285,16 @@ _SIGNATURES = {
             _p_error,
         ],
     ),
+    "zs_render_normals": (
+        _c_status,
+        [ctypes.c_void_p, ctypes.POINTER(zs_render_opts),
+         ctypes.POINTER(ctypes.POINTER(ctypes.c_float)), _p_error],
+    ),
+    "zs_scene_id_objects": (
+        _c_status,
+        [ctypes.c_void_p, ctypes.POINTER(ctypes.POINTER(ctypes.c_int32)),
+         ctypes.POINTER(ctypes.c_uint32), _p_error],
+    ),
     "zs_scene_create": (_c_status, [ctypes.POINTER(ctypes.c_void_p), _p_error]),
     "zs_scene_add_object": (
         _c_status,
@@ -322,6 +332,8 @@ _SIGNATURES = {
     "zs_device_query_box": (_c_status, [ctypes.c_void_p, _p_d3, _p_d3, _p_error]),
     "zs_device_query_ready": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_uint32]),
     "zs_device_query_result": (ctypes.c_uint64, [ctypes.c_void_p, ctypes.c_uint32]),
+    "zs_device_queries": (ctypes.c_uint32, [ctypes.c_void_p]),
+    "zs_device_set_normals": (_c_status, [ctypes.c_void_p, ctypes.c_int, _p_error]),
     "zs_clock_params_default": (None, [ctypes.POINTER(zs_clock_params)]),
     "zs_device_set_clock": (
         _c_status, [ctypes.c_void_p, ctypes.POINTER(zs_clock_params), _p_error]),

@@ -32,6 +32,25 @@ def _where(index):
     return "[" + ", ".join(str(int(i)) for i in index) + "]"
 
 
+def _check_finite(name, a, after=""):
+    bad = ~_numpy().isfinite(a)
+    if bad.any():
+        at = tuple(_numpy().argwhere(bad)[0])
+        raise ValueError("%s%s: %r is not a finite number%s" % (name, _where(at), a[at].item(), after))
+
+
+def _check_range(name, a, n, where=None, after=""):
+    """Every index of a in 0 .. n - 1; where(i) the index to name for the
+    flat index i (None: a's own)."""
+    np = _numpy()
+    bad = (a < 0) | (a >= n)
+    if bad.any():
+        at = tuple(np.argwhere(bad)[0])
+        shown = where(at[0]) if where else at
+        raise ValueError("%s%s: vertex %d out of range (%d vertices)%s"
+                         % (name, _where(shown), a[at], n, after))
+
+
 def _array(name, value, dtype, width, copy):
     """value as a C-contiguous numpy array of dtype with rows of `width`
     (None: 1-D), checked; the same object when it already is one."""
@@ -61,10 +80,7 @@ def _array(name, value, dtype, width, copy):
             % (name, " or ".join(str(w) for w in widths), a.shape)
         )
     if np.issubdtype(a.dtype, np.floating):
-        bad = ~np.isfinite(a)
-        if bad.any():
-            at = tuple(np.argwhere(bad)[0])
-            raise ValueError("%s%s: %r is not a finite number" % (name, _where(at), a[at].item()))
+        _check_finite(name, a)
     if np.issubdtype(dtype, np.integer) and not np.issubdtype(a.dtype, np.integer):
         raise TypeError("%s: expected integers, got an array of %s" % (name, a.dtype))
     if a.dtype == dtype and a.flags.c_contiguous:
@@ -245,6 +261,14 @@ def _pointer(a, ctype):
     return a.ctypes.data_as(ctypes.POINTER(ctype)) if a is not None else None
 
 
+def _corner_of(start):
+    """The (face, corner) of the flat corner index i, faces starting at start."""
+    def where(i):
+        f = int(_numpy().searchsorted(start, i, side="right") - 1)
+        return f, int(i - start[f])
+    return where
+
+
 class Mesh:
     """A mesh from arrays, to add to a Scene (or render alone with
     Mesh.render).
@@ -329,6 +353,12 @@ class Mesh:
         self.point_vert = self._indices("points", points, n, None, copy)
         if m == 0 and self.line_vert is None and self.point_vert is None:
             raise ValueError("faces: a mesh needs faces, lines or points")
+        given = dict(vertices=(self.vertices, vertices), normals=(self.normal, normals),
+                     uvs=(self.uv, uvs), faces=(self.face_vert, faces),
+                     lines=(self.line_vert, lines), points=(self.point_vert, points))
+        # the arrays the caller still holds: _recheck looks at these again
+        self._shared = {k for k, (a, v) in given.items()
+                        if isinstance(v, np.ndarray) and np.may_share_memory(a, v)}
 
     @staticmethod
     def _indices(name, value, n, width, copy):
@@ -336,11 +366,7 @@ class Mesh:
         if value is None:
             return None
         a = _array(name, value, np.int32, width, copy)
-        bad = (a < 0) | (a >= n)
-        if bad.any():
-            at = tuple(np.argwhere(bad)[0])
-            raise ValueError("%s%s: vertex %d out of range (%d vertices)"
-                             % (name, _where(at), a[at], n))
+        _check_range(name, a, n)
         return a.reshape(-1)
 
     @staticmethod
@@ -356,7 +382,6 @@ class Mesh:
             k = a.shape[1]
             start = np.arange(0, k * a.shape[0] + 1, k, dtype=np.int32)
             vert = a.reshape(-1)
-            where = lambda i: (i // k, i % k)  # noqa: E731
         else:
             sizes, flat = [], []
             for i, f in enumerate(faces):
@@ -384,14 +409,7 @@ class Mesh:
                                  % (f, i - start[f], flat[i], n))
             vert = np.asarray(flat, np.int32)
             start = start.astype(np.int32)
-            where = lambda i: (int(np.searchsorted(start, i, side="right") - 1),  # noqa: E731
-                               int(i - start[int(np.searchsorted(start, i, side="right") - 1)]))
-        bad = (vert < 0) | (vert >= n)
-        if bad.any():
-            i = int(np.argwhere(bad)[0][0])
-            f, j = where(i)
-            raise ValueError("faces%s: vertex %d out of range (%d vertices)"
-                             % (_where((f, j)), vert[i], n))
+        _check_range("faces", vert, n, _corner_of(start))
         if start.shape[0] - 1 >= 2 ** 31:
             raise ValueError("faces: more than a mesh holds")
         return start, vert
@@ -413,8 +431,26 @@ class Mesh:
             kw["normals"] = mesh.vertex_normals
         return cls(mesh.vertices, mesh.faces, **kw)
 
+    def _recheck(self):
+        """The values checked again where the arrays are the caller's own
+        (handed over without a copy): one changed since the Mesh was made
+        is named as its argument, not as the library's field."""
+        after = " (changed since the Mesh was made)"
+        shared = self._shared
+        for name, a in (("vertices", self.vertices), ("normals", self.normal), ("uvs", self.uv)):
+            if name in shared:
+                _check_finite(name, a, after)
+        n = self.vertices.shape[0]
+        if "faces" in shared:
+            _check_range("faces", self.face_vert, n, _corner_of(self.face_start), after)
+        if "lines" in shared:
+            _check_range("lines", self.line_vert, n, lambda i: (i // 2, i % 2), after)
+        if "points" in shared:
+            _check_range("points", self.point_vert, n, None, after)
+
     def _c(self):
         """The zs_mesh over this mesh's arrays (valid while the mesh is)."""
+        self._recheck()
         m = _lib.zs_mesh()
         m.pos = _pointer(self.vertices, ctypes.c_double)
         m.nverts = self.vertices.shape[0]
