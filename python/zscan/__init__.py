@@ -223,9 +223,8 @@ class Image:
                              "Device draws meshes, not objects: use Image.ids and id_base)")
         import numpy
 
-        owner = numpy.concatenate([self._owner, numpy.full(1, -1, numpy.int32)])
-        # ids beyond the table (none, from a scene's render) would read its last entry, -1
-        return owner[numpy.where((ids >= 0) & (ids < len(self._owner)), ids, -1)]
+        # the background's id, -1, reads the entry appended: -1
+        return numpy.append(self._owner, numpy.int32(-1))[ids]
 
     def _repr_png_(self):
         """The PNG bytes, for notebooks (IPython shows the image inline)."""
@@ -542,10 +541,8 @@ class Scene(_lib.Handle):
         for k, v in camera.items():
             if k not in _CAMERA_KEYS:
                 raise ValueError("scene.camera: unknown key %r (%s)" % (k, ", ".join(_CAMERA_KEYS)))
-            if v is not None:
-                v = _vec3 if k in ("eye", "target", "up") else _number
-                v = v("scene.camera[%r]" % k, camera[k])
-            checked[k] = v
+            check = _vec3 if k in ("eye", "target", "up") else _number
+            checked[k] = None if v is None else check("scene.camera[%r]" % k, v)
         self._camera = checked
 
     @property
