@@ -37,7 +37,7 @@ const char zs_cmd_trace_page_tail[] =
     "<script>\n"
     "\"use strict\";\n"
     "const lines = JSON.parse(document.getElementById(\"trace\").textContent);\n"
-    "const head = lines[0], rows = lines.slice(1), W = head.width, H = head.height;\n"
+    "const head = lines[0], rows = lines.slice(1).filter(r => !r.frame), W = head.width, H = head.height;\n"
     "const byRow = {}; for (const r of rows) byRow[r.y] = r;\n"
     "const ys = rows.map(r => r.y); /* scanlines, or steps in the z-buffer */\n"
     "const palette = [\"#e6194b\",\"#3cb44b\",\"#4363d8\",\"#f58231\",\"#911eb4\",\"#42d4f4\",\"#f032e6\",\"#9a6324\",\"#808000\",\"#469990\"];\n"
