@@ -35,6 +35,10 @@
 #include "zscan/error.h"
 #include "zscan/zscan.h"
 
+/* Whether width x height is a size an image may have: each side 1 ..
+ * ZS_MAX_IMAGE_SIDE. */
+int zs_image_size_ok(int width, int height);
+
 /* The text chunk (keyword, text) that marks a PNG whose pixels are face
  * id + 1, background 0. */
 #define ZS_PNG_SHADE_KEY "zscan shade"
