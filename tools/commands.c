@@ -13,6 +13,8 @@ const zs_command zs_commands[] = {
     {"golden", "update|check M", "golden-image tests over a manifest, with reports",
      zs_cmd_golden},
     {"trace", "INPUT", "the scanline z-buffer's tables, scanline by scanline", zs_cmd_trace},
+    {"teach", "-o FILE.html", "the live teaching page: draw polygons, step the real walk",
+     zs_cmd_teach},
     {"walk", "SCENE", "culling methods over the scene's camera path", zs_cmd_walk},
     {"path", "SCENE", "the cameras of the scene's walk, one line per frame", zs_cmd_path},
     {"query", "INPUT", "per object: pixels owned and bounding-box samples", zs_cmd_query},

@@ -24,6 +24,7 @@ int zs_cmd_diff(int argc, char **argv);
 int zs_cmd_composite(int argc, char **argv);
 int zs_cmd_golden(int argc, char **argv);
 int zs_cmd_trace(int argc, char **argv);
+int zs_cmd_teach(int argc, char **argv);
 int zs_cmd_walk(int argc, char **argv);
 int zs_cmd_path(int argc, char **argv);
 int zs_cmd_query(int argc, char **argv);
