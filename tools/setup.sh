@@ -13,6 +13,7 @@
 # Environment:
 #   ZS_CROSS         cross targets to set up (default: none)
 #   ZS_CROSS_ROOT    where their libraries go (default: /opt/zscan-cross)
+#   ZS_WASM_ROOT     cJSON's sources for the teaching page's engine (default: /opt/zscan-wasm)
 #   ZS_BUILD_DIR     build directory (default: build)
 #   ZS_BUILD_TYPE    CMake build type (default: Release)
 #   ZS_CMAKE_ARGS    extra CMake arguments (e.g. -DZS_SANITIZE=ON)
@@ -39,10 +40,15 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 #   python3-venv python3-pip python3-setuptools python3-wheel
 #                               the Python package built and installed offline
 #                               into a fresh virtual environment (tools/check-wheel.sh)
+#   emscripten                  the teaching page's engine: zscan's trace in WebAssembly
+#   dpkg-dev                    apt-get source: cJSON's sources, which the engine builds
+#   nodejs npm                  the teaching page's browser tests (tests/web), and emcc's
+#                               own tools (only when node or npm is missing: a Node.js
+#                               from elsewhere serves as well)
 zs_packages=(cmake gcc g++ make pkg-config libpng-dev libjpeg62-turbo-dev check clang libcjson-dev
              libassimp-dev assimp-testmodels gnuplot-nox libosmesa6-dev valgrind chromium
              python3-pytest python3-numpy python3-venv python3-pip python3-setuptools
-             python3-wheel)
+             python3-wheel emscripten dpkg-dev)
 
 zs_missing=()
 for p in "${zs_packages[@]}"; do
@@ -50,6 +56,8 @@ for p in "${zs_packages[@]}"; do
     zs_missing+=("$p")
   fi
 done
+command -v node >/dev/null || zs_missing+=(nodejs)
+command -v npm >/dev/null || zs_missing+=(npm)
 if [ ${#zs_missing[@]} -gt 0 ]; then
   echo "setup: installing ${zs_missing[*]}" >&2
   if [ "$(id -u)" -ne 0 ]; then
@@ -102,11 +110,49 @@ if [ -n "${ZS_CROSS:-}" ]; then
   done
 fi
 
+# cJSON's own sources for the teaching page's WebAssembly engine (Debian
+# ships the library, not its sources): Debian's source package, through
+# apt lists of our own, so the machine's sources.list is left as it is.
+zs_wasm_root=${ZS_WASM_ROOT:-/opt/zscan-wasm}
+if [ ! -f "$zs_wasm_root/cjson/cJSON.c" ]; then
+  if [ "$(id -u)" -ne 0 ] && [ ! -w "$(dirname "$zs_wasm_root")" ]; then
+    echo "setup: $zs_wasm_root missing and not root: zscan teach will say so" >&2
+  else
+    echo "setup: cJSON's sources into $zs_wasm_root" >&2
+    zs_apt=$(mktemp -d)
+    mkdir -p "$zs_apt/parts" "$zs_apt/lists/partial" "$zs_apt/src"
+    chmod 755 "$zs_apt" "$zs_apt/src" # (apt's download user writes there)
+    for f in /etc/apt/sources.list.d/*.sources; do
+      [ -f "$f" ] && sed 's/^Types: deb$/Types: deb-src/' "$f" >"$zs_apt/parts/$(basename "$f")"
+    done
+    if [ -f /etc/apt/sources.list ]; then
+      sed -n 's/^deb /deb-src /p' /etc/apt/sources.list >"$zs_apt/parts/debian.list"
+    fi
+    zs_apt_opts=(-o Dir::Etc::SourceList=/dev/null -o "Dir::Etc::SourceParts=$zs_apt/parts"
+                 -o "Dir::State::Lists=$zs_apt/lists")
+    apt-get "${zs_apt_opts[@]}" update -qq >&2
+    (cd "$zs_apt/src" && apt-get "${zs_apt_opts[@]}" source -qq cjson) >/dev/null
+    rm -rf "$zs_wasm_root/cjson" "$zs_wasm_root/include"
+    mkdir -p "$zs_wasm_root/include/cjson"
+    cp -r "$zs_apt"/src/cjson-*/ "$zs_wasm_root/cjson.part"
+    cp "$zs_wasm_root/cjson.part/cJSON.h" "$zs_wasm_root/include/cjson/"
+    mv "$zs_wasm_root/cjson.part" "$zs_wasm_root/cjson" # whole, or not at all
+    rm -rf "$zs_apt"
+  fi
+fi
+
+# The browser tests' driver (tests/web/package.json: playwright-core, which
+# drives Debian's chromium and downloads no browser), from the npm registry.
+if [ ! -f "$zs_root/tests/web/node_modules/playwright-core/package.json" ]; then
+  echo "setup: npm ci in tests/web" >&2
+  (cd "$zs_root/tests/web" && npm ci --no-audit --no-fund --silent) >&2
+fi
+
 ZS_BUILD_DIR=${ZS_BUILD_DIR:-"$zs_root/build"}
 ZS_BUILD_TYPE=${ZS_BUILD_TYPE:-Release}
 # shellcheck disable=SC2086
 cmake -S "$zs_root" -B "$ZS_BUILD_DIR" -DCMAKE_BUILD_TYPE="$ZS_BUILD_TYPE" \
-  -DZS_WERROR=ON ${ZS_CMAKE_ARGS:-} >/dev/null
+  -DZS_WERROR=ON -DZS_WASM_ROOT="$zs_wasm_root" ${ZS_CMAKE_ARGS:-} >/dev/null
 echo "setup: building in $ZS_BUILD_DIR" >&2
 if ! cmake --build "$ZS_BUILD_DIR" -j "$(nproc)" >"$ZS_BUILD_DIR/build.log" 2>&1; then
   cat "$ZS_BUILD_DIR/build.log" >&2

@@ -121,7 +121,8 @@ static void read_corner(lesson *l, int i, int j, const cJSON *v, const double *p
   c->x = a[0];
   c->y = a[1];
   c->z = plane ? plane[0] * a[0] + plane[1] * a[1] + plane[2] : a[2];
-  c->I = n > want ? (int)a[want] : -1;
+  /* (checked below; a double out of int's range must not be converted) */
+  c->I = n > want && a[want] >= 0 && a[want] <= 255 ? (int)a[want] : -1;
   if (c->x < 0 || c->x > l->width - 1)
     fail(l, path, "x = %g is off the grid: 0 to %g", c->x, l->width - 1);
   else if (c->y < 0 || c->y > l->height - 1)
