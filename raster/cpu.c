@@ -23,12 +23,16 @@ zs_simd zs_span_simd_level(zs_simd most) {
   if (most >= ZS_SIMD_AVX2 && cpu_has_avx2()) return ZS_SIMD_AVX2;
   if (most >= ZS_SIMD_SSE2) return ZS_SIMD_SSE2;
 #endif
+#ifdef ZS_HAVE_NEON_PATHS
+  if (most != ZS_SIMD_SCALAR) return ZS_SIMD_NEON;
+#endif
   (void)most;
   return ZS_SIMD_SCALAR;
 }
 
 const char *zs_simd_name(zs_simd level) {
-  return level == ZS_SIMD_AVX512 ? "avx512"
+  return level == ZS_SIMD_NEON     ? "neon"
+         : level == ZS_SIMD_AVX512 ? "avx512"
          : level == ZS_SIMD_AVX2 ? "avx2"
          : level == ZS_SIMD_SSE2 ? "sse2"
                                  : "scalar";

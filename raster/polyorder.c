@@ -215,6 +215,7 @@ ZS_BY_POLYGON_COPY(draw_scalar, ZS_KERNEL_DRAW, ZS_SIMD_SCALAR, INT_MAX, 0)
 ZS_BY_POLYGON_COPY(draw_sse2, ZS_KERNEL_DRAW, ZS_SIMD_SSE2, ZS_SIMD_MIN_SPAN, 0)
 ZS_BY_POLYGON_COPY(draw_avx2, ZS_KERNEL_DRAW, ZS_SIMD_AVX2, ZS_SIMD_MIN_SPAN, 0)
 ZS_BY_POLYGON_COPY(draw_avx512, ZS_KERNEL_DRAW, ZS_SIMD_AVX512, ZS_AVX512_MIN_SPAN, 0)
+ZS_BY_POLYGON_COPY(draw_neon, ZS_KERNEL_DRAW, ZS_SIMD_NEON, ZS_SIMD_MIN_SPAN, 0)
 ZS_BY_POLYGON_COPY(overdraw, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR, INT_MAX, 0)
 ZS_BY_POLYGON_COPY(query, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR, INT_MAX, 0)
 ZS_BY_POLYGON_COPY(fragment, ZS_KERNEL_FRAGMENT, ZS_SIMD_SCALAR, INT_MAX, 0)
@@ -237,16 +238,16 @@ ZS_AVX512_TARGET static void draw_avx512_soup(const zs_batch *b, const zs_target
 #endif
 
 void zs_polyorder_choose(zs_kernel k, zs_simd simd, zs_traversal *out) {
-  static const zs_by_polygon_fn mesh[ZS_KERNELS][4] = {
-      {draw_scalar, draw_sse2, draw_avx2, draw_avx512},
-      {overdraw, overdraw, overdraw, overdraw},
-      {query, query, query, query},
-      {fragment, fragment, fragment, fragment}};
-  static const zs_by_polygon_fn soup[ZS_KERNELS][4] = {
-      {draw_scalar, draw_sse2, draw_avx2, draw_avx512_soup},
-      {overdraw, overdraw, overdraw, overdraw},
-      {query, query, query, query},
-      {fragment, fragment, fragment, fragment}};
+  static const zs_by_polygon_fn mesh[ZS_KERNELS][ZS_SIMD_LEVELS] = {
+      {draw_scalar, draw_sse2, draw_avx2, draw_avx512, draw_neon},
+      {overdraw, overdraw, overdraw, overdraw, overdraw},
+      {query, query, query, query, query},
+      {fragment, fragment, fragment, fragment, fragment}};
+  static const zs_by_polygon_fn soup[ZS_KERNELS][ZS_SIMD_LEVELS] = {
+      {draw_scalar, draw_sse2, draw_avx2, draw_avx512_soup, draw_neon},
+      {overdraw, overdraw, overdraw, overdraw, overdraw},
+      {query, query, query, query, query},
+      {fragment, fragment, fragment, fragment, fragment}};
   out->by_polygon_mesh = mesh[k][simd];
   out->by_polygon_soup = soup[k][simd];
 }

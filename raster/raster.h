@@ -157,13 +157,16 @@ zs_device_memory zs_device_memory_of(const zs_device *dev);
 /* The draw kernel's span fill (span_simd.c): long spans sixteen pixels at
  * a time with AVX-512 where the CPU has it (F, VL, BW, DQ), else eight at
  * a time with AVX2, else four with SSE2 (every x86-64 CPU), else the
- * scalar loop (span.h, zs_simd_min_span: how long a span each takes); at
+ * scalar loop (span.h, zs_simd_min_span: how long a span each takes);
+ * on aarch64 four at a time with NEON, else the scalar loop; at
  * AVX-512 the vertex stage also takes eight vertices at a time
  * (vertex_simd.c).  zs_span_simd_level gives the widest level the CPU has
  * up to most; a device takes its level once, from its config's spans.
  * The images and counters are the same at every level. */
 typedef enum zs_simd {
-  ZS_SIMD_SCALAR = 0, ZS_SIMD_SSE2 = 1, ZS_SIMD_AVX2 = 2, ZS_SIMD_AVX512 = 3
+  ZS_SIMD_SCALAR = 0, ZS_SIMD_SSE2 = 1, ZS_SIMD_AVX2 = 2, ZS_SIMD_AVX512 = 3,
+  ZS_SIMD_NEON = 4, /* aarch64's only level: every cap but scalar takes it */
+  ZS_SIMD_LEVELS
 } zs_simd;
 zs_simd zs_span_simd_level(zs_simd most);
 /* The level a device fills its spans with (fixed at its creation). */

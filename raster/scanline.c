@@ -128,21 +128,22 @@ ZS_SCAN_COPIES(draw_scalar, ZS_KERNEL_DRAW, ZS_SIMD_SCALAR)
 ZS_SCAN_COPIES(draw_sse2, ZS_KERNEL_DRAW, ZS_SIMD_SSE2)
 ZS_SCAN_COPIES(draw_avx2, ZS_KERNEL_DRAW, ZS_SIMD_AVX2)
 ZS_SCAN_COPIES(draw_avx512, ZS_KERNEL_DRAW, ZS_SIMD_AVX512)
+ZS_SCAN_COPIES(draw_neon, ZS_KERNEL_DRAW, ZS_SIMD_NEON)
 ZS_SCAN_COPIES(overdraw, ZS_KERNEL_OVERDRAW, ZS_SIMD_SCALAR)
 ZS_SCAN_COPIES(query, ZS_KERNEL_QUERY, ZS_SIMD_SCALAR)
 ZS_SCAN_COPIES(fragment, ZS_KERNEL_FRAGMENT, ZS_SIMD_SCALAR)
 
 void zs_scan_choose(zs_kernel k, zs_simd simd, zs_traversal *out) {
-  static const zs_scan_rows_fn rows[ZS_KERNELS][4] = {
-      {draw_scalar_rows, draw_sse2_rows, draw_avx2_rows, draw_avx512_rows},
-      {overdraw_rows, overdraw_rows, overdraw_rows, overdraw_rows},
-      {query_rows, query_rows, query_rows, query_rows},
-      {fragment_rows, fragment_rows, fragment_rows, fragment_rows}};
-  static const zs_scan_sorted_fn sorted[ZS_KERNELS][4] = {
-      {draw_scalar_sorted, draw_sse2_sorted, draw_avx2_sorted, draw_avx512_sorted},
-      {overdraw_sorted, overdraw_sorted, overdraw_sorted, overdraw_sorted},
-      {query_sorted, query_sorted, query_sorted, query_sorted},
-      {fragment_sorted, fragment_sorted, fragment_sorted, fragment_sorted}};
+  static const zs_scan_rows_fn rows[ZS_KERNELS][ZS_SIMD_LEVELS] = {
+      {draw_scalar_rows, draw_sse2_rows, draw_avx2_rows, draw_avx512_rows, draw_neon_rows},
+      {overdraw_rows, overdraw_rows, overdraw_rows, overdraw_rows, overdraw_rows},
+      {query_rows, query_rows, query_rows, query_rows, query_rows},
+      {fragment_rows, fragment_rows, fragment_rows, fragment_rows, fragment_rows}};
+  static const zs_scan_sorted_fn sorted[ZS_KERNELS][ZS_SIMD_LEVELS] = {
+      {draw_scalar_sorted, draw_sse2_sorted, draw_avx2_sorted, draw_avx512_sorted, draw_neon_sorted},
+      {overdraw_sorted, overdraw_sorted, overdraw_sorted, overdraw_sorted, overdraw_sorted},
+      {query_sorted, query_sorted, query_sorted, query_sorted, query_sorted},
+      {fragment_sorted, fragment_sorted, fragment_sorted, fragment_sorted, fragment_sorted}};
   out->scan_rows = rows[k][simd];
   out->scan_sorted = sorted[k][simd];
 }

@@ -106,7 +106,8 @@ static double per(double a, double b) { return b > 0 ? a / b : 0.0; }
 static zs_span_fill spans_of(const bench_opts *o) { return (zs_span_fill)(ZS_SPANS_SCALAR + o->simd); }
 
 static const char *simd_label(zs_simd level) {
-  return level == ZS_SIMD_AVX512 ? "AVX-512"
+  return level == ZS_SIMD_NEON     ? "NEON"
+         : level == ZS_SIMD_AVX512 ? "AVX-512"
          : level == ZS_SIMD_AVX2 ? "AVX2"
          : level == ZS_SIMD_SSE2 ? "SSE2"
                                  : "scalar";

@@ -78,6 +78,7 @@ static const char usage_tail[] =
     "  --simd LEVEL        cap the span fill and the vertex stage at scalar, sse2, avx2\n"
     "                      or avx512 (default best: the widest the CPU has); every\n"
     "                      level draws the same bytes, which this lets a user check\n"
+    "                      (on aarch64 every level but scalar is NEON)\n"
     "  --repeat K          render K times; ms_per_frame is the median (default 1)\n"
     "  --stats             print the frame's counters as one JSON line, with the\n"
     "                      camera used (\"camera\": eye, target, up, fovy or ortho,\n"

@@ -3,7 +3,8 @@
 # big-endian words, i686 with SSE2 arithmetic), zscan and its golden test
 # cross-built with Debian's cross compiler against the target's own
 # libraries (tools/setup.sh unpacks them, ZS_CROSS), then run under
-# qemu-user: every golden image's hash must be tests/golden/hashes.txt's,
+# qemu-user (aarch64 with its NEON span fill): every golden image's hash
+# must be tests/golden/hashes.txt's,
 # and every counter, modelled time and image hash `zscan render --stats`
 # and `zscan walk --csv` print for a set of scenes, modes, shadings and
 # culling methods must be the native build's, byte for byte (their wall
@@ -99,6 +100,14 @@ TOOLCHAIN
     loader="/usr/$triplet/lib/ld-linux.so.2 --library-path $LD_LIBRARY_PATH:/usr/$triplet/lib"
     # shellcheck disable=SC2086
     if $loader "$build/zscan" --version >/dev/null 2>&1; then run=$loader; fi
+  fi
+  # aarch64 fills its spans with NEON: the comparisons below are of that path
+  # shellcheck disable=SC2086
+  fill=$($run "$build/zscan" --version | sed -n 's/^span fill: //p')
+  echo "cross-check: $t: span fill $fill" >&2
+  if [ "$t" = aarch64 ] && [ "$fill" != neon ]; then
+    echo "cross-check: aarch64: the span fill is '$fill', not neon" >&2
+    status=1
   fi
   echo "cross-check: $t: the golden images (${run%% *})" >&2
   # shellcheck disable=SC2086

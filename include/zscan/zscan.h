@@ -218,7 +218,8 @@ typedef enum zs_span_fill {
   ZS_SPANS_SCALAR,
   ZS_SPANS_SSE2,      /* at most SSE2 */
   ZS_SPANS_AVX2,      /* at most AVX2 */
-  ZS_SPANS_AVX512     /* at most AVX-512 (the same as best on x86-64) */
+  ZS_SPANS_AVX512     /* at most AVX-512 (the same as best on x86-64); on
+                       * aarch64 every level but scalar is NEON's */
 } zs_span_fill;
 
 /* ---- Textures and materials ----
