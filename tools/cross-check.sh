@@ -11,7 +11,10 @@
 # times aside, and on i686 the memory sizes, which a 32-bit device's
 # pointers make its own).  Models of assimp's formats are left to the native tests.
 #
-#   tools/cross-check.sh [TARGET ...]     (default: aarch64 s390x i686)
+# musl (x86-64 with musl's C library) is built against libraries
+# tools/setup.sh builds from Debian's sources, and run as it is.
+#
+#   tools/cross-check.sh [TARGET ...]     (default: aarch64 s390x i686 musl)
 #
 # Environment: ZS_CROSS_ROOT (as tools/setup.sh), ZS_BUILD_DIR (the
 # native build, default build/), ZS_CROSS_BUILD (default build-cross).
@@ -21,7 +24,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # shellcheck source=tools/cross-targets.sh
 . "$zs_root/tools/cross-targets.sh"
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(aarch64 s390x i686)
+[ ${#targets[@]} -gt 0 ] || targets=(aarch64 s390x i686 musl)
 for t in "${targets[@]}"; do zs_cross_target "$t" >/dev/null || exit 2; done
 ZS_CROSS="${targets[*]}" "$zs_root/tools/setup.sh"
 source_root=${ZS_CROSS_ROOT:-/opt/zscan-cross}
@@ -62,12 +65,23 @@ run_cases() {
 
 run_cases "$native" >"$out/native.txt"
 status=0
-for t in "${targets[@]}"; do
-  read -r _ triplet qemu multiarch <<<"$(zs_cross_target "$t")"
-  root="$source_root/$t"
-  build="$out/$t"
-  rm -rf "$build" # the toolchain's flags take at a first configure only
-  mkdir -p "$build"
+# The musl build: x86-64 with musl's C library (musl-gcc) against the
+# static libraries tools/setup.sh built for it, run as it is.
+build_musl() {
+  local m=${ZS_MUSL_ROOT:-/opt/zscan-musl}
+  echo "cross-check: musl: building" >&2
+  PKG_CONFIG_LIBDIR="$m/lib/pkgconfig" \
+    cmake -S "$zs_root" -B "$build" -DCMAKE_C_COMPILER=musl-gcc -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_C_STANDARD_LIBRARIES="-L$m/lib -lz -lm -lpthread" -DZS_WERROR=ON -DZS_ASSIMP=OFF \
+    -DZS_MESA=OFF -DZS_TEACH_WASM=OFF >"$build/configure.log" 2>&1 ||
+    { cat "$build/configure.log" >&2; exit 1; }
+  cmake --build "$build" -j "$(nproc)" --target zscan test_golden >"$build/build.log" 2>&1 ||
+    { cat "$build/build.log" >&2; exit 1; }
+}
+
+# A Debian cross target: its toolchain file, the build, and how to run it
+# (qemu-user; i686 on this CPU where it can), in run.
+build_cross() {
   cat >"$build/toolchain.cmake" <<TOOLCHAIN
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR $t)
@@ -101,6 +115,20 @@ TOOLCHAIN
     # shellcheck disable=SC2086
     if $loader "$build/zscan" --version >/dev/null 2>&1; then run=$loader; fi
   fi
+}
+
+for t in "${targets[@]}"; do
+  read -r _ triplet qemu multiarch <<<"$(zs_cross_target "$t")"
+  root="$source_root/$t"
+  build="$out/$t"
+  rm -rf "$build" # the toolchain's flags take at a first configure only
+  mkdir -p "$build"
+  if [ "$t" = musl ]; then
+    build_musl
+    run=""
+  else
+    build_cross
+  fi
   # aarch64 fills its spans with NEON: the comparisons below are of that path
   # shellcheck disable=SC2086
   fill=$($run "$build/zscan" --version | sed -n 's/^span fill: //p')
@@ -109,7 +137,7 @@ TOOLCHAIN
     echo "cross-check: aarch64: the span fill is '$fill', not neon" >&2
     status=1
   fi
-  echo "cross-check: $t: the golden images (${run%% *})" >&2
+  echo "cross-check: $t: the golden images (${run:-natively})" >&2
   # shellcheck disable=SC2086
   if ! (cd "$build" && CK_DEFAULT_TIMEOUT=0 $run ./test_golden >golden.log 2>&1); then
     grep -v "skipped$" "$build/golden.log" >&2

@@ -6,6 +6,7 @@ zs_cross_target() {
     aarch64) echo "arm64 aarch64-linux-gnu qemu-aarch64-static aarch64-linux-gnu" ;;
     s390x) echo "s390x s390x-linux-gnu qemu-s390x-static s390x-linux-gnu" ;;
     i686) echo "i386 i686-linux-gnu qemu-i386-static i386-linux-gnu" ;;
-    *) echo "unknown cross target '$1' (aarch64, s390x, i686)" >&2; return 1 ;;
+    musl) echo "- musl-gcc - -" ;; # x86-64 with musl's C library, run as it is
+    *) echo "unknown cross target '$1' (aarch64, s390x, i686, musl)" >&2; return 1 ;;
   esac
 }

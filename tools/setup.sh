@@ -4,16 +4,18 @@
 # (as root, with apt-get; `apt-get update` first), then configures and
 # builds in $ZS_BUILD_DIR (default build/).
 #
-# With ZS_CROSS (targets, e.g. "aarch64 s390x i686"), also what
+# With ZS_CROSS (targets, e.g. "aarch64 s390x i686 musl"), also what
 # tools/cross-check.sh needs: each target's cross compiler, qemu-user, and
 # its libraries from Debian's packages, unpacked (apt-get download,
 # dpkg-deb -x) into $ZS_CROSS_ROOT/TARGET, where multiarch installs would
-# clash with the native ones' versions.
+# clash with the native ones' versions; for musl, musl-gcc and the
+# libraries built from Debian's sources into $ZS_MUSL_ROOT.
 #
 # Environment:
 #   ZS_CROSS         cross targets to set up (default: none)
 #   ZS_CROSS_ROOT    where their libraries go (default: /opt/zscan-cross)
 #   ZS_WASM_ROOT     cJSON's sources for the teaching page's engine (default: /opt/zscan-wasm)
+#   ZS_MUSL_ROOT     the musl target's libraries (default: /opt/zscan-musl)
 #   ZS_BUILD_DIR     build directory (default: build)
 #   ZS_BUILD_TYPE    CMake build type (default: Release)
 #   ZS_CMAKE_ARGS    extra CMake arguments (e.g. -DZS_SANITIZE=ON)
@@ -82,6 +84,7 @@ if [ -n "${ZS_CROSS:-}" ]; then
   zs_missing_cross=()
   for t in $ZS_CROSS; do
     zs_cross_target "$t" >/dev/null || exit 2
+    [ "$t" = musl ] && continue # (its libraries: below)
     read -r deb triplet _ _ <<<"$(zs_cross_target "$t")"
     [ -d "$zs_cross_root/$t/usr" ] || zs_need+=("$t")
     command -v "$triplet-gcc" >/dev/null || zs_missing_cross+=("gcc-$triplet")
@@ -97,7 +100,7 @@ if [ -n "${ZS_CROSS:-}" ]; then
     echo "setup: installing ${zs_missing_cross[*]}" >&2
     apt-get install -y -qq --no-install-recommends "${zs_missing_cross[@]}" >&2
   fi
-  for t in "${zs_need[@]}"; do
+  for t in "${zs_need[@]+"${zs_need[@]}"}"; do
     read -r deb _ _ _ <<<"$(zs_cross_target "$t")"
     echo "setup: the $t libraries into $zs_cross_root/$t" >&2
     zs_debs=$(mktemp -d)
@@ -110,35 +113,109 @@ if [ -n "${ZS_CROSS:-}" ]; then
   done
 fi
 
+# Debian's source packages PKG ... unpacked into DIR, through apt lists of
+# our own (deb-src beside the machine's deb lines), so the machine's
+# sources are left as they are: each at the newest version whose files
+# the archive still serves (a security update's can be gone from a mirror).
+zs_apt_source() {
+  local dir=$1 apt p v ok
+  shift
+  apt=$(mktemp -d)
+  mkdir -p "$apt/parts" "$apt/lists/partial"
+  chmod 755 "$apt" "$dir" # (apt's download user writes there)
+  for f in /etc/apt/sources.list.d/*.sources; do
+    [ -f "$f" ] && sed 's/^Types: deb$/Types: deb-src/' "$f" >"$apt/parts/$(basename "$f")"
+  done
+  if [ -f /etc/apt/sources.list ]; then
+    sed -n 's/^deb /deb-src /p' /etc/apt/sources.list >"$apt/parts/debian.list"
+  fi
+  local opts=(-o Dir::Etc::SourceList=/dev/null -o "Dir::Etc::SourceParts=$apt/parts"
+              -o "Dir::State::Lists=$apt/lists")
+  apt-get "${opts[@]}" update -qq >&2
+  for p in "$@"; do
+    ok=0
+    for v in $(apt-cache "${opts[@]}" showsrc "$p" | sed -n 's/^Version: //p' | sort -u -r -V); do
+      if (cd "$dir" && apt-get "${opts[@]}" source -qq "$p=$v") >/dev/null 2>&1; then
+        ok=1
+        break
+      fi
+    done
+    if [ "$ok" -ne 1 ]; then
+      echo "setup: cannot fetch the sources of $p" >&2
+      rm -rf "$apt"
+      return 1
+    fi
+  done
+  rm -rf "$apt"
+}
+
 # cJSON's own sources for the teaching page's WebAssembly engine (Debian
-# ships the library, not its sources): Debian's source package, through
-# apt lists of our own, so the machine's sources.list is left as it is.
+# ships the library, not its sources).
 zs_wasm_root=${ZS_WASM_ROOT:-/opt/zscan-wasm}
 if [ ! -f "$zs_wasm_root/cjson/cJSON.c" ]; then
   if [ "$(id -u)" -ne 0 ] && [ ! -w "$(dirname "$zs_wasm_root")" ]; then
     echo "setup: $zs_wasm_root missing and not root: zscan teach will say so" >&2
   else
     echo "setup: cJSON's sources into $zs_wasm_root" >&2
-    zs_apt=$(mktemp -d)
-    mkdir -p "$zs_apt/parts" "$zs_apt/lists/partial" "$zs_apt/src"
-    chmod 755 "$zs_apt" "$zs_apt/src" # (apt's download user writes there)
-    for f in /etc/apt/sources.list.d/*.sources; do
-      [ -f "$f" ] && sed 's/^Types: deb$/Types: deb-src/' "$f" >"$zs_apt/parts/$(basename "$f")"
-    done
-    if [ -f /etc/apt/sources.list ]; then
-      sed -n 's/^deb /deb-src /p' /etc/apt/sources.list >"$zs_apt/parts/debian.list"
-    fi
-    zs_apt_opts=(-o Dir::Etc::SourceList=/dev/null -o "Dir::Etc::SourceParts=$zs_apt/parts"
-                 -o "Dir::State::Lists=$zs_apt/lists")
-    apt-get "${zs_apt_opts[@]}" update -qq >&2
-    (cd "$zs_apt/src" && apt-get "${zs_apt_opts[@]}" source -qq cjson) >/dev/null
-    rm -rf "$zs_wasm_root/cjson" "$zs_wasm_root/include"
+    zs_src=$(mktemp -d)
+    zs_apt_source "$zs_src" cjson
+    rm -rf "$zs_wasm_root/cjson" "$zs_wasm_root/include" "$zs_wasm_root/cjson.part"
     mkdir -p "$zs_wasm_root/include/cjson"
-    cp -r "$zs_apt"/src/cjson-*/ "$zs_wasm_root/cjson.part"
+    cp -r "$zs_src"/cjson-*/ "$zs_wasm_root/cjson.part"
     cp "$zs_wasm_root/cjson.part/cJSON.h" "$zs_wasm_root/include/cjson/"
     mv "$zs_wasm_root/cjson.part" "$zs_wasm_root/cjson" # whole, or not at all
-    rm -rf "$zs_apt"
+    rm -rf "$zs_src"
   fi
+fi
+
+# The musl target of tools/cross-check.sh: musl-gcc, and the libraries
+# zscan and its golden test link, built from Debian's sources as static
+# libraries for musl into $ZS_MUSL_ROOT (Debian ships them for glibc
+# only); libjpeg-turbo's plain C path (its SIMD needs nasm, and gives the
+# same texels).
+zs_musl_root=${ZS_MUSL_ROOT:-/opt/zscan-musl}
+if [[ " ${ZS_CROSS:-} " == *" musl "* ]] && [ ! -f "$zs_musl_root/complete" ]; then
+  if ! command -v musl-gcc >/dev/null; then
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get install -y -qq --no-install-recommends musl-tools >&2
+  fi
+  echo "setup: the musl libraries into $zs_musl_root" >&2
+  zs_src=$(mktemp -d)
+  zs_apt_source "$zs_src" zlib libpng1.6 libjpeg-turbo cjson check
+  rm -rf "$zs_musl_root"
+  mkdir -p "$zs_musl_root"
+  zs_m=$zs_musl_root
+  zs_cmake_musl=(-DCMAKE_C_COMPILER=musl-gcc -DCMAKE_BUILD_TYPE=Release
+                 "-DCMAKE_INSTALL_PREFIX=$zs_m" "-DCMAKE_INSTALL_LIBDIR=$zs_m/lib")
+  if ! (
+    set -e
+    cd "$zs_src"/zlib-*/
+    CC=musl-gcc CFLAGS=-O2 ./configure --static --prefix="$zs_m"
+    make -j "$(nproc)" install
+    cd "$zs_src"/libpng1.6-*/
+    CC=musl-gcc CFLAGS=-O2 CPPFLAGS="-I$zs_m/include" LDFLAGS="-L$zs_m/lib" \
+      ./configure --prefix="$zs_m" --disable-shared
+    make -j "$(nproc)" install
+    cd "$zs_src"/libjpeg-turbo-*/
+    cmake -S . -B musl "${zs_cmake_musl[@]}" -DENABLE_SHARED=OFF -DWITH_SIMD=OFF -DWITH_TURBOJPEG=OFF
+    cmake --build musl -j "$(nproc)" --target install
+    cd "$zs_src"/cjson-*/
+    cmake -S . -B musl "${zs_cmake_musl[@]}" -DBUILD_SHARED_LIBS=OFF -DENABLE_CJSON_TEST=OFF \
+      -DENABLE_CJSON_UTILS=OFF
+    cmake --build musl -j "$(nproc)" --target install
+    cd "$zs_src"/check-*/
+    cmake -S . -B musl "${zs_cmake_musl[@]}" -DBUILD_TESTING=OFF -DCHECK_ENABLE_SUBUNIT=OFF
+    cmake --build musl -j "$(nproc)" --target install
+  ) >"$zs_src/build.log" 2>&1; then
+    tail -30 "$zs_src/build.log" >&2
+    echo "setup: the musl libraries did not build" >&2
+    exit 1
+  fi
+  # static only: check installs a shared library too, named _pic in its .pc
+  rm -f "$zs_m"/lib/*.so*
+  sed -i 's/-lcheck_pic/-lcheck/' "$zs_m/lib/pkgconfig/check.pc"
+  touch "$zs_m/complete"
+  rm -rf "$zs_src"
 fi
 
 # The browser tests' driver (tests/web/package.json: playwright-core, which
