@@ -6,6 +6,8 @@
 
 #include "lib/frame.h"
 #include "lib/frame_camera.h"
+#include "lib/samples.h"
+#include "lib/scene_draw.h"
 
 static int by_first_face(const void *a, const void *b) {
   const zs_object_visibility *x = a, *y = b;
@@ -45,7 +47,7 @@ zs_status zs_scene_id_objects(const zs_scene *s, int32_t **owner, uint32_t *n, z
 }
 
 zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width, int height,
-                              int cull_back, zs_object_visibility **out, int32_t *n,
+                              int cull_back, int samples, zs_object_visibility **out, int32_t *n,
                               zs_error *err) {
   *out = NULL;
   *n = 0;
@@ -55,11 +57,11 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
   int32_t *owner = NULL;
   double view[16], proj[16];
   if (!lines) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  if (st == ZS_OK && samples > 1 && !zs_samples_valid(samples))
+    st = zs_error_set(err, ZS_ERR_ARG, "samples: %d: expected 1, 2, 4, 8 or 16", samples);
   if (st == ZS_OK) st = zs_frame_camera(s, cam, width, height, view, proj, err);
   zs_device_config cfg = {width, height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, cull_back, 1, 0, 0, 0};
   if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);
-  if (st == ZS_OK) st = zs_frame_draw_all(dev, s, view, proj, err);
-  if (st == ZS_OK) st = zs_device_finish(dev, NULL, NULL, err);
   /* each instance's first face, and the instance of every id */
   for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
     const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
@@ -73,18 +75,29 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
   }
   uint32_t nids = 0;
   if (st == ZS_OK) st = zs_scene_id_objects(s, &owner, &nids, err);
-  if (st == ZS_OK) {
+  /* Sample k is the frame drawn with every pixel's centre moved onto the
+   * k-th standard position (lib/samples.h), as an anti-aliased render
+   * draws it: what an object owns, and what its box's query passes, are
+   * counted per sample, as GL's sample-counting queries count them. */
+  const int passes = samples > 1 ? samples : 1;
+  const int8_t *pos = samples > 1 ? zs_sample_positions(samples) : NULL;
+  for (int k = 0; st == ZS_OK && k < passes; k++) {
+    double pk[16];
+    if (pos) zs_sample_projection(proj, width, height, pos[2 * k], pos[2 * k + 1], pk);
+    if ((st = zs_frame_draw_all(dev, s, view, pos ? pk : proj, err)) ||
+        (st = zs_device_finish(dev, NULL, NULL, err)))
+      break;
     const uint32_t *ids = zs_device_id_buffer(dev);
     for (size_t p = 0; p < (size_t)width * (size_t)height; p++)
       if (ids[p] < nids && owner[ids[p]] >= 0) lines[owner[ids[p]]].visible++;
-  }
-  for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
-    zs_query q;
-    if ((st = zs_device_query_begin(dev, &q, err)) ||
-        (st = zs_device_query_box(dev, s->inst[i].lo, s->inst[i].hi, err)) ||
-        (st = zs_device_query_end(dev, err)))
-      break;
-    lines[i].box_samples = zs_device_query_result(dev, q);
+    for (int32_t i = 0; i < s->ninst; i++) {
+      zs_query q;
+      if ((st = zs_device_query_begin(dev, &q, err)) ||
+          (st = zs_device_query_box(dev, s->inst[i].lo, s->inst[i].hi, err)) ||
+          (st = zs_device_query_end(dev, err)))
+        break;
+      lines[i].box_samples += zs_device_query_result(dev, q);
+    }
   }
   free(owner);
   zs_device_destroy(dev);

@@ -228,6 +228,8 @@ static const bad_option bad_options[] = {
      "--reference off: ", 2},
     {{"query", "builtin:cubes", "--format", "xml", NULL}, "--format: expected text or json, got 'xml'",
      2},
+    {{"query", "builtin:cubes", "--samples", "3", NULL}, "--samples: expected 1, 2, 4, 8 or 16, got 3",
+     2},
     {{"bench", "raster", "--simd", "neon", NULL}, "--simd: scalar, sse2, avx2 or avx512, not 'neon'", 2},
     {{"bench", "raster", "--speedup", NULL}, "--speedup: against --threads N, N of 2 or more", 2},
     {{"bench", "raster", "--case", "triangles 7x7", NULL}, "--case 'triangles 7x7': no such case", 1},
@@ -1170,6 +1172,40 @@ START_TEST(query_as_json) {
 }
 END_TEST
 
+/* query --samples N counts samples, as GL's sample-counting queries do:
+ * a square whose edges lie on pixel edges owns every sample of its 16
+ * pixels; polygons with sloped edges own a share of their edge pixels'
+ * samples, so not 4 x their pixels; the total never exceeds the frame's
+ * samples. */
+START_TEST(query_counts_samples) {
+  char square[4096], two[4096];
+  snprintf(square, sizeof square, "%s", zs_test_src("tests/data/lecture/zbuffer_square.obj"));
+  snprintf(two, sizeof two, "%s", zs_test_src("tests/data/lecture/two_polygons.obj"));
+  const char *a[] = {"query", square, "--ortho", "-0.5,7.5,-0.5,5.5", "--eye", "0,0,0", "--target",
+                     "0,0,-1", "--near", "-10", "--far", "5", "--size", "8x6", "--samples", "4", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(a, out, sizeof out, err, sizeof err), 0);
+  ck_assert_str_eq(out, "object square visible=64 bbox=64\n"
+                        "total objects=1 visible=64 bbox=64 pixels=48 samples=4\n");
+  const char *one[] = {"query", two, "--grid", "12x10", "--format", "json", NULL};
+  const char *four[] = {"query", two, "--grid", "12x10", "--format", "json", "--samples", "4", NULL};
+  ck_assert_int_eq(zs_test_run_zscan(one, out, sizeof out, err, sizeof err), 0);
+  cJSON *r1 = cJSON_Parse(out);
+  ck_assert_int_eq(zs_test_run_zscan(four, out, sizeof out, err, sizeof err), 0);
+  cJSON *r4 = cJSON_Parse(out);
+  ck_assert(r1 && r4);
+  const cJSON *t1 = cJSON_GetObjectItem(r1, "total"), *t4 = cJSON_GetObjectItem(r4, "total");
+  const int v1 = cJSON_GetObjectItem(t1, "visible")->valueint;
+  const int v4 = cJSON_GetObjectItem(t4, "visible")->valueint;
+  ck_assert_int_eq(cJSON_GetObjectItem(t4, "samples_per_pixel")->valueint, 4);
+  ck_assert_ptr_null(cJSON_GetObjectItem(t1, "samples_per_pixel"));
+  ck_assert_int_le(v4, 4 * 120);
+  ck_assert_int_ne(v4, 4 * v1);
+  ck_assert_int_gt(v4, 3 * v1);
+  cJSON_Delete(r1);
+  cJSON_Delete(r4);
+}
+END_TEST
+
 /* walk --frames-dir: every method's frame shaded as render shades it, or
  * with --shade id the face ids. */
 START_TEST(walk_frames_shaded_or_ids) {
@@ -1539,6 +1575,7 @@ int main(void) {
   tcase_add_test(tc, render_tells_a_person_what_it_wrote);
   tcase_add_test(tc, walk_a_model_along_a_named_path);
   tcase_add_test(tc, query_as_json);
+  tcase_add_test(tc, query_counts_samples);
   tcase_add_test(tc, walk_frames_shaded_or_ids);
   tcase_add_test(tc, walk_without_reference);
   tcase_add_test(tc, every_command_exits_2_on_usage_and_1_on_a_missing_input);

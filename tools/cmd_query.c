@@ -9,7 +9,8 @@
  * cuts counts what lies beyond the plane).  Objects are the scene's
  * instances: an OBJ file's o/g groups (groups of one name are one object,
  * groups without faces none), or a scene file's instances.  A last line
- * gives the totals. */
+ * gives the totals.  With --samples N both count samples, N a pixel: the
+ * frame drawn once at each of the standard positions (lib/samples.h). */
 #include "tools/commands.h"
 
 #include <cjson/cJSON.h>
@@ -19,6 +20,7 @@
 
 #include "raster/raster.h"
 #include "scene/scene.h"
+#include "lib/samples.h"
 #include "tools/cli.h"
 #include "lib/input.h"
 #include "lib/object_visibility.h"
@@ -28,11 +30,14 @@ static const char usage[] =
     "usage: zscan query INPUT [options]\n"
     "  --format text|json  one line per object and a total (default text), or one\n"
     "                      JSON object: {\"objects\": [{\"name\", \"visible\",\n"
-    "                      \"bbox\"}, ...], \"total\": {...}}\n";
+    "                      \"bbox\"}, ...], \"total\": {...}}\n"
+    "  --samples N         count samples, N a pixel (1, 2, 4, 8 or 16, at the\n"
+    "                      positions zscan render --samples draws), as GL's\n"
+    "                      sample-counting queries do (default 1: pixels)\n";
 
 /* The objects as one JSON object (names escaped by cJSON). */
 static zs_status print_json(const char *input, const zs_object_visibility *lines, int32_t n,
-                            uint64_t tv, uint64_t tb, int w, int h, zs_error *err) {
+                            uint64_t tv, uint64_t tb, int w, int h, int samples, zs_error *err) {
   cJSON *root = cJSON_CreateObject();
   cJSON_AddStringToObject(root, "input", input);
   cJSON_AddNumberToObject(root, "width", w);
@@ -51,6 +56,7 @@ static zs_status print_json(const char *input, const zs_object_visibility *lines
     cJSON_AddNumberToObject(total, "visible", (double)tv);
     cJSON_AddNumberToObject(total, "bbox", (double)tb);
     cJSON_AddNumberToObject(total, "pixels", (double)w * h);
+    if (samples > 1) cJSON_AddNumberToObject(total, "samples_per_pixel", samples);
   }
   char *text = cJSON_PrintUnformatted(root);
   cJSON_Delete(root);
@@ -60,15 +66,16 @@ static zs_status print_json(const char *input, const zs_object_visibility *lines
   return ZS_OK;
 }
 
-static zs_status run(const char *input, int json, const zs_view_opts *v, zs_error *err) {
+static zs_status run(const char *input, int json, int samples, const zs_view_opts *v,
+                     zs_error *err) {
   zs_scene s;
   if (zs_input_load_scene(input, &s, err)) return err->code;
   zs_view_opts eff = *v; /* the scene's camera and size where v says nothing */
   zs_view_opts_for_scene(v, &s, &eff.cam, &eff.width, &eff.height);
   zs_object_visibility *lines;
   int32_t n;
-  zs_status st = zs_query_objects_at(&s, &eff.cam, eff.width, eff.height, eff.cull_back, &lines,
-                                     &n, err);
+  zs_status st = zs_query_objects_at(&s, &eff.cam, eff.width, eff.height, eff.cull_back, samples,
+                                     &lines, &n, err);
   if (st == ZS_OK) {
     uint64_t tv = 0, tb = 0;
     for (int32_t k = 0; k < n; k++) {
@@ -79,7 +86,11 @@ static zs_status run(const char *input, int json, const zs_view_opts *v, zs_erro
       tb += lines[k].box_samples;
     }
     if (json)
-      st = print_json(input, lines, n, tv, tb, eff.width, eff.height, err);
+      st = print_json(input, lines, n, tv, tb, eff.width, eff.height, samples, err);
+    else if (samples > 1)
+      printf("total objects=%d visible=%llu bbox=%llu pixels=%llu samples=%d\n", (int)n,
+             (unsigned long long)tv, (unsigned long long)tb,
+             (unsigned long long)((uint64_t)eff.width * (uint64_t)eff.height), samples);
     else
       printf("total objects=%d visible=%llu bbox=%llu pixels=%llu\n", (int)n,
              (unsigned long long)tv, (unsigned long long)tb,
@@ -93,7 +104,7 @@ static zs_status run(const char *input, int json, const zs_view_opts *v, zs_erro
 int zs_cmd_query(int argc, char **argv) {
   if (zs_cli_help(argc, argv, usage, zs_view_opts_usage, NULL)) return 0;
   const char *input = NULL;
-  int json = 0;
+  int json = 0, samples = 1;
   zs_view_opts v;
   zs_view_opts_default(&v, 1024, 768);
   zs_error err;
@@ -113,6 +124,14 @@ int zs_cmd_query(int argc, char **argv) {
       json = f[0] == 'j';
       continue;
     }
+    if (strcmp(argv[i], "--samples") == 0) {
+      if (zs_cli_int_value(argc, argv, &i, 1, 16, &samples, &err)) goto fail;
+      if (!zs_samples_valid(samples)) {
+        zs_error_set(&err, ZS_ERR_ARG, "--samples: expected 1, 2, 4, 8 or 16, got %d", samples);
+        goto fail;
+      }
+      continue;
+    }
     if (zs_cli_operand(argv[i], "zscan query", "INPUT", &input, &err)) goto fail;
   }
   if (!input) {
@@ -120,7 +139,7 @@ int zs_cmd_query(int argc, char **argv) {
     goto fail;
   }
   parsing = 0;
-  if (run(input, json, &v, &err)) goto fail;
+  if (run(input, json, samples, &v, &err)) goto fail;
   return 0;
 fail:
   return zs_cli_fail("zscan query", &err, parsing);

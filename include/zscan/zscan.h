@@ -782,12 +782,15 @@ zs_status zs_scene_id_objects(const zs_scene *scene, int32_t **owner, uint32_t *
 /* Per object (instance) of the scene, as `zscan query` prints it: the
  * pixels of the rendered frame (zbuffer mode, opts as for zs_render) that
  * show one of its faces, and the samples of an occlusion query on its
- * axis-aligned world box against the finished depth buffer. */
+ * axis-aligned world box against the finished depth buffer.  With
+ * opts->samples N (2, 4, 8, 16) both count samples, as GL's
+ * sample-counting queries do: the frame drawn at each of the N standard
+ * positions, the counts summed. */
 typedef struct zs_object_visibility {
   const char *name;        /* the object's name; valid while the scene is */
   int32_t object;          /* its number in the scene, from 0 */
   uint32_t first_face;     /* its lowest face id: the order of the list */
-  uint64_t visible;        /* pixels it owns */
+  uint64_t visible;        /* pixels (samples) it owns */
   uint64_t box_samples;    /* samples of its box's query */
 } zs_object_visibility;
 
