@@ -64,6 +64,13 @@ static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
   for (size_t k = 0; k < sizeof *s / sizeof *a; k++) a[k] += b[k];
 }
 
+/* A pixel's colour as three 16-bit lanes of a uint64_t, so that the sums
+ * of its samples take one addition a pixel: 16 samples of 255 and the
+ * rounding's half fit in 12 bits of a lane. */
+static inline uint64_t colour_lanes(uint32_t c) {
+  return (uint64_t)(c >> 16 & 0xFF) << 32 | (uint64_t)(c >> 8 & 0xFF) << 16 | (c & 0xFF);
+}
+
 zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
                                   const double proj[16], const zs_frame_look *look, int samples,
                                   int per_sample, zs_image *out, zs_raster_stats *stats,
@@ -77,7 +84,7 @@ zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const d
   const int w = cfg->width, h = cfg->height;
   const size_t n = (size_t)w * (size_t)h;
   const int8_t *pos = zs_sample_positions(samples);
-  uint32_t *sum = calloc(3 * n, sizeof *sum);
+  uint64_t *sum = malloc(n * sizeof *sum);
   zs_image one = {0, 0, NULL};
   zs_raster_stats total;
   memset(&total, 0, sizeof total);
@@ -90,18 +97,23 @@ zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const d
     st = zs_frame_render_on(dev, scene, view, pk, look, &one, NULL, err);
     if (st != ZS_OK) break;
     add_stats(&total, zs_device_stats(dev));
-    for (size_t i = 0; i < n; i++) {
-      const uint32_t c = one.rgb[i];
-      sum[3 * i] += c >> 16 & 0xFF, sum[3 * i + 1] += c >> 8 & 0xFF, sum[3 * i + 2] += c & 0xFF;
-    }
+    if (k == 0)
+      for (size_t i = 0; i < n; i++) sum[i] = colour_lanes(one.rgb[i]);
+    else
+      for (size_t i = 0; i < n; i++) sum[i] += colour_lanes(one.rgb[i]);
   }
   zs_device_set_shading_projection(dev, NULL);
   if (st == ZS_OK && out) {
-    const uint32_t half = (uint32_t)samples / 2;
-    for (size_t i = 0; i < n; i++)
-      out->rgb[i] = (sum[3 * i] + half) / (uint32_t)samples << 16 |
-                    (sum[3 * i + 1] + half) / (uint32_t)samples << 8 |
-                    (sum[3 * i + 2] + half) / (uint32_t)samples;
+    /* (sum + samples / 2) / samples a channel: samples is a power of two,
+     * and a lane's quotient (at most 255) stays clear of the bits the
+     * shift brings down from the lane above (12 - 4 of them at most) */
+    int shift = 0;
+    while (1 << shift < samples) shift++;
+    const uint64_t half = colour_lanes((uint32_t)samples / 2 * 0x010101u);
+    for (size_t i = 0; i < n; i++) {
+      const uint64_t v = (sum[i] + half) >> shift;
+      out->rgb[i] = (uint32_t)(v >> 16 & 0xFF0000) | (uint32_t)(v >> 8 & 0xFF00) | (uint32_t)(v & 0xFF);
+    }
   }
   if (st == ZS_OK && stats) *stats = total;
   zs_image_free(&one);
