@@ -401,7 +401,7 @@ START_TEST(bench_suite_writes_every_file) {
   static const char *const files[] = {"raster.csv", "raster.md", "raster.png", "tradeoff.md",
                                       "tradeoff-plant.png", "depthsort.csv", "octree.csv",
                                       "octree.png", "shade-unlit.md", "shade-gouraud.md",
-                                      "shade-phong.md", "arrays.md"};
+                                      "shade-phong.md", "arrays.md", "samples.md"};
   enum { NFILES = sizeof files / sizeof files[0] };
   for (int k = 0; k < NFILES; k++) {
     snprintf(path, sizeof path, "%s/%s", dir, files[k]);
@@ -414,8 +414,8 @@ START_TEST(bench_suite_writes_every_file) {
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
   unsetenv("ZSCAN_PROGRESS_MS");
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
-  ck_assert_msg(strstr(err, "bench suite: benchmark 1/12 (8 %), ") != NULL, "%s", err);
-  ck_assert_msg(strstr(err, "bench suite: benchmark 12/12 (100 %), ") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "bench suite: benchmark 1/13 (7 %), ") != NULL, "%s", err);
+  ck_assert_msg(strstr(err, "bench suite: benchmark 13/13 (100 %), ") != NULL, "%s", err);
   ck_assert_msg(strstr(err, "bench tradeoff: walk 3/3, plant\n") != NULL, "%s", err);
   ck_assert_msg(strstr(err, "walk: frame 5/5 (100 %), ") != NULL, "%s", err);
   for (int k = 0; k < NFILES; k++) {

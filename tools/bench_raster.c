@@ -71,13 +71,15 @@ static const char usage[] =
 
 static const int sides[] = {4, 10, 25, 100, 500};
 enum { NSIDES = sizeof sides / sizeof sides[0] };
-static const char *const scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
-                                     "builtin:default,level=42", "builtin:teapots,count=4",
-                                     "builtin:spheres,count=4",
-                                     "scene/examples/teapot_textured.json"};
+const char *const zs_bench_scenes[] = {"builtin:teapots", "builtin:city", "builtin:plant",
+                                       "builtin:default,level=42", "builtin:teapots,count=4",
+                                       "builtin:spheres,count=4",
+                                       "scene/examples/teapot_textured.json"};
 static const int random_sides[] = {4, 10, 25, 100};
 enum { NRANDOM = 2 * sizeof random_sides / sizeof random_sides[0] };
-enum { NSCENES = sizeof scenes / sizeof scenes[0] };
+enum { NSCENES = 7 };
+const int zs_bench_nscenes = NSCENES;
+_Static_assert(sizeof zs_bench_scenes / sizeof zs_bench_scenes[0] == NSCENES, "NSCENES");
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {
@@ -796,18 +798,18 @@ int zs_cmd_bench_raster(int argc, char **argv) {
     zs_scene_free(&t.scene);
   }
   for (int i = 0; i < NSCENES && o.scenes && !st; i++) {
-    if (o.only_case && strcmp(o.only_case, scenes[i]) != 0) continue;
+    if (o.only_case && strcmp(o.only_case, zs_bench_scenes[i]) != 0) continue;
     zs_scene s;
-    if ((st = zs_input_load_scene(scenes[i], &s, &err))) break;
+    if ((st = zs_input_load_scene(zs_bench_scenes[i], &s, &err))) break;
     double view[16], proj[16];
     st = zs_frame_camera(&s, &s.camera, o.width, o.height, view, proj, &err);
     for (int a = 0; a < 2 && !st; a++)
       if (o.algo < 0 || (int)algos[a] == o.algo)
-        st = run_case(&o, a, scenes[i], &s, view, proj, ms, &rows[n++], &err);
-    if (!st && o.mesa) st = compare_mesa(&o, &s, scenes[i], view, proj, ms, &mrows[nm++], &err);
+        st = run_case(&o, a, zs_bench_scenes[i], &s, view, proj, ms, &rows[n++], &err);
+    if (!st && o.mesa) st = compare_mesa(&o, &s, zs_bench_scenes[i], view, proj, ms, &mrows[nm++], &err);
     for (int a = 0; a < 2 && o.speedup && !st; a++)
       if (o.algo < 0 || (int)algos[a] == o.algo)
-        st = compare_threads(&o, algos[a], &s, scenes[i], view, proj, ms, &srows[ns++], &err);
+        st = compare_threads(&o, algos[a], &s, zs_bench_scenes[i], view, proj, ms, &srows[ns++], &err);
     zs_scene_free(&s);
   }
   free(ms);

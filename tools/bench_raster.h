@@ -4,4 +4,8 @@
 
 int zs_cmd_bench_raster(int argc, char **argv);
 
+/* The whole scenes bench raster measures (and bench samples after it). */
+extern const char *const zs_bench_scenes[];
+extern const int zs_bench_nscenes;
+
 #endif

@@ -14,6 +14,8 @@
  *                           llvmpipe's, pixel by pixel;
  *   arrays.md               bench arrays: a mesh built from arrays beside
  *                           the same mesh loaded from its OBJ file;
+ *   samples.md              bench samples: one sample a pixel and four, and
+ *                           each sample's faces beside llvmpipe's;
  *   raster-threads.csv, .md, .png, .txt   the same on N threads (every CPU
  *                           by default), zscan's speed-up over one thread
  *                           (--speedup), and llvmpipe on as many threads (a
@@ -66,6 +68,7 @@
 #include "tools/bench_octree.h"
 #include "tools/bench_colours.h"
 #include "tools/bench_arrays.h"
+#include "tools/bench_samples.h"
 #include "tools/bench_lines.h"
 #include "tools/bench_raster.h"
 #include "tools/bench_tradeoff.h"
@@ -194,6 +197,8 @@ static const struct placeholder {
     {"lines.table", 1},
     {"arrays.command", 1},
     {"arrays.table", 1},
+    {"samples.command", 1},
+    {"samples.table", 1},
 };
 enum { NPLACEHOLDERS = sizeof placeholders / sizeof placeholders[0] };
 
@@ -333,6 +338,7 @@ typedef struct files {
   char colours[PATH];    /* bench colours' md */
   char lines[PATH];      /* bench lines' md */
   char arrays[PATH];     /* bench arrays' md */
+  char samples[PATH];    /* bench samples' md */
 } files;
 
 static void raster_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -393,6 +399,12 @@ static void arrays_args(const files *fs, how h, arglist *a) {
   arg(a, "arrays");
   if (h.quick) arg(a, "--quick");
   if (h.files) arg2(a, "--md", fs->arrays);
+}
+
+static void samples_args(const files *fs, how h, arglist *a) {
+  arg(a, "samples");
+  if (h.quick) arg(a, "--quick");
+  if (h.files) arg2(a, "--md", fs->samples);
 }
 
 static void calibrate_args(const suite *s, const files *fs, how h, arglist *a) {
@@ -681,7 +693,7 @@ static zs_status plot_walks(const suite *s, const files *fs, zs_error *err) {
 static int run_all(suite *s, const files *fs, zs_error *err) {
   zs_progress progress;
   int done = 0;
-  zs_progress_start(&progress, "bench suite", "benchmark", 12 + s->run_threads + 2 * s->mesa,
+  zs_progress_start(&progress, "bench suite", "benchmark", 13 + s->run_threads + 2 * s->mesa,
                     s->quiet);
   const how h = as_run(s);
   arglist a = {0};
@@ -713,6 +725,10 @@ static int run_all(suite *s, const files *fs, zs_error *err) {
   a = (arglist){0};
   arrays_args(fs, h, &a);
   if (run(zs_cmd_bench_arrays, a.v)) return 1;
+  zs_progress_step(&progress, ++done);
+  a = (arglist){0};
+  samples_args(fs, h, &a);
+  if (run(zs_cmd_bench_samples, a.v)) return 1;
   zs_progress_step(&progress, ++done);
   if (run_memory(s, err)) return -1;
   zs_progress_step(&progress, ++done);
@@ -1012,6 +1028,11 @@ static zs_status fill_shading(suite *s, const files *fs, zs_error *err) {
   arrays_args(fs, as_shown, &a);
   if (set_command(s, "arrays.command", "zscan bench", a.v, err) ||
       set_table(s, "arrays.table", "arrays.md", 0, 0, err))
+    return err->code;
+  a = (arglist){0};
+  samples_args(fs, as_shown, &a);
+  if (set_command(s, "samples.command", "zscan bench", a.v, err) ||
+      set_table(s, "samples.table", "samples.md", 0, 0, err))
     return err->code;
   return ZS_OK;
 }
@@ -1332,6 +1353,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   in_dir(fs.colours, &s, "colours.md");
   in_dir(fs.lines, &s, "lines.md");
   in_dir(fs.arrays, &s, "arrays.md");
+  in_dir(fs.samples, &s, "samples.md");
   for (int w = 0; w < 2; w++) {
     in_dir_named(fs.walk[w][0], &s, "walk-%s.csv", walks[w][0]);
     in_dir_named(fs.walk[w][1], &s, "walk-%s.md", walks[w][0]);
@@ -1343,7 +1365,7 @@ int zs_cmd_bench_suite(int argc, char **argv) {
   if (s.plots && plot_walks(&s, &fs, &err)) goto fail;
   if (s.docs && (fill_values(&s, &fs, &err) || write_docs(&s, &err))) goto fail;
   if (!s.no_run)
-    printf("\nwrote %s: raster, shading, arrays, memory, calibrate, walks, tradeoff (per walk), depthsort and "
+    printf("\nwrote %s: raster, shading, arrays, samples, memory, calibrate, walks, tradeoff (per walk), depthsort and "
          "octree files%s%s%s\n",
          s.dir, s.mesa ? "; llvmpipe beside zscan, colours too" : "",
          s.run_threads ? ", on one thread and on N" : "",

@@ -12,6 +12,8 @@ static const zs_command benchmarks[] = {
      zs_cmd_bench_arrays},
     {"lines", "", "wide lines and points beside llvmpipe's, pixel by pixel", zs_cmd_bench_lines},
     {"raster", "", "throughput: triangles of 4 to 500 pixels and whole scenes", zs_cmd_bench_raster},
+    {"samples", "", "anti-aliasing: one sample and four, and each sample beside llvmpipe's",
+     zs_cmd_bench_samples},
     {"tradeoff", "", "run time against error: every method and mode on every walk",
      zs_cmd_bench_tradeoff},
     {"suite", "", "all of them, every file in one directory", zs_cmd_bench_suite},

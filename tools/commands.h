@@ -36,6 +36,7 @@ int zs_cmd_bench_raster(int argc, char **argv);
 int zs_cmd_bench_colours(int argc, char **argv);
 int zs_cmd_bench_lines(int argc, char **argv);
 int zs_cmd_bench_arrays(int argc, char **argv);
+int zs_cmd_bench_samples(int argc, char **argv);
 int zs_cmd_bench_tradeoff(int argc, char **argv);
 int zs_cmd_bench_suite(int argc, char **argv);
 
