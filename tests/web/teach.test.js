@@ -208,6 +208,17 @@ const msg = (page, p) => page.textContent(".msg[data-path=\"" + p + "\"]");
     const stats = execFileSync(zscan, ["render", path.join(src, "tests/data/lecture/zbuffer_two.obj")].concat(viewArgs(lesson), ["--shade", "id", "--stats", "-o", path.join(work, "zb.png")]), { encoding: "utf8" });
     assert.ok(stats.includes("\"image_hash\":\"" + f.image_hash + "\""), stats);
     console.log("# z-buffer example, module and native: image hash " + f.image_hash);
+    /* by pixel: the slope's cells one at a time, over the square's buffers */
+    await page.selectOption("#unit", "pixel");
+    const before = lines.find(l => l.step === 1), cellsWritten = [];
+    for (let k = 0; k < step.ids.length; k++) if (step.ids[k] !== before.ids[k]) cellsWritten.push(k);
+    assert.strictEqual(await where(page), "after polygon 1 (step 2 of 2), cell 1 of " + cellsWritten.length);
+    const first = before.ids.map(v => v === null ? "-" : String(v));
+    first[cellsWritten[0]] = String(step.ids[cellsWritten[0]]);
+    assert.deepStrictEqual((await cells(page, "#idgrid")).map(r => r.slice(1)).flat(), first);
+    assert.deepStrictEqual(await page.$$eval("#idgrid td.now", tds => tds.map(td => [td.parentNode.rowIndex - 1, td.cellIndex - 1])),
+                           [[Math.floor(cellsWritten[0] / W), cellsWritten[0] % W]]);
+    await page.selectOption("#unit", "row");
   });
 
   await check("bad input is a message beside its field, the page still drawn", async () => {
