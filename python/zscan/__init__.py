@@ -555,6 +555,42 @@ class Scene(_lib.Handle):
         """Source faces over the instances."""
         return self._lib.zs_scene_faces(self._handle())
 
+    def _camera_with(self, **given):
+        """The scene's camera with what the caller gave (not None) put over it."""
+        cam = dict(self._camera)
+        for k, v in given.items():
+            if k not in cam or v is not None:
+                cam[k] = v
+        return cam
+
+    def query(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
+              far=None, cull_back=False, samples=1):
+        """Per object, as `zscan query` prints it (in order of first face): a
+        dict of its name, 'visible' (the pixels of the frame, zbuffer mode,
+        that show one of its faces) and 'bbox' (the samples of an occlusion
+        query on its world box against the finished depth buffer).  With
+        samples N (2, 4, 8 or 16) both count samples, N a pixel, as GL's
+        sample-counting queries do (`zscan query --samples N`)."""
+        cam = self._camera_with(eye=eye, target=target, up=up, fovy=fovy, near=near, far=far)
+        opts = _render_opts(size, cam["eye"], cam["target"], cam["up"], cam["fovy"], cam["near"],
+                            cam["far"], "zbuffer", "id", "solid", 1, cull_back, False, 1, False,
+                            1, 1, "square")
+        opts.samples = _int("samples", samples)
+        if opts.samples not in (1, 2, 4, 8, 16):
+            raise ValueError("samples: expected 1, 2, 4, 8 or 16, got %d" % opts.samples)
+        rows = ctypes.POINTER(_lib.zs_object_visibility)()
+        n = ctypes.c_int32()
+        err = _lib.zs_error()
+        if self._lib.zs_query_objects(self._handle(), ctypes.byref(opts), ctypes.byref(rows),
+                                      ctypes.byref(n), ctypes.byref(err)):
+            _raise(err)
+        try:
+            return [{"name": rows[i].name.decode("utf-8", "replace"),
+                     "visible": rows[i].visible, "bbox": rows[i].box_samples}
+                    for i in range(n.value)]
+        finally:
+            _lib.free(rows)
+
     def render(self, size=None, eye=None, target=None, up=None, fovy=None, near=None,
                far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
                cull_back=False, shadows=False, samples=1, supersample=False, line_width=1,
@@ -567,11 +603,7 @@ class Scene(_lib.Handle):
         image.normals, the eye-space unit normal of each pixel as float32
         (height, width, 3) (0, 0, 0 where no face is); shade='id' also
         image.objects."""
-        cam = dict(self._camera)
-        given = dict(eye=eye, target=target, up=up, fovy=fovy, near=near, far=far)
-        for k, v in given.items():
-            if k not in cam or v is not None:
-                cam[k] = v
+        cam = self._camera_with(eye=eye, target=target, up=up, fovy=fovy, near=near, far=far)
         opts = _render_opts(size, cam["eye"], cam["target"], cam["up"], cam["fovy"], cam["near"],
                             cam["far"], algo, shade, style, threads, cull_back, shadows, samples,
                             supersample, line_width, point_size, point_shape)
@@ -643,6 +675,27 @@ def load(input=None, allow_empty=False):
     return Scene("builtin:default" if input is None else input, allow_empty=allow_empty)
 
 
+def _scene_of(input, allow_empty):
+    """The scene of zscan.render's and zscan.query's input: a zscan.Mesh or a
+    trimesh-like mesh as its one object, else a path or builtin: spec
+    loaded (None: builtin:default)."""
+    if isinstance(input, Mesh) or (hasattr(input, "vertices") and hasattr(input, "faces")):
+        scene = Scene()
+        scene.add(input)
+        return scene
+    return Scene("builtin:default" if input is None else input, allow_empty=allow_empty)
+
+
+def query(input, size=None, eye=None, target=None, up=None, fovy=None, near=None, far=None,
+          cull_back=False, samples=1, allow_empty=False):
+    """Loads input (a path, a builtin: spec, a zscan.Mesh or a trimesh-like
+    mesh) and gives Scene.query()'s list: per object its name, 'visible'
+    and 'bbox', as `zscan query INPUT` prints them."""
+    with _scene_of(input, allow_empty) as scene:
+        return scene.query(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
+                           far=far, cull_back=cull_back, samples=samples)
+
+
 def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=None,
            far=None, algo="zbuffer", shade="auto", style="solid", threads=1,
            cull_back=False, allow_empty=False, shadows=False, samples=1, supersample=False,
@@ -691,12 +744,7 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
     # check the options before the (possibly slow) load
     _render_opts(size, eye, target, up, fovy, near, far, algo, shade, style, threads, cull_back,
                  shadows, samples, supersample, line_width, point_size, point_shape)
-    if isinstance(input, Mesh) or (hasattr(input, "vertices") and hasattr(input, "faces")):
-        scene = Scene()
-        scene.add(input)
-    else:
-        scene = Scene("builtin:default" if input is None else input, allow_empty=allow_empty)
-    with scene:
+    with _scene_of(input, allow_empty) as scene:
         return scene.render(size=size, eye=eye, target=target, up=up, fovy=fovy, near=near,
                             far=far, algo=algo, shade=shade, style=style, threads=threads,
                             cull_back=cull_back, shadows=shadows, samples=samples,

@@ -261,6 +261,16 @@ _p_image = ctypes.POINTER(zs_image)
 _p_d16 = ctypes.POINTER(ctypes.c_double)
 _p_d3 = ctypes.POINTER(ctypes.c_double)
 
+class zs_object_visibility(ctypes.Structure):
+    _fields_ = [
+        ("name", ctypes.c_char_p),
+        ("object", ctypes.c_int32),
+        ("first_face", ctypes.c_uint32),
+        ("visible", ctypes.c_uint64),
+        ("box_samples", ctypes.c_uint64),
+    ]
+
+
 # name: (restype, argtypes)
 _SIGNATURES = {
     "zs_version": (ctypes.c_char_p, []),
@@ -289,6 +299,12 @@ _SIGNATURES = {
         _c_status,
         [ctypes.c_void_p, ctypes.POINTER(zs_render_opts),
          ctypes.POINTER(ctypes.POINTER(ctypes.c_float)), _p_error],
+    ),
+    "zs_query_objects": (
+        _c_status,
+        [ctypes.c_void_p, ctypes.POINTER(zs_render_opts),
+         ctypes.POINTER(ctypes.POINTER(zs_object_visibility)), ctypes.POINTER(ctypes.c_int32),
+         _p_error],
     ),
     "zs_scene_id_objects": (
         _c_status,
