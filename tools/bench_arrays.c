@@ -216,13 +216,7 @@ int zs_cmd_bench_arrays(int argc, char **argv) {
   zs_error_clear(&err);
   int w = 640, h = 480, parsing = 1;
   const char *md = NULL;
-  /* --quick anywhere, taken out; the rest as bench lines and colours read them */
-  for (int i = 1; i < argc; i++)
-    if (strcmp(argv[i], "--quick") == 0) {
-      repeat = 3, ngrids = 1;
-      memmove(argv + i, argv + i + 1, (size_t)(argc - i) * sizeof *argv);
-      argc--, i--;
-    }
+  if (zs_bench_take_flag(&argc, argv, "--quick")) repeat = 3, ngrids = 1;
   zs_status st = zs_bench_size_md_args(argc, argv, "arrays", &w, &h, &md, &err);
   char dir[4096];
   const char *tmpdir = getenv("TMPDIR");

@@ -77,9 +77,8 @@ const char *const zs_bench_scenes[] = {"builtin:teapots", "builtin:city", "built
                                        "scene/examples/teapot_textured.json"};
 static const int random_sides[] = {4, 10, 25, 100};
 enum { NRANDOM = 2 * sizeof random_sides / sizeof random_sides[0] };
-enum { NSCENES = 7 };
+enum { NSCENES = sizeof zs_bench_scenes / sizeof zs_bench_scenes[0] };
 const int zs_bench_nscenes = NSCENES;
-_Static_assert(sizeof zs_bench_scenes / sizeof zs_bench_scenes[0] == NSCENES, "NSCENES");
 static const zs_algo algos[] = {ZS_ALGO_ZBUFFER, ZS_ALGO_SCANLINE};
 
 typedef struct bench_opts {

@@ -42,3 +42,14 @@ zs_status zs_bench_report(const char *md, const char *title,
   else if (!zs_out_is_stdout(md)) fprintf(report, "wrote %s\n", md);
   return st;
 }
+
+int zs_bench_take_flag(int *argc, char **argv, const char *flag) {
+  int found = 0;
+  for (int i = 1; i < *argc; i++)
+    if (strcmp(argv[i], flag) == 0) {
+      found = 1;
+      memmove(argv + i, argv + i + 1, (size_t)(*argc - i) * sizeof *argv);
+      (*argc)--, i--;
+    }
+  return found;
+}

@@ -13,6 +13,10 @@
 zs_status zs_bench_size_md_args(int argc, char **argv, const char *name, int *w, int *h,
                                 const char **md, zs_error *err);
 
+/* Whether argv[1..] holds flag; each one is taken out (argc lessened), so
+ * the rest reads as zs_bench_size_md_args reads it. */
+int zs_bench_take_flag(int *argc, char **argv, const char *flag);
+
 /* Prints title and table(f, rows, 0) on stdout (standard error when md is
  * "-"), then writes table(f, rows, 1) to md (when not NULL) safely,
  * saying so; an error in err names --md. */

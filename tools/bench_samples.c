@@ -4,7 +4,8 @@
  * scenes on one thread in zbuffer mode (flat shading), each frame drawn
  * with one sample a pixel and with four (zscan render --samples 4: the
  * frame drawn at each standard position, then resolved), the two in
- * turn, medians of 11; and, where zscan has Mesa's llvmpipe (OSMesa), the
+ * turn, each the median of MAX_REPEAT frames; and, where zscan has Mesa's
+ * llvmpipe (OSMesa), the
  * faces each shows at every one of the four positions, told apart into
  * coverage and depth ties as bench raster --mesa does.  OSMesa has no
  * multisampled buffer, so llvmpipe's sample k is its frame with the pixel
@@ -136,15 +137,9 @@ int zs_cmd_bench_samples(int argc, char **argv) {
   if (zs_cli_help(argc, argv, usage, NULL)) return 0;
   zs_error err;
   zs_error_clear(&err);
-  int w = 1024, h = 768, parsing = 1, repeat = MAX_REPEAT, quick = 0;
+  int w = 1024, h = 768, parsing = 1;
   const char *md = NULL;
-  /* --quick anywhere, taken out; the rest as bench lines and colours read them */
-  for (int i = 1; i < argc; i++)
-    if (strcmp(argv[i], "--quick") == 0) {
-      quick = 1, repeat = 3;
-      memmove(argv + i, argv + i + 1, (size_t)(argc - i) * sizeof *argv);
-      argc--, i--;
-    }
+  const int quick = zs_bench_take_flag(&argc, argv, "--quick"), repeat = quick ? 3 : MAX_REPEAT;
   zs_status st = zs_bench_size_md_args(argc, argv, "samples", &w, &h, &md, &err);
   if (!st) parsing = 0;
   samples_table t;

@@ -260,6 +260,7 @@ static zs_status parse(int argc, char **argv, zs_trace_opts *o, zs_error *err) {
       if (zs_cli_output_value(argc, argv, &i, &v, err) || zs_cli_output_format(a, v, "html", err))
         return err->code;
       o->html = v;
+      o->as_array = 1;
       o->json = 1; /* the page reads the JSON trace */
     } else if (strcmp(a, "--format") == 0) {
       if (zs_cli_value(argc, argv, &i, &v, err)) return err->code;

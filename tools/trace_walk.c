@@ -105,7 +105,7 @@ static cJSON *json_edge(const zs_tracer *t, const zs_trace_edge *e, int32_t k) {
 /* One JSON line; for the page (--html), one element of its array. */
 static void print_json(zs_tracer *t, cJSON *o) {
   char *s = cJSON_PrintUnformatted(o);
-  if (s) fprintf(t->out, t->o->html ? "%s%s\n" : "%.0s%s\n", t->lines++ ? "," : "", s);
+  if (s) fprintf(t->out, t->o->as_array ? "%s%s\n" : "%.0s%s\n", t->lines++ ? "," : "", s);
   else t->failed = 1;
   free(s);
   cJSON_Delete(o);

@@ -32,6 +32,8 @@ typedef struct zs_trace_opts {
   zs_view_opts view;
   int row0, row1, json, scale, quiet, brief, rows_given;
   const char *html; /* --html FILE: the page */
+  int as_array;     /* the JSON lines as the elements of one array (a comma
+                     * before each but the first): the pages read them so */
   int zbuffer;      /* --algo zbuffer: the plain z-buffer, a step per polygon */
 } zs_trace_opts;
 

@@ -301,7 +301,7 @@ static char *lesson_trace(const lesson *l, cJSON *args, zs_error *err) {
   memset(&o, 0, sizeof o);
   o.row1 = ZS_MAX_IMAGE_SIDE;
   o.json = 1;
-  o.html = "-"; /* the lines as the elements of one array */
+  o.as_array = 1;
   o.zbuffer = l->zbuffer;
   zs_tracer t;
   memset(&t, 0, sizeof t);
