@@ -82,7 +82,7 @@ static int plain_target(const zs_octree *t, const double lo[3], const double hi[
       /* the splitting planes of the current cell, the children's shared
        * faces: origin + (2 c + 1) s, as zs_octree_cell_box computes them */
       double s = ldexp(t->side, -(L + 1));
-      int32_t child[3];
+      int32_t child[3] = {0, 0, 0}; /* (each set below unless it straddles) */
       int straddles = 0;
       for (int k = 0; k < 3; k++) {
         double mid = t->origin[k] + (double)(2 * cell[k] + 1) * s;

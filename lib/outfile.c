@@ -2,13 +2,10 @@
 #include "lib/outfile.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
-#include <sys/stat.h>
-#include <sys/un.h>
-#include <unistd.h>
+
+#include "util/os.h"
 
 enum { MAX_LINKS = 40 }; /* as the kernel's own limit on a path's links */
 
@@ -23,97 +20,66 @@ static char *dup_n(const char *s, size_t n) {
   return d;
 }
 
+/* Where path's directory part ends (NULL when it has none). */
+static const char *last_separator(const char *path) {
+  const char *last = NULL;
+  for (const char *p = path; *p; p++)
+    if (zs_os_is_separator(*p)) last = p;
+  return last;
+}
+
 /* The directory part of path ("." when it has none). */
 static char *dir_of(const char *path) {
-  const char *slash = strrchr(path, '/');
-  if (!slash) return dup_n(".", 1);
-  return dup_n(path, slash == path ? 1 : (size_t)(slash - path));
+  const char *sep = last_separator(path);
+  if (!sep) return dup_n(".", 1);
+  return dup_n(path, sep == path ? 1 : (size_t)(sep - path));
 }
 
 /* A link's text, read relative to the directory of the link itself. */
 static char *link_target(const char *link, zs_error *err) {
-  struct stat st;
-  if (lstat(link, &st) != 0) return NULL;
-  size_t cap = st.st_size > 0 ? (size_t)st.st_size + 1 : 4096;
-  char *text = malloc(cap);
-  if (!text) return NULL;
-  ssize_t n = readlink(link, text, cap);
-  if (n < 0 || (size_t)n >= cap) {
-    zs_error_set(err, ZS_ERR_IO, "%s: cannot read the link: %s", link,
-                 n < 0 ? strerror(errno) : "it changed while read");
-    free(text);
+  int e = 0;
+  char *text = zs_os_readlink(link, &e);
+  if (!text) {
+    if (e != ENOENT && e != ENOMEM)
+      zs_error_set(err, ZS_ERR_IO, "%s: cannot read the link: %s", link,
+                   e == EAGAIN ? "it changed while read" : strerror(e));
     return NULL;
   }
-  text[n] = '\0';
-  if (text[0] == '/' || !strchr(link, '/')) return text;
+  if (zs_os_is_separator(text[0]) || !last_separator(link)) return text;
   char *dir = dir_of(link);
-  char *joined = dir ? malloc(strlen(dir) + 1 + (size_t)n + 1) : NULL;
+  char *joined = dir ? malloc(strlen(dir) + 1 + strlen(text) + 1) : NULL;
   if (joined) sprintf(joined, "%s/%s", dir, text);
   free(dir);
   free(text);
   return joined;
 }
 
-/* A Unix socket, connected to as a stream. */
-static int open_socket(const char *path) {
-  struct sockaddr_un addr;
-  if (strlen(path) >= sizeof addr.sun_path) {
-    errno = ENAMETOOLONG;
-    return -1;
-  }
-  int fd = socket(AF_UNIX, SOCK_STREAM, 0);
-  if (fd < 0) return -1;
-  memset(&addr, 0, sizeof addr);
-  addr.sun_family = AF_UNIX;
-  strcpy(addr.sun_path, path);
-  if (connect(fd, (const struct sockaddr *)&addr, sizeof addr) != 0) {
-    int e = errno;
-    close(fd);
-    errno = e;
-    return -1;
-  }
-  return fd;
-}
-
 /* Writes straight into a device, FIFO or socket. */
-static zs_status open_direct(zs_out *o, const char *file, const struct stat *st, zs_error *err) {
-  int fd = S_ISSOCK(st->st_mode) ? open_socket(file) : open(file, O_WRONLY | O_NOCTTY);
-  if (fd >= 0 && !(o->fp = fdopen(fd, "wb"))) close(fd);
-  if (!o->fp)
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", o->path, strerror(errno));
+static zs_status open_direct(zs_out *o, const char *file, zs_path_kind kind, zs_error *err) {
+  int e = 0;
+  if (!(o->fp = zs_os_open_direct(file, kind, &e)))
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", o->path, strerror(e));
   return ZS_OK;
 }
 
 /* Creates the temporary beside file; mode: the permission bits it gets. */
-static zs_status open_temporary(zs_out *o, const char *file, mode_t mode, zs_error *err) {
-  static const char suffix[] = ".tmp.XXXXXX";
-  size_t n = strlen(file);
+static zs_status open_temporary(zs_out *o, const char *file, unsigned mode, zs_error *err) {
+  size_t n = strlen(file), cap = n + 64;
   o->target = dup_n(file, n);
-  o->tmp = malloc(n + sizeof suffix);
+  o->tmp = malloc(cap);
   if (!o->target || !o->tmp)
     return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", o->path);
-  memcpy(o->tmp, file, n);
-  memcpy(o->tmp + n, suffix, sizeof suffix);
-  int fd = mkstemp(o->tmp);
-  if (fd < 0) {
-    int e = errno;
-    free(o->tmp);
-    o->tmp = NULL;
-    if (e == ENOENT || e == ENOTDIR) {
-      char *dir = dir_of(file);
-      zs_error_set(err, ZS_ERR_IO, "%s: no such directory: %s", o->path, dir ? dir : file);
-      free(dir);
-      return ZS_ERR_IO;
-    }
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", o->path, strerror(e));
+  int e = 0;
+  if ((o->fp = zs_os_create_beside(file, mode, o->tmp, cap, &e))) return ZS_OK;
+  free(o->tmp);
+  o->tmp = NULL;
+  if (e == ENOENT || e == ENOTDIR) {
+    char *dir = dir_of(file);
+    zs_error_set(err, ZS_ERR_IO, "%s: no such directory: %s", o->path, dir ? dir : file);
+    free(dir);
+    return ZS_ERR_IO;
   }
-  if (fchmod(fd, mode) != 0 || !(o->fp = fdopen(fd, "wb"))) {
-    int e = errno;
-    close(fd);
-    remove(o->tmp);
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", o->path, strerror(e));
-  }
-  return ZS_OK;
+  return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", o->path, strerror(e));
 }
 
 static void release(zs_out *o) {
@@ -124,25 +90,20 @@ static void release(zs_out *o) {
 }
 
 /* Follows path's links to the file that is written: *file (malloc'd), with
- * *st its lstat and *exists whether it is there.  Directories and block
- * devices are refused here, so a check and an open say the same. */
-static zs_status resolve(const char *path, char **file, struct stat *st, int *exists,
-                         zs_error *err) {
+ * *st what is there (kind NONE: nothing).  Directories and block devices
+ * are refused here, so a check and an open say the same. */
+static zs_status resolve(const char *path, char **file, zs_path_info *st, zs_error *err) {
   *file = NULL;
-  *exists = 0;
   char *at = dup_n(path, strlen(path));
   if (!at) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   for (int links = 0;; links++) {
-    if (lstat(at, st) != 0) {
-      if (errno == ENOENT) break;
-      zs_status code = zs_error_set(err, ZS_ERR_IO, "%s: %s", path, strerror(errno));
+    int e = zs_os_lstat(at, st);
+    if (e != 0) {
+      zs_status code = zs_error_set(err, ZS_ERR_IO, "%s: %s", path, strerror(e));
       free(at);
       return code;
     }
-    if (!S_ISLNK(st->st_mode)) {
-      *exists = 1;
-      break;
-    }
+    if (st->kind != ZS_PATH_LINK) break;
     char *next = links < MAX_LINKS ? link_target(at, err) : NULL;
     free(at);
     if (!next)
@@ -150,13 +111,10 @@ static zs_status resolve(const char *path, char **file, struct stat *st, int *ex
                           links < MAX_LINKS ? "cannot follow the link" : "too many links");
     at = next;
   }
-  const char *refused = !*exists                  ? NULL
-                        : S_ISDIR(st->st_mode)    ? "is a directory"
-                        : S_ISBLK(st->st_mode)    ? "is a block device"
-                        : S_ISREG(st->st_mode) || S_ISCHR(st->st_mode) ||
-                                S_ISFIFO(st->st_mode) || S_ISSOCK(st->st_mode)
-                            ? NULL
-                            : "is not a file";
+  const char *refused = st->kind == ZS_PATH_DIR     ? "is a directory"
+                        : st->kind == ZS_PATH_BLOCK ? "is a block device"
+                        : st->kind == ZS_PATH_OTHER ? "is not a file"
+                                                    : NULL;
   if (refused) {
     free(at);
     return zs_error_set(err, ZS_ERR_IO, "%s: %s", path, refused);
@@ -169,21 +127,20 @@ zs_status zs_out_check(const char *path, zs_error *err) {
   if (path[0] == '\0') return zs_error_set(err, ZS_ERR_ARG, "empty path");
   if (zs_out_is_stdout(path)) return ZS_OK;
   char *file;
-  struct stat st;
-  int exists;
-  zs_status code = resolve(path, &file, &st, &exists, err);
+  zs_path_info st;
+  zs_status code = resolve(path, &file, &st, err);
   if (code != ZS_OK) return code;
-  if (!exists || S_ISREG(st.st_mode)) {
+  if (st.kind == ZS_PATH_NONE || st.kind == ZS_PATH_FILE) {
     /* the temporary is made beside the file: its folder must take it */
     char *dir = dir_of(file);
-    struct stat ds;
+    zs_path_info ds;
+    int e;
     if (!dir)
       code = zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
-    else if (stat(dir, &ds) != 0 || !S_ISDIR(ds.st_mode))
+    else if (zs_os_stat(dir, &ds) != 0 || ds.kind != ZS_PATH_DIR)
       code = zs_error_set(err, ZS_ERR_IO, "%s: no such directory: %s", path, dir);
-    else if (access(dir, W_OK) != 0)
-      code = zs_error_set(err, ZS_ERR_IO, "%s: cannot write in %s: %s", path, dir,
-                          strerror(errno));
+    else if ((e = zs_os_dir_writable(dir)) != 0)
+      code = zs_error_set(err, ZS_ERR_IO, "%s: cannot write in %s: %s", path, dir, strerror(e));
     free(dir);
   }
   free(file);
@@ -196,23 +153,20 @@ zs_status zs_out_open(zs_out *o, const char *path, zs_error *err) {
   if (!(o->path = dup_n(path, strlen(path))))
     return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   if (zs_out_is_stdout(path)) {
+    zs_os_binary_stdout();
     o->fp = stdout;
     return ZS_OK;
   }
   char *file;
-  struct stat st;
-  int exists;
-  zs_status code = resolve(path, &file, &st, &exists, err);
+  zs_path_info st;
+  zs_status code = resolve(path, &file, &st, err);
   if (code == ZS_OK) {
-    if (!exists) {
-      mode_t mask = umask(0);
-      umask(mask);
-      code = open_temporary(o, file, 0666 & ~mask, err);
-    } else if (S_ISREG(st.st_mode)) {
-      code = open_temporary(o, file, st.st_mode & 07777, err);
-    } else {
-      code = open_direct(o, file, &st, err);
-    }
+    if (st.kind == ZS_PATH_NONE)
+      code = open_temporary(o, file, zs_os_new_file_mode(), err);
+    else if (st.kind == ZS_PATH_FILE)
+      code = open_temporary(o, file, st.mode, err);
+    else
+      code = open_direct(o, file, st.kind, err);
     free(file);
   }
   if (code != ZS_OK) {
@@ -239,8 +193,8 @@ zs_status zs_out_commit(zs_out *o, zs_error *err) {
   o->fp = NULL;
   if (bad)
     st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", name, strerror(e));
-  else if (o->tmp && rename(o->tmp, o->target) != 0)
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", name, strerror(errno));
+  else if (o->tmp && (e = zs_os_replace(o->tmp, o->target)) != 0)
+    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", name, strerror(e));
   else if (o->tmp) {
     free(o->tmp); /* renamed: nothing to remove */
     o->tmp = NULL;
@@ -289,14 +243,14 @@ zs_status zs_out_dir(const char *opt, const char *dir, zs_error *err) {
   /* mkdir -p: each parent, then the directory itself */
   zs_status st = ZS_OK;
   for (char *p = path + 1;; p++) {
-    if (*p != '/' && *p != '\0') continue;
+    if (!zs_os_is_separator(*p) && *p != '\0') continue;
     char c = *p;
     *p = '\0';
-    struct stat sb;
-    if (mkdir(path, 0777) != 0 && errno != EEXIST)
-      st = zs_error_set(err, ZS_ERR_IO, "%s %s: cannot create %s: %s", opt, dir, path,
-                        strerror(errno));
-    else if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode))
+    zs_path_info sb;
+    int e = zs_os_stat(path, &sb) == 0 && sb.kind == ZS_PATH_DIR ? 0 : zs_os_mkdir(path);
+    if (e != 0 && e != EEXIST)
+      st = zs_error_set(err, ZS_ERR_IO, "%s %s: cannot create %s: %s", opt, dir, path, strerror(e));
+    else if (zs_os_stat(path, &sb) != 0 || sb.kind != ZS_PATH_DIR)
       st = c == '\0' ? zs_error_set(err, ZS_ERR_IO, "%s %s: not a directory", opt, dir)
                      : zs_error_set(err, ZS_ERR_IO, "%s %s: %s is not a directory", opt, dir, path);
     *p = c;
@@ -307,7 +261,7 @@ zs_status zs_out_dir(const char *opt, const char *dir, zs_error *err) {
 }
 
 zs_status zs_append_file(FILE *f, const char *path, zs_error *err) {
-  FILE *in = fopen(path, "r");
+  FILE *in = fopen(path, "rb");
   if (!in) return zs_error_set(err, ZS_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
   char buf[4096];
   size_t n;

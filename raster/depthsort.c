@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include "util/os.h"
 
 #include "util/exactmath.h"
 #include "util/grow.h"
@@ -303,8 +303,7 @@ static void paint_depths(const zs_depthsort *ds, zs_batch *b) {
 }
 
 int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
-  struct timespec t0, t1;
-  clock_gettime(CLOCK_MONOTONIC, &t0);
+  const double t0 = zs_os_monotonic_ms();
   zs_depthsort_stats st = {ZS_MOTION_FIRST, 0, 0, 0, 0, 0};
   double shift = 0.0;
   if (ds->has_prev) st.motion = classify(ds->prev_view, view, &shift);
@@ -322,8 +321,7 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
     keep_noted(ds);
     paint_depths(ds, b);
     ds->stats = st;
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    ds->ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
+    ds->ms = zs_os_monotonic_ms() - t0;
     return 1;
   }
 
@@ -402,8 +400,7 @@ int zs_depthsort_order(zs_depthsort *ds, zs_batch *b, const double view[16]) {
   paint_depths(ds, b);
   ds->has_prev = 1;
   ds->stats = st;
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  ds->ms = (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
+  ds->ms = zs_os_monotonic_ms() - t0;
   return 1;
 }
 

@@ -21,7 +21,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #ifdef ZS_HAVE_ASSIMP
 #include <assimp/cimport.h>

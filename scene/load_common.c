@@ -1,11 +1,12 @@
 /* What the file loaders share.  See load_common.h. */
 #include "scene/load_common.h"
 
+#include "util/os.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 zs_status zs_load_verror(zs_error *err, zs_status code, int trim, const char *prefix,
                          const char *fmt, va_list ap) {
@@ -29,24 +30,23 @@ zs_status zs_load_error(zs_error *err, zs_status code, const char *fmt, ...) {
 }
 
 /* Opens path and checks it against the flags (see zs_load_file); *st is
- * the file's status (st_mode 0 when a pipe's could not be had).  *f stays
+ * what the file is (kind NONE when a pipe's could not be had).  *f stays
  * NULL on failure, and for a missing file that may be missing. */
 static zs_status open_checked(const char *path, const char *shown, long long max_bytes,
-                              int flags, FILE **f, struct stat *st, zs_error *err) {
+                              int flags, FILE **f, zs_path_info *st, zs_error *err) {
   int regular_only = (flags & ZS_LOAD_REGULAR_ONLY) != 0;
   *f = fopen(path, "rb");
   if (!*f && (flags & ZS_LOAD_MISSING_OK)) return ZS_OK;
   if (!*f) return zs_load_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(errno));
   zs_status res = ZS_OK;
-  if (fstat(fileno(*f), st) != 0) {
-    if (regular_only)
-      res = zs_load_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(errno));
-    st->st_mode = 0;
-  } else if (regular_only && !S_ISREG(st->st_mode)) {
+  int e = zs_os_fstat(*f, st);
+  if (e != 0) {
+    if (regular_only) res = zs_load_error(err, ZS_ERR_IO, "%s: cannot open: %s", shown, strerror(e));
+  } else if (regular_only && st->kind != ZS_PATH_FILE) {
     res = zs_load_error(err, ZS_ERR_IO, "%s: not a regular file", shown);
   }
   /* a regular file says its size: refuse it before allocating anything */
-  if (res == ZS_OK && S_ISREG(st->st_mode) && (long long)st->st_size > max_bytes)
+  if (res == ZS_OK && st->kind == ZS_PATH_FILE && st->size > max_bytes)
     res = zs_load_error(err, ZS_ERR_LIMIT, "%s: larger than %lld MiB", shown, max_bytes >> 20);
   if (res != ZS_OK) {
     fclose(*f);
@@ -80,16 +80,16 @@ zs_status zs_load_file(const char *path, const char *shown, long long max_bytes,
   *len = 0;
   int regular_only = (flags & ZS_LOAD_REGULAR_ONLY) != 0;
   FILE *f;
-  struct stat st;
+  zs_path_info st;
   zs_status res = open_checked(path, shown, max_bytes, flags, &f, &st, err);
   if (res != ZS_OK || !f) return res;
   /* A regular file: one byte more than its size, so that one that grew is
    * noticed; else chunks, doubling. */
-  size_t cap = regular_only ? (size_t)st.st_size + 1 : (size_t)1 << 16, n = 0;
+  size_t cap = regular_only ? (size_t)st.size + 1 : (size_t)1 << 16, n = 0;
   char *buf = malloc(cap + 1);
   if (!buf) res = zs_load_error(err, ZS_ERR_NOMEM, "%s: out of memory", shown);
   else res = read_all(f, shown, max_bytes, !regular_only, &buf, &cap, &n, err);
-  if (res == ZS_OK && regular_only && n > (size_t)st.st_size)
+  if (res == ZS_OK && regular_only && n > (size_t)st.size)
     res = zs_load_error(err, ZS_ERR_IO, "%s: changed while being read", shown);
   fclose(f);
   if (res != ZS_OK) {
@@ -105,10 +105,10 @@ zs_status zs_load_file(const char *path, const char *shown, long long max_bytes,
 zs_status zs_load_head(const char *path, long long max_bytes, char *buf, size_t cap,
                        size_t *len, uint64_t *size, zs_error *err) {
   FILE *f;
-  struct stat st;
+  zs_path_info st;
   zs_status res = open_checked(path, path, max_bytes, ZS_LOAD_REGULAR_ONLY, &f, &st, err);
   if (res != ZS_OK) return res;
-  *size = (uint64_t)st.st_size;
+  *size = (uint64_t)st.size;
   *len = fread(buf, 1, cap, f);
   buf[*len] = '\0';
   if (ferror(f)) res = zs_load_error(err, ZS_ERR_IO, "%s: read error: %s", path, strerror(errno));

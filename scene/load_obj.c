@@ -30,7 +30,6 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
-#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -17,7 +17,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "util/matrix.h"
 #include "scene/load_assimp.h"
@@ -27,6 +26,7 @@
 #include "scene/paths.h"
 #include "scene/texture_file.h"
 #include "util/lights.h"
+#include "util/os.h"
 
 enum {
   PATH_MAX_CHARS = 256, /* of a JSON path in messages */
@@ -284,8 +284,8 @@ static int table_add(name_table *t, const char *name, int32_t index) {
 /* The size of the file at path, or -1 when it cannot be found out (the
  * loader then says why it cannot open it). */
 static long long file_size(const char *path) {
-  struct stat st;
-  return stat(path, &st) == 0 ? (long long)st.st_size : -1;
+  zs_path_info st;
+  return zs_os_stat(path, &st) == 0 && st.kind != ZS_PATH_NONE ? st.size : -1;
 }
 
 static int has_obj_extension(const char *path) {

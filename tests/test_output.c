@@ -18,7 +18,7 @@
 
 #include "testutil.h"
 #include "lib/outfile.h"
-#include "tools/spawn.h"
+#include "util/os.h"
 
 static char dir[4096];
 
@@ -68,7 +68,7 @@ static int render_to(const char *out, const char *out_path, char *err, size_t ca
   snprintf(exe, sizeof exe, "%s/zscan", ZS_BINARY_DIR);
   snprintf(err_path, sizeof err_path, "%s/stderr.txt", dir);
   char *argv[] = {exe, "render", "builtin:default", "--size", "64x48", "-o", (char *)out, NULL};
-  int rc = zs_spawn_wait(argv, out_path, err_path);
+  int rc = zs_os_spawn_wait(argv, out_path, err_path);
   FILE *f = fopen(err_path, "r");
   size_t n = f ? fread(err, 1, cap - 1, f) : 0;
   err[n] = '\0';

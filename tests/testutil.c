@@ -60,7 +60,8 @@ void zs_test_assert_same_file(const char *a, const char *b) {
   size_t na, nb;
   unsigned char *x = zs_test_slurp(a, &na), *y = zs_test_slurp(b, &nb);
   ck_assert_msg(na == nb && na > 0 && memcmp(x, y, na) == 0,
-                "%s (%zu bytes) and %s (%zu bytes) differ", a, na, b, nb);
+                "%s (%lu bytes) and %s (%lu bytes) differ", a, (unsigned long)na, b,
+                (unsigned long)nb); /* (not %zu: check's printf on Windows is the runtime's) */
   free(x);
   free(y);
 }
@@ -166,7 +167,7 @@ void zs_golden_assert(const char *file, const char *name, uint64_t got) {
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "tools/spawn.h"
+#include "util/os.h"
 
 static void slurp(const char *path, char *buf, size_t cap) {
   buf[0] = '\0';
@@ -188,7 +189,7 @@ int zs_test_run_zscan(const char *const *args, char *out, size_t out_cap, char *
   argv[n++] = exe;
   for (int i = 0; args[i] && n < 63; i++) argv[n++] = args[i];
   argv[n] = NULL;
-  int rc = zs_spawn_wait((char *const *)argv, out_path, err_path);
+  int rc = zs_os_spawn_wait((char *const *)argv, out_path, err_path);
   if (out) slurp(out_path, out, out_cap);
   if (err) slurp(err_path, err, err_cap);
   unlink(out_path);

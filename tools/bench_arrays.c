@@ -16,7 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
+#include "util/os.h"
 
 #include "tools/bench_report.h"
 #include "tools/cli.h"
@@ -219,15 +219,13 @@ int zs_cmd_bench_arrays(int argc, char **argv) {
   if (zs_bench_take_flag(&argc, argv, "--quick")) repeat = 3, ngrids = 1;
   zs_status st = zs_bench_size_md_args(argc, argv, "arrays", &w, &h, &md, &err);
   char dir[4096];
-  const char *tmpdir = getenv("TMPDIR");
-  snprintf(dir, sizeof dir, "%s/zscan-arrays-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-  if (!st && !mkdtemp(dir))
-    st = zs_error_set(&err, ZS_ERR_IO, "%s: cannot create a scratch folder: %s", dir,
-                      strerror(errno));
+  int e = st ? 0 : zs_os_scratch_dir("zscan-arrays", dir, sizeof dir);
+  if (e != 0)
+    st = zs_error_set(&err, ZS_ERR_IO, "cannot create a scratch folder: %s", strerror(e));
   if (!st) parsing = 0;
   arrays_row x[NGRIDS];
   for (int i = 0; i < ngrids && !st; i++) st = measure(grids[i], w, h, dir, &x[i], &err);
-  if (!parsing) rmdir(dir);
+  if (!parsing) zs_os_rmdir(dir);
   if (!st) {
     char title[96];
     snprintf(title, sizeof title, "a mesh from arrays and from its OBJ file at %dx%d", w, h);

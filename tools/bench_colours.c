@@ -11,7 +11,8 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
+
+#include "util/os.h"
 
 #include "tools/bench_report.h"
 #include "tools/cli.h"
@@ -91,7 +92,7 @@ int zs_cmd_bench_colours(int argc, char **argv) {
     row *r = &rows[i];
     memset(r, 0, sizeof *r);
     r->c = &zs_colour_cases[i];
-    if (r->c->input[0] == '/' && access(r->c->input, R_OK) != 0) {
+    if (r->c->input[0] == '/' && !zs_os_readable(r->c->input)) {
       r->missing = 1;
       snprintf(r->why, sizeof r->why, "not installed");
       continue;

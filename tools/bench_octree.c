@@ -19,13 +19,9 @@
 #include "tools/plot.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "cull/octree.h"
 #include "scene/generate.h"

@@ -55,13 +55,12 @@
  * and renders, in seconds (minutes under the sanitizers at -O0). */
 #include "tools/bench_suite.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/utsname.h>
-#include <unistd.h>
+
+#include "util/os.h"
 
 #include "raster/raster.h"
 #include "tools/bench_depthsort.h"
@@ -77,7 +76,7 @@
 #include "tools/mesa.h"
 #include "lib/outfile.h"
 #include "tools/plot.h"
-#include "tools/spawn.h"
+#include "util/os.h"
 
 static const char usage[] =
     "usage: zscan bench suite [--out DIR] [--quick] [--size WxH] [--threads N] [--docs DIR]\n"
@@ -266,9 +265,9 @@ static void describe_machine(char *buf, size_t cap) {
     }
     fclose(f);
   }
-  struct utsname u;
-  const char *arch = uname(&u) == 0 ? u.machine : "unknown";
-  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+  char arch[64];
+  zs_os_machine(arch, sizeof arch);
+  const int ncpu = zs_os_cpu_count();
   char compiler[128];
 #if defined(__clang__)
   snprintf(compiler, sizeof compiler, "clang %d.%d.%d", __clang_major__, __clang_minor__,
@@ -286,7 +285,7 @@ static void describe_machine(char *buf, size_t cap) {
 #else
   const char *build = "unoptimised build";
 #endif
-  snprintf(buf, cap, "%ld-core %s %s%s%s%s, %s, %s", ncpu, arch, vm ? "VM" : "machine",
+  snprintf(buf, cap, "%d-core %s %s%s%s%s, %s, %s", ncpu, arch, vm ? "VM" : "machine",
            model[0] ? " (" : "", model, model[0] ? ")" : "", compiler, build);
 }
 
@@ -483,19 +482,18 @@ static zs_status run_child(const suite *s, char **args, const char *txt, const c
   fflush(stdout);
   /* the child writes into a scratch file, which then reaches txt through
    * the output primitive like every other output */
-  const char *tmpdir = getenv("TMPDIR");
-  char scratch[PATH];
-  snprintf(scratch, sizeof scratch, "%s/zscan-suite-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-  int fd = mkstemp(scratch);
-  if (fd < 0) return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", scratch, strerror(errno));
-  close(fd);
-  int rc = zs_spawn_wait(argv, scratch, scratch);
+  char dir[PATH], scratch[PATH + 16];
+  int e = zs_os_scratch_dir("zscan-suite", dir, sizeof dir);
+  if (e != 0) return zs_error_set(err, ZS_ERR_IO, "cannot create a scratch folder: %s", strerror(e));
+  snprintf(scratch, sizeof scratch, "%s/output.txt", dir);
+  int rc = zs_os_spawn_wait(argv, scratch, scratch);
   zs_out out;
   zs_status st = zs_out_open(&out, txt, err);
   if (!st && !(st = zs_append_file(out.fp, scratch, err))) st = zs_out_commit(&out, err);
   else if (!st) zs_out_discard(&out);
   if (!st) st = zs_append_file(stdout, scratch, err); /* what it printed, here too */
-  unlink(scratch);
+  remove(scratch);
+  zs_os_rmdir(dir);
   if (rc != 0)
     return zs_error_set(err, ZS_ERR_IO, "'%s' failed (exit %d; its output: %s)", line, rc, txt);
   return st;
@@ -508,9 +506,9 @@ static zs_status run_threads(suite *s, const files *fs, zs_error *err) {
   in_dir(txt, s, "raster-threads.txt");
   arglist a = {0};
   threads_args(s, fs, as_run(s), &a);
-  setenv("LP_NUM_THREADS", s->threads_arg, 1);
+  zs_os_setenv("LP_NUM_THREADS", s->threads_arg);
   zs_status st = run_child(s, a.v, txt, s->mesa ? s->lp_env : NULL, err);
-  setenv("LP_NUM_THREADS", "1", 1);
+  zs_os_setenv("LP_NUM_THREADS", "1");
   return st;
 }
 
@@ -698,7 +696,7 @@ static int run_all(suite *s, const files *fs, zs_error *err) {
   const how h = as_run(s);
   arglist a = {0};
   /* llvmpipe on one thread beside zscan's one */
-  if (s->mesa) setenv("LP_NUM_THREADS", "1", 1);
+  if (s->mesa) zs_os_setenv("LP_NUM_THREADS", "1");
   raster_args(s, fs, h, &a);
   if (run(zs_cmd_bench_raster, a.v)) return 1;
   zs_progress_step(&progress, ++done);
@@ -883,32 +881,27 @@ static int placeholder_index(const char *name, size_t len) {
 }
 
 /* A text written through a stream, to become a placeholder's value. */
-typedef struct capture {
-  FILE *f;
-  char *buf;
-  size_t len;
-} capture;
+typedef zs_memfile capture;
 
 static zs_status capture_open(capture *c, zs_error *err) {
-  *c = (capture){NULL, NULL, 0};
-  c->f = open_memstream(&c->buf, &c->len);
-  return c->f ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  int e = zs_memfile_open(c);
+  return e ? zs_error_set(err, ZS_ERR_NOMEM, "cannot keep a text: %s", strerror(e)) : ZS_OK;
 }
 
 /* Closes the capture; on st == ZS_OK its text, without its last line
  * breaks, becomes the value of name (one of placeholders[]). */
 static zs_status capture_keep(suite *s, const char *name, capture *c, zs_status st,
                               zs_error *err) {
-  if (fclose(c->f) != 0 && st == ZS_OK) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  if (zs_memfile_close(c) != 0 && st == ZS_OK) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   const int i = placeholder_index(name, strlen(name));
   if (st == ZS_OK && i < 0) st = zs_error_set(err, ZS_ERR_ARG, "no placeholder {%s}", name);
   if (st != ZS_OK) {
-    free(c->buf);
+    free(c->data);
     return st;
   }
-  while (c->len && c->buf[c->len - 1] == '\n') c->buf[--c->len] = '\0';
+  while (c->size && c->data[c->size - 1] == '\n') c->data[--c->size] = '\0';
   free(s->value[i]);
-  s->value[i] = c->buf;
+  s->value[i] = c->data;
   return ZS_OK;
 }
 
@@ -1115,24 +1108,33 @@ static int by_name(const void *a, const void *b) {
   return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
+/* The names of the templates (*.md) found so far. */
+typedef struct template_names {
+  char *names[MAX_TEMPLATES];
+  int n;
+} template_names;
+
+static int add_template_name(const char *name, void *ctx) {
+  template_names *t = ctx;
+  const size_t len = strlen(name);
+  if (name[0] == '.' || len < 4 || strcmp(name + len - 3, ".md") != 0) return 0;
+  if (t->n == MAX_TEMPLATES) return ZS_ERR_LIMIT;
+  return (t->names[t->n++] = strdup(name)) ? 0 : ZS_ERR_NOMEM;
+}
+
 /* Reads the .md files of DIR/results/, in the order of their names. */
 static zs_status read_templates(suite *s, zs_error *err) {
   char dir[PATH];
   snprintf(dir, sizeof dir, "%s/results", s->docs);
-  DIR *d = opendir(dir);
-  if (!d) return zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", dir, strerror(errno));
-  char *names[MAX_TEMPLATES];
-  int n = 0;
+  template_names t = {{NULL}, 0};
+  const int rc = zs_os_each_name(dir, add_template_name, &t);
+  char **names = t.names;
+  const int n = t.n;
   zs_status st = ZS_OK;
-  for (struct dirent *e; (e = readdir(d)) != NULL && !st;) {
-    const size_t len = strlen(e->d_name);
-    if (e->d_name[0] == '.' || len < 4 || strcmp(e->d_name + len - 3, ".md") != 0) continue;
-    if (n == MAX_TEMPLATES)
-      st = zs_error_set(err, ZS_ERR_LIMIT, "%s: more than %d templates", dir, MAX_TEMPLATES);
-    else if (!(names[n++] = strdup(e->d_name)))
-      st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  }
-  closedir(d);
+  if (rc < 0) st = zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", dir, strerror(-rc));
+  else if (rc == ZS_ERR_LIMIT)
+    st = zs_error_set(err, ZS_ERR_LIMIT, "%s: more than %d templates", dir, MAX_TEMPLATES);
+  else if (rc) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   if (!st && n == 0) st = zs_error_set(err, ZS_ERR_IO, "%s: no templates (*.md)", dir);
   if (!st) qsort(names, (size_t)n, sizeof names[0], by_name);
   for (int i = 0; i < n; i++) {
@@ -1142,9 +1144,9 @@ static zs_status read_templates(suite *s, zs_error *err) {
       capture c;
       if (!(st = capture_open(&c, err))) {
         st = zs_append_file(c.f, t->path, err);
-        if (fclose(c.f) != 0 && !st) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-        if (st) free(c.buf);
-        else t->text = c.buf, s->ntmpl++;
+        if (zs_memfile_close(&c) != 0 && !st) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+        if (st) free(c.data);
+        else t->text = c.data, s->ntmpl++;
       }
     }
     free(names[i]);
@@ -1237,7 +1239,7 @@ static zs_status write_docs(suite *s, zs_error *err) {
   if (zs_out_dir("--docs", images, err)) return err->code;
   for (int k = 0; k < NPLOTS && s->plots; k++) {
     in_dir(from, s, plots[k].out);
-    if (access(from, R_OK) != 0) continue;
+    if (!zs_os_readable(from)) continue;
     snprintf(to, sizeof to, "%s/%s", images, plots[k].doc);
     if (copy_file(from, to, err)) return err->code;
   }
@@ -1304,8 +1306,8 @@ static zs_status probe(suite *s, zs_error *err) {
   s->have_mesa = zs_mesa_available();
   const int valgrind = zs_callgrind_available(&quiet);
   s->plots = zs_plot_available();
-  long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-  s->ncpu = ncpu > 64 ? 64 : (int)ncpu;
+  const int ncpu = zs_os_cpu_count();
+  s->ncpu = ncpu > 64 ? 64 : ncpu;
   if (!s->threads) s->threads = s->ncpu < 2 ? 2 : s->ncpu;
   snprintf(s->threads_arg, sizeof s->threads_arg, "%d", s->threads);
   snprintf(s->lp_env, sizeof s->lp_env, "LP_NUM_THREADS=%d", s->threads);
@@ -1321,7 +1323,7 @@ static zs_status probe(suite *s, zs_error *err) {
     if (lack) return zs_error_set(err, ZS_ERR_UNSUPPORTED, "--docs: the page needs %s", lack);
   }
   if (zs_out_dir("--out", s->dir, err)) return err->code;
-  if (!zs_self_path(s->self, sizeof s->self))
+  if (!zs_os_self_path(s->self, sizeof s->self))
     return zs_error_set(err, ZS_ERR_IO, "cannot find this program's path");
   describe_machine(s->machine, sizeof s->machine);
   return ZS_OK;

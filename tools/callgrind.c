@@ -4,9 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
-#include "tools/spawn.h"
+#include "util/os.h"
 
 int zs_callgrind_available(zs_error *err) {
 #ifdef ZS_SANITIZED
@@ -14,7 +13,7 @@ int zs_callgrind_available(zs_error *err) {
                "--callgrind: this zscan is built with sanitizers, which valgrind cannot run");
   return 0;
 #else
-  if (zs_program_available("valgrind")) return 1;
+  if (zs_os_program_available("valgrind")) return 1;
   zs_error_set(err, ZS_ERR_UNSUPPORTED, "--callgrind: valgrind is not installed (apt-get install valgrind)");
   return 0;
 #endif
@@ -24,14 +23,12 @@ zs_status zs_callgrind_count(const char *const *args, uint64_t *instructions, zs
   *instructions = 0;
   if (!zs_callgrind_available(err)) return err->code;
   char self[4096];
-  if (!zs_self_path(self, sizeof self))
+  if (!zs_os_self_path(self, sizeof self))
     return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot find this program's path");
-  const char *tmpdir = getenv("TMPDIR");
-  char log[4200];
-  snprintf(log, sizeof log, "%s/zscan-callgrind-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-  int fd = mkstemp(log);
-  if (fd < 0) return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot create %s", log);
-  close(fd);
+  char dir[4096], log[4200];
+  if (zs_os_scratch_dir("zscan-callgrind", dir, sizeof dir) != 0)
+    return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot create a scratch folder");
+  snprintf(log, sizeof log, "%s/callgrind.log", dir);
   char log_opt[4300];
   snprintf(log_opt, sizeof log_opt, "--log-file=%s", log);
   const char *argv[64];
@@ -43,13 +40,13 @@ zs_status zs_callgrind_count(const char *const *args, uint64_t *instructions, zs
   argv[k++] = self;
   for (int i = 0; args[i]; i++) {
     if (k == 63) {
-      unlink(log);
+      zs_os_rmdir(dir);
       return zs_error_set(err, ZS_ERR_ARG, "--callgrind: too many arguments");
     }
     argv[k++] = args[i];
   }
   argv[k] = NULL;
-  int rc = zs_spawn_wait((char *const *)argv, NULL, NULL);
+  int rc = zs_os_spawn_wait((char *const *)argv, NULL, NULL);
   /* callgrind's summary: "==PID== Collected : N" */
   FILE *f = fopen(log, "r");
   char line[512];
@@ -59,7 +56,8 @@ zs_status zs_callgrind_count(const char *const *args, uint64_t *instructions, zs
     if (c) found = sscanf(c + strlen("Collected :"), "%" SCNu64, instructions) == 1;
   }
   if (f) fclose(f);
-  unlink(log);
+  remove(log);
+  zs_os_rmdir(dir);
   if (rc != 0 || !found)
     return zs_error_set(err, ZS_ERR_IO, "--callgrind: the run under valgrind failed (exit %d)", rc);
   return ZS_OK;

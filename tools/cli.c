@@ -14,9 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-#include <time.h>
-#include <unistd.h>
+
+#include "util/os.h"
 
 zs_status zs_cli_double(const char *opt, const char *s, double *out, zs_error *err) {
   char *end;
@@ -163,11 +162,19 @@ const char *zs_cli_extension(const char *path) {
   return dot && dot != base ? dot + 1 : NULL;
 }
 
+int zs_cli_extension_is(const char *path, const char *ext) {
+  const char *given = zs_cli_extension(path);
+  if (!given) return 0;
+  for (; *given && *ext; given++, ext++)
+    if ((*given >= 'A' && *given <= 'Z' ? *given - 'A' + 'a' : *given) != *ext) return 0;
+  return *given == *ext;
+}
+
 zs_status zs_cli_output_format(const char *opt, const char *path, const char *ext,
                                zs_error *err) {
   const char *given = zs_cli_extension(path);
   if (!given) return ZS_OK; /* no extension: a device, a pipe, a plain name */
-  if (strcasecmp(given, ext) == 0) return ZS_OK;
+  if (zs_cli_extension_is(path, ext)) return ZS_OK;
   char upper[16];
   size_t n = 0;
   for (; ext[n] && n + 1 < sizeof upper; n++)
@@ -243,7 +250,7 @@ static double log_interval_ms(void) {
 }
 
 void zs_progress_start(zs_progress *p, const char *label, const char *unit, int total, int quiet) {
-  *p = (zs_progress){label, unit, total, quiet, isatty(2), zs_wall_ms(), 0.0, log_interval_ms()};
+  *p = (zs_progress){label, unit, total, quiet, zs_os_stderr_is_terminal(), zs_wall_ms(), 0.0, log_interval_ms()};
   p->last_ms = p->start_ms;
 }
 
@@ -271,11 +278,7 @@ double zs_median(double *v, int n) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-double zs_wall_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
+double zs_wall_ms(void) { return zs_os_monotonic_ms(); }
 
 const char *zs_cli_ms_of_ps(int64_t ps, char *buf) {
   /* |ps| as unsigned, so that INT64_MIN negates */

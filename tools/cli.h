@@ -40,6 +40,8 @@ zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err);
 /* The extension of path's file name (after its last '.', not the name's
  * first character), or NULL when it has none. */
 const char *zs_cli_extension(const char *path);
+/* Whether path's extension is ext (lower case), in any case. */
+int zs_cli_extension_is(const char *path, const char *ext);
 /* An output whose name says another format than the one written (-o x.jpg
  * for a PNG) is refused: "-o: x.jpg: zscan writes PNG".  ext is the
  * format's extension ("png"), any case; a name without an extension, "-",

@@ -21,10 +21,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "lib/image.h"
 #include "lib/outfile.h"
+#include "util/os.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
 #include "tools/cmd_render.h"
@@ -272,8 +272,8 @@ static void run_case(golden_run *r, golden_case *c) {
   if (r->update) return;
   char path[8400];
   golden_path(r, c, path, sizeof path);
-  struct stat st;
-  if (stat(path, &st) != 0) {
+  zs_path_info st;
+  if (zs_os_stat(path, &st) != 0 || st.kind == ZS_PATH_NONE) {
     c->missing = 1;
     c->failed = 1;
     return;
@@ -429,8 +429,8 @@ static zs_status write_html(const golden_run *r, const char *path, int tests, in
     for (int k = 0; k < 3; k++) {
       if (k == 0) golden_path(r, c, p, sizeof p);
       else snprintf(p, sizeof p, "%s/%s.%s.png", r->report, c->name, labels[k]);
-      struct stat st;
-      if (stat(p, &st) != 0) continue;
+      zs_path_info st;
+      if (zs_os_stat(p, &st) != 0 || st.kind == ZS_PATH_NONE) continue;
       /* small pictures at twice their size, pixels kept sharp */
       const zs_image *im = k == 0 ? &c->golden : k == 1 ? &c->actual : &c->heat;
       int shown = im->width && im->width <= 240 ? 2 * im->width : im->width ? im->width : 320;

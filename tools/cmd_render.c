@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "cull/cull.h"
 #include "cull/octree.h"
@@ -155,8 +154,7 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
     if (extra) return zs_error_set(err, ZS_ERR_ARG, "%s: not here (the image is kept in memory)", extra);
     return ZS_OK;
   }
-  const char *ext = zs_cli_extension(o->out_png);
-  o->svg = ext && strcasecmp(ext, "svg") == 0;
+  o->svg = zs_cli_extension_is(o->out_png, "svg");
   if (o->svg && !o->hidden_line)
     return zs_error_set(err, ZS_ERR_ARG, "-o: %s: an SVG holds hidden lines (--style hidden-line)",
                         o->out_png);

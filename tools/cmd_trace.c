@@ -19,6 +19,7 @@
 #include "tools/cmd_trace_page.h"
 #include "tools/trace_walk.h"
 #include "tools/viewopts.h"
+#include "util/os.h"
 
 static const char usage[] =
     "usage: zscan trace INPUT [options]\n"
@@ -300,9 +301,7 @@ int zs_cmd_trace(int argc, char **argv) {
   zs_scene model;
   zs_tracer t;
   memset(&t, 0, sizeof t);
-  char *page_data = NULL; /* --html: the JSON trace, gathered */
-  size_t page_size = 0;
-  FILE *mem = NULL;
+  zs_memfile page_json = {NULL, NULL, 0}; /* --html: the JSON trace, gathered */
   int have_model = 0, rc = 1;
   if (parse(argc, argv, &o, &err)) goto fail;
   parsing = 0;
@@ -321,20 +320,22 @@ int zs_cmd_trace(int argc, char **argv) {
     zs_progress_start(&t.progress, "trace", "picture", last - first + 1, o.quiet);
     t.picture = picture;
   }
-  if (o.html && !(mem = open_memstream(&page_data, &page_size))) {
+  if (o.html && zs_memfile_open(&page_json) != 0) {
     zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
     goto fail;
   }
-  if (zs_trace_walk(&t, &o, &model, mem ? mem : stdout, &err)) goto fail;
+  if (zs_trace_walk(&t, &o, &model, o.html ? page_json.f : stdout, &err)) goto fail;
   if (o.html) {
-    fclose(mem);
-    mem = NULL;
+    if (zs_memfile_close(&page_json) != 0) {
+      zs_error_set(&err, ZS_ERR_NOMEM, "out of memory");
+      goto fail;
+    }
     zs_out page;
     if (zs_out_open(&page, o.html, &err)) {
       zs_out_error_option(&err, "--html");
       goto fail;
     }
-    fprintf(page.fp, "%s[%s]%s", zs_cmd_trace_page_head, page_data, zs_cmd_trace_page_tail);
+    fprintf(page.fp, "%s[%s]%s", zs_cmd_trace_page_head, page_json.data, zs_cmd_trace_page_tail);
     if (zs_out_commit(&page, &err)) {
       zs_out_error_option(&err, "--html");
       goto fail;
@@ -345,8 +346,8 @@ int zs_cmd_trace(int argc, char **argv) {
 fail:
   rc = zs_cli_fail("zscan trace", &err, parsing);
 done:
-  if (mem) fclose(mem);
-  free(page_data);
+  if (page_json.f) fclose(page_json.f);
+  free(page_json.data);
   zs_tracer_free(&t);
   if (have_model) zs_scene_free(&model);
   return rc;

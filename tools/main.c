@@ -5,6 +5,7 @@
 
 #include "raster/raster.h"
 #include "tools/commands.h"
+#include "util/os.h"
 
 /* The version, and what this build holds: the span fill in use and the
  * optional parts compiled in. */
@@ -17,6 +18,7 @@ static int version(void) {
 }
 
 int main(int argc, char **argv) {
+  zs_os_binary_stdout(); /* what zscan prints: the same bytes on every system */
   if (argc == 2 && (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0))
     return version();
   return zs_command_dispatch("zscan", zs_commands, zs_ncommands, argc, argv);

@@ -2,17 +2,15 @@
 
 #include "lib/outfile.h"
 #include "util/exactmath.h"
-#include "tools/spawn.h"
+#include "util/os.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
-int zs_plot_available(void) { return zs_program_available("gnuplot"); }
+int zs_plot_available(void) { return zs_os_program_available("gnuplot"); }
 
 /* s as a gnuplot single-quoted string: quotes doubled. */
 static void quoted(FILE *f, const char *s) {
@@ -31,12 +29,10 @@ zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
   if (!zs_plot_available())
     return zs_error_set(err, ZS_ERR_IO, "%s: gnuplot is not installed (apt-get install gnuplot-nox)",
                         png);
-  const char *tmpdir = getenv("TMPDIR");
   char dir[4096], tmp_png[4200], tmp_gp[4200];
-  snprintf(dir, sizeof dir, "%s/zscan-plot-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
-  if (!mkdtemp(dir))
-    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create a scratch folder: %s", png,
-                        strerror(errno));
+  int e = zs_os_scratch_dir("zscan-plot", dir, sizeof dir);
+  if (e != 0)
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create a scratch folder: %s", png, strerror(e));
   snprintf(tmp_png, sizeof tmp_png, "%s/plot.png", dir);
   snprintf(tmp_gp, sizeof tmp_gp, "%s/plot.gp", dir);
   zs_status st = ZS_OK;
@@ -51,7 +47,7 @@ zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
     st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write the gnuplot script", png);
   } else {
     char *args[] = {"gnuplot", tmp_gp, NULL};
-    if (zs_spawn_wait(args, NULL, NULL) != 0) st = zs_error_set(err, ZS_ERR_IO, "%s: gnuplot failed", png);
+    if (zs_os_spawn_wait(args, NULL, NULL) != 0) st = zs_error_set(err, ZS_ERR_IO, "%s: gnuplot failed", png);
   }
   zs_out out;
   if (st == ZS_OK && (st = zs_out_open(&out, png, err)) == ZS_OK) {
@@ -59,9 +55,9 @@ zs_status zs_plot_run(const char *png, const char *script, zs_error *err) {
     if (st == ZS_OK) st = zs_out_commit(&out, err);
     else zs_out_discard(&out);
   }
-  unlink(tmp_gp);
-  unlink(tmp_png);
-  rmdir(dir);
+  remove(tmp_gp);
+  remove(tmp_png);
+  zs_os_rmdir(dir);
   return st;
 }
 

@@ -36,6 +36,7 @@
 #include "scene/scene.h"
 #include "tools/trace_walk.h"
 #include "tools/viewopts.h"
+#include "util/os.h"
 
 #ifdef __EMSCRIPTEN__
 #include <emscripten.h>
@@ -205,10 +206,9 @@ static void read_lesson(lesson *l, const char *text) {
 /* The lesson as the OBJ file the command reads: one object a polygon,
  * the intensities as vertex colours (v x y z r g b). */
 static char *lesson_obj(const lesson *l) {
-  char *buf = NULL;
-  size_t size = 0;
-  FILE *f = open_memstream(&buf, &size);
-  if (!f) return NULL;
+  zs_memfile m;
+  if (zs_memfile_open(&m) != 0) return NULL;
+  FILE *f = m.f;
   fprintf(f, "# a zscan lesson: zscan trace lesson.obj --ortho -0.5,%d.5,-0.5,%d.5 "
              "--eye 0,0,0 --target 0,0,-1 --near -10 --far 5 --size %dx%d%s\n",
           l->width - 1, l->height - 1, l->width, l->height, l->zbuffer ? " --algo zbuffer" : "");
@@ -226,8 +226,7 @@ static char *lesson_obj(const lesson *l) {
     fputc('\n', f);
     first += l->ncorners[i];
   }
-  fclose(f);
-  return buf;
+  return zs_memfile_close(&m) == 0 ? m.data : NULL;
 }
 
 /* The command's view options for the lesson, and the view they give. */
@@ -295,8 +294,7 @@ static zs_status lesson_scene(const lesson *l, zs_scene **out, zs_error *err) {
 /* The trace of the lesson, as the JSON array the page reads. */
 static char *lesson_trace(const lesson *l, cJSON *args, zs_error *err) {
   zs_scene *s = NULL;
-  char *buf = NULL;
-  size_t size = 0;
+  zs_memfile m = {NULL, NULL, 0};
   zs_trace_opts o;
   memset(&o, 0, sizeof o);
   o.row1 = ZS_MAX_IMAGE_SIDE;
@@ -305,24 +303,24 @@ static char *lesson_trace(const lesson *l, cJSON *args, zs_error *err) {
   o.zbuffer = l->zbuffer;
   zs_tracer t;
   memset(&t, 0, sizeof t);
-  FILE *f = NULL;
   if (lesson_scene(l, &s, err) || !lesson_view(l, s, &o.view, args, err)) goto done;
-  if (!(f = open_memstream(&buf, &size))) {
+  if (zs_memfile_open(&m) != 0) {
     zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
     goto done;
   }
-  fputc('[', f);
-  if (zs_trace_walk(&t, &o, s, f, err)) goto done;
-  fputc(']', f);
+  fputc('[', m.f);
+  if (zs_trace_walk(&t, &o, s, m.f, err)) goto done;
+  fputc(']', m.f);
+  if (zs_memfile_close(&m) != 0) zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
 done:
-  if (f) fclose(f);
+  if (m.f) fclose(m.f);
   zs_tracer_free(&t);
   zs_scene_destroy(s);
   if (err->code) {
-    free(buf);
+    free(m.data);
     return NULL;
   }
-  return buf;
+  return m.data;
 }
 
 ZS_TEACH_EXPORT char *zs_teach_run(const char *lesson_json) {
