@@ -12,9 +12,13 @@
 # pointers make its own).  Models of assimp's formats are left to the native tests.
 #
 # musl (x86-64 with musl's C library) is built against libraries
-# tools/setup.sh builds from Debian's sources, and run as it is.
+# tools/setup.sh builds from Debian's sources, and run as it is; windows
+# (x86-64) with mingw-w64 against such libraries, and run under wine,
+# where the outputs' guarantees are tried too (a file replaced whole, one
+# kept on an error, no temporary left, a missing folder and a directory
+# refused, standard output's bytes as they are).
 #
-#   tools/cross-check.sh [TARGET ...]     (default: aarch64 s390x i686 musl)
+#   tools/cross-check.sh [TARGET ...]     (default: aarch64 s390x i686 musl windows)
 #
 # Environment: ZS_CROSS_ROOT (as tools/setup.sh), ZS_BUILD_DIR (the
 # native build, default build/), ZS_CROSS_BUILD (default build-cross).
@@ -24,7 +28,7 @@ zs_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # shellcheck source=tools/cross-targets.sh
 . "$zs_root/tools/cross-targets.sh"
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(aarch64 s390x i686 musl)
+[ ${#targets[@]} -gt 0 ] || targets=(aarch64 s390x i686 musl windows)
 for t in "${targets[@]}"; do zs_cross_target "$t" >/dev/null || exit 2; done
 ZS_CROSS="${targets[*]}" "$zs_root/tools/setup.sh"
 source_root=${ZS_CROSS_ROOT:-/opt/zscan-cross}
@@ -79,6 +83,56 @@ build_musl() {
     { cat "$build/build.log" >&2; exit 1; }
 }
 
+# The windows build: mingw-w64 with the toolchain file and static
+# libraries tools/setup.sh made, run under wine in a prefix of its own.
+build_windows() {
+  local w=${ZS_WINDOWS_ROOT:-/opt/zscan-windows}
+  echo "cross-check: windows: building" >&2
+  PKG_CONFIG_LIBDIR="$w/lib/pkgconfig:/usr/x86_64-w64-mingw32/lib/pkgconfig" \
+    cmake -S "$zs_root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$w/toolchain.cmake" \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS=-static \
+    -DCMAKE_C_STANDARD_LIBRARIES="-lz -lssp" -DZS_WERROR=ON -DZS_ASSIMP=OFF -DZS_MESA=OFF \
+    -DZS_TEACH_WASM=OFF >"$build/configure.log" 2>&1 ||
+    { cat "$build/configure.log" >&2; exit 1; }
+  cmake --build "$build" -j "$(nproc)" --target zscan test_golden >"$build/build.log" 2>&1 ||
+    { cat "$build/build.log" >&2; exit 1; }
+  export WINEPREFIX="$build/wine" WINEDEBUG=-all
+  /usr/lib/wine/wine64 wineboot --init >/dev/null 2>&1 || true
+  run=/usr/lib/wine/wine64
+  exe=.exe
+}
+
+# The output primitive's promises, tried with Windows' own calls: $1 runs
+# zscan; prints what broke, nothing when all held.
+check_outputs() {
+  local zscan=$1 d="$build/outputs" good
+  rm -rf "$d"
+  mkdir -p "$d/dir"
+  good="$d/native.png"
+  "$native" render builtin:default --size 200x150 -o "$good" -q
+  printf 'old' >"$d/kept.png"
+  # shellcheck disable=SC2086
+  if $zscan render no-such-scene.obj -o "$d/kept.png" -q 2>/dev/null ||
+    [ "$(cat "$d/kept.png")" != old ]; then
+    echo "a failed render changed the file it was to write"
+  fi
+  # shellcheck disable=SC2086
+  $zscan render builtin:default --size 200x150 -o "$d/kept.png" -q 2>"$d/err.txt" &&
+    cmp -s "$d/kept.png" "$good" || echo "a file was not replaced by the image: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan render builtin:default --size 200x150 -o - -q >"$d/stdout.png" 2>"$d/err.txt" &&
+    cmp -s "$d/stdout.png" "$good" || echo "standard output's PNG differs: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan render builtin:default -o "$d/missing/x.png" -q 2>"$d/err.txt" &&
+    echo "a missing folder was written into"
+  grep -q "no such directory" "$d/err.txt" || echo "a missing folder's message: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan render builtin:default -o "$d/dir" -q 2>"$d/err.txt" && echo "a directory was written"
+  grep -q "is a directory" "$d/err.txt" || echo "a directory's message: $(cat "$d/err.txt")"
+  ls "$d" "$d/dir" | grep -q "\.tmp\." && echo "a temporary was left: $(ls "$d")"
+  return 0
+}
+
 # A Debian cross target: its toolchain file, the build, and how to run it
 # (qemu-user; i686 on this CPU where it can), in run.
 build_cross() {
@@ -123,15 +177,18 @@ for t in "${targets[@]}"; do
   build="$out/$t"
   rm -rf "$build" # the toolchain's flags take at a first configure only
   mkdir -p "$build"
+  exe=""
   if [ "$t" = musl ]; then
     build_musl
     run=""
+  elif [ "$t" = windows ]; then
+    build_windows
   else
     build_cross
   fi
   # aarch64 fills its spans with NEON: the comparisons below are of that path
   # shellcheck disable=SC2086
-  fill=$($run "$build/zscan" --version | sed -n 's/^span fill: //p')
+  fill=$($run "$build/zscan$exe" --version | sed -n 's/^span fill: //p')
   echo "cross-check: $t: span fill $fill" >&2
   if [ "$t" = aarch64 ] && [ "$fill" != neon ]; then
     echo "cross-check: aarch64: the span fill is '$fill', not neon" >&2
@@ -139,13 +196,13 @@ for t in "${targets[@]}"; do
   fi
   echo "cross-check: $t: the golden images (${run:-natively})" >&2
   # shellcheck disable=SC2086
-  if ! (cd "$build" && CK_DEFAULT_TIMEOUT=0 $run ./test_golden >golden.log 2>&1); then
+  if ! (cd "$build" && CK_DEFAULT_TIMEOUT=0 $run ./test_golden$exe >golden.log 2>&1); then
     grep -v "skipped$" "$build/golden.log" >&2
     echo "cross-check: $t: golden images differ (above)" >&2
     status=1
   fi
   echo "cross-check: $t: ${#renders[@]} renders and a walk against the native build" >&2
-  run_cases "$run $build/zscan" >"$build/cases.txt"
+  run_cases "$run $build/zscan$exe" >"$build/cases.txt"
   want="$out/native.txt"
   if [ "$t" = i686 ]; then
     # the memory a 32-bit device holds is its own (pointers of 4 bytes)
@@ -161,6 +218,16 @@ for t in "${targets[@]}"; do
   else
     echo "cross-check: $t: $(grep -c . "$want") lines, every one the native build's" >&2
   fi
-  unset QEMU_LD_PREFIX LD_LIBRARY_PATH
+  if [ "$t" = windows ]; then
+    broken=$(check_outputs "$run $build/zscan$exe")
+    if [ -n "$broken" ]; then
+      echo "$broken" >&2
+      echo "cross-check: windows: the outputs' guarantees do not hold (above)" >&2
+      status=1
+    else
+      echo "cross-check: windows: outputs replaced whole, kept on an error, refused where they must be" >&2
+    fi
+  fi
+  unset QEMU_LD_PREFIX LD_LIBRARY_PATH WINEPREFIX WINEDEBUG
 done
 exit $status

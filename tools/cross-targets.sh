@@ -7,6 +7,7 @@ zs_cross_target() {
     s390x) echo "s390x s390x-linux-gnu qemu-s390x-static s390x-linux-gnu" ;;
     i686) echo "i386 i686-linux-gnu qemu-i386-static i386-linux-gnu" ;;
     musl) echo "- musl-gcc - -" ;; # x86-64 with musl's C library, run as it is
-    *) echo "unknown cross target '$1' (aarch64, s390x, i686, musl)" >&2; return 1 ;;
+    windows) echo "- x86_64-w64-mingw32 /usr/lib/wine/wine64 -" ;; # mingw-w64, run under wine
+    *) echo "unknown cross target '$1' (aarch64, s390x, i686, musl, windows)" >&2; return 1 ;;
   esac
 }

@@ -9,13 +9,16 @@
 # its libraries from Debian's packages, unpacked (apt-get download,
 # dpkg-deb -x) into $ZS_CROSS_ROOT/TARGET, where multiarch installs would
 # clash with the native ones' versions; for musl, musl-gcc and the
-# libraries built from Debian's sources into $ZS_MUSL_ROOT.
+# libraries built from Debian's sources into $ZS_MUSL_ROOT; for windows,
+# mingw-w64 and wine, and the libraries built from Debian's sources with
+# mingw-w64 into $ZS_WINDOWS_ROOT (with its CMake toolchain file).
 #
 # Environment:
 #   ZS_CROSS         cross targets to set up (default: none)
 #   ZS_CROSS_ROOT    where their libraries go (default: /opt/zscan-cross)
 #   ZS_WASM_ROOT     cJSON's sources for the teaching page's engine (default: /opt/zscan-wasm)
 #   ZS_MUSL_ROOT     the musl target's libraries (default: /opt/zscan-musl)
+#   ZS_WINDOWS_ROOT  the windows target's libraries (default: /opt/zscan-windows)
 #   ZS_BUILD_DIR     build directory (default: build)
 #   ZS_BUILD_TYPE    CMake build type (default: Release)
 #   ZS_CMAKE_ARGS    extra CMake arguments (e.g. -DZS_SANITIZE=ON)
@@ -84,7 +87,7 @@ if [ -n "${ZS_CROSS:-}" ]; then
   zs_missing_cross=()
   for t in $ZS_CROSS; do
     zs_cross_target "$t" >/dev/null || exit 2
-    [ "$t" = musl ] && continue # (its libraries: below)
+    [ "$t" = musl ] || [ "$t" = windows ] && continue # (their libraries: below)
     read -r deb triplet _ _ <<<"$(zs_cross_target "$t")"
     [ -d "$zs_cross_root/$t/usr" ] || zs_need+=("$t")
     command -v "$triplet-gcc" >/dev/null || zs_missing_cross+=("gcc-$triplet")
@@ -168,11 +171,36 @@ if [ ! -f "$zs_wasm_root/cjson/cJSON.c" ]; then
   fi
 fi
 
+# libjpeg-turbo (its plain C path: its SIMD needs nasm, and gives the same
+# texels), cJSON and check, static, from their Debian sources in $1 with
+# the CMake arguments after it.
+zs_build_cmake_libs() {
+  local src=$1
+  shift
+  (cd "$src"/libjpeg-turbo-*/ &&
+    cmake -S . -B zscan-build "$@" -DENABLE_SHARED=OFF -DWITH_SIMD=OFF -DWITH_TURBOJPEG=OFF &&
+    cmake --build zscan-build -j "$(nproc)" --target install) &&
+  (cd "$src"/cjson-*/ &&
+    cmake -S . -B zscan-build "$@" -DBUILD_SHARED_LIBS=OFF -DENABLE_CJSON_TEST=OFF \
+      -DENABLE_CJSON_UTILS=OFF &&
+    cmake --build zscan-build -j "$(nproc)" --target install) &&
+  (cd "$src"/check-*/ &&
+    cmake -S . -B zscan-build "$@" -DBUILD_TESTING=OFF -DCHECK_ENABLE_SUBUNIT=OFF &&
+    cmake --build zscan-build -j "$(nproc)" --target install)
+}
+
+# A static library set in $1 made whole: check installs a shared library
+# too, named _pic in its .pc.
+zs_static_only() {
+  rm -f "$1"/lib/*.so* "$1"/lib/*.dll.a
+  sed -i 's/-lcheck_pic/-lcheck/' "$1/lib/pkgconfig/check.pc"
+  touch "$1/complete"
+}
+
 # The musl target of tools/cross-check.sh: musl-gcc, and the libraries
 # zscan and its golden test link, built from Debian's sources as static
 # libraries for musl into $ZS_MUSL_ROOT (Debian ships them for glibc
-# only); libjpeg-turbo's plain C path (its SIMD needs nasm, and gives the
-# same texels).
+# only).
 zs_musl_root=${ZS_MUSL_ROOT:-/opt/zscan-musl}
 if [[ " ${ZS_CROSS:-} " == *" musl "* ]] && [ ! -f "$zs_musl_root/complete" ]; then
   if ! command -v musl-gcc >/dev/null; then
@@ -196,25 +224,66 @@ if [[ " ${ZS_CROSS:-} " == *" musl "* ]] && [ ! -f "$zs_musl_root/complete" ]; t
     CC=musl-gcc CFLAGS=-O2 CPPFLAGS="-I$zs_m/include" LDFLAGS="-L$zs_m/lib" \
       ./configure --prefix="$zs_m" --disable-shared
     make -j "$(nproc)" install
-    cd "$zs_src"/libjpeg-turbo-*/
-    cmake -S . -B musl "${zs_cmake_musl[@]}" -DENABLE_SHARED=OFF -DWITH_SIMD=OFF -DWITH_TURBOJPEG=OFF
-    cmake --build musl -j "$(nproc)" --target install
-    cd "$zs_src"/cjson-*/
-    cmake -S . -B musl "${zs_cmake_musl[@]}" -DBUILD_SHARED_LIBS=OFF -DENABLE_CJSON_TEST=OFF \
-      -DENABLE_CJSON_UTILS=OFF
-    cmake --build musl -j "$(nproc)" --target install
-    cd "$zs_src"/check-*/
-    cmake -S . -B musl "${zs_cmake_musl[@]}" -DBUILD_TESTING=OFF -DCHECK_ENABLE_SUBUNIT=OFF
-    cmake --build musl -j "$(nproc)" --target install
+    zs_build_cmake_libs "$zs_src" "${zs_cmake_musl[@]}"
   ) >"$zs_src/build.log" 2>&1; then
     tail -30 "$zs_src/build.log" >&2
     echo "setup: the musl libraries did not build" >&2
     exit 1
   fi
-  # static only: check installs a shared library too, named _pic in its .pc
-  rm -f "$zs_m"/lib/*.so*
-  sed -i 's/-lcheck_pic/-lcheck/' "$zs_m/lib/pkgconfig/check.pc"
-  touch "$zs_m/complete"
+  zs_static_only "$zs_m"
+  rm -rf "$zs_src"
+fi
+
+# The windows target of tools/cross-check.sh: mingw-w64 (its POSIX-threads
+# flavour: winpthreads), wine to run what it builds, Debian's zlib for
+# mingw-w64, and libpng, libjpeg-turbo, cJSON and check built from
+# Debian's sources as static libraries into $ZS_WINDOWS_ROOT, beside the
+# CMake toolchain file that builds them and zscan.
+zs_windows_root=${ZS_WINDOWS_ROOT:-/opt/zscan-windows}
+if [[ " ${ZS_CROSS:-} " == *" windows "* ]] && [ ! -f "$zs_windows_root/complete" ]; then
+  zs_win_packages=(gcc-mingw-w64-x86-64-posix mingw-w64-x86-64-dev libz-mingw-w64-dev wine64)
+  zs_missing_win=()
+  for p in "${zs_win_packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+      zs_missing_win+=("$p")
+  done
+  if [ ${#zs_missing_win[@]} -gt 0 ]; then
+    echo "setup: installing ${zs_missing_win[*]}" >&2
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends "${zs_missing_win[@]}" >&2
+  fi
+  echo "setup: the windows libraries into $zs_windows_root" >&2
+  zs_src=$(mktemp -d)
+  zs_apt_source "$zs_src" libpng1.6 libjpeg-turbo cjson check
+  rm -rf "$zs_windows_root"
+  mkdir -p "$zs_windows_root"
+  zs_w=$zs_windows_root
+  cat >"$zs_w/toolchain.cmake" <<TOOLCHAIN
+set(CMAKE_SYSTEM_NAME Windows)
+set(CMAKE_SYSTEM_PROCESSOR x86_64)
+set(CMAKE_C_COMPILER x86_64-w64-mingw32-gcc-posix)
+set(CMAKE_RC_COMPILER x86_64-w64-mingw32-windres)
+set(CMAKE_CROSSCOMPILING_EMULATOR /usr/lib/wine/wine64)
+set(CMAKE_FIND_ROOT_PATH $zs_w /usr/x86_64-w64-mingw32)
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+TOOLCHAIN
+  zs_cmake_win=(-DCMAKE_TOOLCHAIN_FILE="$zs_w/toolchain.cmake" -DCMAKE_BUILD_TYPE=Release
+                "-DCMAKE_INSTALL_PREFIX=$zs_w" "-DCMAKE_INSTALL_LIBDIR=$zs_w/lib")
+  if ! (
+    set -e
+    cd "$zs_src"/libpng1.6-*/
+    cmake -S . -B zscan-build "${zs_cmake_win[@]}" -DPNG_SHARED=OFF -DPNG_TESTS=OFF -DPNG_EXECUTABLES=OFF
+    cmake --build zscan-build -j "$(nproc)" --target install
+    zs_build_cmake_libs "$zs_src" "${zs_cmake_win[@]}"
+  ) >"$zs_src/build.log" 2>&1; then
+    tail -30 "$zs_src/build.log" >&2
+    echo "setup: the windows libraries did not build" >&2
+    exit 1
+  fi
+  zs_static_only "$zs_w"
   rm -rf "$zs_src"
 fi
 
