@@ -153,7 +153,7 @@ zs_status zs_out_open(zs_out *o, const char *path, zs_error *err) {
   if (!(o->path = dup_n(path, strlen(path))))
     return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   if (zs_out_is_stdout(path)) {
-    zs_os_binary_stdout();
+    zs_os_binary_stream(stdout);
     o->fp = stdout;
     return ZS_OK;
   }

@@ -14,6 +14,7 @@
 #include "tools/cli.h"
 #include "tools/clockfile.h"
 #include "tools/commands.h"
+#include "util/os.h"
 #include "lib/image.h"
 
 static char out[1 << 16], err[1 << 16];
@@ -410,9 +411,9 @@ START_TEST(bench_suite_writes_every_file) {
   /* everything small: every walk, method and mode, with its files; a
    * progress line after each benchmark, and the walks of tradeoff */
   const char *args[] = {"bench", "suite", "--quick", "--size", "500x500", "--out", dir, NULL};
-  setenv("ZSCAN_PROGRESS_MS", "0", 1);
+  zs_os_setenv("ZSCAN_PROGRESS_MS", "0");
   int rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
-  unsetenv("ZSCAN_PROGRESS_MS");
+  zs_os_setenv("ZSCAN_PROGRESS_MS", NULL);
   ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
   ck_assert_msg(strstr(err, "bench suite: benchmark 1/13 (7 %), ") != NULL, "%s", err);
   ck_assert_msg(strstr(err, "bench suite: benchmark 13/13 (100 %), ") != NULL, "%s", err);
@@ -827,7 +828,7 @@ END_TEST
  * here, a line every frame, as a walk this small can end within 1 ms);
  * --quiet leaves stderr empty. */
 START_TEST(progress_in_logs_unless_quiet) {
-  setenv("ZSCAN_PROGRESS_MS", "0", 1);
+  zs_os_setenv("ZSCAN_PROGRESS_MS", "0");
   const char *args[] = {"walk", "builtin:cubes,n=3", "--cull", "vfc", "--frames", "20", "--size",
                         "64x48", NULL};
   ck_assert_int_eq(zs_test_run_zscan(args, out, sizeof out, err, sizeof err), 0);
@@ -837,7 +838,7 @@ START_TEST(progress_in_logs_unless_quiet) {
                          "--size", "64x48", "--quiet", NULL};
   ck_assert_int_eq(zs_test_run_zscan(quiet, out, sizeof out, err, sizeof err), 0);
   ck_assert_str_eq(err, "");
-  unsetenv("ZSCAN_PROGRESS_MS");
+  zs_os_setenv("ZSCAN_PROGRESS_MS", NULL);
 }
 END_TEST
 

@@ -36,6 +36,7 @@
 #include <unistd.h>
 
 #include "tests/testutil.h"
+#include "util/os.h"
 
 static char out[1 << 20], err[1 << 16];
 
@@ -92,7 +93,8 @@ static char *slurp(const char *rel) {
 static void enter_scratch(void) {
   char dir[4096], link[4200];
   snprintf(dir, sizeof dir, "%s/docs-run", ZS_BINARY_DIR);
-  ck_assert_msg(mkdir(dir, 0777) == 0 || errno == EEXIST, "%s: %s", dir, strerror(errno));
+  int e = zs_os_mkdir(dir);
+  ck_assert_msg(e == 0 || e == EEXIST, "%s: %s", dir, strerror(e));
   static const char *const shared[] = {"scene", "tests", "docs"};
   for (int i = 0; i < 3; i++) {
     snprintf(link, sizeof link, "%s/%s", dir, shared[i]);

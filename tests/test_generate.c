@@ -633,7 +633,7 @@ END_TEST
 
 /* ---- trigonometry ------------------------------------------------------ */
 
-START_TEST(sincos) {
+START_TEST(sincos_turns_exact) {
   double s, c;
   static const double quarter[4][2] = {{0, 1}, {1, 0}, {0, -1}, {-1, 0}};
   for (int q = -8; q <= 8; q++) {
@@ -666,7 +666,7 @@ int main(void) {
   tcase_add_loop_test(tc, scene_same_bytes, 0, NHASHES);
   tcase_add_test(tc, comma_form_is_the_query_form);
   tcase_add_test(tc, seed_changes_the_scene);
-  tcase_add_test(tc, sincos);
+  tcase_add_test(tc, sincos_turns_exact);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("geometry");

@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "tests/testutil.h"
+#include "util/os.h"
 
 static char out[1 << 20], err[1 << 16];
 
@@ -186,7 +187,7 @@ START_TEST(no_templates_is_one_line) {
            strerror(ENOENT));
   ck_assert_int_eq(rc, 1);
   ck_assert_str_eq(err, want);
-  ck_assert_int_eq(mkdir(results, 0777), 0);
+  ck_assert_int_eq(zs_os_mkdir(results), 0);
   rc = zs_test_run_zscan(args, out, sizeof out, err, sizeof err);
   snprintf(want, sizeof want, "zscan bench suite: %s: no templates (*.md)\n", results);
   ck_assert_int_eq(rc, 1);

@@ -25,6 +25,7 @@
 #include "scene/scene.h"
 #include "scene/load_scenefile.h"
 #include "tests/testutil.h"
+#include "util/os.h"
 
 #define ASSIMP_MODELS "/usr/share/assimp/models"
 
@@ -1173,7 +1174,7 @@ static void sparse_file(const char *path, off_t size) {
 START_TEST(bad_scene_sizes_and_io) {
   char dir[4096], big[4200], json[4200], text[512];
   snprintf(dir, sizeof dir, "%s", zs_test_bin("scene-test-big"));
-  mkdir(dir, 0755);
+  zs_os_mkdir(dir);
   const off_t over = (off_t)ZS_SCENEFILE_MAX_BYTES + 1;
   zs_scene s;
   zs_error err;
@@ -1239,7 +1240,7 @@ static void write_text(const char *path, const char *text) {
 START_TEST(scenefile_missing_textures_noted) {
   char dir[4096], path[4200], json[4200], want[20480];
   snprintf(dir, sizeof dir, "%s", zs_test_bin("scene-test-notex"));
-  mkdir(dir, 0755);
+  zs_os_mkdir(dir);
   snprintf(path, sizeof path, "%s/m.obj", dir);
   write_text(path, "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
   snprintf(path, sizeof path, "%s/m.mtl", dir);
@@ -1649,7 +1650,7 @@ START_TEST(assimp_missing_texture_noted) {
 #else
   char dir[4096], gltf[4200], json[4200], png[4200], want[16384];
   snprintf(dir, sizeof dir, "%s", zs_test_bin("scene-test-gltf-notex"));
-  mkdir(dir, 0755);
+  zs_os_mkdir(dir);
   snprintf(gltf, sizeof gltf, "%s/tri.gltf", dir);
   snprintf(json, sizeof json, "%s/scene.json", dir);
   snprintf(png, sizeof png, "%s/gone.png", dir);

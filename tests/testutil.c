@@ -60,8 +60,7 @@ void zs_test_assert_same_file(const char *a, const char *b) {
   size_t na, nb;
   unsigned char *x = zs_test_slurp(a, &na), *y = zs_test_slurp(b, &nb);
   ck_assert_msg(na == nb && na > 0 && memcmp(x, y, na) == 0,
-                "%s (%lu bytes) and %s (%lu bytes) differ", a, (unsigned long)na, b,
-                (unsigned long)nb); /* (not %zu: check's printf on Windows is the runtime's) */
+                "%s (%zu bytes) and %s (%zu bytes) differ", a, na, b, nb);
   free(x);
   free(y);
 }

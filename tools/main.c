@@ -18,7 +18,9 @@ static int version(void) {
 }
 
 int main(int argc, char **argv) {
-  zs_os_binary_stdout(); /* what zscan prints: the same bytes on every system */
+  /* what zscan prints: the same bytes on every system */
+  zs_os_binary_stream(stdout);
+  zs_os_binary_stream(stderr);
   if (argc == 2 && (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0))
     return version();
   return zs_command_dispatch("zscan", zs_commands, zs_ncommands, argc, argv);

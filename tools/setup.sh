@@ -270,7 +270,10 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
 TOOLCHAIN
+  # (mingw-w64's own printf in them too, as in zscan: cJSON's numbers and
+  # check's messages formatted as everywhere else)
   zs_cmake_win=(-DCMAKE_TOOLCHAIN_FILE="$zs_w/toolchain.cmake" -DCMAKE_BUILD_TYPE=Release
+                -DCMAKE_C_FLAGS=-D__USE_MINGW_ANSI_STDIO=1
                 "-DCMAKE_INSTALL_PREFIX=$zs_w" "-DCMAKE_INSTALL_LIBDIR=$zs_w/lib")
   if ! (
     set -e

@@ -49,8 +49,9 @@ char *zs_os_readlink(const char *path, int *e);
 /* Whether the separator of path names at c ('/', and '\\' on Windows). */
 int zs_os_is_separator(char c);
 
-/* Standard output takes bytes as they are (Windows: no CR before each LF). */
-void zs_os_binary_stdout(void);
+/* Stream f (stdout, stderr) takes bytes as they are (Windows: no CR
+ * before each LF). */
+void zs_os_binary_stream(FILE *f);
 
 /* Opens a device, FIFO or socket for writing as it is (no temporary). */
 FILE *zs_os_open_direct(const char *path, zs_path_kind kind, int *e);
@@ -101,8 +102,8 @@ int zs_os_cpu_count(void);
 /* The processor's architecture as uname -m names it ("x86_64", "aarch64"). */
 void zs_os_machine(char *buf, size_t cap);
 
-/* Sets environment variable name to value, for this process and the
- * programs it starts; 0 or an errno value. */
+/* Sets environment variable name to value (unsets it: NULL), for this
+ * process and the programs it starts; 0 or an errno value. */
 int zs_os_setenv(const char *name, const char *value);
 
 /* Whether an executable of that name is on the PATH. */

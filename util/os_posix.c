@@ -81,7 +81,7 @@ char *zs_os_readlink(const char *path, int *e) {
 
 int zs_os_is_separator(char c) { return c == '/'; }
 
-void zs_os_binary_stdout(void) {}
+void zs_os_binary_stream(FILE *f) { (void)f; }
 
 /* A Unix socket, connected to as a stream. */
 static int open_socket(const char *path) {
@@ -185,7 +185,7 @@ void zs_os_machine(char *buf, size_t cap) {
 }
 
 int zs_os_setenv(const char *name, const char *value) {
-  return setenv(name, value, 1) == 0 ? 0 : errno;
+  return (value ? setenv(name, value, 1) : unsetenv(name)) == 0 ? 0 : errno;
 }
 
 int zs_os_program_available(const char *name) {

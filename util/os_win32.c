@@ -81,9 +81,9 @@ char *zs_os_readlink(const char *path, int *e) {
 
 int zs_os_is_separator(char c) { return c == '/' || c == '\\'; }
 
-void zs_os_binary_stdout(void) {
-  fflush(stdout);
-  _setmode(_fileno(stdout), _O_BINARY);
+void zs_os_binary_stream(FILE *f) {
+  fflush(f);
+  _setmode(_fileno(f), _O_BINARY);
 }
 
 FILE *zs_os_open_direct(const char *path, zs_path_kind kind, int *e) {
@@ -194,7 +194,7 @@ void zs_os_machine(char *buf, size_t cap) {
 }
 
 int zs_os_setenv(const char *name, const char *value) {
-  return _putenv_s(name, value) == 0 ? 0 : EINVAL;
+  return _putenv_s(name, value ? value : "") == 0 ? 0 : EINVAL; /* ("": removed) */
 }
 
 /* Whether file is there and not a directory. */
