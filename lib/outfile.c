@@ -28,11 +28,13 @@ static const char *last_separator(const char *path) {
   return last;
 }
 
-/* The directory part of path ("." when it has none). */
+/* The directory part of path ("." when it has none; a root keeps its
+ * separator: "/", "C:\\"). */
 static char *dir_of(const char *path) {
   const char *sep = last_separator(path);
   if (!sep) return dup_n(".", 1);
-  return dup_n(path, sep == path ? 1 : (size_t)(sep - path));
+  const size_t n = (size_t)(sep - path), root = zs_os_root_length(path);
+  return dup_n(path, n < root ? root : n);
 }
 
 /* A link's text, read relative to the directory of the link itself. */
@@ -45,7 +47,7 @@ static char *link_target(const char *link, zs_error *err) {
                    e == EAGAIN ? "it changed while read" : strerror(e));
     return NULL;
   }
-  if (zs_os_is_separator(text[0]) || !last_separator(link)) return text;
+  if (zs_os_root_length(text) > 0 || !last_separator(link)) return text;
   char *dir = dir_of(link);
   char *joined = dir ? malloc(strlen(dir) + 1 + strlen(text) + 1) : NULL;
   if (joined) sprintf(joined, "%s/%s", dir, text);
@@ -240,9 +242,10 @@ zs_status zs_out_dir(const char *opt, const char *dir, zs_error *err) {
   if (dir[0] == '\0') return zs_error_set(err, ZS_ERR_ARG, "%s: needs a directory", opt);
   char *path = dup_n(dir, strlen(dir));
   if (!path) return zs_error_set(err, ZS_ERR_NOMEM, "%s %s: out of memory", opt, dir);
-  /* mkdir -p: each parent, then the directory itself */
+  /* mkdir -p: each parent after the root, then the directory itself */
   zs_status st = ZS_OK;
-  for (char *p = path + 1;; p++) {
+  const size_t root = zs_os_root_length(path);
+  for (char *p = path + (root > 1 ? root : 1);; p++) {
     if (!zs_os_is_separator(*p) && *p != '\0') continue;
     char c = *p;
     *p = '\0';

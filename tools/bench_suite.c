@@ -486,6 +486,11 @@ static zs_status run_child(const suite *s, char **args, const char *txt, const c
   int e = zs_os_scratch_dir("zscan-suite", dir, sizeof dir);
   if (e != 0) return zs_error_set(err, ZS_ERR_IO, "cannot create a scratch folder: %s", strerror(e));
   snprintf(scratch, sizeof scratch, "%s/output.txt", dir);
+  FILE *made = fopen(scratch, "wb"); /* (there even when the child never starts) */
+  if (!made || fclose(made) != 0) {
+    zs_os_rmdir(dir);
+    return zs_error_set(err, ZS_ERR_IO, "%s: cannot create: %s", scratch, strerror(errno));
+  }
   int rc = zs_os_spawn_wait(argv, scratch, scratch);
   zs_out out;
   zs_status st = zs_out_open(&out, txt, err);

@@ -16,7 +16,8 @@
 # (x86-64) with mingw-w64 against such libraries, and run under wine,
 # where the outputs' guarantees are tried too (a file replaced whole, one
 # kept on an error, no temporary left, a missing folder and a directory
-# refused, standard output's bytes as they are).
+# refused, with a separator after it too, standard output's bytes as they
+# are, the null device, a page gathered in memory, a UTF-8 file name).
 #
 #   tools/cross-check.sh [TARGET ...]     (default: aarch64 s390x i686 musl windows)
 #
@@ -136,6 +137,19 @@ check_outputs() {
   # shellcheck disable=SC2086
   $zscan render builtin:default -o "$d/dir" -q 2>"$d/err.txt" && echo "a directory was written"
   grep -q "is a directory" "$d/err.txt" || echo "a directory's message: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan render builtin:default -o NUL -q 2>"$d/err.txt" ||
+    echo "the null device was not written: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan render builtin:default -o "$d/dir\\" -q 2>"$d/err.txt" && echo "a directory\\ was written"
+  grep -q "is a directory" "$d/err.txt" || echo "a directory\\'s message: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan trace builtin:default --size 16x12 --html "$d/trace.html" >/dev/null 2>"$d/err.txt" &&
+    "$native" trace builtin:default --size 16x12 --html "$d/native.html" >/dev/null &&
+    cmp -s "$d/trace.html" "$d/native.html" || echo "the trace's page differs: $(cat "$d/err.txt")"
+  # shellcheck disable=SC2086
+  $zscan render builtin:default --size 200x150 -o "$d/čaj-テスト.png" -q 2>"$d/err.txt" &&
+    cmp -s "$d/čaj-テスト.png" "$good" || echo "a UTF-8 name was not written: $(cat "$d/err.txt")"
   ls "$d" "$d/dir" | grep -q "\.tmp\." && echo "a temporary was left: $(ls "$d")"
   return 0
 }

@@ -49,6 +49,10 @@ char *zs_os_readlink(const char *path, int *e);
 /* Whether the separator of path names at c ('/', and '\\' on Windows). */
 int zs_os_is_separator(char c);
 
+/* The length of path's root: "/" (1); on Windows also "C:\\" (3), "C:" (2),
+ * "\\" (1); 0 for a relative path. */
+size_t zs_os_root_length(const char *path);
+
 /* Stream f (stdout, stderr) takes bytes as they are (Windows: no CR
  * before each LF). */
 void zs_os_binary_stream(FILE *f);
@@ -58,7 +62,7 @@ FILE *zs_os_open_direct(const char *path, zs_path_kind kind, int *e);
 
 /* Creates a new file named path followed by a unique suffix of the
  * system's choosing, written into name[cap]; with permission bits mode
- * (Windows: only whether it is read-only).  NULL with *e set on failure. */
+ * (Windows: always writable).  NULL with *e set on failure. */
 FILE *zs_os_create_beside(const char *path, unsigned mode, char *name, size_t cap, int *e);
 
 /* The permission bits a new file gets (0666 less the umask). */

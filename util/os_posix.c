@@ -81,6 +81,8 @@ char *zs_os_readlink(const char *path, int *e) {
 
 int zs_os_is_separator(char c) { return c == '/'; }
 
+size_t zs_os_root_length(const char *path) { return path[0] == '/'; }
+
 void zs_os_binary_stream(FILE *f) { (void)f; }
 
 /* A Unix socket, connected to as a stream. */

@@ -37,6 +37,15 @@ static int errno_of(DWORD code) {
       return ENAMETOOLONG;
     case ERROR_DIRECTORY:
       return ENOTDIR;
+    case ERROR_INVALID_NAME:
+    case ERROR_BAD_PATHNAME:
+      return EINVAL;
+    case ERROR_WRITE_PROTECT:
+      return EROFS;
+    case ERROR_NOT_SAME_DEVICE:
+      return EXDEV;
+    case ERROR_DIR_NOT_EMPTY:
+      return ENOTEMPTY;
     default:
       return EIO;
   }
@@ -62,24 +71,78 @@ int zs_os_fstat(FILE *f, zs_path_info *info) {
   return 0;
 }
 
-/* Windows follows links itself: both ask the same. */
-int zs_os_lstat(const char *path, zs_path_info *info) { return zs_os_stat(path, info); }
+int zs_os_is_separator(char c) { return c == '/' || c == '\\'; }
+
+size_t zs_os_root_length(const char *path) {
+  const int drive = ((path[0] | 32) >= 'a' && (path[0] | 32) <= 'z') && path[1] == ':';
+  if (drive) return zs_os_is_separator(path[2]) ? 3 : 2;
+  return zs_os_is_separator(path[0]);
+}
+
+/* A device's name (NUL, CON, COM1): the runtime's stat finds no file. */
+static int is_device(const char *path) {
+  HANDLE h = CreateFileA(path, 0, FILE_SHARE_READ | FILE_SHARE_WRITE, NULL, OPEN_EXISTING, 0, NULL);
+  if (h == INVALID_HANDLE_VALUE) return 0;
+  const int dev = GetFileType(h) == FILE_TYPE_CHAR;
+  CloseHandle(h);
+  return dev;
+}
 
 int zs_os_stat(const char *path, zs_path_info *info) {
   *info = (zs_path_info){ZS_PATH_NONE, 0, 0};
+  /* the runtime's stat finds no "dir/": separators after the root go */
+  char trimmed[MAX_PATH + 1];
+  size_t n = strlen(path), root = zs_os_root_length(path);
+  if (n > root && zs_os_is_separator(path[n - 1])) {
+    if (n > MAX_PATH) return ENAMETOOLONG;
+    while (n > root && zs_os_is_separator(path[n - 1])) n--;
+    memcpy(trimmed, path, n);
+    trimmed[n] = '\0';
+    path = trimmed;
+  }
   struct _stat64 st;
-  if (_stat64(path, &st) != 0) return errno == ENOENT ? 0 : errno;
+  if (_stat64(path, &st) != 0) {
+    if (errno != ENOENT) return errno;
+    if (is_device(path)) *info = (zs_path_info){ZS_PATH_CHAR, 0666u, 0};
+    return 0;
+  }
   info_of(&st, info);
   return 0;
 }
 
-char *zs_os_readlink(const char *path, int *e) {
-  (void)path;
-  *e = EINVAL; /* (never a link here: see zs_os_lstat) */
-  return NULL;
+/* A symbolic link or junction: a reparse point, which the runtime's
+ * calls follow but MoveFileEx would replace. */
+int zs_os_lstat(const char *path, zs_path_info *info) {
+  DWORD a = GetFileAttributesA(path);
+  if (a != INVALID_FILE_ATTRIBUTES && (a & FILE_ATTRIBUTE_REPARSE_POINT)) {
+    *info = (zs_path_info){ZS_PATH_LINK, 0666u, 0};
+    return 0;
+  }
+  return zs_os_stat(path, info);
 }
 
-int zs_os_is_separator(char c) { return c == '/' || c == '\\'; }
+/* Windows' answer for a link: the final path of what it leads to, every
+ * link on the way followed (so the caller's next look finds no link). */
+char *zs_os_readlink(const char *path, int *e) {
+  HANDLE h = CreateFileA(path, 0, FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, NULL,
+                         OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, NULL);
+  if (h == INVALID_HANDLE_VALUE) {
+    *e = errno_of(GetLastError());
+    return NULL;
+  }
+  char buf[32768];
+  DWORD n = GetFinalPathNameByHandleA(h, buf, sizeof buf, FILE_NAME_NORMALIZED | VOLUME_NAME_DOS);
+  CloseHandle(h);
+  if (n == 0 || n >= sizeof buf) {
+    *e = n == 0 ? errno_of(GetLastError()) : ENAMETOOLONG;
+    return NULL;
+  }
+  const char *p = strncmp(buf, "\\\\?\\", 4) == 0 ? buf + 4 : buf; /* (the long-path prefix) */
+  char *text = malloc(strlen(p) + 1);
+  if (!text) *e = ENOMEM;
+  else strcpy(text, p);
+  return text;
+}
 
 void zs_os_binary_stream(FILE *f) {
   fflush(f);
@@ -93,22 +156,26 @@ FILE *zs_os_open_direct(const char *path, zs_path_kind kind, int *e) {
   return f;
 }
 
-FILE *zs_os_create_beside(const char *path, unsigned mode, char *name, size_t cap, int *e) {
+/* A new file named base followed by .tmp.PID-K for the first K free,
+ * into name[cap], opened with the runtime's flags and stdio's mode.  Each
+ * is created writable: Windows neither replaces nor removes a read-only
+ * file, so a read-only target's own refusal is the error. */
+static FILE *create_unique(const char *base, int flags, const char *mode, char *name, size_t cap,
+                           int *e) {
   /* _O_EXCL makes each name this process's or an error: try the next */
   DWORD pid = GetCurrentProcessId();
   for (unsigned k = 0; k < 10000; k++) {
-    if ((size_t)snprintf(name, cap, "%s.tmp.%lu-%u", path, (unsigned long)pid, k) >= cap) {
+    if ((size_t)snprintf(name, cap, "%s.tmp.%lu-%u", base, (unsigned long)pid, k) >= cap) {
       *e = ENAMETOOLONG;
       return NULL;
     }
-    int perm = (mode & 0222) ? _S_IREAD | _S_IWRITE : _S_IREAD;
-    int fd = _open(name, _O_WRONLY | _O_CREAT | _O_EXCL | _O_BINARY, perm);
+    int fd = _open(name, flags | _O_CREAT | _O_EXCL | _O_BINARY, _S_IREAD | _S_IWRITE);
     if (fd < 0 && errno == EEXIST) continue;
     if (fd < 0) {
       *e = errno;
       return NULL;
     }
-    FILE *f = _fdopen(fd, "wb");
+    FILE *f = _fdopen(fd, mode);
     if (!f) {
       *e = errno;
       _close(fd);
@@ -118,6 +185,11 @@ FILE *zs_os_create_beside(const char *path, unsigned mode, char *name, size_t ca
   }
   *e = EEXIST;
   return NULL;
+}
+
+FILE *zs_os_create_beside(const char *path, unsigned mode, char *name, size_t cap, int *e) {
+  (void)mode;
+  return create_unique(path, _O_WRONLY, "wb", name, cap, e);
 }
 
 unsigned zs_os_new_file_mode(void) { return 0666u; }
@@ -203,21 +275,32 @@ static int is_file(const char *file) {
   return a != INVALID_FILE_ATTRIBUTES && !(a & FILE_ATTRIBUTE_DIRECTORY);
 }
 
-int zs_os_program_available(const char *name) {
+/* The program name runs as, into exe[cap]: a path, with .exe or as it
+ * is, else the first NAME.exe or NAME on the PATH (not the current folder first, as
+ * CreateProcess alone would look); 0 when there is none. */
+static int find_program(const char *name, char *exe, size_t cap) {
+  if (strpbrk(name, "/\\:")) {
+    if (snprintf(exe, cap, "%s.exe", name) < (int)cap && is_file(exe)) return 1;
+    return snprintf(exe, cap, "%s", name) < (int)cap && is_file(exe);
+  }
   const char *path = getenv("PATH");
   if (!path) return 0;
   for (const char *dir = path; *dir;) {
     size_t n = strcspn(dir, ";");
-    char exe[4200];
     if (n > 0 && n < 4000) {
-      snprintf(exe, sizeof exe, "%.*s\\%s.exe", (int)n, dir, name);
+      snprintf(exe, cap, "%.*s\\%s.exe", (int)n, dir, name);
       if (is_file(exe)) return 1;
-      snprintf(exe, sizeof exe, "%.*s\\%s", (int)n, dir, name);
+      snprintf(exe, cap, "%.*s\\%s", (int)n, dir, name);
       if (is_file(exe)) return 1;
     }
     dir += n + (dir[n] == ';');
   }
   return 0;
+}
+
+int zs_os_program_available(const char *name) {
+  char exe[4200];
+  return find_program(name, exe, sizeof exe);
 }
 
 /* Appends arg to the command line as the C runtime's parser reads it back
@@ -253,6 +336,8 @@ int zs_os_spawn_wait(char *const argv[], const char *out_path, const char *err_p
   static char line[32768]; /* (Windows' own limit on a command line) */
   size_t len = 0;
   line[0] = '\0';
+  char exe[4200];
+  if (!find_program(argv[0], exe, sizeof exe)) return -1;
   for (int i = 0; argv[i]; i++)
     if (!append_arg(line, sizeof line, &len, argv[i])) return -1;
   HANDLE out = inheritable_output(out_path);
@@ -268,7 +353,7 @@ int zs_os_spawn_wait(char *const argv[], const char *out_path, const char *err_p
   PROCESS_INFORMATION pi;
   int status = -1;
   if (out != INVALID_HANDLE_VALUE && err != INVALID_HANDLE_VALUE &&
-      CreateProcessA(NULL, line, NULL, NULL, TRUE, 0, NULL, NULL, &si, &pi)) {
+      CreateProcessA(exe, line, NULL, NULL, TRUE, 0, NULL, NULL, &si, &pi)) {
     DWORD code;
     if (WaitForSingleObject(pi.hProcess, INFINITE) == WAIT_OBJECT_0 &&
         GetExitCodeProcess(pi.hProcess, &code))
@@ -286,10 +371,18 @@ int zs_os_self_path(char *buf, size_t cap) {
   return n > 0 && n < cap;
 }
 
-/* No memory stream in the C runtime: a temporary file, read back. */
+/* No memory stream in the C runtime: a temporary file in the temporary
+ * folder (tmpfile() would make it in the drive's root, closed to most
+ * users), removed when closed, read back. */
 int zs_memfile_open(zs_memfile *m) {
-  *m = (zs_memfile){tmpfile(), NULL, 0};
-  return m->f ? 0 : errno;
+  *m = (zs_memfile){NULL, NULL, 0};
+  char dir[MAX_PATH + 1], base[MAX_PATH + 16], name[MAX_PATH + 64];
+  DWORD n = GetTempPathA(sizeof dir, dir);
+  if (n == 0 || n > MAX_PATH) return errno_of(GetLastError());
+  snprintf(base, sizeof base, "%szscan-text", dir);
+  int e = 0;
+  m->f = create_unique(base, _O_RDWR | _O_TEMPORARY, "w+b", name, sizeof name, &e);
+  return m->f ? 0 : e;
 }
 
 int zs_memfile_close(zs_memfile *m) {
