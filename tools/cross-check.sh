@@ -88,8 +88,8 @@ build_musl() {
 # one); the others fork, make FIFOs, sockets or links, capture standard
 # output inside the process, or run the host's valgrind and gnuplot.
 wine_suites=(test_cull test_depthsort test_exactmath test_generate test_hzb test_lines test_obj
-             test_octree test_prims test_query test_raster test_samples test_shadow test_stress
-             test_surface test_teach test_teapot test_transparency)
+             test_octree test_os test_prims test_query test_raster test_samples test_shadow
+             test_stress test_surface test_teach test_teapot test_transparency)
 
 # The windows build: mingw-w64 with the toolchain file and static
 # libraries tools/setup.sh made, run under wine in a prefix of its own.
