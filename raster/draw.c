@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "util/grow.h"
+#include "util/compiler.h"
 #include "raster/draw.h"
 #include "raster/tuning.h"
 
@@ -81,7 +82,7 @@ void zs_draw_transform(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scra
 
 /* Newell's normal of the face whose nv corners are eye[3 fv[i]]; inlined
  * with nv a constant for triangles and quads, whose loop then unrolls. */
-__attribute__((always_inline)) static inline void newell_of_face(const double *eye,
+ZS_ALWAYS_INLINE void newell_of_face(const double *eye,
                                                                  const int32_t *fv, const int nv,
                                                                  double nrm[3]) {
   nrm[0] = nrm[1] = nrm[2] = 0.0;
@@ -179,7 +180,7 @@ static zs_status setup_faces(const zs_draw_prep *pr, const zs_vert_scratch *v,
      * set whole, so the faces that turn into the window are in the old
      * order already.  A face drawn outside it (its box met a pixel centre,
      * the face does not) covers no pixel and is painted farthest. */
-    if (__builtin_expect(ds != NULL, 0) && r != ZS_SETUP_NOMEM) { /* the painter only */
+    if (ZS_UNLIKELY(ds != NULL) && r != ZS_SETUP_NOMEM) { /* the painter only */
       if (zs_depthsort_selects(ds, &sp, r, v->clip, v->snap, fv, or_code ? clipped : NULL, n,
                                in)) {
         /* the sort key: distance along the view axis of the centroid of
@@ -302,7 +303,7 @@ static zs_status setup_surface_faces(const zs_draw_prep *pr, const zs_vert_scrat
     else if (first == ZS_SETUP_BACK) fc->culled_back++;
     else if (first == ZS_SETUP_OFFSCREEN) fc->offscreen++;
     else fc->degenerate++;
-    if (__builtin_expect(ds != NULL, 0) &&
+    if (ZS_UNLIKELY(ds != NULL) &&
         !note_surface_face(pr, v, fv, nv, &sp,
                            drawn ? ZS_SETUP_DRAWN
                                  : first < 0 ? ZS_SETUP_OFFSCREEN : (zs_setup_result)first,

@@ -25,6 +25,7 @@
  * both: the random triangles and the tilings).
  */
 #include "raster/span.h"
+#include "util/compiler.h"
 #include "raster/tuning.h"
 
 /* Clears the rows [y0, y1] a lazy target holds nothing in yet. */
@@ -157,7 +158,7 @@ ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *
 /* The table's polygons, each whole, in the table's order; with small
  * (the AVX-512 draw kernel's copy for a soup), the small ones by their
  * edge functions. */
-__attribute__((always_inline)) static inline void paint(const zs_batch *b, const zs_kernel k,
+ZS_ALWAYS_INLINE void paint(const zs_batch *b, const zs_kernel k,
                                                         const zs_simd simd, const int vector_from,
                                                         const int small, const zs_target *t,
                                                         int row_begin, int row_end,

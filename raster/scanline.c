@@ -28,6 +28,7 @@
  */
 
 #include "util/grow.h"
+#include "util/compiler.h"
 #include "raster/span.h"
 
 /* The scanline z-buffer of the lecture: row by row, with the active
@@ -35,7 +36,7 @@
  * through the buffers, one row in the caches at a time: for a mesh laid
  * out in order the fastest traversal (polyorder.c says when it is not).
  * Returns 0 when out of memory. */
-__attribute__((always_inline)) static inline int
+ZS_ALWAYS_INLINE int
 scan(const zs_batch *b, const zs_kernel k, const zs_simd simd, const zs_target *t, int row_begin,
      int row_end, const zs_row_hooks *hooks, const zs_trace_observer *obs, const zs_table *table,
      zs_scan_scratch *s, zs_scan_counts *counts) {

@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "raster/setup.h"
+#include "util/compiler.h"
 #include "raster/tuning.h"
 
 /* Asks for the cache line at p, to be written (PREFETCHW).  With two
@@ -67,7 +68,7 @@ static int binary_exponent(double v) {
  * two 8-byte stores read back by one 16-byte load that must wait for the
  * store queue to drain (zscan bench raster --case builtin:plant measures
  * it). */
-__attribute__((always_inline)) static inline plane
+ZS_ALWAYS_INLINE plane
 make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, int c,
            double box_w, double box_h, int *no_depth) {
   double dx1 = (double)X[b] - X[a], dy1 = (double)Y[b] - Y[a];
@@ -256,7 +257,7 @@ zs_setup_result zs_setup_polygon(zs_batch *b, const zs_setup_params *sp,
  * Newell's normal is inlined the same way (draw.c).  Both save
  * instructions a face (zscan bench raster --case "triangles 10x10"
  * --callgrind measures it). */
-__attribute__((always_inline)) static inline zs_setup_result
+ZS_ALWAYS_INLINE zs_setup_result
 setup_face(zs_batch *b, const zs_setup_params *sp, const int32_t *X, const int32_t *Y,
            const double *Z, const int m) {
   int64_t area2 = 0;

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "raster/edge_dda.h"
+#include "util/compiler.h"
 #include "raster/span_simd.h"
 #include "raster/traversal.h"
 
@@ -128,12 +129,12 @@ static inline void zs_fill_span(const zs_kernel k, const zs_row_ptrs *row, int x
  * without it the traversal waits on each in turn.  Inlined by force: a
  * function whose only work is a prefetch has no effect gcc must keep, and
  * gcc drops its calls where it does not inline it first. */
-__attribute__((always_inline)) static inline void
+ZS_ALWAYS_INLINE void
 zs_table_prefetch(const zs_batch *b, const int32_t *order, int32_t j, int32_t n) {
   if (j + ZS_TABLE_PREFETCH_POLYS < n)
-    __builtin_prefetch(&b->polys[order[j + ZS_TABLE_PREFETCH_POLYS]]);
+    ZS_PREFETCH(&b->polys[order[j + ZS_TABLE_PREFETCH_POLYS]]);
   if (j + ZS_TABLE_PREFETCH_EDGES < n)
-    __builtin_prefetch(&b->edges[b->polys[order[j + ZS_TABLE_PREFETCH_EDGES]].edge0]);
+    ZS_PREFETCH(&b->edges[b->polys[order[j + ZS_TABLE_PREFETCH_EDGES]].edge0]);
 }
 
 /* Index of the edge of chain [first, last] that covers row. */
@@ -194,7 +195,7 @@ static inline void zs_row_span(const zs_kernel k, const zs_row_ptrs *row, int wi
 
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; the plane at column 0 moves by dzdy. */
-__attribute__((always_inline)) static inline void zs_step_down(zs_active *a, const zs_edge *edges,
+ZS_ALWAYS_INLINE void zs_step_down(zs_active *a, const zs_edge *edges,
                                                                int32_t y, const int steps) {
   if (y < a->l.last) zs_edge_dda_step(&a->l);
   else zs_edge_dda_begin(&a->l, &edges[++a->left], y + 1, steps);

@@ -9,6 +9,7 @@
  * rows below a triangle's first find it ready; what a pixel gets does not
  * depend on the cache, which only saves the work. */
 #include "raster/surface.h"
+#include "util/compiler.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -471,7 +472,7 @@ static inline void shadows_at(const tri *t, const int64_t b[3], double *lit) {
 /* The pixels [x0, x1) of row y, one loop per shading and texturing; the
  * constants fold each copy's branches away. */
 /* alpha: the pixels' alpha goes out too, as A << 24 (abuffer.h) */
-__attribute__((always_inline)) static inline void shade_run(const tri *t, int y, int x0, int x1,
+ZS_ALWAYS_INLINE void shade_run(const tri *t, int y, int x0, int x1,
                                                             uint32_t *out, const zs_shade sh,
                                                             const int textured,
                                                             const int shadowed,
@@ -753,7 +754,7 @@ typedef void (*run_visit)(const tri *t, uint32_t v, int y, int x0, int x1, void 
 /* Row y cut into runs of equal words, each visited once with its triangle
  * prepared; visit is a constant where this is inlined, so each caller gets
  * its own loop. */
-__attribute__((always_inline)) static inline void each_run(zs_surfaces *s, int slot, int y,
+ZS_ALWAYS_INLINE void each_run(zs_surfaces *s, int slot, int y,
                                                            const uint32_t *rgb, run_visit visit,
                                                            void *out) {
   const int w = s->width;

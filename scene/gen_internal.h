@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "zscan/error.h"
+#include "util/compiler.h"
 #include "util/rng.h"
 #include "scene/generate.h"
 #include "scene/model.h"
@@ -144,11 +145,7 @@ int32_t zs_gen_add_mesh(zs_scene *s, zs_model *m, zs_error *err);
 
 /* Adds an instance named printf(fmt, ...); -1 after setting err. */
 int32_t zs_gen_add_instance(zs_scene *s, int32_t mesh, const double model[16],
-                            uint32_t rgb, zs_error *err, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 6, 7)))
-#endif
-    ;
+                            uint32_t rgb, zs_error *err, const char *fmt, ...) ZS_PRINTF_LIKE(6, 7);
 
 /* The same with the arguments of fmt in ap. */
 int32_t zs_gen_add_instance_v(zs_scene *s, int32_t mesh, const double model[16],

@@ -45,6 +45,7 @@
 #include <string.h>
 
 #include "util/exactmath.h"
+#include "util/compiler.h"
 #include "util/matrix.h"
 #include "scene/gen_internal.h"
 
@@ -133,11 +134,7 @@ typedef struct plant {
 static zs_status nomem(plant *p) { return ZS_GEN_NOMEM(p->err, "plant"); }
 
 static zs_status add(plant *p, int32_t mesh, const double m[16], uint32_t rgb,
-                     const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 5, 6)))
-#endif
-    ;
+                     const char *fmt, ...) ZS_PRINTF_LIKE(5, 6);
 
 static zs_status add(plant *p, int32_t mesh, const double m[16], uint32_t rgb,
                      const char *fmt, ...) {

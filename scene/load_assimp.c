@@ -10,6 +10,7 @@
  * range, sizes within limits.
  */
 #include "scene/load_assimp.h"
+#include "util/compiler.h"
 #include "scene/load_common.h"
 #include "scene/texture_file.h"
 #include "util/grow.h"
@@ -70,10 +71,7 @@ enum { HEADER_BYTES = 1 << 16 }; /* of a file read for the header checks */
 /* Sets err to the message with every control character written as a
  * space: assimp's messages span lines, and names from the file may hold
  * anything. */
-static zs_status
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
+static zs_status ZS_PRINTF_LIKE(3, 4)
     set_error(zs_error *err, zs_status code, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);

@@ -10,12 +10,7 @@
 #include <stdint.h>
 
 #include "zscan/error.h"
-
-#if defined(__GNUC__)
-#define ZS_PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define ZS_PRINTF_LIKE(f, a)
-#endif
+#include "util/compiler.h"
 
 /* Sets err to prefix (NULL: none) followed by the message, cut to
  * ZS_ERROR_MSG_MAX, with every control character written as a space (a

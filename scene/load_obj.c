@@ -20,6 +20,7 @@
  * attribute arrays and draws as it always did.
  */
 #include "scene/load_obj.h"
+#include "util/compiler.h"
 #include "util/grow.h"
 #include "scene/load_common.h"
 #include "scene/text.h"
@@ -34,11 +35,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__GNUC__)
-#define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
-#else
-#define PRINTF_LIKE(f, a)
-#endif
 
 /* ---- lines and words -------------------------------------------------- */
 
@@ -54,7 +50,7 @@ typedef struct line_reader {
 } line_reader;
 
 /* Sets err to "NAME:LINE: reason" and returns code. */
-static zs_status PRINTF_LIKE(3, 4)
+static zs_status ZS_PRINTF_LIKE(3, 4)
     line_error(const line_reader *r, zs_status code, const char *fmt, ...) {
   char why[ZS_ERROR_MSG_MAX];
   va_list ap;

@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 #include "util/matrix.h"
+#include "util/compiler.h"
 
 #define ZS_GREY 0xB4B4B4u /* the colour of faces without a material */
 
@@ -30,11 +31,7 @@ typedef struct zs_notes {
 /* Appends one note: the line fmt makes, with every control character
  * written as a space (a name from a file cannot break it in two), and
  * '\n'.  0 when out of memory (the notes then stay as they were). */
-int zs_notes_add(zs_notes *n, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
+int zs_notes_add(zs_notes *n, const char *fmt, ...) ZS_PRINTF_LIKE(2, 3);
 
 /* Appends every note of *from to *to, each after prefix (NULL: none), and
  * frees *from (left empty).  0 when out of memory (both stay as they

@@ -32,6 +32,7 @@
  * --side-by-side writes A, B and the heat map in one picture, side by side.
  */
 #include "tools/commands.h"
+#include "util/compiler.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -80,11 +81,7 @@ static const char usage[] =
     "                           involved (faces_involved K: ID ...); a PNG that\n"
     "                           zscan did not write with --shade id is refused\n";
 
-static int fail(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
+static int fail(const char *fmt, ...) ZS_PRINTF_LIKE(1, 2);
 
 /* Prints "zscan diff: reason" on stderr; returns the error exit status. */
 static int fail(const char *fmt, ...) {
