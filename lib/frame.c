@@ -28,11 +28,10 @@ static void gather_row(void *user, const zs_row *row) {
           row->depth[x] == ZS_DEPTH_FAR ? 1.0f : (float)(row->depth[x] / 4294967296.0);
 }
 
-zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
-                             const double view[16], const double proj[16],
-                             const zs_frame_look *look, zs_image *out, float *depth,
-                             zs_error *err) {
-  gather g = {out, depth, NULL, NULL};
+/* The frame's draws, every row then given to sink. */
+static zs_status render_into(zs_device *dev, const zs_scene *scene, const double view[16],
+                             const double proj[16], const zs_frame_look *look, zs_row_sink sink,
+                             void *user, zs_error *err) {
   const zs_frame_look solid = {ZS_STYLE_SOLID, 1.0, 1.0, ZS_POINT_SQUARE};
   if (!look) look = &solid;
   const zs_frame_style style = look->style;
@@ -55,7 +54,15 @@ zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
   }
   /* every row goes out, kept or not: the shadings that read attributes
    * colour a pixel only when its row does (raster/surface.h) */
-  return zs_device_finish(dev, gather_row, &g, err);
+  return zs_device_finish(dev, sink, user, err);
+}
+
+zs_status zs_frame_render_on(zs_device *dev, const zs_scene *scene,
+                             const double view[16], const double proj[16],
+                             const zs_frame_look *look, zs_image *out, float *depth,
+                             zs_error *err) {
+  gather g = {out, depth, NULL, NULL};
+  return render_into(dev, scene, view, proj, look, gather_row, &g, err);
 }
 
 static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
@@ -64,11 +71,27 @@ static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
   for (size_t k = 0; k < sizeof *s / sizeof *a; k++) a[k] += b[k];
 }
 
-/* A pixel's colour as three 16-bit lanes of a uint64_t, so that the sums
- * of its samples take one addition a pixel: 16 samples of 255 and the
- * rounding's half fit in 12 bits of a lane. */
-static inline uint64_t colour_lanes(uint32_t c) {
-  return (uint64_t)(c >> 16 & 0xFF) << 32 | (uint64_t)(c >> 8 & 0xFF) << 16 | (c & 0xFF);
+/* The samples' sums of each pixel, as two words: red and blue in the
+ * lanes of 0xRR00BB (bits 16 and 0 on), green as 0xGG00 (bit 8 on).  A
+ * lane's sum of 16 samples and the rounding's half take 12 bits, clear of
+ * the lane above, so a sample is two masks and two additions, each pixel
+ * the row's own, as the row is shaded (in cache). */
+typedef struct sample_sums {
+  uint32_t *rb, *g;
+  int first; /* the first sample's rows set the sums: nothing to clear */
+} sample_sums;
+
+static void add_row(void *user, const zs_row *row) {
+  const sample_sums *a = user;
+  const size_t off = (size_t)row->y * (size_t)row->width;
+  uint32_t *restrict rb = a->rb + off, *restrict g = a->g + off;
+  const uint32_t *restrict c = row->rgb;
+  const int n = row->width;
+  if (a->first) {
+    for (int x = 0; x < n; x++) rb[x] = c[x] & 0xFF00FFu, g[x] = c[x] & 0xFF00u;
+  } else {
+    for (int x = 0; x < n; x++) rb[x] += c[x] & 0xFF00FFu, g[x] += c[x] & 0xFF00u;
+  }
 }
 
 zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const double view[16],
@@ -84,40 +107,36 @@ zs_status zs_frame_render_samples(zs_device *dev, const zs_scene *scene, const d
   const int w = cfg->width, h = cfg->height;
   const size_t n = (size_t)w * (size_t)h;
   const int8_t *pos = zs_sample_positions(samples);
-  uint64_t *sum = malloc(n * sizeof *sum);
-  zs_image one = {0, 0, NULL};
+  sample_sums sums = {malloc(n * sizeof *sums.rb), malloc(n * sizeof *sums.g), 1};
   zs_raster_stats total;
   memset(&total, 0, sizeof total);
-  zs_status st = sum ? zs_image_alloc(&one, w, h, err)
-                     : zs_error_set(err, ZS_ERR_NOMEM, "samples: out of memory");
+  zs_status st = sums.rb && sums.g ? ZS_OK : zs_error_set(err, ZS_ERR_NOMEM, "samples: out of memory");
   zs_device_set_shading_projection(dev, per_sample ? NULL : proj);
   for (int k = 0; k < samples && st == ZS_OK; k++) {
     double pk[16];
     zs_sample_projection(proj, w, h, pos[2 * k], pos[2 * k + 1], pk);
-    st = zs_frame_render_on(dev, scene, view, pk, look, &one, NULL, err);
+    st = render_into(dev, scene, view, pk, look, add_row, &sums, err);
     if (st != ZS_OK) break;
     add_stats(&total, zs_device_stats(dev));
-    if (k == 0)
-      for (size_t i = 0; i < n; i++) sum[i] = colour_lanes(one.rgb[i]);
-    else
-      for (size_t i = 0; i < n; i++) sum[i] += colour_lanes(one.rgb[i]);
+    sums.first = 0;
   }
   zs_device_set_shading_projection(dev, NULL);
   if (st == ZS_OK && out) {
-    /* (sum + samples / 2) / samples a channel: samples is a power of two,
-     * and a lane's quotient (at most 255) stays clear of the bits the
-     * shift brings down from the lane above (12 - 4 of them at most) */
+    /* (sum + samples / 2) / samples a channel: samples is a power of two;
+     * the shift leaves each lane's quotient (at most 255) in its own 8
+     * bits and brings its remainder into the zero bits below (4 at most),
+     * which the masks drop */
     int shift = 0;
     while (1 << shift < samples) shift++;
-    const uint64_t half = colour_lanes((uint32_t)samples / 2 * 0x010101u);
-    for (size_t i = 0; i < n; i++) {
-      const uint64_t v = (sum[i] + half) >> shift;
-      out->rgb[i] = (uint32_t)(v >> 16 & 0xFF0000) | (uint32_t)(v >> 8 & 0xFF00) | (uint32_t)(v & 0xFF);
-    }
+    const uint32_t half = (uint32_t)samples / 2;
+    const uint32_t half_rb = half << 16 | half, half_g = half << 8;
+    for (size_t i = 0; i < n; i++)
+      out->rgb[i] = ((sums.rb[i] + half_rb) >> shift & 0xFF00FFu) |
+                    ((sums.g[i] + half_g) >> shift & 0xFF00u);
   }
   if (st == ZS_OK && stats) *stats = total;
-  zs_image_free(&one);
-  free(sum);
+  free(sums.rb);
+  free(sums.g);
   return st;
 }
 
