@@ -7,10 +7,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "util/os.h"
 
 #include "util/exactmath.h"
 #include "util/grow.h"
+#include "util/os.h"
 #include "raster/depthsort.h"
 
 const char *zs_motion_class_name(zs_motion_class m) {

@@ -16,10 +16,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "util/os.h"
 
 #include "tools/bench_report.h"
 #include "tools/cli.h"
+#include "util/os.h"
 #include "zscan/zscan.h"
 
 static const char usage[] =
@@ -134,9 +134,9 @@ static zs_status time_renders(const zs_scene *const scenes[2], int w, int h, dou
   for (int r = 0; r < repeat; r++)
     for (int k = 0; k < 2; k++) {
       zs_image im = {0};
-      const double t0 = zs_wall_ms();
+      const double t0 = zs_os_monotonic_ms();
       if (zs_render(scenes[k], &o, &im, NULL, NULL, err)) return err->code;
-      t[k][r] = zs_wall_ms() - t0;
+      t[k][r] = zs_os_monotonic_ms() - t0;
       hash[k] = zs_image_hash(&im);
       zs_image_free(&im);
     }
@@ -167,13 +167,13 @@ static zs_status measure(int n, int w, int h, const char *dir, arrays_row *row, 
   for (int r = 0; r < repeat && !st; r++) {
     zs_scene_destroy(file), zs_scene_destroy(built);
     file = built = NULL;
-    double t0 = zs_wall_ms();
+    double t0 = zs_os_monotonic_ms();
     if ((st = zs_scene_load(path, NULL, &file, err))) break;
-    tl[r] = zs_wall_ms() - t0;
-    t0 = zs_wall_ms();
+    tl[r] = zs_os_monotonic_ms() - t0;
+    t0 = zs_os_monotonic_ms();
     if ((st = zs_scene_create(&built, err)) || (st = zs_scene_add_object(built, &mesh, NULL, NULL, err)))
       break;
-    tb[r] = zs_wall_ms() - t0;
+    tb[r] = zs_os_monotonic_ms() - t0;
   }
   double render_ms[2] = {0, 0};
   const zs_scene *const both[2] = {file, built};

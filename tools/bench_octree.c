@@ -26,6 +26,7 @@
 #include "cull/octree.h"
 #include "scene/generate.h"
 #include "tools/cli.h"
+#include "util/os.h"
 #include "lib/outfile.h"
 
 
@@ -74,16 +75,16 @@ static zs_status run_one(const bench_opts *o, int moving, bench_row *row, zs_err
     p.max_depth = o->depth;
     p.looseness = o->looseness;
     p.split = o->split;
-    double t0 = zs_wall_ms();
+    double t0 = zs_os_monotonic_ms();
     st = zs_octree_build(&tree[k], &s, &p, err);
-    row->build_ms[k] = zs_wall_ms() - t0;
+    row->build_ms[k] = zs_os_monotonic_ms() - t0;
   }
   for (int f = 0; f < o->frames && st == ZS_OK; f++) {
     zs_scene_advance(&s);
     for (int k = 0; k < 2 && st == ZS_OK; k++) {
-      double t0 = zs_wall_ms();
+      double t0 = zs_os_monotonic_ms();
       st = zs_octree_update(&tree[k], &s, &row->work[k], err);
-      ms[k * o->frames + f] = zs_wall_ms() - t0;
+      ms[k * o->frames + f] = zs_os_monotonic_ms() - t0;
     }
   }
   if (st == ZS_OK) {

@@ -35,6 +35,7 @@
 #include "scene/scene.h"
 #include "tools/callgrind.h"
 #include "tools/cli.h"
+#include "util/os.h"
 #include "tools/crosscheck.h"
 #include "lib/frame.h"
 #include "lib/frame_camera.h"
@@ -228,10 +229,10 @@ static zs_status time_scene(zs_device *dev, const zs_scene *s, const double view
                             const double proj[16], const bench_opts *o, double *ms, bench_row *r,
                             zs_error *err) {
   for (int k = 0; k < o->repeat; k++) {
-    double start = zs_wall_ms();
+    double start = zs_os_monotonic_ms();
     zs_status st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err);
     if (st) return st;
-    ms[k] = zs_wall_ms() - start;
+    ms[k] = zs_os_monotonic_ms() - start;
   }
   const zs_raster_stats *c = zs_device_stats(dev);
   r->triangles = (double)c->polygons_rasterized;
@@ -262,9 +263,9 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
   if (!st && !(st = zs_mesa_create(w, h, &mesa, err))) st = zs_device_create(&cfg, &dev, err);
   if (!st) st = zs_device_set_lights(dev, s->lights, s->nlights, err);
   for (int k = 0; k < o->repeat && !st; k++) { /* in turn: the same machine for both */
-    double t0 = zs_wall_ms();
+    double t0 = zs_os_monotonic_ms();
     if ((st = zs_frame_render_on(dev, s, view, proj, 0, NULL, NULL, err))) break;
-    double t1 = zs_wall_ms();
+    double t1 = zs_os_monotonic_ms();
     /* the same state: flat as one colour an instance, else the shading's */
     if ((st = o->shade == ZS_SHADE_FLAT
                   ? zs_mesa_frame(mesa, s, view, proj, err)
@@ -272,7 +273,7 @@ static zs_status compare_mesa(const bench_opts *o, const zs_scene *s, const char
                                          s->lights, s->nlights, err)))
       break;
     ms[k] = t1 - t0;
-    mms[k] = zs_wall_ms() - t1;
+    mms[k] = zs_os_monotonic_ms() - t1;
   }
   /* the faces each shows, told apart into coverage and depth ties */
   if (!st && !(st = zs_mesa_ids(mesa, s, view, proj, ids, err)))
@@ -373,9 +374,9 @@ static void *render_pinned(void *arg) {
 #else
   p->pinned = 0;
 #endif
-  double t0 = zs_wall_ms();
+  double t0 = zs_os_monotonic_ms();
   p->st = zs_frame_render_on(p->dev, p->s, p->view, p->proj, 0, NULL, NULL, &p->err);
-  p->ms = zs_wall_ms() - t0;
+  p->ms = zs_os_monotonic_ms() - t0;
   return NULL;
 }
 
@@ -460,12 +461,12 @@ static zs_status compare_threads(const bench_opts *o, zs_algo algo, const zs_sce
     pf[i] = (pinned_frame){pf[i].dev, s, view, proj, cpus[i], 0, 0.0, ZS_OK, {0}};
   }
   for (int k = 0; k < o->repeat && !st; k++) {
-    double t0 = zs_wall_ms();
+    double t0 = zs_os_monotonic_ms();
     if ((st = zs_frame_render_on(dev[0], s, view, proj, 0, NULL, NULL, err))) break;
-    double t1 = zs_wall_ms();
+    double t1 = zs_os_monotonic_ms();
     if ((st = zs_frame_render_on(dev[1], s, view, proj, 0, NULL, NULL, err))) break;
     ms[k] = t1 - t0;
-    many[k] = zs_wall_ms() - t1;
+    many[k] = zs_os_monotonic_ms() - t1;
     ratio[k] = ms[k] / many[k];
     if (!pinned) continue;
     int ok = 0;

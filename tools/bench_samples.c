@@ -26,6 +26,7 @@
 #include "tools/bench_raster.h"
 #include "tools/bench_report.h"
 #include "tools/cli.h"
+#include "util/os.h"
 #include "tools/crosscheck.h"
 #include "tools/mesa.h"
 
@@ -65,13 +66,13 @@ static zs_status measure(const char *input, int w, int h, int repeat, samples_ro
   if (!st) st = zs_device_set_lights(dev, s.lights, s.nlights, err);
   if (!st) st = zs_image_alloc(&im, w, h, err);
   for (int r = 0; r < repeat && !st; r++) { /* in turn: the same machine for both */
-    double t0 = zs_wall_ms();
+    double t0 = zs_os_monotonic_ms();
     if ((st = zs_frame_render_on(dev, &s, view, proj, NULL, &im, NULL, err))) break;
-    double t1 = zs_wall_ms();
+    double t1 = zs_os_monotonic_ms();
     if ((st = zs_frame_render_samples(dev, &s, view, proj, NULL, SAMPLES, 0, &im, NULL, err)))
       break;
     t[0][r] = t1 - t0;
-    t[1][r] = zs_wall_ms() - t1;
+    t[1][r] = zs_os_monotonic_ms() - t1;
   }
   memset(row, 0, sizeof *row);
   snprintf(row->name, sizeof row->name, "%s", input);

@@ -60,8 +60,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "util/os.h"
-
 #include "raster/raster.h"
 #include "tools/bench_depthsort.h"
 #include "tools/bench_octree.h"
@@ -1131,21 +1129,19 @@ static int add_template_name(const char *name, void *ctx) {
 static zs_status read_templates(suite *s, zs_error *err) {
   char dir[PATH];
   snprintf(dir, sizeof dir, "%s/results", s->docs);
-  template_names t = {{NULL}, 0};
-  const int rc = zs_os_each_name(dir, add_template_name, &t);
-  char **names = t.names;
-  const int n = t.n;
+  template_names found = {{NULL}, 0};
+  const int rc = zs_os_each_name(dir, add_template_name, &found);
   zs_status st = ZS_OK;
   if (rc < 0) st = zs_error_set(err, ZS_ERR_IO, "%s: cannot open: %s", dir, strerror(-rc));
   else if (rc == ZS_ERR_LIMIT)
     st = zs_error_set(err, ZS_ERR_LIMIT, "%s: more than %d templates", dir, MAX_TEMPLATES);
   else if (rc) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
-  if (!st && n == 0) st = zs_error_set(err, ZS_ERR_IO, "%s: no templates (*.md)", dir);
-  if (!st) qsort(names, (size_t)n, sizeof names[0], by_name);
-  for (int i = 0; i < n; i++) {
-    if (!st && names[i]) {
+  if (!st && found.n == 0) st = zs_error_set(err, ZS_ERR_IO, "%s: no templates (*.md)", dir);
+  if (!st) qsort(found.names, (size_t)found.n, sizeof found.names[0], by_name);
+  for (int i = 0; i < found.n; i++) {
+    if (!st && found.names[i]) {
       template_file *t = &s->tmpl[s->ntmpl];
-      snprintf(t->path, sizeof t->path, "%s/%s", dir, names[i]);
+      snprintf(t->path, sizeof t->path, "%s/%s", dir, found.names[i]);
       capture c;
       if (!(st = capture_open(&c, err))) {
         st = zs_append_file(c.f, t->path, err);
@@ -1154,7 +1150,7 @@ static zs_status read_templates(suite *s, zs_error *err) {
         else t->text = c.data, s->ntmpl++;
       }
     }
-    free(names[i]);
+    free(found.names[i]);
   }
   return st;
 }

@@ -26,8 +26,9 @@ zs_status zs_callgrind_count(const char *const *args, uint64_t *instructions, zs
   if (!zs_os_self_path(self, sizeof self))
     return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot find this program's path");
   char dir[4096], log[4200];
-  if (zs_os_scratch_dir("zscan-callgrind", dir, sizeof dir) != 0)
-    return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot create a scratch folder");
+  int e = zs_os_scratch_dir("zscan-callgrind", dir, sizeof dir);
+  if (e != 0)
+    return zs_error_set(err, ZS_ERR_IO, "--callgrind: cannot create a scratch folder: %s", strerror(e));
   snprintf(log, sizeof log, "%s/callgrind.log", dir);
   char log_opt[4300];
   snprintf(log_opt, sizeof log_opt, "--log-file=%s", log);

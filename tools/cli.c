@@ -156,8 +156,9 @@ zs_status zs_cli_output_path(const char *opt, const char *path, zs_error *err) {
 }
 
 const char *zs_cli_extension(const char *path) {
-  const char *base = strrchr(path, '/');
-  base = base ? base + 1 : path;
+  const char *base = path; /* (after the last separator: '\\' too on Windows) */
+  for (const char *p = path; *p; p++)
+    if (zs_os_is_separator(*p)) base = p + 1;
   const char *dot = strrchr(base, '.');
   return dot && dot != base ? dot + 1 : NULL;
 }
@@ -250,13 +251,13 @@ static double log_interval_ms(void) {
 }
 
 void zs_progress_start(zs_progress *p, const char *label, const char *unit, int total, int quiet) {
-  *p = (zs_progress){label, unit, total, quiet, zs_os_stderr_is_terminal(), zs_wall_ms(), 0.0, log_interval_ms()};
+  *p = (zs_progress){label, unit, total, quiet, zs_os_stderr_is_terminal(), zs_os_monotonic_ms(), 0.0, log_interval_ms()};
   p->last_ms = p->start_ms;
 }
 
 void zs_progress_step(zs_progress *p, int done) {
   if (p->quiet || p->total <= 0) return;
-  double now = zs_wall_ms(), spent = (now - p->start_ms) / 1000.0;
+  double now = zs_os_monotonic_ms(), spent = (now - p->start_ms) / 1000.0;
   double left = done > 0 ? spent * (p->total - done) / done : 0.0;
   if (p->tty) {
     enum { WIDTH = 30 };
@@ -277,8 +278,6 @@ double zs_median(double *v, int n) {
   qsort(v, (size_t)n, sizeof *v, cmp_double);
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
-
-double zs_wall_ms(void) { return zs_os_monotonic_ms(); }
 
 const char *zs_cli_ms_of_ps(int64_t ps, char *buf) {
   /* |ps| as unsigned, so that INT64_MIN negates */

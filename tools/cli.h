@@ -109,8 +109,5 @@ void zs_progress_step(zs_progress *p, int done);
 /* The median of v[0..n-1], n > 0 (sorts v). */
 double zs_median(double *v, int n);
 
-/* Wall-clock milliseconds from a monotonic clock: for reporting only,
- * never in an output that must be the same on every run. */
-double zs_wall_ms(void);
 
 #endif

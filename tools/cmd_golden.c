@@ -261,13 +261,13 @@ static void golden_path(const golden_run *r, const golden_case *c, char *buf, si
 
 static void run_case(golden_run *r, golden_case *c) {
   zs_error_clear(&c->err);
-  double t0 = zs_wall_ms();
+  double t0 = zs_os_monotonic_ms();
   if (zs_cmd_render_image(&c->opts, &c->actual, &c->err)) {
     c->failed = 1;
-    c->ms = zs_wall_ms() - t0;
+    c->ms = zs_os_monotonic_ms() - t0;
     return;
   }
-  c->ms = zs_wall_ms() - t0;
+  c->ms = zs_os_monotonic_ms() - t0;
   c->rendered = 1;
   if (r->update) return;
   char path[8400];
@@ -572,7 +572,7 @@ int zs_cmd_golden(int argc, char **argv) {
   pthread_mutex_init(&r.lock, NULL);
   if (load_manifest(&r, &err)) goto done;
   if (r.update && zs_out_dir("--dir", r.dir, &err)) goto done;
-  double t0 = zs_wall_ms();
+  double t0 = zs_os_monotonic_ms();
   int in_this_shard = 0;
   for (int i = 0; i < r.ncases; i++) in_this_shard += in_shard(&r, i);
   zs_progress_start(&r.progress, "golden", "case", in_this_shard, r.quiet);
@@ -582,7 +582,7 @@ int zs_cmd_golden(int argc, char **argv) {
     if (pthread_create(&threads[started], NULL, worker, &r) == 0) started++;
   worker(&r);
   for (int j = 0; j < started; j++) pthread_join(threads[j], NULL);
-  double total_ms = zs_wall_ms() - t0;
+  double total_ms = zs_os_monotonic_ms() - t0;
   int tests = 0, failures = 0;
   for (int i = 0; i < r.ncases; i++) {
     golden_case *c = &r.cases[i];

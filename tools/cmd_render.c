@@ -15,6 +15,7 @@
 #include "scene/camera.h"
 #include "scene/model.h"
 #include "tools/cli.h"
+#include "util/os.h"
 #include "tools/clockfile.h"
 #include "tools/costset.h"
 #include "lib/frame.h"
@@ -614,7 +615,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   /* a file of cameras alone (no meshes) is listed too */
   if (o->list_cameras) return file_camera(o, 1.0, NULL, err);
   zs_scene model;
-  double t0 = zs_wall_ms();
+  double t0 = zs_os_monotonic_ms();
   int flags = (o->allow_empty ? ZS_INPUT_ALLOW_EMPTY : 0) |
               (o->skip_missing_textures ? ZS_INPUT_SKIP_MISSING_TEXTURES : 0);
   if (zs_input_load(o->input, flags, &model, err)) return err->code;
@@ -623,7 +624,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     return zs_error_set(err, ZS_ERR_ARG, "%s: lines and points need --algo zbuffer",
                         o->input ? o->input : "builtin:default");
   }
-  double load_ms = zs_wall_ms() - t0;
+  double load_ms = zs_os_monotonic_ms() - t0;
   /* what is drawn otherwise than the input asks, a line each */
   if (!keep && !o->quiet)
     for (const char *n = zs_scene_notes(&model); *n;) {
@@ -715,7 +716,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   const zs_frame_look look = {zs_frame_style_of(o->hidden_line, o->wireframe), o->line_width,
                               o->point_size, o->point_shape};
   for (int k = 0; k < o->repeat; k++) {
-    double start = zs_wall_ms();
+    double start = zs_os_monotonic_ms();
     if (o->cull >= 0) {
       /* each repeat is a fresh first frame: the culler starts again */
       zs_culler_destroy(culler);
@@ -744,7 +745,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
                                         err))) {
       goto done;
     }
-    times[k] = zs_wall_ms() - start;
+    times[k] = zs_os_monotonic_ms() - start;
   }
   double median = zs_median(times, o->repeat);
   if (keep) {

@@ -22,6 +22,7 @@
 #include "scene/paths.h"
 #include "scene/scene.h"
 #include "tools/cli.h"
+#include "util/os.h"
 #include "tools/costset.h"
 #include "lib/frame.h"
 #include "lib/frame_camera.h"
@@ -365,11 +366,11 @@ static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const 
                               const double *proj, zs_error *err) {
   zs_cmd_walk_method *r = &wk->runs[k];
   zs_cull_stats cs;
-  double t0 = zs_wall_ms();
+  double t0 = zs_os_monotonic_ms();
   if (zs_walk_step_method(r->culler, r->dev, &wk->s, &wk->tree, view, proj, &cs,
                           o->frames_dir ? keep_rows : NULL, &wk->frame_image, err))
     return err->code;
-  double wall = zs_wall_ms() - t0;
+  double wall = zs_os_monotonic_ms() - t0;
   const zs_clock_stats *ck = zs_device_clock(r->dev);
   double modelled = zs_device_frame_ps(r->dev) * 1e-9, stall = ck->stall_ps * 1e-9;
   double split[4];
@@ -416,11 +417,11 @@ static zs_status method_frame(const walk_opts *o, walk *wk, int k, int f, const 
 static zs_status algo_frame(const walk_opts *o, walk *wk, int k, int f, const double *view,
                             const double *proj, zs_error *err) {
   zs_cmd_walk_algo *r = &wk->algos[k];
-  double t0 = zs_wall_ms();
+  double t0 = zs_os_monotonic_ms();
   if (zs_frame_draw_all(r->dev, &wk->s, view, proj, err) ||
       zs_device_finish(r->dev, keep_ids, wk->algo_ids, err))
     return err->code;
-  double wall = zs_wall_ms() - t0, modelled = zs_device_frame_ps(r->dev) * 1e-9;
+  double wall = zs_os_monotonic_ms() - t0, modelled = zs_device_frame_ps(r->dev) * 1e-9;
   uint64_t diff = 0;
   for (size_t i = 0; i < (size_t)wk->w * (size_t)wk->h; i++)
     diff += wk->algo_ids[i] != wk->ref_ids[i];
