@@ -82,9 +82,8 @@ void zs_draw_transform(const zs_draw_prep *pr, const zs_mesh *mesh, zs_vert_scra
 
 /* Newell's normal of the face whose nv corners are eye[3 fv[i]]; inlined
  * with nv a constant for triangles and quads, whose loop then unrolls. */
-ZS_ALWAYS_INLINE void newell_of_face(const double *eye,
-                                                                 const int32_t *fv, const int nv,
-                                                                 double nrm[3]) {
+ZS_ALWAYS_INLINE void newell_of_face(const double *eye, const int32_t *fv, const int nv,
+                                     double nrm[3]) {
   nrm[0] = nrm[1] = nrm[2] = 0.0;
   for (int i = 0, j = 1; i < nv; i++, j = j + 1 < nv ? j + 1 : 0)
     zs_newell_add(nrm, &eye[3 * fv[i]], &eye[3 * fv[j]]);

@@ -158,13 +158,10 @@ ZS_AVX512_TARGET static int paint_small_avx512(const zs_poly *p, const zs_edge *
 /* The table's polygons, each whole, in the table's order; with small
  * (the AVX-512 draw kernel's copy for a soup), the small ones by their
  * edge functions. */
-ZS_ALWAYS_INLINE void paint(const zs_batch *b, const zs_kernel k,
-                                                        const zs_simd simd, const int vector_from,
-                                                        const int small, const zs_target *t,
-                                                        int row_begin, int row_end,
-                                                        const zs_table *table,
-                                                        const zs_scan_scratch *s,
-                                                        zs_scan_counts *counts) {
+ZS_ALWAYS_INLINE void paint(const zs_batch *b, const zs_kernel k, const zs_simd simd,
+                            const int vector_from, const int small, const zs_target *t,
+                            int row_begin, int row_end, const zs_table *table,
+                            const zs_scan_scratch *s, zs_scan_counts *counts) {
 #ifndef ZS_HAVE_AVX512_SPANS
   (void)small; /* no edge-function copy without AVX-512 */
 #endif

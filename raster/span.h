@@ -195,8 +195,7 @@ static inline void zs_row_span(const zs_kernel k, const zs_row_ptrs *row, int wi
 
 /* Down one row from y: step both edges, or replace an edge that ran out
  * with the next of its chain; the plane at column 0 moves by dzdy. */
-ZS_ALWAYS_INLINE void zs_step_down(zs_active *a, const zs_edge *edges,
-                                                               int32_t y, const int steps) {
+ZS_ALWAYS_INLINE void zs_step_down(zs_active *a, const zs_edge *edges, int32_t y, const int steps) {
   if (y < a->l.last) zs_edge_dda_step(&a->l);
   else zs_edge_dda_begin(&a->l, &edges[++a->left], y + 1, steps);
   if (y < a->r.last) zs_edge_dda_step(&a->r);

@@ -472,11 +472,9 @@ static inline void shadows_at(const tri *t, const int64_t b[3], double *lit) {
 /* The pixels [x0, x1) of row y, one loop per shading and texturing; the
  * constants fold each copy's branches away. */
 /* alpha: the pixels' alpha goes out too, as A << 24 (abuffer.h) */
-ZS_ALWAYS_INLINE void shade_run(const tri *t, int y, int x0, int x1,
-                                                            uint32_t *out, const zs_shade sh,
-                                                            const int textured,
-                                                            const int shadowed,
-                                                            const int alpha) {
+ZS_ALWAYS_INLINE void shade_run(const tri *t, int y, int x0, int x1, uint32_t *out,
+                                const zs_shade sh, const int textured, const int shadowed,
+                                const int alpha) {
   int64_t raw[3];
   planes_at(t, x0, y, raw);
   for (int x = x0; x < x1; x++, raw[0] += t->A[0], raw[1] += t->A[1], raw[2] += t->A[2]) {
@@ -754,9 +752,8 @@ typedef void (*run_visit)(const tri *t, uint32_t v, int y, int x0, int x1, void 
 /* Row y cut into runs of equal words, each visited once with its triangle
  * prepared; visit is a constant where this is inlined, so each caller gets
  * its own loop. */
-ZS_ALWAYS_INLINE void each_run(zs_surfaces *s, int slot, int y,
-                                                           const uint32_t *rgb, run_visit visit,
-                                                           void *out) {
+ZS_ALWAYS_INLINE void each_run(zs_surfaces *s, int slot, int y, const uint32_t *rgb,
+                               run_visit visit, void *out) {
   const int w = s->width;
   int x = 0;
   while (x < w) {
