@@ -74,8 +74,8 @@ static void add_stats(zs_raster_stats *sum, const zs_raster_stats *s) {
 /* The samples' sums of each pixel, as two words: red and blue in the
  * lanes of 0xRR00BB (bits 16 and 0 on), green as 0xGG00 (bit 8 on).  A
  * lane's sum of 16 samples and the rounding's half take 12 bits, clear of
- * the lane above, so a sample is two masks and two additions, each pixel
- * the row's own, as the row is shaded (in cache). */
+ * the lane above, so a sample adds two masked words a pixel, taken from
+ * each row as it is shaded (still in cache). */
 typedef struct sample_sums {
   uint32_t *rb, *g;
   int first; /* the first sample's rows set the sums: nothing to clear */
