@@ -29,6 +29,7 @@
 #include "raster/setup.h"
 #include "util/compiler.h"
 #include "raster/tuning.h"
+#include "util/exactmath.h"
 
 /* Asks for the cache line at p, to be written (PREFETCHW).  With two
  * threads or more a batch's lines were last read by the other cores, which
@@ -49,18 +50,6 @@ typedef struct plane {
   int64_t zc, dzdx, dzdy;
   uint8_t zshift;
 } plane;
-
-/* e with v = m 2^e, m in [0.5, 1), as frexp gives it; read from the bits
- * for a normal v >= 1 (bound always is), frexp otherwise. */
-static int binary_exponent(double v) {
-  uint64_t bits;
-  memcpy(&bits, &v, sizeof bits);
-  int biased = (int)((bits >> 52) & 0x7FF);
-  if (v >= 1.0 && biased != 0x7FF) return biased - 1022;
-  int e;
-  frexp(v, &e);
-  return e;
-}
 
 /* The fixed-point plane through vertices a, b, c (indices into X, Y, Z),
  * whose doubled area det must be non-zero; box is the polygon's extent in
@@ -92,7 +81,7 @@ make_plane(const int32_t *X, const int32_t *Y, const double *Z, int a, int b, in
   *no_depth = bound != bound;
   /* bound = m 2^e with m in [0.5, 1): bound 2^(32 + shift) < 2^61 holds
    * exactly when shift <= 29 - e. */
-  int e = binary_exponent(bound);
+  int e = zs_binary_exponent(bound);
   int shift = 29 - e < 20 ? 29 - e : 20;
   if (shift < 0) {
     double f = ldexp(1.0, 27) / bound; /* fit the gradient to zshift 0 */

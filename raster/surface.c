@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "raster/texture.h"
+#include "util/exactmath.h"
 #include "util/lights.h"
 #include "util/grow.h"
 #include "util/srgb.h"
@@ -193,6 +194,9 @@ struct tri {
   double p[3][3];                /* eye-space positions */
   zs_sampler sampler;
   int mipmapped;                 /* the filter needs the level of detail */
+  /* the level of detail's sums that do not change over the triangle
+   * (lod_at): those of A_i, B_i and each times s_i and t_i */
+  double Sx, Sy, Nsx, Nsy, Ntx, Nty;
   uint32_t cutoff;               /* the material's alpha cut-off, 0: none */
   zs_reflectance refl;
   const zs_light_set *lights;
@@ -276,9 +280,8 @@ static void make_planes(tri *t, const double c[3][4], int width, int height) {
       sum += fabs(at0[i] + e[i][0] * (corner & 1 ? dx : 0.0) + e[i][1] * (corner & 2 ? dy : 0.0));
     if (sum > biggest) biggest = sum;
   }
-  int ex = 0;
-  frexp(biggest, &ex); /* biggest < 2^ex */
-  const double scale = ldexp(1.0, PLANE_BITS - ex);
+  const int ex = zs_binary_exponent(biggest); /* biggest < 2^ex */
+  const double scale = zs_pow2(PLANE_BITS - ex);
   for (int i = 0; i < 3; i++) {
     t->A[i] = to_int(e[i][0] * scale);
     t->B[i] = to_int(e[i][1] * scale);
@@ -344,14 +347,12 @@ static const int16_t log2_mantissa128[256] = {
  * LEVEL OF DETAIL), in 1/256 level: from the derivatives of s = N / S
  * along x, dN/dx S - N dS/dx over S^2, and along y. */
 static inline int32_t lod_at(const tri *t, const int64_t l[3]) {
-  double S = 0, Ns = 0, Nt = 0, Sx = 0, Sy = 0, Nsx = 0, Nsy = 0, Ntx = 0, Nty = 0;
+  double S = 0, Ns = 0, Nt = 0;
   for (int i = 0; i < 3; i++) {
-    const double li = (double)l[i], a = (double)t->A[i], b = (double)t->B[i];
-    const double si = (double)t->s[i], ti = (double)t->t[i];
+    const double li = (double)l[i], si = (double)t->s[i], ti = (double)t->t[i];
     S += li, Ns += li * si, Nt += li * ti;
-    Sx += a, Sy += b;
-    Nsx += a * si, Nsy += b * si, Ntx += a * ti, Nty += b * ti;
   }
+  const double Sx = t->Sx, Sy = t->Sy, Nsx = t->Nsx, Nsy = t->Nsy, Ntx = t->Ntx, Nty = t->Nty;
   if (!(S > 0)) return 0;
   const zs_texlevel *l0 = &t->sampler.tex->level[0];
   const double ku = l0->width / (S * S * UV_ONE), kv = l0->height / (S * S * UV_ONE);
@@ -711,6 +712,14 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   if (textured) {
     settle_uv(t->s, t->sampler.wrap_s);
     settle_uv(t->t, t->sampler.wrap_t);
+    /* summed in lod_at's order, so the level is what summing there gave */
+    t->Sx = t->Sy = t->Nsx = t->Nsy = t->Ntx = t->Nty = 0.0;
+    for (int i = 0; i < 3; i++) {
+      const double a = (double)t->A[i], b = (double)t->B[i];
+      const double si = (double)t->s[i], ti = (double)t->t[i];
+      t->Sx += a, t->Sy += b;
+      t->Nsx += a * si, t->Nsy += b * si, t->Ntx += a * ti, t->Nty += b * ti;
+    }
   }
   if (dr->shade == ZS_SHADE_GOURAUD) {
     for (int i = 0; i < 3; i++) {
@@ -759,6 +768,14 @@ ZS_ALWAYS_INLINE void each_run(zs_surfaces *s, int slot, int y, const uint32_t *
   while (x < w) {
     const uint32_t v = rgb[x];
     int x1 = x + 1;
+    /* four words a step while all four are v (a run is most often the
+     * background's or a large face's), then one */
+    const uint64_t vv = (uint64_t)v << 32 | v;
+    for (uint64_t a, b; x1 + 4 <= w; x1 += 4) {
+      memcpy(&a, rgb + x1, sizeof a);
+      memcpy(&b, rgb + x1 + 2, sizeof b);
+      if ((a ^ vv) | (b ^ vv)) break;
+    }
     while (x1 < w && rgb[x1] == v) x1++;
     if (v & ZS_SURFACE_BIT) {
       tri spare;

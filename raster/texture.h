@@ -35,8 +35,10 @@ typedef struct zs_sampler {
   zs_filter filter; /* never ZS_FILTER_DEFAULT here */
 } zs_sampler;
 
-/* i wrapped into [0, n). */
+/* i wrapped into [0, n).  An index already inside is every wrap's own,
+ * and most are: they skip the division. */
 static inline int32_t zs_wrap_index(int64_t i, int32_t n, zs_wrap w) {
+  if ((uint64_t)i < (uint64_t)n) return (int32_t)i;
   if (w == ZS_WRAP_CLAMP) return i < 0 ? 0 : i >= n ? n - 1 : (int32_t)i;
   if (w == ZS_WRAP_MIRROR) {
     int64_t m = i % (2 * (int64_t)n);

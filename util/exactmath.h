@@ -10,7 +10,9 @@
 #ifndef ZS_EXACTMATH_H
 #define ZS_EXACTMATH_H
 
+#include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -27,6 +29,27 @@ static inline int64_t zs_gcd64(int64_t a, int64_t b) {
     b = t;
   }
   return a;
+}
+
+/* e with v = m 2^e, |m| in [0.5, 1), as frexp gives it: read off the
+ * bits of a normal v (every one a set-up meets), frexp's for the rest. */
+static inline int zs_binary_exponent(double v) {
+  uint64_t bits;
+  memcpy(&bits, &v, sizeof bits);
+  const int biased = (int)((bits >> 52) & 0x7FF);
+  if (biased != 0 && biased != 0x7FF) return biased - 1022;
+  int e;
+  frexp(v, &e);
+  return e;
+}
+
+/* 2^e, exactly: made from its bits where it is normal, by ldexp beyond. */
+static inline double zs_pow2(int e) {
+  if (e < -1022 || e > 1023) return ldexp(1.0, e);
+  const uint64_t bits = (uint64_t)(e + 1023) << 52;
+  double v;
+  memcpy(&v, &bits, sizeof v);
+  return v;
 }
 
 /* sin and cos of an angle in turns (1 turn = 360 degrees).  Exact at
