@@ -5,7 +5,7 @@
  * draw's shading and whether its material is textured (once per
  * triangle, when it is prepared), from the triangle prepared once: its
  * integer planes and its corners' attributes in fixed point.  The
- * prepared triangles are kept in a small cache indexed by record, so the
+ * prepared triangles are kept in a cache indexed by record, so the
  * rows below a triangle's first find it ready; what a pixel gets does not
  * depend on the cache, which only saves the work. */
 #include "raster/surface.h"
@@ -24,7 +24,12 @@
 enum {
   BARY_BITS = 24,        /* the weights b_i, in 2^-24 */
   PLANE_BITS = 37,       /* |lambda_i| below 2^37 over the triangle's box */
-  CACHE_SLOTS = 256,     /* prepared triangles kept (a power of two) */
+  /* prepared triangles kept (a power of two): more than a row of a
+   * frame of small triangles meets, so that the rows below find them
+   * (zscan bench raster --shade unlit --no-tilings counts the
+   * preparations in its time: builtin:plant and builtin:city meet 256
+   * slots' collisions most) */
+  CACHE_SLOTS = 4096,
   UV_ONE = 1 << 16       /* texture coordinates in 2^-16 */
 };
 #define NORMAL_ONE 1073741824.0 /* normals in 2^-30 */
@@ -182,7 +187,6 @@ typedef struct tri tri;
 typedef void (*run_fn)(const tri *t, int y, int x0, int x1, uint32_t *out);
 
 struct tri {
-  int32_t rec;                   /* the record it is, -1: an empty slot */
   run_fn run, run_alpha;         /* opaque, and with alpha (the A-buffer's) */
   int32_t ox, oy;                /* the planes' origin pixel */
   int64_t A[3], B[3], C[3];      /* lambda_i = A_i (x - ox) + B_i (y - oy) + C_i */
@@ -606,7 +610,6 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   const zs_surface_rec *r = &s->recs[rec];
   const zs_surface_draw *dr = &s->draws[r->draw];
   const zs_mesh *m = &dr->mesh;
-  t->rec = rec;
   /* what the shading reads: unlit neither normals nor eye-space positions
    * (most of a small triangle's preparation), normal no positions but for
    * a corner without a normal */
@@ -736,22 +739,37 @@ static void prepare(const zs_surfaces *s, int32_t rec, tri *t) {
   t->run_alpha = run_for(dr->shade, textured, t->nshadowed > 0, 1);
 }
 
+/* A slot's cache: which record each entry holds (-1: none) apart from
+ * the triangles, so that emptying it each frame writes 16 KiB, not a
+ * line of every triangle. */
+typedef struct tri_cache {
+  int32_t holds[CACHE_SLOTS];
+  tri tri[CACHE_SLOTS];
+} tri_cache;
+
 static void cache_empty(void *cache) {
-  tri *c = cache;
-  for (int i = 0; i < CACHE_SLOTS; i++) c[i].rec = -1;
+  tri_cache *c = cache;
+  memset(c->holds, 0xFF, sizeof c->holds);
 }
 
-static size_t cache_bytes(void) { return CACHE_SLOTS * sizeof(tri); }
+static size_t cache_bytes(void) { return sizeof(tri_cache); }
 
 /* The triangle of record rec, prepared: from the slot's cache, else into
  * spare. */
 static const tri *prepared(zs_surfaces *s, int slot, int32_t rec, tri *spare) {
   void **mine = &s->cache[slot];
-  if (!*mine && (*mine = malloc(CACHE_SLOTS * sizeof(tri)))) cache_empty(*mine);
-  tri *cache = *mine;
-  tri *t = cache ? &cache[rec & (CACHE_SLOTS - 1)] : spare;
-  if (!cache || t->rec != rec) prepare(s, rec, t);
-  return t;
+  if (!*mine && (*mine = malloc(sizeof(tri_cache)))) cache_empty(*mine);
+  tri_cache *cache = *mine;
+  if (!cache) {
+    prepare(s, rec, spare);
+    return spare;
+  }
+  const int32_t i = rec & (CACHE_SLOTS - 1);
+  if (cache->holds[i] != rec) {
+    prepare(s, rec, &cache->tri[i]);
+    cache->holds[i] = rec;
+  }
+  return &cache->tri[i];
 }
 
 /* What a row's run of equal words [x0, x1) becomes: t its triangle, or
