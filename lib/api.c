@@ -180,6 +180,6 @@ zs_status zs_query_objects(const zs_scene *scene, const zs_render_opts *opts,
   zs_shadow_opts so;
   zs_status st = settle(scene, opts, &cam, &fo, &so, err);
   if (st != ZS_OK) return st;
-  return zs_query_objects_at(scene, &cam, fo.width, fo.height, fo.cull_back, opts ? opts->samples : 0,
-                             out, n, err);
+  return zs_query_objects_at(scene, &cam, fo.width, fo.height, fo.cull_back,
+                             opts ? opts->samples : 0, fo.shade, out, n, err);
 }

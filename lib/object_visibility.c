@@ -46,23 +46,37 @@ zs_status zs_scene_id_objects(const zs_scene *s, int32_t **owner, uint32_t *n, z
   return ZS_OK;
 }
 
+/* The ids of the finished frame counted to their objects: all of them
+ * (only NULL), or those of the objects with only[i] set. */
+static void count_owned(const zs_device *dev, int width, int height, const int32_t *owner,
+                        uint32_t nids, const uint8_t *only, zs_object_visibility *lines) {
+  const uint32_t *ids = zs_device_id_buffer(dev);
+  for (size_t p = 0; p < (size_t)width * (size_t)height; p++)
+    if (ids[p] < nids && owner[ids[p]] >= 0 && (!only || only[owner[ids[p]]]))
+      lines[owner[ids[p]]].visible++;
+}
+
 zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width, int height,
-                              int cull_back, int samples, zs_object_visibility **out, int32_t *n,
-                              zs_error *err) {
+                              int cull_back, int samples, zs_shade shade,
+                              zs_object_visibility **out, int32_t *n, zs_error *err) {
   *out = NULL;
   *n = 0;
   zs_status st = ZS_OK;
   zs_device *dev = NULL;
-  zs_object_visibility *lines = calloc((size_t)(s->ninst ? s->ninst : 1), sizeof *lines);
+  const size_t ninst = (size_t)(s->ninst ? s->ninst : 1);
+  zs_object_visibility *lines = calloc(ninst, sizeof *lines);
+  uint8_t *opaque = malloc(ninst), *clear = malloc(ninst);
   int32_t *owner = NULL;
   double view[16], proj[16];
-  if (!lines) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
+  if (!lines || !opaque || !clear) st = zs_error_set(err, ZS_ERR_NOMEM, "out of memory");
   if (st == ZS_OK && samples > 1 && !zs_samples_valid(samples))
     st = zs_error_set(err, ZS_ERR_ARG, "samples: %d: expected 1, 2, 4, 8 or 16", samples);
   if (st == ZS_OK) st = zs_frame_camera(s, cam, width, height, view, proj, err);
   zs_device_config cfg = {width, height, ZS_ALGO_ZBUFFER, ZS_SHADE_ID, cull_back, 1, 0, 0, 0};
   if (st == ZS_OK) st = zs_device_create(&cfg, &dev, err);
-  /* each instance's first face, and the instance of every id */
+  /* each instance's first face, the instance of every id, and which
+   * instances the render draws transparent */
+  int any_clear = 0;
   for (int32_t i = 0; st == ZS_OK && i < s->ninst; i++) {
     const zs_mesh *m = &s->meshes[s->inst[i].mesh].mesh;
     lines[i].name = s->inst[i].name;
@@ -72,24 +86,33 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
       uint32_t id = s->inst[i].id_base + (uint32_t)m->face_id[f];
       if (id < lines[i].first_face) lines[i].first_face = id;
     }
+    clear[i] = (uint8_t)zs_shade_draws_transparent(shade, m);
+    opaque[i] = !clear[i];
+    any_clear |= clear[i];
   }
   uint32_t nids = 0;
   if (st == ZS_OK) st = zs_scene_id_objects(s, &owner, &nids, err);
   /* Sample k is the frame drawn with every pixel's centre moved onto the
    * k-th standard position (lib/samples.h), as an anti-aliased render
    * draws it: what an object owns, and what its box's query passes, are
-   * counted per sample, as GL's sample-counting queries count them. */
+   * counted per sample, as GL's sample-counting queries count them.
+   * An object with transparent faces hides nothing (zs_query_objects),
+   * as the culling methods' oracles take it (cull/ideal.c): the frame the
+   * boxes are queried against, and whose ids the other objects own, is
+   * theirs alone; a transparent object owns the samples where it is the
+   * nearest surface of all, from a second frame of everything. */
   const int passes = samples > 1 ? samples : 1;
   const int8_t *pos = samples > 1 ? zs_sample_positions(samples) : NULL;
   for (int k = 0; st == ZS_OK && k < passes; k++) {
     double pk[16];
     if (pos) zs_sample_projection(proj, width, height, pos[2 * k], pos[2 * k + 1], pk);
-    if ((st = zs_frame_draw_all(dev, s, view, pos ? pk : proj, err)) ||
+    const double *pj = pos ? pk : proj;
+    zs_device_clear(dev);
+    zs_device_set_camera(dev, view, pj);
+    if ((st = zs_frame_draw_some(dev, s, opaque, err)) ||
         (st = zs_device_finish(dev, NULL, NULL, err)))
       break;
-    const uint32_t *ids = zs_device_id_buffer(dev);
-    for (size_t p = 0; p < (size_t)width * (size_t)height; p++)
-      if (ids[p] < nids && owner[ids[p]] >= 0) lines[owner[ids[p]]].visible++;
+    count_owned(dev, width, height, owner, nids, NULL, lines);
     for (int32_t i = 0; i < s->ninst; i++) {
       zs_query q;
       if ((st = zs_device_query_begin(dev, &q, err)) ||
@@ -98,8 +121,15 @@ zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width
         break;
       lines[i].box_samples += zs_device_query_result(dev, q);
     }
+    if (st != ZS_OK || !any_clear) continue;
+    if ((st = zs_frame_draw_all(dev, s, view, pj, err)) ||
+        (st = zs_device_finish(dev, NULL, NULL, err)))
+      break;
+    count_owned(dev, width, height, owner, nids, clear, lines);
   }
   free(owner);
+  free(opaque);
+  free(clear);
   zs_device_destroy(dev);
   if (st != ZS_OK) {
     free(lines);

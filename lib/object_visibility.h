@@ -11,9 +11,10 @@
  * height, drawn in zbuffer mode with id shading, once a sample (samples:
  * 0 or 1 one a pixel, else 2, 4, 8 or 16 at the standard positions); then
  * per instance the samples it owns and its box's query samples, summed
- * over the samples, sorted by first face. */
+ * over the samples, sorted by first face.  shade is the render's: the
+ * instances it draws transparent hide nothing (zs_query_objects). */
 zs_status zs_query_objects_at(const zs_scene *s, const zs_camera *cam, int width, int height,
-                              int cull_back, int samples, zs_object_visibility **out, int32_t *n,
-                              zs_error *err);
+                              int cull_back, int samples, zs_shade shade,
+                              zs_object_visibility **out, int32_t *n, zs_error *err);
 
 #endif

@@ -2,12 +2,18 @@
 #include "lib/scene_draw.h"
 
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err) {
-  /* every instance, nothing read between the draws: on two threads they
+  return zs_frame_draw_some(dev, scene, NULL, err);
+}
+
+zs_status zs_frame_draw_some(zs_device *dev, const zs_scene *scene, const uint8_t *drawn,
+                             zs_error *err) {
+  /* the instances, nothing read between the draws: on two threads they
    * are queued and rendered together (raster.h, deferred drawing) */
   zs_device_defer_draws(dev, 1);
   zs_status st = ZS_OK;
   for (int32_t i = 0; i < scene->ninst && st == ZS_OK; i++) {
     const zs_instance *in = &scene->inst[i];
+    if (drawn && !drawn[i]) continue;
     st = zs_device_draw(dev, &scene->meshes[in->mesh].mesh, in->model, in->id_base, in->rgb, err);
   }
   if (st == ZS_OK) st = zs_device_flush(dev, err);

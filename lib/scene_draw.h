@@ -8,6 +8,9 @@
 
 /* Draws every instance of scene (no clear, no finish). */
 zs_status zs_frame_draw_scene(zs_device *dev, const zs_scene *scene, zs_error *err);
+/* The same for the instances i with drawn[i] != 0 only. */
+zs_status zs_frame_draw_some(zs_device *dev, const zs_scene *scene, const uint8_t *drawn,
+                             zs_error *err);
 
 /* The lines and points of every instance (zs_device_draw_lines,
  * _points), after its faces: zbuffer mode; nothing to do (whatever the

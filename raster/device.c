@@ -399,9 +399,14 @@ static zs_status draw_queued(zs_device *d, const zs_mesh *mesh, const double mod
   return zs_defer_push(d, mesh, model, id_base, rgb, err);
 }
 
+int zs_shade_draws_transparent(zs_shade shade, const zs_mesh *mesh) {
+  /* a shading that reads attributes reads a transparent mesh's (auto
+   * included: zs_surface_reads), but for the normals, drawn opaque */
+  return zs_shade_reads_attrs(shade) && shade != ZS_SHADE_NORMAL && zs_mesh_transparent(mesh);
+}
+
 int zs_device_draws_transparent(const zs_device *d, const zs_mesh *mesh) {
-  return d->reads_attrs && d->cfg.shade != ZS_SHADE_NORMAL &&
-         zs_surface_reads(&d->surf, d->cfg.shade, mesh) && zs_mesh_transparent(mesh);
+  return zs_shade_draws_transparent(d->cfg.shade, mesh);
 }
 
 zs_status zs_device_draw(zs_device *d, const zs_mesh *mesh, const double model[16],

@@ -142,6 +142,8 @@ zs_status zs_device_hzb_test(zs_device *dev, const double (*lo)[3], const double
  * mesh may be transparent (zscan.h, Transparency).  The oracles of
  * culling draw such meshes apart: they occlude nothing. */
 int zs_device_draws_transparent(const zs_device *dev, const zs_mesh *mesh);
+/* The same for a device of shading shade: the one rule both follow. */
+int zs_shade_draws_transparent(zs_shade shade, const zs_mesh *mesh);
 
 /* The memory a device holds now, in bytes: pixel buffers (full-frame in
  * zbuffer mode; one row in scanline and depthsort modes), the polygon and

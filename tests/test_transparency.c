@@ -1,8 +1,8 @@
 /* Transparency (raster/abuffer.h): the A-buffer's image equals a
  * depth-peeling reference built from each face drawn alone; it does not
  * depend on the order of the faces or the draws, the mode or the threads;
- * texture and vertex alpha; what queries see through a transparent
- * surface, and every exact culling method's image of a glass scene; the
+ * texture and vertex alpha; what queries (the device's and per object)
+ * see through a transparent surface, and every exact culling method's image of a glass scene; the
  * fragment budget's error; opaque frames pay no memory.
  * (Golden cases of a scene file: test_golden's "glass".) */
 #include <stdio.h>
@@ -430,6 +430,58 @@ START_TEST(budget_and_refusals) {
 }
 END_TEST
 
+/* zs_query_objects (zscan query) sees through glass too: in the glass
+ * scene the floor and the teapot own the pixels, and their boxes pass the
+ * samples, of the scene without its four glass objects; the glass objects
+ * own pixels of their own; drawn flat, the glass is opaque and hides
+ * part of the teapot; and at 4 samples the same holds sample for sample. */
+START_TEST(object_queries_see_through_glass) {
+  zs_scene s;
+  zs_error_clear(&err);
+  ck_assert_msg(zs_input_load_scene(zs_test_src("scene/examples/glass.json"), &s, &err) == ZS_OK,
+                "%s", err.msg);
+  ck_assert_int_eq(s.ninst, 6); /* floor, teapot: opaque; three panes and a ball: glass */
+  for (int samples = 1; samples <= 4; samples += 3) {
+    zs_render_opts o = {0};
+    o.width = 160;
+    o.height = 120;
+    o.samples = samples;
+    zs_object_visibility *all, *opaque, *flat;
+    int32_t n_all, n_opaque, n_flat;
+    ck_assert_msg(zs_query_objects(&s, &o, &all, &n_all, &err) == ZS_OK, "%s", err.msg);
+    o.shade = ZS_SHADE_FLAT;
+    ck_assert_msg(zs_query_objects(&s, &o, &flat, &n_flat, &err) == ZS_OK, "%s", err.msg);
+    o.shade = ZS_SHADE_AUTO;
+    const int32_t ninst = s.ninst;
+    s.ninst = 2; /* the same camera: the scene's own */
+    ck_assert_msg(zs_query_objects(&s, &o, &opaque, &n_opaque, &err) == ZS_OK, "%s", err.msg);
+    s.ninst = ninst;
+    ck_assert_int_eq(n_all, 6);
+    ck_assert_int_eq(n_opaque, 2);
+    uint64_t vis[6] = {0}, box[6] = {0}, flat_vis[6] = {0};
+    for (int k = 0; k < 6; k++) {
+      vis[all[k].object] = all[k].visible;
+      box[all[k].object] = all[k].box_samples;
+      flat_vis[flat[k].object] = flat[k].visible;
+    }
+    for (int k = 0; k < 2; k++) {
+      const int i = opaque[k].object;
+      ck_assert_msg(vis[i] == opaque[k].visible, "%d samples: %s owns %llu, %llu without the glass",
+                    samples, opaque[k].name, (unsigned long long)vis[i],
+                    (unsigned long long)opaque[k].visible);
+      ck_assert_uint_eq(box[i], opaque[k].box_samples);
+      ck_assert_uint_gt(vis[i], 0);
+    }
+    for (int i = 2; i < 6; i++) ck_assert_uint_gt(vis[i], 0);
+    ck_assert_uint_lt(flat_vis[1], vis[1]); /* opaque panes hide some of the teapot */
+    free(all);
+    free(opaque);
+    free(flat);
+  }
+  zs_scene_free(&s);
+}
+END_TEST
+
 /* Every exact culling method draws the glass scene as drawing everything
  * does, byte for byte, from cameras around it: what lies behind glass is
  * not culled (a transparent surface occludes nothing), and the glass
@@ -503,6 +555,7 @@ int main(void) {
   tcase_add_test(tc, any_order_gives_the_same_bytes);
   tcase_add_test(tc, texture_and_vertex_alpha);
   tcase_add_test(tc, queries_see_through_glass);
+  tcase_add_test(tc, object_queries_see_through_glass);
   tcase_add_test(tc, budget_and_refusals);
   tcase_add_test(tc, culling_sees_through_glass);
   suite_add_tcase(s, tc);

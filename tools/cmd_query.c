@@ -75,7 +75,7 @@ static zs_status run(const char *input, int json, int samples, const zs_view_opt
   zs_object_visibility *lines;
   int32_t n;
   zs_status st = zs_query_objects_at(&s, &eff.cam, eff.width, eff.height, eff.cull_back, samples,
-                                     &lines, &n, err);
+                                     ZS_SHADE_AUTO, &lines, &n, err); /* as render draws it */
   if (st == ZS_OK) {
     uint64_t tv = 0, tb = 0;
     for (int32_t k = 0; k < n; k++) {

@@ -782,10 +782,15 @@ zs_status zs_scene_id_objects(const zs_scene *scene, int32_t **owner, uint32_t *
 /* Per object (instance) of the scene, as `zscan query` prints it: the
  * pixels of the rendered frame (zbuffer mode, opts as for zs_render) that
  * show one of its faces, and the samples of an occlusion query on its
- * axis-aligned world box against the finished depth buffer.  With
- * opts->samples N (2, 4, 8, 16) both count samples, as GL's
- * sample-counting queries do: the frame drawn at each of the N standard
- * positions, the counts summed. */
+ * axis-aligned world box against the finished depth buffer.  An object
+ * with faces the render draws transparent (opts->shade) hides nothing,
+ * its opaque faces neither (as the culling methods' oracles take it):
+ * the other objects own the pixels where they are the nearest surface
+ * but for such objects, every box is queried against their depth alone,
+ * and a transparent object owns the pixels where it is the nearest
+ * surface of all.  With opts->samples N (2, 4, 8, 16) both count
+ * samples, as GL's sample-counting queries do: the frame drawn at each
+ * of the N standard positions, the counts summed. */
 typedef struct zs_object_visibility {
   const char *name;        /* the object's name; valid while the scene is */
   int32_t object;          /* its number in the scene, from 0 */
