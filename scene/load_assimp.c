@@ -585,8 +585,9 @@ static int normal_matrix(const double xf[16], double n[9]) {
   return 1;
 }
 
-/* Vertex v's normal placed by the normal matrix nm (NULL: as it is), of
- * unit length; (0, 0, 0), none, when it is not finite or has no length. */
+/* Vertex v's normal (finite) placed by the normal matrix nm (NULL: as it
+ * is), of unit length; (0, 0, 0), none, when it has no length (or its
+ * length overflows). */
 static void place_normal(const struct aiVector3D *in, const double *nm, float out[3]) {
   double p[3] = {in->x, in->y, in->z}, q[3];
   for (int r = 0; r < 3; r++)
@@ -612,10 +613,17 @@ static zs_status add_attrs(loader *L, const struct aiMesh *mesh, unsigned mi, co
     float n[3], uv[2];
     uint8_t rgba[4];
     if (nrm) {
+      if (!isfinite(nrm[v].x) || !isfinite(nrm[v].y) || !isfinite(nrm[v].z))
+        return set_error(L->err, ZS_ERR_PARSE, "%s: mesh %u vertex %u: normal not a finite number",
+                         L->path, mi, v);
       place_normal(&nrm[v], turn ? nm : NULL, n);
       if (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) L->need_normals = 1;
     }
     if (col) {
+      if (!isfinite(col[v].r) || !isfinite(col[v].g) || !isfinite(col[v].b) ||
+          !isfinite(col[v].a))
+        return set_error(L->err, ZS_ERR_PARSE, "%s: mesh %u vertex %u: colour not a finite number",
+                         L->path, mi, v);
       rgba[0] = (uint8_t)channel(col[v].r);
       rgba[1] = (uint8_t)channel(col[v].g);
       rgba[2] = (uint8_t)channel(col[v].b);

@@ -23,9 +23,11 @@
  * turned by the node's transform (the cofactors of its 3 x 3, unit
  * length); a mesh without them gets none, so a file without any has no
  * attribute arrays and draws as before.  Where a mesh has colours or
- * coordinates but no normals (or a normal is not finite or zero),
+ * coordinates but no normals (or a normal of zero length),
  * zs_model_compute_normals (crease 60 degrees) makes them, never
- * assimp's aiProcess_GenNormals.  JoinIdenticalVertices joins only
+ * assimp's aiProcess_GenNormals.  A normal, colour or texture
+ * coordinate that is not a finite number is refused: "FILE: mesh M
+ * vertex V: normal not a finite number" (ZS_ERR_PARSE).  JoinIdenticalVertices joins only
  * vertices whose every attribute is equal, so nothing read is lost.
  *
  * Materials, one per assimp material that a mesh with polygons uses, in
