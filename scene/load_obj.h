@@ -37,7 +37,9 @@
  * did.  When there are attributes or a textured material, the corners
  * without a normal get one from zs_model_compute_normals at a crease of
  * 60 degrees.
- * The other statements of the format (vp, s, l, p, curves and surfaces),
+ * l v1 v2 ... is a polyline and p v1 ... a list of points (zs_mesh's
+ * lines and points; a vt after '/' read and dropped).
+ * The other statements of the format (vp, s, curves and surfaces),
  * comments from a '#' starting a word, and unknown words made of
  * letters, digits and '_' (another program's extension) are ignored.  But
  * a file that is mostly lines of unknown words, or any line that holds a
