@@ -158,7 +158,7 @@ static int off_counts(const char *t, int is_off_name, uint64_t *nv, uint64_t *nf
   return read_count(&s, nf);
 }
 
-/* Bytes of one value of a PLY type name in a binary file (1 if unknown). */
+/* Bytes of one value of a PLY type name in a binary file (0 if unknown). */
 static uint64_t ply_type_size(const char *type) {
   static const struct {
     const char *name;
@@ -169,29 +169,73 @@ static uint64_t ply_type_size(const char *type) {
                {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
     if (strcmp(type, types[i].name) == 0) return types[i].size;
-  return 1;
+  return 0;
 }
 
 /* The fewest bytes the elements a PLY header declares can take: each
  * element at least one byte per property in ASCII, the sizes of its
  * scalars (and of its lists' counts) in binary, and one byte if it has no
- * property.  0 when the text is not a complete PLY header; *body is the
- * header's length. */
-static int ply_min_bytes(const char *t, uint64_t *min_bytes, uint64_t *body) {
-  if (strncmp(t, "ply", 3) != 0 || (t[3] != '\n' && t[3] != '\r')) return 0;
-  int binary = 0;
+ * property.  0 when the text (len bytes read) is not a PLY header;
+ * *body is the header's length.  A header cut short (*cut: longer than
+ * what was read, or ended by a NUL byte, *nul) gives the bytes of what it
+ * declares up to the cut, and the cut as its length: still a bound from
+ * below on what the file must hold after its header, so a count far
+ * beyond the file is refused before assimp allocates for it.  A line
+ * the header's grammar does not allow sets *bad_line (from 1). */
+static int ply_min_bytes(const char *t, size_t len, int ply_name, uint64_t *min_bytes,
+                         uint64_t *body, int *cut, int *nul, int *bad_line) {
+  /* what assimp reads as a PLY: a name ending .ply, or text starting
+   * "ply"; its first line must be that word alone */
+  if (!ply_name && strncmp(t, "ply", 3) != 0) return 0;
+  if (strncmp(t, "ply", 3) != 0 || (t[3] != '\n' && t[3] != '\r')) {
+    *bad_line = 1;
+    return 1;
+  }
+  int binary = 0, formats = 0, elements = 0, number = 0;
   uint64_t total = 0, count = 0, per = 0;
   const char *line = t;
-  while (*line) {
-    const char *end = strchr(line, '\n');
-    if (!end) return 0; /* header longer than what was read */
-    char buf[256], w[4][64];
+  for (;; number++) {
+    const char *end = *line ? strchr(line, '\n') : NULL;
+    if (!end) { /* cut short */
+      *min_bytes = sat_add(total, sat_mul(count, per ? per : 1));
+      *body = (uint64_t)(line - t);
+      *nul = (size_t)(line - t) + strlen(line) < len;
+      *cut = 1;
+      return 1;
+    }
+    char buf[256], w[5][64];
     size_t n = (size_t)(end - line) < sizeof buf - 1 ? (size_t)(end - line) : sizeof buf - 1;
     memcpy(buf, line, n);
     buf[n] = '\0';
-    int nw = sscanf(buf, "%63s %63s %63s %63s", w[0], w[1], w[2], w[3]);
+    int nw = sscanf(buf, "%63s %63s %63s %63s %63s", w[0], w[1], w[2], w[3], w[4]);
     line = end + 1;
-    if (nw < 1) continue;
+    /* a header is text: printable ASCII and tabs (before the NUL check
+     * below, which a line cut by one reaches) */
+    for (size_t i = 0; i < n; i++)
+      if ((buf[i] < ' ' || buf[i] > '~') && buf[i] != '\t' && buf[i] != '\r') {
+        *bad_line = number + 1;
+        return 1;
+      }
+    if (nw < 1 || number == 0) continue; /* (line 0: "ply") */
+    /* The header's grammar: a format line before the elements, once; an
+     * element's properties after it; any other line a comment (Blender
+     * once wrote its name on a line of its own, and assimp reads past
+     * it).  assimp 5.2's reader takes some other headers into states its
+     * post-processing asserts on (abort()), so they are refused here,
+     * with the line. */
+    const int is_comment = strcmp(w[0], "format") != 0 && strcmp(w[0], "element") != 0 &&
+                           strcmp(w[0], "property") != 0;
+    const int good =
+        is_comment ||
+        (strcmp(w[0], "format") == 0 && nw == 3 && formats++ == 0 && !elements) ||
+        (strcmp(w[0], "element") == 0 && nw == 3 && formats) ||
+        (strcmp(w[0], "property") == 0 && elements &&
+         ((nw == 3 && ply_type_size(w[1])) ||
+          (nw == 5 && strcmp(w[1], "list") == 0 && ply_type_size(w[2]) && ply_type_size(w[3]))));
+    if (!good) {
+      *bad_line = number + 1;
+      return 1;
+    }
     if (strcmp(w[0], "end_header") == 0) {
       total = sat_add(total, sat_mul(count, per ? per : 1));
       *min_bytes = total;
@@ -200,10 +244,14 @@ static int ply_min_bytes(const char *t, uint64_t *min_bytes, uint64_t *body) {
     }
     if (strcmp(w[0], "format") == 0 && nw >= 2) {
       binary = strncmp(w[1], "binary", 6) == 0;
-    } else if (strcmp(w[0], "element") == 0 && nw >= 3) {
+    } else if (strcmp(w[0], "element") == 0) {
       total = sat_add(total, sat_mul(count, per ? per : 1));
       const char *c = w[2];
-      if (!read_count(&c, &count)) count = 0;
+      if (!read_count(&c, &count) || *c) {
+        *bad_line = number + 1;
+        return 1;
+      }
+      elements++;
       per = 0;
     } else if (strcmp(w[0], "property") == 0 && nw >= 3) {
       /* "property TYPE NAME" or "property list COUNT_TYPE INDEX_TYPE NAME" */
@@ -211,12 +259,12 @@ static int ply_min_bytes(const char *t, uint64_t *min_bytes, uint64_t *body) {
       per = sat_add(per, binary ? ply_type_size(list ? w[2] : w[1]) : 1);
     }
   }
-  return 0;
 }
 
 /* Refuses an OFF or PLY file whose header declares more than it holds. */
 static zs_status check_header(const char *path, const file_head *h, zs_error *err) {
   uint64_t nv, nf, need, body;
+  int cut = 0, nul = 0, bad_line = 0;
   if (off_counts(h->text, has_extension(path, ".off"), &nv, &nf)) {
     /* every vertex and face line takes at least two bytes */
     if (sat_mul(sat_add(nv, nf), 2) > h->size)
@@ -225,7 +273,17 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
                        "the file's %llu bytes can hold",
                        path, (unsigned long long)nv, (unsigned long long)nf,
                        (unsigned long long)h->size);
-  } else if (ply_min_bytes(h->text, &need, &body)) {
+  } else if (ply_min_bytes(h->text, h->len, has_extension(path, ".ply"), &need, &body, &cut, &nul,
+                           &bad_line)) {
+    if (bad_line == 1)
+      return set_error(err, ZS_ERR_PARSE, "%s: not a PLY file (its first line is not \"ply\")",
+                       path);
+    if (bad_line)
+      return set_error(err, ZS_ERR_PARSE, "%s:%d: not a line of a PLY header", path, bad_line);
+    /* (assimp 5.2's reader can loop without end on one) */
+    if (nul) return set_error(err, ZS_ERR_PARSE, "%s: PLY header holds a NUL byte", path);
+    if (cut && h->len == h->size)
+      return set_error(err, ZS_ERR_PARSE, "%s: PLY header without an end_header line", path);
     if (need > h->size - body)
       return set_error(err, ZS_ERR_PARSE,
                        "%s: PLY header declares elements of at least %llu bytes, more than "
@@ -817,13 +875,58 @@ zs_status zs_assimp_load(const char *path, zs_model *out, zs_error *err) {
   return zs_assimp_load_flags(path, 0, out, err);
 }
 
+/* Each mesh's primitive types as its faces have them, or an error for a
+ * face without a vertex.  A reader can set a type no face has (assimp
+ * 5.2's PLY reader on a malformed face line sets "polygon" and leaves
+ * the face empty), and aiProcess_Triangulate asserts (abort()) on a mesh
+ * that claims polygons and has none. */
+static zs_status settle_primitive_types(const char *path, const struct aiScene *sc,
+                                        zs_error *err) {
+  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    struct aiMesh *m = sc->mMeshes[i];
+    unsigned types = 0;
+    for (unsigned f = 0; f < m->mNumFaces; f++) {
+      const unsigned n = m->mFaces[f].mNumIndices;
+      if (n == 0)
+        return set_error(err, ZS_ERR_PARSE, "%s: mesh %u face %u: no vertices", path, i, f);
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    m->mPrimitiveTypes = types;
+  }
+  return ZS_OK;
+}
+
+/* The file read and validated, then triangulated and its identical
+ * vertices joined, as aiImportFile with all three flags does (the same
+ * steps in the same order), with the primitive types settled between. */
+static zs_status import_triangulated(const char *path, const struct aiScene **sc,
+                                     zs_error *err) {
+  zs_status st = import_checked(path, aiProcess_ValidateDataStructure, sc, err);
+  if (st != ZS_OK) return st;
+  if ((st = settle_primitive_types(path, *sc, err)) != ZS_OK) {
+    aiReleaseImport(*sc);
+    *sc = NULL;
+    return st;
+  }
+  const struct aiScene *done =
+      aiApplyPostProcessing(*sc, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  if (!done) { /* (post-processing failed: the scene is gone) */
+    *sc = NULL;
+    const char *why = aiGetErrorString();
+    return set_error(err, ZS_ERR_PARSE, "%s: %s", path,
+                     why && *why ? why : "assimp could not process the file");
+  }
+  *sc = done;
+  return ZS_OK;
+}
+
 zs_status zs_assimp_load_flags(const char *path, int flags, zs_model *out, zs_error *err) {
   zs_model_init(out);
   const struct aiScene *sc;
-  zs_status st = import_checked(path,
-                                aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                    aiProcess_ValidateDataStructure,
-                                &sc, err);
+  zs_status st = import_triangulated(path, &sc, err);
   /* A point cloud (a PLY of vertices alone) is a mesh without faces,
    * which assimp's validation refuses: read it again without, and take
    * each vertex as a point (add_mesh checks what it reads itself). */

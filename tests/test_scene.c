@@ -1451,8 +1451,10 @@ END_TEST
 static const struct {
   const char *file, *reason;
 } own_broken[] = {
+    {"bad_header_line.ply", ":3: not a line of a PLY header"},
     {"deep_nodes.gltf", ": node tree deeper than 256"},
     {"empty.stl", ": "},
+    {"empty_face.ply", ": mesh 0 face 0: no vertices"},
     {"garbage.ply", ": "},
     {"huge_accessor.gltf", ": "},
     {"huge_binary.ply", ": PLY header declares elements of at least 600000001 bytes"},
@@ -1464,6 +1466,8 @@ static const struct {
     {"nan.off", ": mesh 0 vertex 0: not a finite number"},
     {"nan_normal.ply", ": mesh 0 vertex 0: normal not a finite number"},
     {"not_a_model.off", ": "},
+    {"no_end_header.ply", ": PLY header without an end_header line"},
+    {"nul_in_header.ply", ": PLY header holds a NUL byte"},
     {"overflow_transform.gltf", ": mesh 0 vertex 0: not a finite number"},
     {"truncated.stl", ": "},
 };
