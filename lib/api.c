@@ -28,6 +28,11 @@ static const char *const pixel_changes[] = {
     "a model's lines and points (OBJ l and p, glTF LINES and POINTS, PLY edges and point "
     "clouds) are drawn, by GL's rules for aliased lines and points, where they were dropped "
     "before: models with them change, models without them do not",
+    "zscan query and zs_query_objects: an object with transparent faces hides nothing (the "
+    "others own the pixels, and the boxes pass the samples, seen through it): counts of "
+    "scenes with transparency change, images do not; models through assimp with a normal "
+    "or colour that is not a finite number, an empty face or a malformed PLY header are "
+    "refused",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,
