@@ -57,13 +57,14 @@ static inline void zs_snap_vertex(const zs_setup_params *sp, const zs_clip_vert 
   double xw, yw;
   zs_window_xy(sp->width, sp->height, v, &xw, &yw);
   double zw = zs_window_depth(v);
-  out->x = (int32_t)lrint(xw * ZS_SUBPIXEL_ONE);
+  out->x = (int32_t)llrint(xw * ZS_SUBPIXEL_ONE);
   /* The difference wraps, as the vector stage's does (vertex_simd.c): a
    * vertex inside every plane at w = 0 (the eye, under a projection that
-   * allows it) has no window position, and lrint gives its NaN the
+   * allows it) has no window position, and llrint gives its NaN the
    * integer indefinite, which subtracted in signed arithmetic would
-   * overflow. */
-  out->y = (int32_t)(uint32_t)((uint64_t)h_sub - (uint64_t)lrint(yw * ZS_SUBPIXEL_ONE));
+   * overflow.  (llrint, not lrint: 64 bits where long has 32, on Windows
+   * and i686, so that the indefinite, and the vector stage, agree.) */
+  out->y = (int32_t)(uint32_t)((uint64_t)h_sub - (uint64_t)llrint(yw * ZS_SUBPIXEL_ONE));
   out->z = zw < 0.0 ? 0.0 : zw > 1.0 ? 1.0 : zw;
 }
 /* The polygon v[vi[0]], .., v[vi[n - 1]]. */

@@ -15,8 +15,10 @@
  * Each lane does zs_flat_level's operations in its order, and IEEE 754
  * rounds a lane's square root, division, add and multiply as it rounds
  * the scalar's (never fused: -ffp-contract=off); the
- * conversion to an integer is lrint's, in the default rounding mode; a
- * NaN cosine stays NaN past the clamp to 1 and converts as lrint's does.
+ * conversion to an integer is llrint's, in the default rounding mode; a
+ * NaN cosine stays NaN past the clamp to 1 and converts as llrint's does
+ * (llrint, not lrint: its 64 bits are the same where long is 32, on
+ * Windows and i686, and so is a NaN's integer indefinite).
  *
  * Depth shading.  Grey from the linear eye distance, 255 at the near plane
  * and 0 at the far plane, background black.
@@ -55,7 +57,7 @@ ZS_AVX512_TARGET static int flat_levels_avx512(const double *nx, const double *n
     const __m512d level = _mm512_mul_pd(
         _mm512_set1_pd(255.0),
         _mm512_add_pd(_mm512_set1_pd(0.25), _mm512_mul_pd(_mm512_set1_pd(0.75), cosine)));
-    /* lrint's conversion to 64 bits, then its low 32 as the (uint32_t) cast */
+    /* llrint's conversion to 64 bits, then its low 32 as the (uint32_t) cast */
     _mm256_storeu_si256((__m256i *)(q + k), _mm512_cvtepi64_epi32(_mm512_cvtpd_epi64(level)));
   }
   return k;
@@ -102,7 +104,7 @@ static void shade_ids(int width, const uint32_t *depth, const uint32_t *id,
 static inline uint32_t grey_of(double t) {
   if (t < 0.0) t = 0.0;
   if (t > 1.0) t = 1.0;
-  uint32_t g = (uint32_t)lrint(255.0 * (1.0 - t));
+  uint32_t g = (uint32_t)llrint(255.0 * (1.0 - t));
   return g << 16 | g << 8 | g;
 }
 

@@ -31,7 +31,7 @@ static inline uint32_t zs_flat_level(const double n[3]) {
   /* past 1 where the squares are subnormal (|n| near 1e-162) and round
    * coarsely: up to 1.015, a level of 258 without the clamp */
   if (cosine > 1.0) cosine = 1.0;
-  return (uint32_t)lrint(255.0 * (0.25 + 0.75 * cosine));
+  return (uint32_t)llrint(255.0 * (0.25 + 0.75 * cosine));
 }
 
 /* rgb at level q: each channel times q / 255, rounded. */
