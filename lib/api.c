@@ -145,9 +145,9 @@ zs_status zs_render(const zs_scene *scene, const zs_render_opts *opts, zs_image 
   float *d = NULL;
   if (depth && !(d = malloc((size_t)fo.width * (size_t)fo.height * sizeof *d)))
     return zs_error_set(err, ZS_ERR_NOMEM, "zs_render: out of memory");
-  if (fo.algo != ZS_ALGO_ZBUFFER && zs_scene_has_prims(scene))
+  if (fo.algo == ZS_ALGO_DEPTHSORT && zs_scene_has_prims(scene))
     st = zs_error_set(err, ZS_ERR_ARG, "zs_render_opts.algo: the scene's lines and points need "
-                      "ZS_ALGO_ZBUFFER");
+                      "ZS_ALGO_ZBUFFER or ZS_ALGO_SCANLINE");
   else st = zs_frame_render(scene, &cam, &fo, out, d, stats, err);
   if (st != ZS_OK || !depth) free(d);
   else *depth = d;

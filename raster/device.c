@@ -154,6 +154,7 @@ void zs_device_destroy(zs_device *d) {
   if (!d) return;
   zs_surfaces_free(&d->surf);
   zs_abuffer_free(&d->abuf);
+  zs_prim_rows_free(&d->prim_rows);
   zs_batch_free(&d->frag_batch);
   free(d->depth);
   free(d->id);
@@ -369,6 +370,7 @@ void zs_device_clear(zs_device *d) {
   if (d->hzb) zs_hzb_invalidate(d->hzb);
   zs_surfaces_clear(&d->surf);
   zs_abuffer_clear(&d->abuf);
+  zs_prim_rows_clear(&d->prim_rows);
   d->clear_buffers(d);
 }
 
@@ -460,7 +462,7 @@ zs_device_memory zs_device_memory_of(const zs_device *d) {
   if (d->row_depth) m.pixel_buffers += 4 * w * sizeof(uint32_t);
   if (d->band_rows) m.pixel_buffers += zs_finish_bands_bytes(d);
   m.pixel_buffers += w * sizeof(uint32_t); /* the shaded row */
-  m.pixel_buffers += zs_abuffer_bytes(&d->abuf);
+  m.pixel_buffers += zs_abuffer_bytes(&d->abuf) + zs_prim_rows_bytes(&d->prim_rows);
   m.tables = (size_t)d->batch.cap_polys * sizeof(zs_poly) +
              (size_t)d->batch.cap_edges * sizeof(zs_edge) + zs_scan_scratch_bytes(&d->scratch);
   if (d->band_scratch)

@@ -7,6 +7,7 @@
 
 #include "raster/clock.h"
 #include "raster/hzb.h"
+#include "raster/prim_rows.h"
 #include "raster/surface.h"
 #include "raster/tuning.h"
 
@@ -88,6 +89,9 @@ struct zs_device {
    * are set up into, apart from the opaque faces' */
   zs_abuffer abuf;
   zs_batch frag_batch;
+  /* scanline mode: the lines' and points' fragments, put into their rows
+   * at finish (prim_rows.h) */
+  zs_prim_rows prim_rows;
   /* zs_device_keep_line_runs: the hidden lines as vectors (lines.c) */
   int keep_runs;
   int nomem_runs;                 /* a run could not be kept */

@@ -73,6 +73,7 @@ typedef struct row_emit {
   zs_device *d;
   zs_row_sink sink;
   void *user;
+  uint64_t prims_written; /* pixels the lines and points wrote */
 } row_emit;
 
 /* The one-row buffers are cleared before each row and shaded and handed
@@ -84,14 +85,20 @@ static void begin_row(void *user, int y) {
                   d->cfg.background);
 }
 
+/* The row's lines and points go in after its faces, before it is shaded
+ * (prim_rows.h). */
 static void end_row(void *user, int y) {
   row_emit *e = user;
   zs_device *d = e->d;
+  e->prims_written +=
+      zs_prim_rows_apply(&d->prim_rows, y, d->row_depth, d->row_id, d->row_rgb, d->row_count);
   if (e->sink) d->emit(d, y, d->row_depth, d->row_id, d->row_rgb, d->row_count, e->sink, e->user);
 }
 
 static zs_status finish_scan(zs_device *d, zs_row_sink sink, void *user, zs_error *err) {
-  row_emit e = {d, sink, user};
+  row_emit e = {d, sink, user, 0};
+  if (d->prim_rows.n > 0 && !zs_prim_rows_sort(&d->prim_rows, d->cfg.height))
+    return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
   zs_row_hooks hooks = {begin_row, end_row, &e};
   zs_target t = {d->row_depth, d->row_id, d->row_rgb, d->row_count, 0, d->cfg.width, 0, NULL, 0,
                  NULL};
@@ -99,6 +106,7 @@ static zs_status finish_scan(zs_device *d, zs_row_sink sink, void *user, zs_erro
   if (!zs_scan_batch(&d->drawing->traversal, &d->batch, &t, 0, d->cfg.height, &hooks, d->trace,
                      &d->scratch, &c.scan))
     return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
+  c.scan.written += e.prims_written;
   zs_clock_charge(d, &c);
   zs_batch_reset(&d->batch);
   return ZS_OK;
@@ -183,6 +191,12 @@ static void scan_band_rows(void *ctx, int t) {
   j->counts[b] = (zs_scan_counts){0, 0, 0};
   j->ok[b] = zs_scan_batch(&d->drawing->traversal, &d->batch, &tg, y0, y1, &hooks, NULL,
                            &d->band_scratch[b], &j->counts[b]);
+  /* the rows' lines and points, after their faces (prim_rows.h) */
+  for (int y = y0; j->ok[b] && d->prim_rows.n > 0 && y < y1; y++) {
+    const size_t off = (size_t)(y - y0) * (size_t)d->cfg.width;
+    j->counts[b].written += zs_prim_rows_apply(&d->prim_rows, y, tg.depth + off, tg.id + off,
+                                               tg.rgb + off, d->clear_counts ? tg.count + off : NULL);
+  }
   /* the band's pixels shaded here, on its thread, in place (not when
    * their normals go out too: the rows keep their records for that) */
   if (j->ok[b] && d->surf.nrecs > 0 && !d->row_normal)
@@ -199,6 +213,8 @@ static zs_status finish_bands(zs_device *d, zs_row_sink sink, void *user, zs_err
   j.d = d;
   j.nbands = finish_band_count(d);
   if (j.nbands < 2) return finish_scan(d, sink, user, err);
+  if (d->prim_rows.n > 0 && !zs_prim_rows_sort(&d->prim_rows, d->cfg.height))
+    return zs_error_set(err, ZS_ERR_NOMEM, "finish: out of memory");
   const int threads = d->cfg.threads, w = d->cfg.width;
   /* the bands' rows come shaded (scan_band_rows) */
   const emit_fn emit = d->surf.nrecs > 0 && !d->row_normal ? emit_as_drawn : d->emit;

@@ -3,6 +3,7 @@
 
 #include "raster/device.h"
 #include "raster/setup.h"
+#include "util/compiler.h"
 
 /* a / b rounded down, b > 0 */
 static int64_t floor_div(int64_t a, int64_t b) {
@@ -22,9 +23,18 @@ static int rounded_size(double v, int most) {
   return n < 1 ? 1 : n;
 }
 
-/* A fragment (z, id) against the pixel at i, by the depth test of every
- * draw (raster.h, DEPTH): written when it is in front. */
-static int put(zs_device *d, size_t i, uint32_t z, uint32_t id, uint32_t rgb) {
+/* A fragment (z, id) at pixel (x, y).  In zbuffer mode tested against
+ * the full frame by the depth test of every draw (raster.h, DEPTH) and
+ * written when it is in front: 1; in scanline mode kept for its row,
+ * which finish tests it against (prim_rows.h): 0, counted there.  rows
+ * is a constant where this is inlined: each mode gets its own loops. */
+ZS_ALWAYS_INLINE int put(zs_device *d, const int rows, int64_t x, int64_t y, uint32_t z,
+                         uint32_t id, uint32_t rgb) {
+  if (rows) {
+    zs_prim_rows_keep(&d->prim_rows, (uint32_t)x, (uint32_t)y, z, id, rgb);
+    return 0;
+  }
+  const size_t i = (size_t)y * (size_t)d->cfg.width + (size_t)x;
   if (d->count) d->count[i]++;
   if (z > d->depth[i] || (z == d->depth[i] && id >= d->id[i])) return 0;
   d->depth[i] = z;
@@ -81,8 +91,8 @@ static int in_diamond(int64_t a, int64_t m) {
   return (ea < 0 ? -ea : ea) + (em < 0 ? -em : em) < half;
 }
 
-static uint64_t draw_line(zs_device *d, const zs_snap_vert *p, const zs_snap_vert *q, int w,
-                          uint32_t id, uint32_t rgb) {
+ZS_ALWAYS_INLINE uint64_t draw_line(zs_device *d, const int rows, const zs_snap_vert *p,
+                                    const zs_snap_vert *q, int w, uint32_t id, uint32_t rgb) {
   const int64_t dx = (int64_t)q->x - p->x, dy = (int64_t)q->y - p->y;
   if (dx == 0 && dy == 0) return 0;
   const int major_x = (dx < 0 ? -dx : dx) >= (dy < 0 ? -dy : dy);
@@ -136,11 +146,8 @@ static uint64_t draw_line(zs_device *d, const zs_snap_vert *p, const zs_snap_ver
      * centre before the line: its depth, extrapolated, kept in range) */
     const int64_t zc = L.z0 + floor_div(L.dz * (c - L.a0) * s, da);
     const uint32_t z = zc < 0 ? 0u : zc > (int64_t)ZS_DEPTH_FAR ? ZS_DEPTH_FAR : (uint32_t)zc;
-    for (int64_t j = lo; j <= hi; j++) {
-      const size_t i = major_x ? (size_t)j * (size_t)d->cfg.width + (size_t)k
-                               : (size_t)k * (size_t)d->cfg.width + (size_t)j;
-      written += (uint64_t)put(d, i, z, id, rgb);
-    }
+    for (int64_t j = lo; j <= hi; j++)
+      written += (uint64_t)(major_x ? put(d, rows, k, j, z, id, rgb) : put(d, rows, j, k, z, id, rgb));
   }
   return written;
 }
@@ -154,8 +161,8 @@ static uint64_t draw_line(zs_device *d, const zs_snap_vert *p, const zs_snap_ver
  * and an even one on the pixel corner floor(x + 1/2), floor(y + 1/2).  A
  * disc covers the pixels of that square whose centres lie strictly within
  * s/2 of the point.  Its depth is the point's. */
-static uint64_t draw_point(zs_device *d, const zs_snap_vert *p, int s, zs_point_shape shape,
-                           uint32_t id, uint32_t rgb) {
+ZS_ALWAYS_INLINE uint64_t draw_point(zs_device *d, const int rows, const zs_snap_vert *p, int s,
+                                     zs_point_shape shape, uint32_t id, uint32_t rgb) {
   const int64_t one = ZS_SUBPIXEL_ONE, half = ZS_SUBPIXEL_ONE / 2, hs = half * s;
   /* centres in (x - s/2, x + s/2] and, image y down, [y - s/2, y + s/2) */
   int64_t x0 = floor_div(p->x - hs - half, one) + 1, x1 = floor_div(p->x + hs - half, one);
@@ -170,22 +177,41 @@ static uint64_t draw_point(zs_device *d, const zs_snap_vert *p, int s, zs_point_
     for (int64_t x = x0; x <= x1; x++) {
       const int64_t ex = one * x + half - p->x, ey = one * y + half - p->y;
       if (shape == ZS_POINT_DISC && ex * ex + ey * ey >= hs * hs) continue;
-      written += (uint64_t)put(d, (size_t)y * (size_t)d->cfg.width + (size_t)x, z, id, rgb);
+      written += (uint64_t)put(d, rows, x, y, z, id, rgb);
     }
   return written;
 }
 
 /* ---- the draws ---- */
 
-/* What a draw of lines or points needs of the device, checked; the
- * queued faces painted first, so that these test against them. */
+/* Each of the two, for the full frame and for scanline mode's rows. */
+static uint64_t line_into_frame(zs_device *d, const zs_snap_vert *p, const zs_snap_vert *q,
+                                int w, uint32_t id, uint32_t rgb) {
+  return draw_line(d, 0, p, q, w, id, rgb);
+}
+static uint64_t line_into_rows(zs_device *d, const zs_snap_vert *p, const zs_snap_vert *q,
+                               int w, uint32_t id, uint32_t rgb) {
+  return draw_line(d, 1, p, q, w, id, rgb);
+}
+static uint64_t point_into_frame(zs_device *d, const zs_snap_vert *p, int s,
+                                 zs_point_shape shape, uint32_t id, uint32_t rgb) {
+  return draw_point(d, 0, p, s, shape, id, rgb);
+}
+static uint64_t point_into_rows(zs_device *d, const zs_snap_vert *p, int s,
+                                zs_point_shape shape, uint32_t id, uint32_t rgb) {
+  return draw_point(d, 1, p, s, shape, id, rgb);
+}
+
+/* What a draw of lines or points needs of the device, checked; in
+ * zbuffer mode the queued faces painted first, so that these test
+ * against them. */
 static zs_status begin_prims(zs_device *d, const char *what, const double model[16],
                              double mvp[16], zs_error *err) {
-  if (d->cfg.algo != ZS_ALGO_ZBUFFER)
-    return zs_error_set(err, ZS_ERR_UNSUPPORTED, "%s need the z-buffer mode", what);
+  if (d->cfg.algo == ZS_ALGO_DEPTHSORT)
+    return zs_error_set(err, ZS_ERR_UNSUPPORTED, "%s need the zbuffer or scanline mode", what);
   zs_status st = zs_device_flush(d, err);
   if (st != ZS_OK) return st;
-  zs_raster_clear_fresh(d);
+  if (d->cfg.algo == ZS_ALGO_ZBUFFER) zs_raster_clear_fresh(d);
   zs_mat_mul(mvp, d->view, model);
   zs_mat_mul(mvp, d->proj, mvp);
   return ZS_OK;
@@ -205,6 +231,9 @@ zs_status zs_device_draw_lines(zs_device *d, const zs_mesh *mesh, const double m
   double mvp[16];
   zs_status st = begin_prims(d, "lines", model, mvp, err);
   if (st != ZS_OK) return st;
+  uint64_t (*const line)(zs_device *, const zs_snap_vert *, const zs_snap_vert *, int, uint32_t,
+                         uint32_t) = d->cfg.algo == ZS_ALGO_ZBUFFER ? line_into_frame
+                                                                    : line_into_rows;
   const zs_setup_params sp = {.width = d->cfg.width, .height = d->cfg.height};
   zs_command c = {.kind = ZS_CMD_EDGES, .issued_ps = -1};
   for (int32_t k = 0; k < mesh->nlines; k++) {
@@ -217,10 +246,11 @@ zs_status zs_device_draw_lines(zs_device *d, const zs_mesh *mesh, const double m
     zs_snap_vert p, q;
     zs_snap_vertex(&sp, &u, &p);
     zs_snap_vertex(&sp, &v, &q);
-    c.scan.written += draw_line(d, &p, &q, w, id_base + (uint32_t)mesh->prim_id + (uint32_t)k,
-                                prim_rgb(mesh->line_rgb, k, rgb));
+    c.scan.written += line(d, &p, &q, w, id_base + (uint32_t)mesh->prim_id + (uint32_t)k,
+                           prim_rgb(mesh->line_rgb, k, rgb));
   }
   zs_clock_charge(d, &c);
+  if (d->prim_rows.nomem) return zs_error_set(err, ZS_ERR_NOMEM, "lines: out of memory");
   return ZS_OK;
 }
 
@@ -238,6 +268,9 @@ zs_status zs_device_draw_points(zs_device *d, const zs_mesh *mesh, const double 
   double mvp[16];
   zs_status st = begin_prims(d, "points", model, mvp, err);
   if (st != ZS_OK) return st;
+  uint64_t (*const point)(zs_device *, const zs_snap_vert *, int, zs_point_shape, uint32_t,
+                          uint32_t) = d->cfg.algo == ZS_ALGO_ZBUFFER ? point_into_frame
+                                                                     : point_into_rows;
   const zs_setup_params sp = {.width = d->cfg.width, .height = d->cfg.height};
   zs_command c = {.kind = ZS_CMD_EDGES, .issued_ps = -1};
   const uint32_t first = id_base + (uint32_t)mesh->prim_id + (uint32_t)mesh->nlines;
@@ -254,9 +287,10 @@ zs_status zs_device_draw_points(zs_device *d, const zs_mesh *mesh, const double 
       continue;
     zs_snap_vert p;
     zs_snap_vertex(&sp, &u, &p);
-    c.scan.written += draw_point(d, &p, s, shape, first + (uint32_t)k,
-                                 prim_rgb(mesh->point_rgb, k, rgb));
+    c.scan.written += point(d, &p, s, shape, first + (uint32_t)k,
+                            prim_rgb(mesh->point_rgb, k, rgb));
   }
   zs_clock_charge(d, &c);
+  if (d->prim_rows.nomem) return zs_error_set(err, ZS_ERR_NOMEM, "points: out of memory");
   return ZS_OK;
 }

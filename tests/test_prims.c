@@ -262,11 +262,11 @@ START_TEST(bad_widths_sizes_and_modes_refused) {
   ck_assert_int_eq(zs_device_draw_lines(d, &m, model, 0, ZS_RGB_MESH, 1, &err), ZS_ERR_ARG);
   ck_assert_str_eq(err.msg, "lines: line 0 uses vertex 2 of 2");
   zs_device_destroy(d);
-  d = pixel_device(ZS_ALGO_SCANLINE);
+  d = pixel_device(ZS_ALGO_DEPTHSORT);
   m.line_vert = lv;
   zs_error_clear(&err);
   ck_assert_int_eq(zs_device_draw_lines(d, &m, model, 0, ZS_RGB_MESH, 1, &err), ZS_ERR_UNSUPPORTED);
-  ck_assert_str_eq(err.msg, "lines need the z-buffer mode");
+  ck_assert_str_eq(err.msg, "lines need the zbuffer or scanline mode");
   zs_device_destroy(d);
 }
 END_TEST
@@ -332,10 +332,10 @@ START_TEST(render_command_draws_and_refuses) {
   snprintf(png, sizeof png, "%s/prims-wire.png", ZS_BINARY_DIR);
   const char *in = zs_test_src("tests/data/scenes/wire_cube.obj");
   unlink(png);
-  const char *bad[] = {"render", in, "--algo", "scanline", "-o", png, NULL};
+  const char *bad[] = {"render", in, "--algo", "depthsort", "-o", png, NULL};
   ck_assert_int_eq(zs_test_run_zscan(bad, out, sizeof out, err, sizeof err), 1);
   char want[4200];
-  snprintf(want, sizeof want, "zscan render: %s: lines and points need --algo zbuffer\n", in);
+  snprintf(want, sizeof want, "zscan render: %s: lines and points need --algo zbuffer or scanline\n", in);
   ck_assert_str_eq(err, want);
   ck_assert(!zs_test_exists(png));
   const char *thin[] = {"render", in, "--size", "64x48", "-o", png, "--stats", NULL};
@@ -352,6 +352,42 @@ START_TEST(render_command_draws_and_refuses) {
 }
 END_TEST
 
+/* Scanline mode draws a model's lines and points into its rows at
+ * finish (raster/prim_rows.h): the image, its depth and the pixels
+ * written are zbuffer mode's, on one thread and on three (bands of rows),
+ * at each width and size, over faces, and anti-aliased. */
+START_TEST(scanline_mode_draws_them_as_zbuffer_mode) {
+  zs_error err;
+  zs_error_clear(&err);
+  zs_scene *scene;
+  ck_assert_int_eq(zs_scene_load(zs_test_src("tests/data/scenes/wire_cube.obj"), NULL, &scene,
+                                 &err), ZS_OK);
+  static const double widths[] = {1, 3, 8};
+  for (int w = 0; w < 3; w++)
+    for (int samples = 1; samples <= 4; samples += 3) {
+      zs_image im[3];
+      zs_raster_stats st[3];
+      for (int k = 0; k < 3; k++) {
+        zs_render_opts o = {0};
+        o.width = 96;
+        o.height = 72;
+        o.algo = k ? ZS_ALGO_SCANLINE : ZS_ALGO_ZBUFFER;
+        o.threads = k == 2 ? 3 : 1;
+        o.line_width = widths[w];
+        o.point_size = widths[w] + 1;
+        o.samples = samples;
+        ck_assert_msg(zs_render(scene, &o, &im[k], NULL, &st[k], &err) == ZS_OK, "%s", err.msg);
+      }
+      for (int k = 1; k < 3; k++) {
+        ck_assert_mem_eq(im[k].rgb, im[0].rgb, 96 * 72 * sizeof *im[0].rgb);
+        ck_assert_uint_eq(st[k].pixels_written, st[0].pixels_written);
+      }
+      for (int k = 0; k < 3; k++) zs_image_free(&im[k]);
+    }
+  zs_scene_destroy(scene);
+}
+END_TEST
+
 int main(void) {
   Suite *s = suite_create("prims");
   TCase *tc = tcase_create("prims");
@@ -365,6 +401,7 @@ int main(void) {
   tcase_add_test(tc, models_bring_their_lines_and_points);
   tcase_add_test(tc, bad_obj_lines_refused);
   tcase_add_test(tc, render_command_draws_and_refuses);
+  tcase_add_test(tc, scanline_mode_draws_them_as_zbuffer_mode);
   suite_add_tcase(s, tc);
   return zs_test_run(s);
 }

@@ -63,7 +63,7 @@ static const char usage_tail[] =
     "                      in black over the faces\n"
     "  --line-width W      the model's lines (OBJ l, glTF LINES), W pixels wide,\n"
     "                      rounded as GL rounds an aliased width (default 1, at\n"
-    "                      most 64; zbuffer mode)\n"
+    "                      most 64; zbuffer and scanline modes)\n"
     "  --point-size S      its points (OBJ p, a PLY point cloud), S pixels a side\n"
     "                      (default 1, at most 64)\n"
     "  --point-shape SHAPE square (default, GL's aliased point) or disc\n"
@@ -619,9 +619,9 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   int flags = (o->allow_empty ? ZS_INPUT_ALLOW_EMPTY : 0) |
               (o->skip_missing_textures ? ZS_INPUT_SKIP_MISSING_TEXTURES : 0);
   if (zs_input_load(o->input, flags, &model, err)) return err->code;
-  if (o->algo != ZS_ALGO_ZBUFFER && zs_scene_has_prims(&model)) {
+  if (o->algo == ZS_ALGO_DEPTHSORT && zs_scene_has_prims(&model)) {
     zs_scene_free(&model);
-    return zs_error_set(err, ZS_ERR_ARG, "%s: lines and points need --algo zbuffer",
+    return zs_error_set(err, ZS_ERR_ARG, "%s: lines and points need --algo zbuffer or scanline",
                         o->input ? o->input : "builtin:default");
   }
   double load_ms = zs_os_monotonic_ms() - t0;

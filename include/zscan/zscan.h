@@ -556,12 +556,13 @@ zs_status zs_device_draw_edges(zs_device *dev, const zs_mesh *mesh, const double
 zs_status zs_device_draw_box_lines(zs_device *dev, const double lo[3], const double hi[3],
                                    uint32_t rgb, zs_error *err);
 
-/* ---- Lines and points (zbuffer mode) ----
+/* ---- Lines and points (zbuffer and scanline modes) ----
  * The mesh's lines and points (zs_mesh.line_vert, .point_vert) by GL's
  * rules for aliased wide lines and points, each pixel tested against the
  * depth buffer as a face's is (less, then the lower id) and written with
  * its depth and id, so that faces drawn later hide them too; drawn after
- * the faces queued before them (the call flushes).  rgb is ZS_RGB_MESH
+ * the faces queued before them (the call flushes; in scanline mode each
+ * row gets them at finish, after its faces: the same pixels).  rgb is ZS_RGB_MESH
  * (each line's or point's own colour) or one colour for all.  A width or
  * size is rounded to the nearest integer (halves up), as GL rounds an
  * aliased one, and must lie in (0, ZS_MAX_LINE_WIDTH] or (0,
