@@ -91,7 +91,8 @@ static void end_row(void *user, int y) {
   row_emit *e = user;
   zs_device *d = e->d;
   e->prims_written +=
-      zs_prim_rows_apply(&d->prim_rows, y, d->row_depth, d->row_id, d->row_rgb, d->row_count);
+      zs_prim_rows_apply(&d->prim_rows, y, d->row_depth, d->row_id, d->row_rgb,
+                         d->clear_counts ? d->row_count : NULL); /* counted for overdraw only */
   if (e->sink) d->emit(d, y, d->row_depth, d->row_id, d->row_rgb, d->row_count, e->sink, e->user);
 }
 
