@@ -33,6 +33,9 @@ static const char *const pixel_changes[] = {
     "scenes with transparency change, images do not; models through assimp with a normal "
     "or colour that is not a finite number, an empty face or a malformed PLY header are "
     "refused",
+    "the edges of the hidden-line and wireframe styles take the line width (zscan render "
+    "--line-width, zs_render_opts.line_width), as a model's lines do, and the SVG's stroke "
+    "with them: images with a width other than 1 change, images at width 1 do not",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

@@ -36,7 +36,8 @@ static zs_status render_into(zs_device *dev, const zs_scene *scene, const double
   if (!look) look = &solid;
   const zs_frame_style style = look->style;
   if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
-  if (zs_frame_draw_prims(dev, scene, look->line_width > 0.0 ? look->line_width : 1.0,
+  const double line_width = look->line_width > 0.0 ? look->line_width : 1.0;
+  if (zs_frame_draw_prims(dev, scene, line_width,
                           look->point_size > 0.0 ? look->point_size : 1.0, look->point_shape,
                           err))
     return err->code;
@@ -47,8 +48,8 @@ static zs_status render_into(zs_device *dev, const zs_scene *scene, const double
   if (style != ZS_STYLE_SOLID) {
     for (int32_t i = 0; i < scene->ninst; i++) {
       const zs_instance *in = &scene->inst[i];
-      if (zs_device_draw_edges(dev, &scene->meshes[in->mesh].mesh, in->model, ZS_HIDDEN_LINE_INK,
-                               err))
+      if (zs_device_draw_wide_edges(dev, &scene->meshes[in->mesh].mesh, in->model,
+                                    ZS_HIDDEN_LINE_INK, line_width, err))
         return err->code;
     }
   }

@@ -8,7 +8,8 @@
 #include "lib/outfile.h"
 
 zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_line_run *runs,
-                             int32_t n, uint32_t paper, uint32_t ink, zs_error *err) {
+                             int32_t n, int line_width, uint32_t paper, uint32_t ink,
+                             zs_error *err) {
   zs_out out;
   zs_status st = zs_out_open(&out, path, err);
   if (st != ZS_OK) return st;
@@ -20,9 +21,9 @@ zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_l
                    "<rect width=\"%d\" height=\"%d\" fill=\"#%06x\"/>\n",
                    width, height, width, height, width, height, (unsigned)(paper & 0xFFFFFFu)) > 0;
   if (ok && n > 0) {
-    ok = fprintf(f, "<path fill=\"none\" stroke=\"#%06x\" stroke-width=\"1\" "
+    ok = fprintf(f, "<path fill=\"none\" stroke=\"#%06x\" stroke-width=\"%d\" "
                     "stroke-linecap=\"butt\" d=\"",
-                 (unsigned)(ink & 0xFFFFFFu)) > 0;
+                 (unsigned)(ink & 0xFFFFFFu), line_width) > 0;
     for (int32_t i = 0; i < n && ok; i++)
       ok = fprintf(f, "%sM%.3f %.3fL%.3f %.3f", i % 4 ? "" : "\n", runs[i].x0, runs[i].y0,
                    runs[i].x1, runs[i].y1) > 0;

@@ -4,7 +4,8 @@
  * the image, then one path of the visible runs of the edges (raster.h,
  * zs_line_run), each "M x0 y0 L x1 y1" in pixels with three decimals, in
  * the order they were drawn.  One pixel of the PNG is one unit of the SVG
- * (width, height and viewBox), the stroke one unit wide.  The same runs
+ * (width, height and viewBox), the stroke line_width units wide (the
+ * edges' width in the PNG, as zs_gl_rounded_size gives it).  The same runs
  * give the same bytes; the file goes through the output primitive
  * (lib/outfile.h). */
 #ifndef ZS_LIB_SVG_H
@@ -16,6 +17,7 @@
 #include "raster/raster.h"
 
 zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_line_run *runs,
-                             int32_t n, uint32_t paper, uint32_t ink, zs_error *err);
+                             int32_t n, int line_width, uint32_t paper, uint32_t ink,
+                             zs_error *err);
 
 #endif

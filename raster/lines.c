@@ -51,11 +51,14 @@ static void keep_run(zs_device *d, const double p[3], const double q[3], double 
 }
 
 /* Draws the segment p-q (window coordinates) with depth bias `bias`
- * (window depth units): one pixel per column (or row) along the major axis,
- * the pixel whose area holds the exact edge at that column's centre; with
- * d->keep_runs, each stretch of painted pixels is kept as a run. */
+ * (window depth units): at each column (or row) along the major axis, the
+ * width pixels across it whose centres lie nearest the exact edge at that
+ * column's centre (for width 1 the pixel whose area holds it; for an even
+ * width the pixel boundary nearest it in their middle), all at the edge's
+ * depth there; with d->keep_runs, each stretch of columns where some pixel
+ * was painted is kept as a run. */
 static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3], double bias,
-                             uint32_t rgb, int depth_test) {
+                             uint32_t rgb, int depth_test, int width) {
   const int w = d->cfg.width, h = d->cfg.height;
   double dx = q[0] - p[0], dy = q[1] - p[1];
   int major_x = fabs(dx) >= fabs(dy);
@@ -71,13 +74,15 @@ static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3],
   for (int c = c0; c <= c1; c++) {
     double t = (c + 0.5 - a0) / len;
     double minor = major_x ? p[1] + t * dy : p[0] + t * dx;
-    int m = (int)floor(minor);
-    int x = major_x ? c : m, y = major_x ? m : c;
+    /* the first of the width pixels: floor(minor) for width 1 */
+    const int m0 = (int)floor(minor - 0.5 * (width - 1));
+    double z = p[2] + t * (q[2] - p[2]) - bias;
+    double zq = z * 4294967296.0;
+    uint32_t zd = zq <= 0 ? 0 : zq >= 4294967295.0 ? ZS_DEPTH_FAR : (uint32_t)zq;
     int painted = 0;
-    if (x >= 0 && y >= 0 && x < w && y < h) {
-      double z = p[2] + t * (q[2] - p[2]) - bias;
-      double zq = z * 4294967296.0;
-      uint32_t zd = zq <= 0 ? 0 : zq >= 4294967295.0 ? ZS_DEPTH_FAR : (uint32_t)zq;
+    for (int m = m0; m < m0 + width; m++) {
+      int x = major_x ? c : m, y = major_x ? m : c;
+      if (x < 0 || y < 0 || x >= w || y >= h) continue;
       size_t i = (size_t)y * (size_t)w + (size_t)x;
       if (!depth_test || zd <= d->depth[i]) {
         d->rgb[i] = rgb;
@@ -97,6 +102,15 @@ static uint64_t draw_segment(zs_device *d, const double p[3], const double q[3],
 
 zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double model[16],
                                uint32_t rgb, zs_error *err) {
+  return zs_device_draw_wide_edges(d, mesh, model, rgb, 1.0, err);
+}
+
+zs_status zs_device_draw_wide_edges(zs_device *d, const zs_mesh *mesh, const double model[16],
+                                    uint32_t rgb, double width, zs_error *err) {
+  const int lw = zs_gl_rounded_size(width, ZS_MAX_LINE_WIDTH);
+  if (!lw)
+    return zs_error_set(err, ZS_ERR_ARG, "edges: width %g: expected above 0 and at most %d",
+                        width, ZS_MAX_LINE_WIDTH);
   if (d->cfg.algo != ZS_ALGO_ZBUFFER)
     return zs_error_set(err, ZS_ERR_UNSUPPORTED, "hidden-line output needs the z-buffer mode");
   zs_status st = zs_device_flush(d, err); /* the edges test the faces' depths */
@@ -154,7 +168,7 @@ zs_status zs_device_draw_edges(zs_device *d, const zs_mesh *mesh, const double m
       double p[3], q[3];
       to_window(d, &a, p);
       to_window(d, &b, q);
-      edges.scan.written += draw_segment(d, p, q, bias, rgb, 1);
+      edges.scan.written += draw_segment(d, p, q, bias, rgb, 1, lw);
     }
   }
   zs_clock_charge(d, &edges);
@@ -185,7 +199,7 @@ zs_status zs_device_draw_box_lines(zs_device *d, const double lo[3], const doubl
       double p[3], q[3];
       to_window(d, &va, p);
       to_window(d, &vb, q);
-      draw_segment(d, p, q, 0.0, rgb, 0);
+      draw_segment(d, p, q, 0.0, rgb, 0, 1);
     }
   return ZS_OK;
 }

@@ -14,15 +14,6 @@ static int64_t floor_div(int64_t a, int64_t b) {
 /* a / b rounded up, b > 0 */
 static int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 
-/* GL's rounding of an aliased width or size: to the nearest integer,
- * halves up, at least 1; 0 for a value out of range (not finite, not
- * above 0, above most). */
-static int rounded_size(double v, int most) {
-  if (!(v > 0.0) || !(v <= most)) return 0;
-  int n = (int)floor(v + 0.5);
-  return n < 1 ? 1 : n;
-}
-
 /* A fragment (z, id) at pixel (x, y).  In zbuffer mode tested against
  * the full frame by the depth test of every draw (raster.h, DEPTH) and
  * written when it is in front: 1; in scanline mode kept for its row,
@@ -223,7 +214,7 @@ static uint32_t prim_rgb(const uint32_t *each, int32_t k, uint32_t rgb) {
 
 zs_status zs_device_draw_lines(zs_device *d, const zs_mesh *mesh, const double model[16],
                                uint32_t id_base, uint32_t rgb, double width, zs_error *err) {
-  const int w = rounded_size(width, ZS_MAX_LINE_WIDTH);
+  const int w = zs_gl_rounded_size(width, ZS_MAX_LINE_WIDTH);
   if (!w)
     return zs_error_set(err, ZS_ERR_ARG, "lines: width %g: expected above 0 and at most %d",
                         width, ZS_MAX_LINE_WIDTH);
@@ -257,7 +248,7 @@ zs_status zs_device_draw_lines(zs_device *d, const zs_mesh *mesh, const double m
 zs_status zs_device_draw_points(zs_device *d, const zs_mesh *mesh, const double model[16],
                                 uint32_t id_base, uint32_t rgb, double size,
                                 zs_point_shape shape, zs_error *err) {
-  const int s = rounded_size(size, ZS_MAX_POINT_SIZE);
+  const int s = zs_gl_rounded_size(size, ZS_MAX_POINT_SIZE);
   if (!s)
     return zs_error_set(err, ZS_ERR_ARG, "points: size %g: expected above 0 and at most %d",
                         size, ZS_MAX_POINT_SIZE);

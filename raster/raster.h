@@ -55,6 +55,7 @@
 #ifndef ZS_RASTER_H
 #define ZS_RASTER_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "util/matrix.h"
@@ -191,6 +192,24 @@ const char *zs_simd_name(zs_simd level);
  * through the pixel the exact edge crosses at that column's (row's)
  * centre. */
 enum { ZS_EDGE_DEPTH_UNITS = 1024 };
+
+/* GL's rounding of an aliased line width or point size: to the nearest
+ * integer, halves up, at least 1; 0 for a value out of range (not
+ * finite, not above 0, above most).  Lines and points (prims.c), the
+ * edges (lines.c) and their vectors (lib/svg.h) take their widths so. */
+static inline int zs_gl_rounded_size(double v, int most) {
+  if (!(v > 0.0) || !(v <= most)) return 0;
+  int n = (int)floor(v + 0.5);
+  return n < 1 ? 1 : n;
+}
+
+/* zs_device_draw_edges with edges width pixels wide (rounded as a line's,
+ * zscan.h, and in the same range): at each step along the major axis the
+ * width pixels across it centred on the one a width-1 edge paints (an
+ * even width: on the pixel boundary nearest the exact edge), each tested
+ * at the edge's depth there.  Width 1 is zs_device_draw_edges. */
+zs_status zs_device_draw_wide_edges(zs_device *d, const zs_mesh *mesh, const double model[16],
+                                    uint32_t rgb, double width, zs_error *err);
 
 /* A visible piece of an edge as zs_device_draw_edges painted it, for
  * vector output: in window coordinates (pixels, x right, y down), from the

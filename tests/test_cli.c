@@ -867,7 +867,7 @@ START_TEST(hidden_lines_as_svg) {
   ck_assert_ptr_nonnull(strstr(text, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"320\" "
                                      "height=\"240\" viewBox=\"0 0 320 240\">"));
   ck_assert_ptr_nonnull(strstr(text, "<rect width=\"320\" height=\"240\" fill=\"#ffffff\"/>"));
-  ck_assert_ptr_nonnull(strstr(text, "stroke=\"#000000\""));
+  ck_assert_ptr_nonnull(strstr(text, "stroke=\"#000000\" stroke-width=\"1\""));
 
   zs_image im;
   zs_error e;
@@ -907,6 +907,15 @@ START_TEST(hidden_lines_as_svg) {
         ck_assert_msg(covered[(size_t)y * w + x], "ink at (%d,%d) is on no run", x, y);
   free(covered);
   zs_image_free(&im);
+
+  /* --line-width: the stroke as wide as the PNG's edges, rounded as they are */
+  const char *wide[] = {"render", "builtin:cubes", "--style", "hidden-line", "--size", "320x240",
+                        "--line-width", "2.5", "-q", "-o", svg, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(wide, out, sizeof out, err, sizeof err), 0);
+  n = zs_test_read(svg, text, sizeof text);
+  ck_assert(n > 0 && n < sizeof text - 1);
+  text[n] = '\0';
+  ck_assert_ptr_nonnull(strstr(text, "stroke=\"#000000\" stroke-width=\"3\""));
 }
 END_TEST
 

@@ -102,6 +102,10 @@ static const golden_case cases[] = {
      0, 0, 0, 0, 0},
     {"default-wireframe-msaa4", "builtin:default", 320, 240, ZS_SHADE_AUTO, 0, 1,
      {12, 9, 16}, {0, 1, 0}, 2, 0, 0, 4, 0, 0, 0, 0},
+    {"cubes-3-wireframe-width3", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0}, 2,
+     0, 0, 0, 0, 3, 0, 0},
+    {"cubes-3-hidden-line-width2", "builtin:cubes?n=3", 240, 180, ZS_SHADE_FLAT, 0, 0, {0}, {0},
+     1, 0, 0, 0, 0, 2, 0, 0},
     /* transparent panes and a glass ball, composited in the A-buffer */
     {"glass", "scene/examples/glass.json", 320, 240, ZS_SHADE_AUTO, 0, 0, {0}, {0}, 0, 0, 0, 0,
      0, 0, 0, 0},

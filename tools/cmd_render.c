@@ -61,9 +61,9 @@ static const char usage_tail[] =
     "  --style S           solid: faces (default); hidden-line: the visible edges of\n"
     "                      front faces, ink on paper; solid+wireframe: those edges\n"
     "                      in black over the faces\n"
-    "  --line-width W      the model's lines (OBJ l, glTF LINES), W pixels wide,\n"
-    "                      rounded as GL rounds an aliased width (default 1, at\n"
-    "                      most 64; zbuffer and scanline modes)\n"
+    "  --line-width W      the model's lines (OBJ l, glTF LINES) and the edges of\n"
+    "                      hidden-line and solid+wireframe, W pixels wide, rounded\n"
+    "                      as GL rounds an aliased width (default 1, at most 64)\n"
     "  --point-size S      its points (OBJ p, a PLY point cloud), S pixels a side\n"
     "                      (default 1, at most 64)\n"
     "  --point-shape SHAPE square (default, GL's aliased point) or disc\n"
@@ -586,7 +586,9 @@ static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs
   int32_t n;
   const zs_line_run *runs = zs_device_line_runs(dev, &n);
   if (n < 0) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory for the lines", o->out_png);
-  return zs_svg_write_lines(o->out_png, o->view.width, o->view.height, runs, n,
+  const int line_width = zs_gl_rounded_size(o->line_width > 0.0 ? o->line_width : 1.0,
+                                            ZS_MAX_LINE_WIDTH);
+  return zs_svg_write_lines(o->out_png, o->view.width, o->view.height, runs, n, line_width,
                             ZS_HIDDEN_LINE_PAPER, ZS_HIDDEN_LINE_INK, err);
 }
 

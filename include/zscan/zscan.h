@@ -90,8 +90,8 @@
 
 #define ZSCAN_VERSION_MAJOR 0
 #define ZSCAN_VERSION_MINOR 12
-#define ZSCAN_VERSION_PATCH 1
-#define ZSCAN_VERSION_STRING "0.12.1"
+#define ZSCAN_VERSION_PATCH 2
+#define ZSCAN_VERSION_STRING "0.12.2"
 
 #ifdef __cplusplus
 extern "C" {
@@ -106,7 +106,7 @@ const char *zs_version(void);
  * time, a printed camera), and only then, so that a golden made with
  * another number is known to differ on purpose.  docs/CHANGES.md lists
  * each version's changes; zs_pixel_changes gives them. */
-#define ZSCAN_PIXEL_VERSION 5
+#define ZSCAN_PIXEL_VERSION 6
 int zs_pixel_version(void);
 /* What changed in the outputs of pixel version v against v - 1, one
  * line; NULL for a version this library does not know (v < 1 or later
@@ -752,7 +752,8 @@ typedef struct zs_render_opts {
                             * 0: at the pixel's centre (multisampling) */
   int wireframe;           /* the visible edges of front faces in black over
                             * the faces (zbuffer mode; not with hidden_line) */
-  double line_width;       /* the scene's lines, pixels (0: 1; zs_device_draw_lines) */
+  double line_width;       /* the scene's lines and the edges of the hidden-line and
+                            * wireframe styles, pixels (0: 1; zs_device_draw_lines) */
   double point_size;       /* its points, pixels (0: 1) */
   zs_point_shape point_shape; /* squares (0) or discs */
 } zs_render_opts;
