@@ -721,8 +721,10 @@ def render(input, size=None, eye=None, target=None, up=None, fovy=None, near=Non
                without lights gets the key light (--shadows)
     samples    anti-aliasing: 1, 2, 4, 8 or 16 samples a pixel (--samples)
     supersample   shade each sample, not each pixel (--supersample)
-    line_width, point_size   the model's lines and points, pixels (--line-width,
-               --point-size; GL's rounding; zbuffer only)
+    line_width, point_size   the model's lines and points, and line_width the
+               edges of the hidden-line and wireframe styles too, pixels
+               (--line-width, --point-size; GL's rounding; zbuffer and
+               scanline modes)
     point_shape   'square' (GL's aliased point) or 'disc' (--point-shape)
     allow_empty   render a model without faces (--allow-empty)
     lights     a list of zscan.Light (None: the scene's, else the headlight)
