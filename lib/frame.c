@@ -37,9 +37,7 @@ static zs_status render_into(zs_device *dev, const zs_scene *scene, const double
   const zs_frame_style style = look->style;
   if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
   const double line_width = look->line_width > 0.0 ? look->line_width : 1.0;
-  if (zs_frame_draw_prims(dev, scene, line_width,
-                          look->point_size > 0.0 ? look->point_size : 1.0, look->point_shape,
-                          err))
+  if (zs_frame_draw_prims(dev, scene, line_width, look->point_size, look->point_shape, err))
     return err->code;
   /* hidden lines: the faces stay in the depth buffer; the picture is
    * their edges */

@@ -32,6 +32,8 @@ int zs_scene_has_prims(const zs_scene *scene) {
 zs_status zs_frame_draw_prims(zs_device *dev, const zs_scene *scene, double line_width,
                               double point_size, zs_point_shape shape, zs_error *err) {
   zs_status st = ZS_OK;
+  if (line_width == 0.0) line_width = 1.0; /* 0: the default, as zs_render_opts says */
+  if (point_size == 0.0) point_size = 1.0;
   for (int32_t i = 0; i < scene->ninst && st == ZS_OK; i++) {
     const zs_instance *in = &scene->inst[i];
     const zs_mesh *m = &scene->meshes[in->mesh].mesh;

@@ -13,8 +13,8 @@ zs_status zs_frame_draw_some(zs_device *dev, const zs_scene *scene, const uint8_
                              zs_error *err);
 
 /* The lines and points of every instance (zs_device_draw_lines,
- * _points), after its faces: zbuffer mode; nothing to do (whatever the
- * mode) when the scene has none. */
+ * _points), after its faces, line_width and point_size pixels (0: 1);
+ * nothing to do (whatever the mode) when the scene has none. */
 zs_status zs_frame_draw_prims(zs_device *dev, const zs_scene *scene, double line_width,
                               double point_size, zs_point_shape shape, zs_error *err);
 

@@ -345,9 +345,22 @@ START_TEST(render_command_draws_and_refuses) {
   const char *h = strstr(out, "\"image_hash\"");
   ck_assert_ptr_nonnull(h);
   char first[64];
-  snprintf(first, sizeof first, "%.40s", h);
+  snprintf(first, sizeof first, "%.31s", h); /* "image_hash":"<16 hex digits>" */
   ck_assert_int_eq(zs_test_run_zscan(wide, out, sizeof out, err, sizeof err), 0);
   ck_assert_ptr_null(strstr(out, first)); /* wider lines, another image */
+  /* the default width and size (1) hold on every path of the command:
+   * a layer written beside the image, and a culled walk's frame */
+  char zsl[4096];
+  snprintf(zsl, sizeof zsl, "%s/prims-wire.zsl", ZS_BINARY_DIR);
+  const char *layer[] = {"render", in, "--size", "64x48", "-o", png, "--stats", "--layer", zsl, NULL};
+  const char *culled[] = {"render", in, "--size", "64x48", "-o", png, "--stats", "--cull", "chc", NULL};
+  const char *const *paths[] = {layer, culled};
+  for (int k = 0; k < 2; k++) {
+    ck_assert_msg(zs_test_run_zscan(paths[k], out, sizeof out, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(strstr(out, first) != NULL, "%s: another image than the plain render's",
+                  paths[k][7]);
+  }
+  unlink(zsl);
   unlink(png);
 }
 END_TEST
