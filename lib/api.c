@@ -35,7 +35,8 @@ static const char *const pixel_changes[] = {
     "refused",
     "the edges of the hidden-line and wireframe styles take the line width (zscan render "
     "--line-width, zs_render_opts.line_width), as a model's lines do, and the SVG's stroke "
-    "with them: images with a width other than 1 change, images at width 1 do not",
+    "with them: images with a width other than 1 change, images at width 1 do not; a nan or "
+    "inf in a text PLY, OFF or STL file is refused with its line",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

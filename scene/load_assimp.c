@@ -261,7 +261,89 @@ static int ply_min_bytes(const char *t, size_t len, int ply_name, uint64_t *min_
   }
 }
 
-/* Refuses an OFF or PLY file whose header declares more than it holds. */
+/* Whether a word of a text model spells a number that is not finite:
+ * nan or inf (infinity), any case, signed or not, as strtod reads them.
+ * assimp 5.2's number parser reads such a word as 0 (or a part of it),
+ * so a vertex at NaN in an ASCII PLY, OFF or STL file came through as a
+ * finite one, and is looked for in the text instead. */
+static int spells_non_finite(const char *w) {
+  if (*w == '+' || *w == '-') w++;
+  return (lower((unsigned char)w[0]) == 'n' && lower((unsigned char)w[1]) == 'a' &&
+          lower((unsigned char)w[2]) == 'n') ||
+         (lower((unsigned char)w[0]) == 'i' && lower((unsigned char)w[1]) == 'n' &&
+          lower((unsigned char)w[2]) == 'f');
+}
+
+/* The text model's words from byte `from` on, read a buffer at a time:
+ * a word that spells a number that is not finite is refused with its
+ * line.  OFF's comments (# to the end of the line) are skipped; in STL the
+ * name after solid and endsolid is not a number. */
+typedef struct word_scan {
+  char word[32];
+  size_t n;                     /* the word's bytes so far (0: between words) */
+  int line, comment, named, at; /* at: the line's words before this one */
+  int off, stl;
+} word_scan;
+
+/* The word just ended: refused, or noted. */
+static zs_status end_word(word_scan *w, const char *path, zs_error *err) {
+  if (w->n == 0 || w->comment || w->named) return w->n = 0, ZS_OK;
+  w->word[w->n < sizeof w->word ? w->n : sizeof w->word - 1] = '\0';
+  w->n = 0;
+  if (spells_non_finite(w->word))
+    return set_error(err, ZS_ERR_PARSE, "%s:%d: '%s': not a finite number", path, w->line,
+                     w->word);
+  if (w->stl && w->at == 0 && (strcmp(w->word, "solid") == 0 || strcmp(w->word, "endsolid") == 0))
+    w->named = 1;
+  w->at++;
+  return ZS_OK;
+}
+
+static zs_status check_text_numbers(const char *path, uint64_t from, int off, int stl,
+                                    int first_line, zs_error *err) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return set_error(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  static char buf[1 << 16];
+  word_scan w = {{0}, 0, first_line, 0, 0, 0, off, stl};
+  uint64_t pos = 0;
+  zs_status st = ZS_OK;
+  for (size_t n; st == ZS_OK && (n = fread(buf, 1, sizeof buf, f)) > 0;) {
+    for (size_t i = 0; i < n && st == ZS_OK; i++) {
+      if (pos++ < from) continue;
+      const char c = buf[i];
+      if (is_blank(c) || c == '\0') {
+        st = end_word(&w, path, err);
+        if (c == '\n') w.line++, w.comment = w.named = w.at = 0;
+        continue;
+      }
+      if (w.off && c == '#' && w.n == 0) w.comment = 1;
+      if (w.n < sizeof w.word - 1) w.word[w.n] = c;
+      w.n++;
+    }
+  }
+  if (st == ZS_OK) st = end_word(&w, path, err); /* the file's last word */
+  fclose(f);
+  return st;
+}
+
+/* The lines of the first n bytes of t. */
+static int header_lines(const char *t, uint64_t n) {
+  int lines = 0;
+  for (uint64_t i = 0; i < n && t[i]; i++) lines += t[i] == '\n';
+  return lines;
+}
+
+/* An STL file in text: "solid" first and no NUL byte in what was read
+ * (a binary STL's 80-byte header may begin "solid" too, its counts and
+ * floats hold zero bytes). */
+static int is_ascii_stl(const file_head *h) {
+  const char *t = h->text;
+  while (is_blank(*t)) t++;
+  return strncmp(t, "solid", 5) == 0 && strlen(h->text) == h->len;
+}
+
+/* Refuses an OFF or PLY file whose header declares more than it holds,
+ * and a text PLY, OFF or STL file with a number that is not finite. */
 static zs_status check_header(const char *path, const file_head *h, zs_error *err) {
   uint64_t nv, nf, need, body;
   int cut = 0, nul = 0, bad_line = 0;
@@ -273,6 +355,7 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
                        "the file's %llu bytes can hold",
                        path, (unsigned long long)nv, (unsigned long long)nf,
                        (unsigned long long)h->size);
+    return check_text_numbers(path, 0, 1, 0, 1, err);
   } else if (ply_min_bytes(h->text, h->len, has_extension(path, ".ply"), &need, &body, &cut, &nul,
                            &bad_line)) {
     if (bad_line == 1)
@@ -289,6 +372,10 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
                        "%s: PLY header declares elements of at least %llu bytes, more than "
                        "the file's %llu bytes after the header",
                        path, (unsigned long long)need, (unsigned long long)(h->size - body));
+    if (strstr(h->text, "\nformat ascii"))
+      return check_text_numbers(path, body, 0, 0, header_lines(h->text, body) + 1, err);
+  } else if (has_extension(path, ".stl") && is_ascii_stl(h)) {
+    return check_text_numbers(path, 0, 0, 1, 1, err);
   }
   return ZS_OK;
 }
