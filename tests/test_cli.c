@@ -196,6 +196,8 @@ static const bad_option bad_options[] = {
     {{"render", "--depth", "d.png", NULL}, "--depth: d.png: zscan writes PFM (FILE.pfm)", 2},
     {{"render", "--normals", "n.png", NULL}, "--normals: n.png: zscan writes PFM (FILE.pfm)", 2},
     {{"render", "--layer", "l.png", NULL}, "--layer: l.png: zscan writes ZSL (FILE.zsl)", 2},
+    {{"render", "-o", "x.png", "--depth", "same.pfm", "--normals", "same.pfm", NULL},
+     "--depth and --normals: both write same.pfm: give each its own file", 2},
     {{"render", "--simd", "neon", NULL},
      "--simd: expected scalar, sse2, avx2, avx512 or best, got 'neon'", 2},
     {{"render", "--layer", "l.zsl", "--algo", "depthsort", NULL},

@@ -192,6 +192,14 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
     return zs_error_set(err, ZS_ERR_ARG,
                         "standard output (-) takes one stream: only one of -o -, --depth -, "
                         "--normals -, --layer - and --stats");
+  /* one file, one output: the later would replace the earlier */
+  const char *const names[] = {"-o", "--depth", "--normals", "--layer"};
+  const char *const paths[] = {o->out_png, o->out_pfm, o->out_normals, o->out_layer};
+  for (int i = 0; i < 4; i++)
+    for (int j = i + 1; j < 4; j++)
+      if (paths[i] && paths[j] && !zs_out_is_stdout(paths[i]) && strcmp(paths[i], paths[j]) == 0)
+        return zs_error_set(err, ZS_ERR_ARG, "%s and %s: both write %s: give each its own file",
+                            names[i], names[j], paths[i]);
   return ZS_OK;
 }
 
