@@ -37,6 +37,9 @@ static const char *const pixel_changes[] = {
     "--line-width, zs_render_opts.line_width), as a model's lines do, and the SVG's stroke "
     "with them: images with a width other than 1 change, images at width 1 do not; a nan or "
     "inf in a text PLY, OFF or STL file is refused with its line",
+    "a text OFF file's face of no or more than 9 corners, with fewer corners than it counts, "
+    "or with a corner that is no vertex index below the header's count is refused with its "
+    "line, where assimp dropped the face or took another vertex",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

@@ -130,10 +130,13 @@ static void off_next_token(const char **s) {
 }
 
 /* The vertex and face counts of an OFF header ([ST][C][N][4][n]OFF, an
- * optional dimension after nOFF, then the counts); 0 when the text does
- * not read as one.  Without the OFF keyword the file is OFF only by its
- * extension (is_off_name). */
-static int off_counts(const char *t, int is_off_name, uint64_t *nv, uint64_t *nf) {
+ * optional dimension after nOFF, then the counts) and where its body
+ * begins, as assimp's reader finds it (after the edge count, if any, and
+ * the blanks and comments after that); 0 when the text does not read as
+ * one.  Without the OFF keyword the file is OFF only by its extension
+ * (is_off_name). */
+static int off_counts(const char *t, int is_off_name, uint64_t *nv, uint64_t *nf,
+                      uint64_t *body) {
   const char *s = t;
   off_next_token(&s);
   int dim = 0;
@@ -155,7 +158,13 @@ static int off_counts(const char *t, int is_off_name, uint64_t *nv, uint64_t *nf
   off_next_token(&s);
   if (!read_count(&s, nv)) return 0;
   off_next_token(&s);
-  return read_count(&s, nf);
+  if (!read_count(&s, nf)) return 0;
+  off_next_token(&s);
+  uint64_t edges;
+  read_count(&s, &edges);
+  off_next_token(&s);
+  *body = (uint64_t)(s - t);
+  return 1;
 }
 
 /* Bytes of one value of a PLY type name in a binary file (0 if unknown). */
@@ -274,11 +283,31 @@ static int spells_non_finite(const char *w) {
           lower((unsigned char)w[2]) == 'f');
 }
 
-/* The text model's words from byte `from` on, read a buffer at a time:
- * a word that spells a number that is not finite is refused with its
+/* Hands the file's bytes from byte `from` on to take, a buffer at a
+ * time, while it returns ZS_OK and wants more (*more, set to 1 first);
+ * the scans of a text model below read through it. */
+typedef zs_status (*take_bytes)(void *user, const char *b, size_t n, int *more, zs_error *err);
+
+static zs_status read_from(const char *path, uint64_t from, take_bytes take, void *user,
+                           zs_error *err) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return set_error(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  static char buf[1 << 16];
+  zs_status st = ZS_OK;
+  int more = 1;
+  if (fseek(f, (long)from, SEEK_SET) != 0)
+    st = set_error(err, ZS_ERR_IO, "%s: cannot read: %s", path, strerror(errno));
+  for (size_t n; st == ZS_OK && more && (n = fread(buf, 1, sizeof buf, f)) > 0;)
+    st = take(user, buf, n, &more, err);
+  fclose(f);
+  return st;
+}
+
+/* The text model's words from byte `from` on: a word that spells a number that is not finite is refused with its
  * line.  OFF's comments (# to the end of the line) are skipped; in STL the
  * name after solid and endsolid is not a number. */
 typedef struct word_scan {
+  const char *path;
   char word[32];
   size_t n;                     /* the word's bytes so far (0: between words) */
   int line, comment, named, at; /* at: the line's words before this one */
@@ -299,31 +328,132 @@ static zs_status end_word(word_scan *w, const char *path, zs_error *err) {
   return ZS_OK;
 }
 
+static zs_status take_words(void *user, const char *b, size_t n, int *more, zs_error *err) {
+  word_scan *w = user;
+  (void)more;
+  zs_status st = ZS_OK;
+  for (size_t i = 0; i < n && st == ZS_OK; i++) {
+    const char c = b[i];
+    if (is_blank(c) || c == '\0') {
+      st = end_word(w, w->path, err);
+      if (c == '\n') w->line++, w->comment = w->named = w->at = 0;
+      continue;
+    }
+    if (w->off && c == '#' && w->n == 0) w->comment = 1;
+    if (w->n < sizeof w->word - 1) w->word[w->n] = c;
+    w->n++;
+  }
+  return st;
+}
+
 static zs_status check_text_numbers(const char *path, uint64_t from, int off, int stl,
                                     int first_line, zs_error *err) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return set_error(err, ZS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-  static char buf[1 << 16];
-  word_scan w = {{0}, 0, first_line, 0, 0, 0, off, stl};
-  uint64_t pos = 0;
+  word_scan w = {path, {0}, 0, first_line, 0, 0, 0, off, stl};
+  zs_status st = read_from(path, from, take_words, &w, err);
+  return st == ZS_OK ? end_word(&w, path, err) : st; /* the file's last word */
+}
+
+/* The faces of a text OFF file, read as assimp 5.2's reader reads them:
+ * from the body on, a line is a run of bytes without a line end (\n, \r,
+ * \f: empty lines are skipped); the first nv lines are vertices, the next
+ * nf faces "K I1 .. IK", words parted by spaces and tabs.  That reader
+ * drops a face of no or more than 9 corners, takes an index at or past nv
+ * as the last vertex and a word that is not digits as 0, all without an
+ * error; each is refused here with its line instead. */
+typedef struct off_faces {
+  const char *path;
+  uint64_t nv, nf, lines; /* lines: the body's so far */
+  int line;               /* the file's, for the message */
+  char word[24];
+  size_t n;        /* the word's bytes so far */
+  int words;       /* this line's words before the word */
+  uint64_t k;      /* this face's corners, from its first word */
+  int in_line;     /* a byte of this line seen */
+} off_faces;
+
+/* The word's value, or UINT64_MAX when it is not all digits. */
+static uint64_t off_word_value(const off_faces *f) {
+  if (f->n >= sizeof f->word) return UINT64_MAX;
+  uint64_t v = 0;
+  for (size_t i = 0; i < f->n; i++) {
+    if (f->word[i] < '0' || f->word[i] > '9') return UINT64_MAX;
+    v = v * 10 + (uint64_t)(f->word[i] - '0');
+  }
+  return v;
+}
+
+static int off_in_faces(const off_faces *f) {
+  return f->lines >= f->nv && f->lines - f->nv < f->nf;
+}
+
+static zs_status off_end_word(off_faces *f, zs_error *err) {
+  if (f->n == 0) return ZS_OK;
+  const uint64_t v = off_word_value(f);
+  f->word[f->n < sizeof f->word ? f->n : sizeof f->word - 1] = '\0';
+  f->n = 0;
+  if (!off_in_faces(f)) return ZS_OK;
+  const int w = f->words++;
+  if (w == 0) {
+    f->k = v;
+    if (v == UINT64_MAX || v == 0)
+      return set_error(err, ZS_ERR_PARSE, "%s:%d: '%s': expected a face's corner count, 1 to 9",
+                       f->path, f->line, f->word);
+    if (v > 9)
+      return set_error(err, ZS_ERR_PARSE,
+                       "%s:%d: a face of %s corners: assimp's OFF reader takes 1 to 9 (and "
+                       "drops the face)",
+                       f->path, f->line, f->word);
+  } else if ((uint64_t)w <= f->k && v >= f->nv) {
+    return set_error(err, ZS_ERR_PARSE,
+                     "%s:%d: face corner '%s': expected a vertex index below %llu, the "
+                     "header's vertex count",
+                     f->path, f->line, f->word, (unsigned long long)f->nv);
+  }
+  return ZS_OK;
+}
+
+static zs_status off_end_line(off_faces *f, zs_error *err) {
+  zs_status st = off_end_word(f, err);
+  if (st != ZS_OK || !f->in_line) return st;
+  if (off_in_faces(f)) {
+    if (f->words == 0)
+      return set_error(err, ZS_ERR_PARSE, "%s:%d: a blank line where a face was expected",
+                       f->path, f->line);
+    if ((uint64_t)f->words - 1 < f->k)
+      return set_error(err, ZS_ERR_PARSE, "%s:%d: a face of %llu corners lists %d", f->path,
+                       f->line, (unsigned long long)f->k, f->words - 1);
+  }
+  f->lines++;
+  f->words = f->in_line = 0;
+  return ZS_OK;
+}
+
+static zs_status take_face_lines(void *user, const char *b, size_t n, int *more, zs_error *err) {
+  off_faces *f = user;
   zs_status st = ZS_OK;
-  for (size_t n; st == ZS_OK && (n = fread(buf, 1, sizeof buf, f)) > 0;) {
-    for (size_t i = 0; i < n && st == ZS_OK; i++) {
-      if (pos++ < from) continue;
-      const char c = buf[i];
-      if (is_blank(c) || c == '\0') {
-        st = end_word(&w, path, err);
-        if (c == '\n') w.line++, w.comment = w.named = w.at = 0;
-        continue;
-      }
-      if (w.off && c == '#' && w.n == 0) w.comment = 1;
-      if (w.n < sizeof w.word - 1) w.word[w.n] = c;
-      w.n++;
+  for (size_t i = 0; i < n && st == ZS_OK && f->lines < f->nv + f->nf; i++) {
+    const char c = b[i];
+    if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
+      st = off_end_line(f, err);
+      f->line += c == '\n';
+    } else if (c == ' ' || c == '\t') {
+      f->in_line = 1;
+      st = off_end_word(f, err);
+    } else {
+      f->in_line = 1;
+      if (f->n < sizeof f->word) f->word[f->n] = c;
+      f->n++;
     }
   }
-  if (st == ZS_OK) st = end_word(&w, path, err); /* the file's last word */
-  fclose(f);
+  *more = f->lines < f->nv + f->nf;
   return st;
+}
+
+static zs_status check_off_faces(const char *path, uint64_t body, int first_line, uint64_t nv,
+                                 uint64_t nf, zs_error *err) {
+  off_faces f = {path, nv, nf, 0, first_line, {0}, 0, 0, 0, 0};
+  zs_status st = read_from(path, body, take_face_lines, &f, err);
+  return st == ZS_OK ? off_end_line(&f, err) : st; /* the file's last line */
 }
 
 /* The lines of the first n bytes of t. */
@@ -347,7 +477,7 @@ static int is_ascii_stl(const file_head *h) {
 static zs_status check_header(const char *path, const file_head *h, zs_error *err) {
   uint64_t nv, nf, need, body;
   int cut = 0, nul = 0, bad_line = 0;
-  if (off_counts(h->text, has_extension(path, ".off"), &nv, &nf)) {
+  if (off_counts(h->text, has_extension(path, ".off"), &nv, &nf, &body)) {
     /* every vertex and face line takes at least two bytes */
     if (sat_mul(sat_add(nv, nf), 2) > h->size)
       return set_error(err, ZS_ERR_PARSE,
@@ -355,7 +485,9 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
                        "the file's %llu bytes can hold",
                        path, (unsigned long long)nv, (unsigned long long)nf,
                        (unsigned long long)h->size);
-    return check_text_numbers(path, 0, 1, 0, 1, err);
+    zs_status st = check_text_numbers(path, 0, 1, 0, 1, err);
+    return st == ZS_OK ? check_off_faces(path, body, header_lines(h->text, body) + 1, nv, nf, err)
+                       : st;
   } else if (ply_min_bytes(h->text, h->len, has_extension(path, ".ply"), &need, &body, &cut, &nul,
                            &bad_line)) {
     if (bad_line == 1)

@@ -1351,7 +1351,9 @@ static int load_or_refuse(const char *path) {
   zs_status st = zs_assimp_load(path, &m, &err);
   if (st != ZS_OK) {
     ck_assert_int_eq(st, err.code);
-    check_message(path, ": ", &err);
+    check_message(path, ":", &err); /* "PATH: reason" or "PATH:LINE: reason" */
+    const char after = err.msg[strlen(path) + 1];
+    ck_assert_msg(after == ' ' || (after >= '0' && after <= '9'), "%s: %s", path, err.msg);
     ck_assert_msg(strlen(err.msg) > strlen(path) + 2, "%s: no reason", path);
     ck_assert_int_eq(m.mesh.nverts, 0);
     ck_assert_ptr_null(m.mesh.pos);
@@ -1430,6 +1432,7 @@ START_TEST(assimp_broken_models) {
     const char *file, *reason;
   } refused[] = {
       {"invalid/OutOfMemory.off", ": OFF header declares 353535235358 vertices"},
+      {"OFF/invalid.off", ":6: '0': expected a face's corner count, 1 to 9"},
       {"glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb",
        ": mesh 0 vertex 0: not a finite number"},
       {"glTF2/wrongTypes/badArray.gltf", ": "},
@@ -1455,6 +1458,11 @@ static const struct {
     {"deep_nodes.gltf", ": node tree deeper than 256"},
     {"empty.stl", ": "},
     {"empty_face.ply", ": mesh 0 face 0: no vertices"},
+    {"face_index_negative.off", ":7: face corner '-1': expected a vertex index below 4"},
+    {"face_index_past_end.off", ":8: face corner '7': expected a vertex index below 4, the "
+                                "header's vertex count"},
+    {"face_of_ten.off", ":13: a face of 10 corners: assimp's OFF reader takes 1 to 9"},
+    {"face_short.off", ":7: a face of 4 corners lists 3"},
     {"garbage.ply", ": "},
     {"huge_accessor.gltf", ": "},
     {"huge_binary.ply", ": PLY header declares elements of at least 600000001 bytes"},

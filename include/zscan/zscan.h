@@ -90,8 +90,8 @@
 
 #define ZSCAN_VERSION_MAJOR 0
 #define ZSCAN_VERSION_MINOR 12
-#define ZSCAN_VERSION_PATCH 2
-#define ZSCAN_VERSION_STRING "0.12.2"
+#define ZSCAN_VERSION_PATCH 3
+#define ZSCAN_VERSION_STRING "0.12.3"
 
 #ifdef __cplusplus
 extern "C" {
@@ -106,7 +106,7 @@ const char *zs_version(void);
  * time, a printed camera), and only then, so that a golden made with
  * another number is known to differ on purpose.  docs/CHANGES.md lists
  * each version's changes; zs_pixel_changes gives them. */
-#define ZSCAN_PIXEL_VERSION 6
+#define ZSCAN_PIXEL_VERSION 7
 int zs_pixel_version(void);
 /* What changed in the outputs of pixel version v against v - 1, one
  * line; NULL for a version this library does not know (v < 1 or later

@@ -41,7 +41,7 @@ def test_from_the_environment():
     lib = library_file()
     p = run(PYTHON_DIR, lib)
     assert p.returncode == 0, p.stderr
-    assert p.stdout.split() == [lib, "0.12.2"]
+    assert p.stdout.split() == [lib, "0.12.3"]
 
 
 def test_a_wrong_environment_variable_is_an_error(tmp_path):

@@ -15,7 +15,7 @@ import threading
 # The header this binding mirrors (ZSCAN_VERSION_STRING).  Before 1.0 the
 # structs may change between minor versions, so the library's MAJOR.MINOR
 # must be this one's.
-BINDING_VERSION = "0.12.2"
+BINDING_VERSION = "0.12.3"
 
 ZS_ERROR_MSG_MAX = 512
 ZS_MAX_IMAGE_SIDE = 16384
