@@ -39,7 +39,8 @@ static const char *const pixel_changes[] = {
     "inf in a text PLY, OFF or STL file is refused with its line",
     "a text OFF file's face of no or more than 9 corners, with fewer corners than it counts, "
     "or with a corner that is no vertex index below the header's count is refused with its "
-    "line, where assimp dropped the face or took another vertex",
+    "line, where assimp dropped the face or took another vertex; a layer file with a pixel "
+    "that is neither a face nor the background is refused",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

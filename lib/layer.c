@@ -210,6 +210,29 @@ static zs_status read_header(FILE *f, const char *path, zs_layer *h, zs_error *e
   return ZS_OK;
 }
 
+/* A pixel as a layer holds it: a face (alpha 255, its id) or the
+ * background (alpha 0, ZS_ID_NONE, ZS_DEPTH_FAR); anything else was not
+ * written by zscan, and would composite as neither. */
+static zs_status check_pixel(const char *path, int x, int y, unsigned alpha, uint32_t depth,
+                             uint32_t id, zs_error *err) {
+  if (alpha != 0 && alpha != 255)
+    return zs_error_set(err, ZS_ERR_PARSE,
+                        "%s: pixel (%d, %d): alpha %u: expected 255 (a face) or 0 (the "
+                        "background)",
+                        path, x, y, alpha);
+  if (alpha == 255 && id == ZS_ID_NONE)
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: pixel (%d, %d): alpha 255 (a face) without a "
+                        "face id", path, x, y);
+  if (alpha == 0 && id != ZS_ID_NONE)
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: pixel (%d, %d): alpha 0 (the background) with "
+                        "face id %u", path, x, y, (unsigned)id);
+  if (alpha == 0 && depth != ZS_DEPTH_FAR)
+    return zs_error_set(err, ZS_ERR_PARSE, "%s: pixel (%d, %d): the background at depth %u, "
+                        "not the far plane's %u", path, x, y, (unsigned)depth,
+                        (unsigned)ZS_DEPTH_FAR);
+  return ZS_OK;
+}
+
 zs_status zs_layer_read(const char *path, zs_layer *out, zs_error *err) {
   memset(out, 0, sizeof *out);
   FILE *f = fopen(path, "rb");
@@ -239,12 +262,13 @@ zs_status zs_layer_read(const char *path, zs_layer *out, zs_error *err) {
       break;
     }
     const size_t off = (size_t)y * w;
-    for (size_t x = 0; x < w; x++) {
+    for (size_t x = 0; x < w && !st; x++) {
       const unsigned char *p = bytes + PIXEL_BYTES * x;
       out->rgb[off + x] = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
       out->alpha[off + x] = p[3];
       out->depth[off + x] = get32(p + 4);
       out->id[off + x] = get32(p + 8);
+      st = check_pixel(path, (int)x, y, p[3], out->depth[off + x], out->id[off + x], err);
     }
   }
   if (!st && fgetc(f) != EOF)

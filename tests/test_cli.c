@@ -1442,6 +1442,40 @@ START_TEST(composite_of_parts_is_the_whole) {
   snprintf(want, sizeof want, "zscan composite: %s: cut short: 62 of 72 rows of pixels\n", other);
   ck_assert_str_eq(err, want);
   ck_assert(!zs_test_exists(comp));
+  /* a pixel that is neither a face nor the background, each way */
+  static const struct {
+    int alpha, face; /* alpha written; 1: at a face's pixel, 0: the background's */
+    uint32_t id;     /* 5: written over the id; 1: the depth set to 1 */
+    const char *why;
+  } damage[] = {
+      {128, 1, 0, "alpha 128: expected 255 (a face) or 0 (the background)"},
+      {255, 0, 0, "alpha 255 (a face) without a face id"},
+      {0, 1, 0, "alpha 0 (the background) with face id "},
+      {0, 0, 5, "alpha 0 (the background) with face id 5"},
+      {0, 0, 1, "the background at depth 1, not the far plane's 4294967295"},
+  };
+  for (size_t d = 0; d < sizeof damage / sizeof damage[0]; d++) {
+    bytes = zs_test_slurp(layer[0], &len);
+    ck_assert_ptr_nonnull(bytes);
+    size_t at = 0;
+    for (int line = 0; line < 6; line++) /* past the header's six lines */
+      at = (size_t)((unsigned char *)memchr(bytes + at, '\n', len - at) - bytes) + 1;
+    size_t i = 0;
+    while (at + 12 * i < len && (bytes[at + 12 * i + 3] == 255) != damage[d].face) i++;
+    ck_assert_uint_lt(at + 12 * i, len);
+    bytes[at + 12 * i + 3] = (unsigned char)damage[d].alpha;
+    if (damage[d].id == 5) memcpy(bytes + at + 12 * i + 8, "\x05\0\0\0", 4);
+    if (damage[d].id == 1) memcpy(bytes + at + 12 * i + 4, "\x01\0\0\0", 4); /* depth 1 */
+    f = fopen(other, "wb");
+    fwrite(bytes, 1, len, f);
+    fclose(f);
+    free(bytes);
+    ck_assert_int_eq(zs_test_run_zscan(c1, out, sizeof out, err, sizeof err), 1);
+    snprintf(want, sizeof want, "zscan composite: %s: pixel (%d, %d): %s", other, (int)(i % 96),
+             (int)(i / 96), damage[d].why);
+    ck_assert_msg(strncmp(err, want, strlen(want)) == 0, "%s\nexpected %s", err, want);
+    ck_assert(!zs_test_exists(comp));
+  }
 }
 END_TEST
 

@@ -72,9 +72,11 @@ zs_status zs_layer_image(const zs_layer *l, zs_image *out, zs_error *err);
 /* Writes l to path (replaced whole or not at all; "-" is standard
  * output). */
 zs_status zs_layer_write(const char *path, const zs_layer *l, zs_error *err);
-/* Reads a layer file; a file that is not one, or is cut short, is refused
- * with its name and what is wrong (ZS_ERR_PARSE), a size out of range with
- * ZS_ERR_LIMIT. */
+/* Reads a layer file; a file that is not one, is cut short, or holds a
+ * pixel that is neither a face (alpha 255 and a face id) nor the
+ * background (alpha 0, ZS_ID_NONE, ZS_DEPTH_FAR) is refused with its name
+ * and what is wrong (ZS_ERR_PARSE, the pixel's x and y), a size out of
+ * range with ZS_ERR_LIMIT. */
 zs_status zs_layer_read(const char *path, zs_layer *out, zs_error *err);
 
 /* The layers in[0 .. n) merged into out (allocated here): at each pixel
