@@ -70,8 +70,8 @@ uint64_t zs_image_hash(const zs_image *im) {
 _Static_assert(sizeof(float) == 4, "PFM needs 32-bit floats");
 
 /* A PFM of channels (1: "Pf", 3: "PF") floats a pixel. */
-static zs_status pfm_write(const char *path, int width, int height, int channels,
-                           const float *values, zs_error *err) {
+zs_status zs_pfm_write_in(zs_out_set *set, const char *path, int width, int height,
+                          int channels, const float *values, zs_error *err) {
   if (!zs_image_size_ok(width, height))
     return zs_error_set(err, ZS_ERR_LIMIT,
                         "%s: image size %dx%d: each side must be 1 .. %d",
@@ -104,17 +104,17 @@ static zs_status pfm_write(const char *path, int width, int height, int channels
     zs_out_discard(&f);
     return st;
   }
-  return zs_out_commit(&f, err);
+  return zs_out_finish(&f, set, err);
 }
 
 zs_status zs_pfm_write(const char *path, int width, int height, const float *values,
                        zs_error *err) {
-  return pfm_write(path, width, height, 1, values, err);
+  return zs_pfm_write_in(NULL, path, width, height, 1, values, err);
 }
 
 zs_status zs_pfm_write_rgb(const char *path, int width, int height, const float *xyz,
                            zs_error *err) {
-  return pfm_write(path, width, height, 3, xyz, err);
+  return zs_pfm_write_in(NULL, path, width, height, 3, xyz, err);
 }
 
 /* ---- Comparing two images ---- */

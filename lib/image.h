@@ -32,6 +32,7 @@
 
 #include <stdint.h>
 
+#include "lib/outfile.h"
 #include "zscan/error.h"
 #include "zscan/zscan.h"
 
@@ -47,6 +48,14 @@ int zs_image_size_ok(int width, int height);
 /* zs_png_write, marking the file as face ids when shade is ZS_SHADE_ID. */
 zs_status zs_png_write_shaded(const char *path, const zs_image *im, zs_shade shade,
                               zs_error *err);
+
+/* zs_png_write_shaded and zs_pfm_write (channels 1) or zs_pfm_write_rgb
+ * (3), each file finished into set (lib/outfile.h: replaced with the
+ * set's others, or not at all); set NULL: committed at once. */
+zs_status zs_png_write_in(zs_out_set *set, const char *path, const zs_image *im, zs_shade shade,
+                          zs_error *err);
+zs_status zs_pfm_write_in(zs_out_set *set, const char *path, int width, int height,
+                          int channels, const float *values, zs_error *err);
 
 /* zs_png_read, also telling (ids, may be NULL) whether the file carries
  * the face-id mark: 1 or 0. */

@@ -1,5 +1,6 @@
 /* rgbα+z layers and their composite (zscan/layer.h). */
 #include "zscan/layer.h"
+#include "lib/layer_file.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -90,6 +91,10 @@ static int put_matrix(FILE *f, const char *name, const double m[16]) {
 }
 
 zs_status zs_layer_write(const char *path, const zs_layer *l, zs_error *err) {
+  return zs_layer_write_in(NULL, path, l, err);
+}
+
+zs_status zs_layer_write_in(zs_out_set *set, const char *path, const zs_layer *l, zs_error *err) {
   const size_t w = (size_t)l->width;
   unsigned char *bytes = malloc(w * PIXEL_BYTES);
   if (!bytes) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
@@ -121,7 +126,7 @@ zs_status zs_layer_write(const char *path, const zs_layer *l, zs_error *err) {
     zs_out_discard(&f);
     return st;
   }
-  return zs_out_commit(&f, err);
+  return zs_out_finish(&f, set, err);
 }
 
 /* One header line into buf (without its newline); 0 at the end of the

@@ -178,12 +178,9 @@ zs_status zs_out_open(zs_out *o, const char *path, zs_error *err) {
   return code;
 }
 
-zs_status zs_out_commit(zs_out *o, zs_error *err) {
-  if (!o->fp) {
-    release(o);
-    return zs_error_set(err, ZS_ERR_IO, "output already closed");
-  }
-  zs_status st = ZS_OK;
+/* Flushes and closes o's stream (standard output stays open): a write
+ * that failed, or a full disk, is an error. */
+static zs_status close_checked(zs_out *o, zs_error *err) {
   const char *name = o->fp == stdout ? "standard output" : o->path;
   /* fflush first: a full disk shows only when the buffer goes out. */
   int bad = fflush(o->fp) != 0 || ferror(o->fp);
@@ -193,17 +190,56 @@ zs_status zs_out_commit(zs_out *o, zs_error *err) {
     e = errno;
   }
   o->fp = NULL;
-  if (bad)
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", name, strerror(e));
-  else if (o->tmp && (e = zs_os_replace(o->tmp, o->target)) != 0)
-    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", name, strerror(e));
-  else if (o->tmp) {
+  return bad ? zs_error_set(err, ZS_ERR_IO, "%s: cannot write: %s", name, strerror(e)) : ZS_OK;
+}
+
+/* Renames the closed o's temporary over its target (nothing for a direct
+ * output), then empties o; on any failure the temporary is removed. */
+static zs_status replace_and_release(zs_out *o, zs_status st, zs_error *err) {
+  int e;
+  if (st == ZS_OK && o->tmp && (e = zs_os_replace(o->tmp, o->target)) != 0)
+    st = zs_error_set(err, ZS_ERR_IO, "%s: cannot replace: %s", o->path, strerror(e));
+  else if (st == ZS_OK && o->tmp) {
     free(o->tmp); /* renamed: nothing to remove */
     o->tmp = NULL;
   }
   if (o->tmp) remove(o->tmp);
   release(o);
   return st;
+}
+
+zs_status zs_out_commit(zs_out *o, zs_error *err) {
+  if (!o->fp) {
+    release(o);
+    return zs_error_set(err, ZS_ERR_IO, "output already closed");
+  }
+  return replace_and_release(o, close_checked(o, err), err);
+}
+
+zs_status zs_out_finish(zs_out *o, zs_out_set *set, zs_error *err) {
+  if (!set || !o->fp || !o->tmp) return zs_out_commit(o, err);
+  if (set->n == ZS_OUT_SET_MAX) {
+    zs_out_discard(o);
+    return zs_error_set(err, ZS_ERR_ARG, "more than %d outputs at once", ZS_OUT_SET_MAX);
+  }
+  zs_status st = close_checked(o, err);
+  if (st != ZS_OK) return replace_and_release(o, st, err);
+  set->held[set->n++] = *o;
+  memset(o, 0, sizeof *o);
+  return ZS_OK;
+}
+
+zs_status zs_out_set_land(zs_out_set *set, zs_error *err) {
+  zs_status st = ZS_OK;
+  for (int k = 0; k < set->n; k++) /* after a failure the rest are removed */
+    st = replace_and_release(&set->held[k], st, err);
+  set->n = 0;
+  return st;
+}
+
+void zs_out_set_drop(zs_out_set *set) {
+  for (int k = 0; k < set->n; k++) zs_out_discard(&set->held[k]);
+  set->n = 0;
 }
 
 void zs_out_discard(zs_out *o) {

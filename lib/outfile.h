@@ -53,6 +53,34 @@ zs_status zs_out_commit(zs_out *o, zs_error *err);
  * error).  Safe on an empty or already closed zs_out. */
 void zs_out_discard(zs_out *o);
 
+/* Outputs that replace their files together, so that a command whose
+ * later output fails leaves the files of the earlier ones as they were: a
+ * writer given a set finishes its output into it (zs_out_finish: flushed,
+ * closed, checked, but not renamed); zs_out_set_land then renames every
+ * temporary over its file, zs_out_set_drop removes them.  Standard
+ * output, a FIFO and a device cannot wait: they are done when finished
+ * (a command writes such an output last).  Start a set as
+ * ZS_OUT_SET_EMPTY. */
+enum { ZS_OUT_SET_MAX = 8 };
+typedef struct zs_out_set {
+  zs_out held[ZS_OUT_SET_MAX];
+  int n;
+} zs_out_set;
+#define ZS_OUT_SET_EMPTY {{{0}}, 0}
+
+/* zs_out_commit when set is NULL; else o, flushed and closed, is held in
+ * set, or its temporary removed and the error returned.  *o is empty
+ * afterwards. */
+zs_status zs_out_finish(zs_out *o, zs_out_set *set, zs_error *err);
+
+/* Renames the set's temporaries over their files, in the order finished;
+ * where one cannot be, the error is returned and the rest are removed
+ * (the files before it are replaced).  The set is empty afterwards. */
+zs_status zs_out_set_land(zs_out_set *set, zs_error *err);
+
+/* Removes the set's temporaries: none of its files is replaced. */
+void zs_out_set_drop(zs_out_set *set);
+
 /* Whether PATH means standard output ("-"). */
 int zs_out_is_stdout(const char *path);
 

@@ -64,6 +64,7 @@ static void on_png_warning(png_structp png, png_const_charp msg) {
 struct zs_png_stream {
   char *path;            /* the target, for messages */
   zs_out file;           /* where the bytes go (lib/outfile.h) */
+  zs_out_set *set;       /* what the file is finished into; NULL: committed */
   png_structp png;       /* NULL after a failure */
   png_infop info;
   int width, height;
@@ -137,7 +138,7 @@ static void stream_free(zs_png_stream *s) {
 
 /* Opens the stream; ids = 1 marks the file as face ids (lib/image.h). */
 static zs_status stream_open(zs_png_stream **out, const char *path, int width,
-                             int height, int ids, zs_error *err) {
+                             int height, int ids, zs_out_set *set, zs_error *err) {
   *out = NULL;
   if (!zs_image_size_ok(width, height))
     return zs_error_set(err, ZS_ERR_LIMIT,
@@ -147,6 +148,7 @@ static zs_status stream_open(zs_png_stream **out, const char *path, int width,
   if (!s) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory", path);
   s->width = width;
   s->height = height;
+  s->set = set;
   s->path = strdup(path);
   s->bytes = malloc(3 * (size_t)width);
   if (!s->path || !s->bytes) {
@@ -176,7 +178,7 @@ static zs_status stream_open(zs_png_stream **out, const char *path, int width,
 
 zs_status zs_png_stream_open(zs_png_stream **out, const char *path, int width,
                              int height, zs_error *err) {
-  return stream_open(out, path, width, height, 0, err);
+  return stream_open(out, path, width, height, 0, NULL, err);
 }
 
 zs_status zs_png_stream_row(zs_png_stream *s, const uint32_t *rgb,
@@ -208,16 +210,17 @@ zs_status zs_png_stream_close(zs_png_stream *s, int commit, zs_error *err) {
   } else if (png_end(s)) {
     st = stream_fail(s, ZS_ERR_IO, err);
   } else {
-    st = zs_out_commit(&s->file, err);
+    st = zs_out_finish(&s->file, s->set, err);
   }
   stream_free(s);
   return st;
 }
 
 /* Writes im whole; ids = 1 marks it as face ids (lib/image.h). */
-static zs_status png_write(const char *path, const zs_image *im, int ids, zs_error *err) {
+static zs_status png_write(const char *path, const zs_image *im, int ids, zs_out_set *set,
+                           zs_error *err) {
   zs_png_stream *s;
-  zs_status st = stream_open(&s, path, im->width, im->height, ids, err);
+  zs_status st = stream_open(&s, path, im->width, im->height, ids, set, err);
   if (st != ZS_OK) return st;
   for (int y = 0; y < im->height && st == ZS_OK; y++)
     st = zs_png_stream_row(s, im->rgb + (size_t)y * (size_t)im->width, err);
@@ -226,12 +229,17 @@ static zs_status png_write(const char *path, const zs_image *im, int ids, zs_err
 }
 
 zs_status zs_png_write(const char *path, const zs_image *im, zs_error *err) {
-  return png_write(path, im, 0, err);
+  return png_write(path, im, 0, NULL, err);
 }
 
 zs_status zs_png_write_shaded(const char *path, const zs_image *im, zs_shade shade,
                               zs_error *err) {
-  return png_write(path, im, shade == ZS_SHADE_ID, err);
+  return png_write(path, im, shade == ZS_SHADE_ID, NULL, err);
+}
+
+zs_status zs_png_write_in(zs_out_set *set, const char *path, const zs_image *im, zs_shade shade,
+                          zs_error *err) {
+  return png_write(path, im, shade == ZS_SHADE_ID, set, err);
 }
 
 /* ---- Reading PNG ---- */

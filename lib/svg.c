@@ -7,7 +7,7 @@
 
 #include "lib/outfile.h"
 
-zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_line_run *runs,
+zs_status zs_svg_write_lines(zs_out_set *set, const char *path, int width, int height, const zs_line_run *runs,
                              int32_t n, int line_width, uint32_t paper, uint32_t ink,
                              zs_error *err) {
   zs_out out;
@@ -35,5 +35,5 @@ zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_l
     zs_out_discard(&out);
     return st;
   }
-  return zs_out_commit(&out, err);
+  return zs_out_finish(&out, set, err);
 }

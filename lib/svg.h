@@ -13,10 +13,12 @@
 
 #include <stdint.h>
 
+#include "lib/outfile.h"
 #include "zscan/error.h"
 #include "raster/raster.h"
 
-zs_status zs_svg_write_lines(const char *path, int width, int height, const zs_line_run *runs,
+/* The file finished into set (NULL: committed at once; lib/outfile.h). */
+zs_status zs_svg_write_lines(zs_out_set *set, const char *path, int width, int height, const zs_line_run *runs,
                              int32_t n, int line_width, uint32_t paper, uint32_t ink,
                              zs_error *err);
 

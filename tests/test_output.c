@@ -237,6 +237,62 @@ START_TEST(full_disk_is_an_error) {
 }
 END_TEST
 
+/* The files of one render are replaced together: an output that fails
+ * (the depth to the full device) leaves the others' files as they were,
+ * and standard output, which cannot be taken back, empty. */
+START_TEST(outputs_replace_their_files_together) {
+  make_dir();
+  char exe[4096], err_path[4200], png[4200], layer[4200], out_path[4200];
+  snprintf(exe, sizeof exe, "%s/zscan", ZS_BINARY_DIR);
+  snprintf(err_path, sizeof err_path, "%s/stderr.txt", dir);
+  snprintf(png, sizeof png, "%s", in_dir("a.png"));
+  snprintf(layer, sizeof layer, "%s", in_dir("a.zsl"));
+  snprintf(out_path, sizeof out_path, "%s", in_dir("stdout.bin"));
+  for (int k = 0; k < 2; k++) {
+    FILE *f = fopen(k ? layer : png, "wb");
+    ck_assert_ptr_nonnull(f);
+    fputs("the old file\n", f);
+    fclose(f);
+  }
+  char *to_files[] = {exe, "render", "builtin:default", "--size", "64x48", "-o", png,
+                      "--layer", layer, "--depth", "/dev/full", NULL};
+  ck_assert_int_eq(zs_os_spawn_wait(to_files, NULL, err_path), 1);
+  size_t n = 0;
+  char *said = (char *)zs_test_slurp(err_path, &n);
+  ck_assert_ptr_nonnull(said);
+  ck_assert_msg(strstr(said, "--depth /dev/full: cannot write: No space left on device"), "%s",
+                said);
+  free(said);
+  for (int k = 0; k < 2; k++) {
+    char *text = (char *)zs_test_slurp(k ? layer : png, &n);
+    ck_assert_ptr_nonnull(text);
+    ck_assert_msg(n == 13 && memcmp(text, "the old file\n", 13) == 0, "%s was replaced",
+                  k ? layer : png);
+    free(text);
+  }
+  char *to_stdout[] = {exe, "render", "builtin:default", "--size", "64x48", "-o", "-",
+                       "--depth", "/dev/full", NULL};
+  ck_assert_int_eq(zs_os_spawn_wait(to_stdout, out_path, err_path), 1);
+  unsigned char *sent = zs_test_slurp(out_path, &n);
+  ck_assert_ptr_nonnull(sent);
+  ck_assert_msg(n == 0, "%zu bytes on standard output before the failure", n);
+  free(sent);
+  /* and when every output can be written, each is */
+  char *all[] = {exe, "render", "builtin:default", "--size", "64x48", "-o", png,
+                 "--layer", layer, "-q", NULL};
+  ck_assert_int_eq(zs_os_spawn_wait(all, NULL, err_path), 0);
+  zs_test_assert_same_file(reference(), png);
+  unsigned char *l = zs_test_slurp(layer, &n);
+  ck_assert_ptr_nonnull(l);
+  ck_assert_int_eq(memcmp(l, "ZSLAYER 1\n", 10), 0);
+  free(l);
+  unlink(err_path);
+  unlink(out_path);
+  assert_no_temporaries();
+  remove_dir();
+}
+END_TEST
+
 START_TEST(directory_and_missing_folder_refused) {
   make_dir();
   const char *sub = in_dir("a-folder");
@@ -337,6 +393,7 @@ int main(void) {
   tcase_add_test(tc, socket_written_directly_to_its_listener);
   tcase_add_test(tc, device_node_written_directly);
   tcase_add_test(tc, full_disk_is_an_error);
+  tcase_add_test(tc, outputs_replace_their_files_together);
   tcase_add_test(tc, directory_and_missing_folder_refused);
   tcase_add_test(tc, discard_keeps_the_old_file);
   tcase_add_test(tc, folders_made_when_missing);

@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lib/image.h"
+#include "lib/layer_file.h"
 #include "lib/outfile.h"
 #include "tools/cli.h"
 #include "zscan/layer.h"
@@ -86,11 +88,22 @@ int zs_cmd_composite(int argc, char **argv) {
       zs_error_set(&err, ZS_ERR_ARG, "%s", msg);
     }
   }
-  if (!st && out_png && !(st = zs_layer_image(&merged, &im, &err)) &&
-      (st = zs_png_write(out_png, &im, &err)))
-    zs_out_error_option(&err, "-o");
-  if (!st && out_layer && (st = zs_layer_write(out_layer, &merged, &err)))
-    zs_out_error_option(&err, "--layer");
+  /* both files replaced or neither; standard output, which cannot be
+   * taken back, last */
+  zs_out_set outs = ZS_OUT_SET_EMPTY;
+  const int png_last = out_png && zs_out_is_stdout(out_png);
+  for (int k = 0; k < 2 && !st; k++) {
+    if (k == png_last && out_png) {
+      if (!(st = zs_layer_image(&merged, &im, &err)) &&
+          (st = zs_png_write_in(&outs, out_png, &im, merged.shade, &err)))
+        zs_out_error_option(&err, "-o");
+    } else if (k != png_last && out_layer &&
+               (st = zs_layer_write_in(&outs, out_layer, &merged, &err))) {
+      zs_out_error_option(&err, "--layer");
+    }
+  }
+  if (st) zs_out_set_drop(&outs);
+  else st = zs_out_set_land(&outs, &err);
   if (!st && !quiet) {
     uint64_t covered = 0;
     for (size_t i = 0; i < (size_t)merged.width * (size_t)merged.height; i++)

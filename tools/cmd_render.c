@@ -22,6 +22,7 @@
 #include "lib/frame_camera.h"
 #include "lib/image.h"
 #include "lib/input.h"
+#include "lib/layer_file.h"
 #include "lib/outfile.h"
 #include "lib/samples.h"
 #include "lib/svg.h"
@@ -596,13 +597,14 @@ static zs_status file_camera(const zs_cmd_render_opts *o, double aspect, zs_view
 }
 
 /* The last frame's hidden lines as vectors (lib/svg.h). */
-static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs_error *err) {
+static zs_status write_svg(const zs_cmd_render_opts *o, const zs_device *dev, zs_out_set *set,
+                           zs_error *err) {
   int32_t n;
   const zs_line_run *runs = zs_device_line_runs(dev, &n);
   if (n < 0) return zs_error_set(err, ZS_ERR_NOMEM, "%s: out of memory for the lines", o->out_png);
   const int line_width = zs_gl_rounded_size(o->line_width > 0.0 ? o->line_width : 1.0,
                                             ZS_MAX_LINE_WIDTH);
-  return zs_svg_write_lines(o->out_png, o->view.width, o->view.height, runs, n, line_width,
+  return zs_svg_write_lines(set, o->out_png, o->view.width, o->view.height, runs, n, line_width,
                             ZS_HIDDEN_LINE_PAPER, ZS_HIDDEN_LINE_INK, err);
 }
 
@@ -777,23 +779,26 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     }
     if ((st = zs_frame_render_normals(&cfg, &model, view, proj, normals, err))) goto done;
   }
-  if ((st = o->svg ? write_svg(o, dev, err) : zs_png_write_shaded(o->out_png, &im, o->shade, err))) {
-    zs_out_error_option(err, "-o");
-    goto done;
-  }
-  if (depth && (st = zs_pfm_write(o->out_pfm, o->view.width, o->view.height, depth, err))) {
-    zs_out_error_option(err, "--depth");
-    goto done;
-  }
-  if (normals &&
-      (st = zs_pfm_write_rgb(o->out_normals, o->view.width, o->view.height, normals, err))) {
-    zs_out_error_option(err, "--normals");
-    goto done;
-  }
-  if (into && (st = zs_layer_write(o->out_layer, &layer, err))) {
-    zs_out_error_option(err, "--layer");
-    goto done;
-  }
+  /* the files replace theirs together or not at all; standard output,
+   * which cannot be taken back, goes last */
+  zs_out_set outs = ZS_OUT_SET_EMPTY;
+  const char *const names[] = {"-o", "--depth", "--normals", "--layer"};
+  const char *const paths[] = {o->out_png, depth ? o->out_pfm : NULL,
+                               normals ? o->out_normals : NULL, into ? o->out_layer : NULL};
+  for (int last = 0; last < 2 && !st; last++)
+    for (int k = 0; k < 4 && !st; k++) {
+      if (!paths[k] || zs_out_is_stdout(paths[k]) != last) continue;
+      const int w = o->view.width, h = o->view.height;
+      st = k == 0   ? (o->svg ? write_svg(o, dev, &outs, err)
+                              : zs_png_write_in(&outs, paths[k], &im, o->shade, err))
+           : k == 1 ? zs_pfm_write_in(&outs, paths[k], w, h, 1, depth, err)
+           : k == 2 ? zs_pfm_write_in(&outs, paths[k], w, h, 3, normals, err)
+                    : zs_layer_write_in(&outs, paths[k], &layer, err);
+      if (st) zs_out_error_option(err, names[k]);
+    }
+  if (st) zs_out_set_drop(&outs);
+  else st = zs_out_set_land(&outs, err);
+  if (st) goto done;
   int64_t diff_pixels = -1;
   if (o->stats && o->algo == ZS_ALGO_DEPTHSORT &&
       (st = painter_error(o, &model, &diff_pixels, err)))
