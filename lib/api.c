@@ -40,7 +40,9 @@ static const char *const pixel_changes[] = {
     "a text OFF file's face of no or more than 9 corners, with fewer corners than it counts, "
     "or with a corner that is no vertex index below the header's count is refused with its "
     "line, where assimp dropped the face or took another vertex; a layer file with a pixel "
-    "that is neither a face nor the background is refused",
+    "that is neither a face nor the background is refused; a vertex not a finite number in "
+    "a binary model is refused where assimp's joining of vertices hid it; a light's "
+    "direction whose square overflows or vanishes lights as its unit vector",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

@@ -8,6 +8,7 @@
 
 #include "lib/scene_draw.h"
 #include "util/lights.h"
+#include "util/matrix.h"
 
 int zs_shadow_camera(const zs_light *l, const double view[16], const double lo[3],
                      const double hi[3], double light_view[16], double light_proj[16]) {
@@ -26,6 +27,7 @@ int zs_shadow_camera(const zs_light *l, const double view[16], const double lo[3
     memcpy(dir, l->direction, sizeof dir);
     memcpy(pos, l->position, sizeof pos);
   }
+  zs_vec3_in_range(dir, dir); /* (dir:1e200,...: its square would overflow) */
   const double dlen = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
   if (!(dlen > 0.0)) return 0;
   for (int k = 0; k < 3; k++) dir[k] = dir[k] / dlen;

@@ -14,8 +14,11 @@ static double dot3(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* v / |v| into out; 0 when v has no length (out then (0, 0, 0)). */
-static int unit3(const double v[3], double out[3]) {
+/* v / |v| into out; 0 when v has no length (out then (0, 0, 0)); a v far
+ * out of range is scaled first (zs_vec3_in_range). */
+static int unit3(const double v_in[3], double out[3]) {
+  double v[3];
+  zs_vec3_in_range(v_in, v);
   const double len = sqrt(dot3(v, v));
   if (!(len > 0.0)) {
     out[0] = out[1] = out[2] = 0.0;

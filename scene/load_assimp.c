@@ -1118,6 +1118,32 @@ static zs_status settle_primitive_types(const char *path, const struct aiScene *
   return ZS_OK;
 }
 
+static int finite3(float x, float y, float z) { return isfinite(x) && isfinite(y) && isfinite(z); }
+
+/* Refuses a vertex whose position, normal, first colour or first texture
+ * coordinate is not a finite number, before the vertices are joined:
+ * joining takes a NaN for the same as its neighbour (NaN compares as
+ * no difference there), and a bad vertex merged away went unseen. */
+static zs_status check_finite(const char *path, const struct aiScene *sc, zs_error *err) {
+  for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+    const struct aiMesh *m = sc->mMeshes[i];
+    const struct aiVector3D *p = m->mVertices, *n = m->mNormals, *uv = m->mTextureCoords[0];
+    const struct aiColor4D *c = m->mColors[0];
+    for (unsigned v = 0; v < m->mNumVertices; v++) {
+      const char *what = !finite3(p[v].x, p[v].y, p[v].z)               ? ""
+                         : n && !finite3(n[v].x, n[v].y, n[v].z)        ? "normal "
+                         : c && !(finite3(c[v].r, c[v].g, c[v].b) && isfinite(c[v].a)) ? "colour "
+                         : uv && !(isfinite(uv[v].x) && isfinite(uv[v].y))
+                             ? "texture coordinate "
+                             : NULL;
+      if (what)
+        return set_error(err, ZS_ERR_PARSE, "%s: mesh %u vertex %u: %snot a finite number", path,
+                         i, v, what);
+    }
+  }
+  return ZS_OK;
+}
+
 /* The file read and validated, then triangulated and its identical
  * vertices joined, as aiImportFile with all three flags does (the same
  * steps in the same order), with the primitive types settled between. */
@@ -1125,7 +1151,8 @@ static zs_status import_triangulated(const char *path, const struct aiScene **sc
                                      zs_error *err) {
   zs_status st = import_checked(path, aiProcess_ValidateDataStructure, sc, err);
   if (st != ZS_OK) return st;
-  if ((st = settle_primitive_types(path, *sc, err)) != ZS_OK) {
+  if ((st = settle_primitive_types(path, *sc, err)) != ZS_OK ||
+      (st = check_finite(path, *sc, err)) != ZS_OK) {
     aiReleaseImport(*sc);
     *sc = NULL;
     return st;

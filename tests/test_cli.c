@@ -1479,6 +1479,24 @@ START_TEST(composite_of_parts_is_the_whole) {
 }
 END_TEST
 
+/* A light's direction is a direction at any length: one whose square
+ * overflows or vanishes in a double lights (and casts shadows) as its
+ * unit vector does, in the lit shading and the shadow map's camera. */
+START_TEST(light_direction_at_any_length) {
+  char png[4096], want[17] = "", got[17];
+  snprintf(png, sizeof png, "%s/cli-light.png", ZS_BINARY_DIR);
+  const char *lights[] = {"dir:-1,-2,-1", "dir:-1e200,-2e200,-1e200", "dir:-1e-200,-2e-200,-1e-200"};
+  for (int k = 0; k < 3; k++) {
+    const char *a[] = {"render", zs_test_src("scene/examples/table.json"), "--size", "96x72",
+                       "--light", lights[k], "--shadows", "--stats", "-o", png, NULL};
+    ck_assert_int_eq(zs_test_run_zscan(a, out, sizeof out, err, sizeof err), 0);
+    ck_assert_msg(strstr(err, "warning") == NULL, "%s: %s", lights[k], err);
+    stats_hash(out, k ? got : want);
+    if (k) ck_assert_msg(strcmp(got, want) == 0, "%s: %s, not %s", lights[k], got, want);
+  }
+}
+END_TEST
+
 START_TEST(render_stats_show_the_culling_work) {
   /* vfc on the city: plane masking leaves far fewer box-plane tests than
    * six per element visited; chc-prob evaluates its cost model where it
@@ -1608,6 +1626,7 @@ int main(void) {
   tcase_add_test(tc, composite_of_parts_is_the_whole);
   tcase_add_test(tc, render_same_at_every_simd_level);
   tcase_add_test(tc, render_stats_show_the_culling_work);
+  tcase_add_test(tc, light_direction_at_any_length);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);
   tcase_add_test(tc, render_skips_missing_textures);

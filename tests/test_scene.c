@@ -1472,6 +1472,10 @@ static const struct {
     {"inf.stl", ": mesh 0 vertex 1: not a finite number"},
     {"inf_colour.ply", ":15: 'inf': not a finite number"},
     {"nan.off", ":3: 'nan': not a finite number"},
+    /* a NaN vertex that assimp's joining of identical vertices merged away */
+    {"nan_joined.gltf", ": mesh 0 vertex 2: not a finite number"},
+    {"nan_joined.stl", ": mesh 0 vertex 2: not a finite number"},
+    {"nan_joined_binary.ply", ": mesh 0 vertex 2: not a finite number"},
     {"nan_position.ply", ":11: 'nan': not a finite number"},
     {"nan_position.stl", ":5: 'nan': not a finite number"}, /* (its name nanite is no number) */
     {"nan_normal.ply", ":13: 'nan': not a finite number"},

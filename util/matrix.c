@@ -38,6 +38,13 @@ void zs_mat_scale(double m[16], double x, double y, double z) {
   m[10] = z;
 }
 
+void zs_vec3_in_range(const double v[3], double out[3]) {
+  const double big = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+  int e = 0;
+  if (big > 0x1p500 || (big > 0.0 && big < 0x1p-500)) frexp(big, &e);
+  for (int k = 0; k < 3; k++) out[k] = e ? ldexp(v[k], -e) : v[k];
+}
+
 void zs_mat_rotate_turns(double m[16], double turns, double x, double y, double z) {
   zs_mat_identity(m);
   double len = sqrt(x * x + y * y + z * z);

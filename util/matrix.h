@@ -12,6 +12,12 @@
  * angle drawn in turns, which would not survive * 360 / 360 bit for bit. */
 void zs_mat_rotate_turns(double m[16], double turns, double x, double y, double z);
 
+/* v scaled by a power of two into out when its square would overflow or
+ * vanish (a light's direction 1e200,1e200,1e200), else copied: the same
+ * direction, whose unit vector then keeps every bit; a v in range is
+ * taken as it is. */
+void zs_vec3_in_range(const double v[3], double out[3]);
+
 /* out = m (p, 1): inline, as set-up calls it once or twice per vertex. */
 static inline void zs_mat_apply(const double m[16], const double p[3], double out[4]) {
   for (int i = 0; i < 4; i++)
