@@ -42,7 +42,9 @@ static const char *const pixel_changes[] = {
     "line, where assimp dropped the face or took another vertex; a layer file with a pixel "
     "that is neither a face nor the background is refused; a vertex not a finite number in "
     "a binary model is refused where assimp's joining of vertices hid it; a light's "
-    "direction whose square overflows or vanishes lights as its unit vector",
+    "direction whose square overflows or vanishes lights as its unit vector; zscan render's "
+    "camera options out of range exit 2 naming the option, and --camera refuses the options "
+    "that place a view",
 };
 
 _Static_assert(sizeof pixel_changes / sizeof *pixel_changes == ZSCAN_PIXEL_VERSION,

@@ -95,7 +95,8 @@ static const char usage_tail[] =
     "                      frame again, byte for byte\n"
     "  --camera NAME|N     a camera stored in the model file (glTF, Collada, FBX,\n"
     "                      3DS, ...: its place, aim, lens and planes; its\n"
-    "                      horizontal angle spans the image's width)\n"
+    "                      horizontal angle spans the image's width); not with\n"
+    "                      the options that place a view (--eye ... --fit)\n"
     "  --list-cameras      list the model file's cameras, render nothing\n"
     "  --background RRGGBB flat shading's background (default 1E2228)\n"
     "  --allow-empty       render a model without faces (the background alone)\n"
@@ -132,6 +133,19 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
   if (o->shadows && !(o->shade == ZS_SHADE_AUTO || o->shade == ZS_SHADE_PHONG))
     return zs_error_set(err, ZS_ERR_ARG, "--shadows needs --shade auto or phong (lit at each "
                         "pixel), not %s", zs_shade_name(o->shade));
+  if (o->view.cam.has_near && !o->view.cam.ortho && !(o->view.cam.znear > 0.0))
+    return zs_error_set(err, ZS_ERR_ARG, "--near: %g: a perspective camera's near plane must be "
+                        "above 0", o->view.cam.znear);
+  if (o->camera) { /* the file's camera places the view: an option would be half-applied */
+    const zs_camera *c = &o->view.cam;
+    const char *placed = c->has_eye ? "--eye" : c->has_target ? "--target" : c->has_up ? "--up"
+                         : o->view.fovy_given ? "--fovy" : c->ortho ? "--ortho or --grid"
+                         : c->has_near ? "--near" : c->has_far ? "--far" : o->view.view ? "--view"
+                         : o->view.fit > 0 ? "--fit" : NULL;
+    if (placed)
+      return zs_error_set(err, ZS_ERR_ARG, "--camera and %s: the file's camera places the view",
+                          placed);
+  }
   if (o->supersample && o->samples < 2)
     return zs_error_set(err, ZS_ERR_ARG, "--supersample needs --samples 2, 4, 8 or 16");
   if (o->samples > 1) {

@@ -65,12 +65,19 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
   } else if (strcmp(a, "--up") == 0) {
     st = zs_cli_vec3(a, v, c->up, err);
     c->has_up = 1;
+    if (st == ZS_OK && c->up[0] == 0.0 && c->up[1] == 0.0 && c->up[2] == 0.0)
+      st = zs_error_set(err, ZS_ERR_ARG, "--up: expected a direction, got '%s'", v);
   } else if (strcmp(a, "--fovy") == 0) {
     st = zs_cli_double(a, v, &c->fovy, err);
     o->fovy_given = 1;
+    if (st == ZS_OK && !(c->fovy > 0.0 && c->fovy < 180.0))
+      st = zs_error_set(err, ZS_ERR_ARG, "--fovy: expected degrees above 0 and below 180, got '%s'",
+                        v);
   } else if (strcmp(a, "--ortho") == 0) {
     st = zs_cli_numbers(a, v, 4, "four finite numbers L,R,B,T", c->extent, err);
     c->ortho = 1;
+    if (st == ZS_OK && !(c->extent[0] < c->extent[1] && c->extent[2] < c->extent[3]))
+      st = zs_error_set(err, ZS_ERR_ARG, "--ortho: expected L < R and B < T, got '%s'", v);
   } else if (strcmp(a, "--up-axis") == 0) {
     if (strcmp(v, "y") != 0 && strcmp(v, "z") != 0)
       st = zs_error_set(err, ZS_ERR_ARG, "--up-axis: expected y or z, got '%s'", v);
@@ -104,6 +111,10 @@ int zs_view_opts_parse(zs_view_opts *o, int argc, char **argv, int *i, zs_error 
     st = zs_cli_double(a, v, &c->zfar, err);
     c->has_far = 1;
   }
+  if (st == ZS_OK && c->has_near && c->has_far && !(c->znear < c->zfar) &&
+      (strcmp(a, "--near") == 0 || strcmp(a, "--far") == 0))
+    st = zs_error_set(err, ZS_ERR_ARG, "--near %g --far %g: near must be less than far", c->znear,
+                      c->zfar);
   if (st == ZS_OK && c->ortho && o->fovy_given)
     st = zs_error_set(err, ZS_ERR_ARG,
                       "--fovy and --ortho: an orthographic camera has no field of view");
