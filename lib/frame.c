@@ -37,11 +37,12 @@ static zs_status render_into(zs_device *dev, const zs_scene *scene, const double
   const zs_frame_style style = look->style;
   if (zs_frame_draw_all(dev, scene, view, proj, err)) return err->code;
   const double line_width = look->line_width > 0.0 ? look->line_width : 1.0;
-  if (zs_frame_draw_prims(dev, scene, line_width, look->point_size, look->point_shape, err))
-    return err->code;
   /* hidden lines: the faces stay in the depth buffer; the picture is
-   * their edges */
+   * their edges, and the model's own lines and points, drawn over the
+   * paper (before it, the paper hid them while their depth hid edges) */
   if (style == ZS_STYLE_HIDDEN_LINE && zs_device_fill_color(dev, ZS_HIDDEN_LINE_PAPER, err))
+    return err->code;
+  if (zs_frame_draw_prims(dev, scene, line_width, look->point_size, look->point_shape, err))
     return err->code;
   if (style != ZS_STYLE_SOLID) {
     for (int32_t i = 0; i < scene->ninst; i++) {
@@ -174,6 +175,10 @@ int zs_frame_wireframe_fits(zs_algo algo, zs_shade shade) {
          shade != ZS_SHADE_OVERDRAW;
 }
 
+zs_shade zs_frame_device_shade(zs_frame_style style, zs_shade shade) {
+  return style == ZS_STYLE_HIDDEN_LINE ? ZS_SHADE_FLAT : shade;
+}
+
 int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade) {
   return algo == ZS_ALGO_ZBUFFER && (shade == ZS_SHADE_FLAT || shade == ZS_SHADE_AUTO);
 }
@@ -196,7 +201,7 @@ zs_status zs_frame_render(const zs_scene *scene, const zs_camera *cam,
                         "sample a pixel");
   if (o->samples > 1 && depth)
     return zs_error_set(err, ZS_ERR_ARG, "samples: a depth map holds one sample a pixel");
-  zs_device_config cfg = {o->width,     o->height,  o->algo,           o->shade,
+  zs_device_config cfg = {o->width,     o->height,  o->algo,   zs_frame_device_shade(o->style, o->shade),
                           o->cull_back, o->threads, ZS_BACKGROUND_RGB, 0, (int)o->filter};
   zs_device *dev = NULL;
   if (zs_device_create(&cfg, &dev, err)) return err->code;

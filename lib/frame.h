@@ -72,6 +72,10 @@ int zs_frame_hidden_line_fits(zs_algo algo, zs_shade shade);
  * of the surfaces (the id, depth and overdraw shadings colour a pixel
  * from the buffers, over any ink). */
 int zs_frame_wireframe_fits(zs_algo algo, zs_shade shade);
+/* The device's shading for a frame of style drawn with shade: flat for
+ * hidden lines, whose faces are paper that hides (a transparent face
+ * too, as in the SVG of the same lines), else shade. */
+zs_shade zs_frame_device_shade(zs_frame_style style, zs_shade shade);
 
 /* Renders scene seen by cam (completed from the scene's bounds where it is
  * partial) into out (allocated here), and the window depth (1 = far) into

@@ -923,6 +923,43 @@ START_TEST(hidden_lines_as_svg) {
 }
 END_TEST
 
+/* The hidden-line picture is ink on paper whatever the model holds: a
+ * transparent box is paper that hides, as in the SVG, not its colour
+ * composited; a model's own lines and points are drawn over the paper
+ * (the spiral round wire_cube.obj), not hidden under it. */
+START_TEST(hidden_lines_of_glass_and_model_lines) {
+  char png[4096];
+  snprintf(png, sizeof png, "%s/cli-hidden-glass.png", ZS_BINARY_DIR);
+  const char *glass[] = {"render", zs_test_src("tests/data/scenes/glass_box_beside_box.json"),
+                         "--style", "hidden-line", "--size", "160x120", "-q", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(glass, out, sizeof out, err, sizeof err), 0);
+  zs_image im;
+  zs_error e;
+  zs_error_clear(&e);
+  ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+  int ink = 0;
+  for (int i = 0; i < im.width * im.height; i++) {
+    const uint32_t c = im.rgb[i] & 0xFFFFFFu;
+    ck_assert_msg(c == 0xFFFFFFu || c == 0, "pixel %d: %06X, neither paper nor ink", i, (unsigned)c);
+    ink += c == 0;
+  }
+  ck_assert_int_gt(ink, 200);
+  zs_image_free(&im);
+  const char *wire[] = {"render", zs_test_src("tests/data/scenes/wire_cube.obj"), "--style",
+                        "hidden-line", "--eye", "4,3,6", "--target", "0,0,0", "--size", "240x180",
+                        "-q", "-o", png, NULL};
+  ck_assert_int_eq(zs_test_run_zscan(wire, out, sizeof out, err, sizeof err), 0);
+  ck_assert_int_eq(zs_png_read(png, &im, &e), ZS_OK);
+  int coloured = 0;
+  for (int i = 0; i < im.width * im.height; i++) {
+    const uint32_t c = im.rgb[i] & 0xFFFFFFu;
+    coloured += c != 0xFFFFFFu && c != 0;
+  }
+  ck_assert_int_gt(coloured, 100); /* the spiral, in its colour */
+  zs_image_free(&im);
+}
+END_TEST
+
 /* --background: flat shading's background, where no face is. */
 START_TEST(render_background) {
   char png[4096];
@@ -1629,6 +1666,7 @@ int main(void) {
   tcase_add_test(tc, render_same_at_every_simd_level);
   tcase_add_test(tc, render_stats_show_the_culling_work);
   tcase_add_test(tc, light_direction_at_any_length);
+  tcase_add_test(tc, hidden_lines_of_glass_and_model_lines);
   tcase_add_test(tc, huge_obj_refused_before_reading);
   tcase_add_test(tc, empty_inputs_refused_unless_allowed);
   tcase_add_test(tc, render_skips_missing_textures);

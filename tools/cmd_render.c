@@ -700,7 +700,9 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
     print_camera_options(stderr, &used);
     fputc('\n', stderr);
   }
-  zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,          o->shade,
+  zs_device_config cfg = {o->view.width,     o->view.height,  o->algo,
+                          zs_frame_device_shade(zs_frame_style_of(o->hidden_line, o->wireframe),
+                                                o->shade),
                           o->view.cull_back, o->threads, o->background, o->spans, o->filter};
   if ((st = zs_device_create(&cfg, &dev, err))) goto done;
   const zs_shadow_opts so = {o->shadows, o->shadow_size,
