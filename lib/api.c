@@ -44,7 +44,8 @@ static const char *const pixel_changes[] = {
     "a binary model is refused where assimp's joining of vertices hid it; a light's "
     "direction whose square overflows or vanishes lights as its unit vector; zscan render's "
     "camera options out of range exit 2 naming the option, and --camera refuses the options "
-    "that place a view; hidden-line faces are all opaque paper, and a model's lines and "
+    "that place a view; a text PLY file with lines unlike its header is refused; "
+    "hidden-line faces are all opaque paper, and a model's lines and "
     "points are drawn over it",
 };
 

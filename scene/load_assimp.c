@@ -191,8 +191,45 @@ static uint64_t ply_type_size(const char *type) {
  * below on what the file must hold after its header, so a count far
  * beyond the file is refused before assimp allocates for it.  A line
  * the header's grammar does not allow sets *bad_line (from 1). */
+/* A PLY header's elements, as a text body is checked against them: each
+ * element's count, its properties and which of them are lists (n -1: too
+ * many to follow, and the body is not checked). */
+enum { PLY_ELEMENTS = 16, PLY_PROPS = 32 };
+typedef struct ply_layout {
+  int n;
+  struct {
+    char name[64];
+    uint64_t count;
+    int props;
+    uint32_t lists; /* bit p: property p is a list */
+  } e[PLY_ELEMENTS];
+} ply_layout;
+
+static void layout_element(ply_layout *lay, const char *name, uint64_t count) {
+  if (lay->n < 0 || lay->n == PLY_ELEMENTS) {
+    lay->n = -1;
+    return;
+  }
+  snprintf(lay->e[lay->n].name, sizeof lay->e[0].name, "%s", name);
+  lay->e[lay->n].count = count;
+  lay->e[lay->n].props = 0;
+  lay->e[lay->n].lists = 0;
+  lay->n++;
+}
+
+static void layout_property(ply_layout *lay, int list) {
+  if (lay->n <= 0) return;
+  int *p = &lay->e[lay->n - 1].props;
+  if (*p == PLY_PROPS) {
+    lay->n = -1;
+    return;
+  }
+  if (list) lay->e[lay->n - 1].lists |= 1u << *p;
+  (*p)++;
+}
+
 static int ply_min_bytes(const char *t, size_t len, int ply_name, uint64_t *min_bytes,
-                         uint64_t *body, int *cut, int *nul, int *bad_line) {
+                         uint64_t *body, int *cut, int *nul, int *bad_line, ply_layout *lay) {
   /* what assimp reads as a PLY: a name ending .ply, or text starting
    * "ply"; its first line must be that word alone */
   if (!ply_name && strncmp(t, "ply", 3) != 0) return 0;
@@ -262,9 +299,11 @@ static int ply_min_bytes(const char *t, size_t len, int ply_name, uint64_t *min_
       }
       elements++;
       per = 0;
+      layout_element(lay, w[1], count);
     } else if (strcmp(w[0], "property") == 0 && nw >= 3) {
       /* "property TYPE NAME" or "property list COUNT_TYPE INDEX_TYPE NAME" */
       int list = strcmp(w[1], "list") == 0;
+      layout_property(lay, list);
       per = sat_add(per, binary ? ply_type_size(list ? w[2] : w[1]) : 1);
     }
   }
@@ -456,6 +495,98 @@ static zs_status check_off_faces(const char *path, uint64_t body, int first_line
   return st == ZS_OK ? off_end_line(&f, err) : st; /* the file's last line */
 }
 
+/* The lines of a text PLY body against its header: an element instance a
+ * line (blank lines skipped), each with as many values as its properties
+ * take (a list: its count, then that many).  assimp's reader takes a
+ * missing value as 0 and stops quietly where the file does, so a file cut
+ * short, or a face "3 0 1", rendered another mesh. */
+typedef struct ply_lines {
+  const char *path;
+  const ply_layout *lay;
+  int el;          /* the element of this line; lay->n: past the last */
+  uint64_t done;   /* instances of it read */
+  uint64_t seen, total; /* instances of all elements */
+  int line;
+  char word[24];
+  size_t n;
+  int prop;        /* the property the next value is for */
+  uint64_t items;  /* list items still due */
+  int in_line;     /* a value seen on this line */
+} ply_lines;
+
+static zs_status ply_end_word(ply_lines *p, zs_error *err) {
+  if (p->n == 0 || p->el >= p->lay->n) return p->n = 0, ZS_OK;
+  const size_t len = p->n;
+  p->word[len < sizeof p->word ? len : sizeof p->word - 1] = '\0';
+  p->n = 0;
+  p->in_line = 1;
+  const int props = p->lay->e[p->el].props;
+  if (p->items > 0) return p->items--, ZS_OK;
+  if (p->prop == props)
+    return set_error(err, ZS_ERR_PARSE, "%s:%d: %s %llu: more values than its %d properties take",
+                     p->path, p->line, p->lay->e[p->el].name, (unsigned long long)p->done, props);
+  if (p->lay->e[p->el].lists >> p->prop & 1u) {
+    const char *c = p->word;
+    if (!read_count(&c, &p->items) || *c || len >= sizeof p->word)
+      return set_error(err, ZS_ERR_PARSE, "%s:%d: %s %llu: '%s': expected a list's count",
+                       p->path, p->line, p->lay->e[p->el].name, (unsigned long long)p->done,
+                       p->word);
+  }
+  p->prop++;
+  return ZS_OK;
+}
+
+static zs_status ply_end_line(ply_lines *p, zs_error *err) {
+  zs_status st = ply_end_word(p, err);
+  if (st != ZS_OK || !p->in_line) return st;
+  const int props = p->lay->e[p->el].props;
+  if (p->prop < props || p->items > 0)
+    return set_error(err, ZS_ERR_PARSE, "%s:%d: %s %llu: fewer values than its %d properties take",
+                     p->path, p->line, p->lay->e[p->el].name, (unsigned long long)p->done, props);
+  p->prop = 0;
+  p->in_line = 0;
+  p->seen++;
+  if (++p->done == p->lay->e[p->el].count)
+    for (p->done = 0, p->el++; p->el < p->lay->n && p->lay->e[p->el].count == 0;) p->el++;
+  return ZS_OK;
+}
+
+static zs_status take_ply_lines(void *user, const char *b, size_t n, int *more, zs_error *err) {
+  ply_lines *p = user;
+  zs_status st = ZS_OK;
+  for (size_t i = 0; i < n && st == ZS_OK && p->el < p->lay->n; i++) {
+    const char c = b[i];
+    if (c == '\n' || c == '\r') {
+      st = ply_end_line(p, err);
+      p->line += c == '\n';
+    } else if (is_blank(c)) {
+      st = ply_end_word(p, err);
+    } else {
+      if (p->n < sizeof p->word) p->word[p->n] = c;
+      p->n++;
+    }
+  }
+  *more = p->el < p->lay->n;
+  return st;
+}
+
+static zs_status check_ply_lines(const char *path, uint64_t body, int first_line,
+                                 const ply_layout *lay, zs_error *err) {
+  ply_lines p = {path, lay, 0, 0, 0, 0, first_line, {0}, 0, 0, 0, 0};
+  for (int k = 0; k < lay->n; k++) p.total = sat_add(p.total, lay->e[k].count);
+  while (p.el < lay->n && lay->e[p.el].count == 0) p.el++;
+  zs_status st = read_from(path, body, take_ply_lines, &p, err);
+  if (st == ZS_OK && p.el < lay->n) st = ply_end_line(&p, err); /* the last line */
+  if (st == ZS_OK && p.el < lay->n)
+    st = set_error(err, ZS_ERR_PARSE,
+                   "%s: cut short: %llu of the %llu element lines the header declares (%s %llu "
+                   "of %llu)",
+                   path, (unsigned long long)p.seen, (unsigned long long)p.total,
+                   lay->e[p.el].name, (unsigned long long)p.done,
+                   (unsigned long long)lay->e[p.el].count);
+  return st;
+}
+
 /* The lines of the first n bytes of t. */
 static int header_lines(const char *t, uint64_t n) {
   int lines = 0;
@@ -476,6 +607,7 @@ static int is_ascii_stl(const file_head *h) {
  * and a text PLY, OFF or STL file with a number that is not finite. */
 static zs_status check_header(const char *path, const file_head *h, zs_error *err) {
   uint64_t nv, nf, need, body;
+  ply_layout lay = {0};
   int cut = 0, nul = 0, bad_line = 0;
   if (off_counts(h->text, has_extension(path, ".off"), &nv, &nf, &body)) {
     /* every vertex and face line takes at least two bytes */
@@ -489,7 +621,7 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
     return st == ZS_OK ? check_off_faces(path, body, header_lines(h->text, body) + 1, nv, nf, err)
                        : st;
   } else if (ply_min_bytes(h->text, h->len, has_extension(path, ".ply"), &need, &body, &cut, &nul,
-                           &bad_line)) {
+                           &bad_line, &lay)) {
     if (bad_line == 1)
       return set_error(err, ZS_ERR_PARSE, "%s: not a PLY file (its first line is not \"ply\")",
                        path);
@@ -504,8 +636,11 @@ static zs_status check_header(const char *path, const file_head *h, zs_error *er
                        "%s: PLY header declares elements of at least %llu bytes, more than "
                        "the file's %llu bytes after the header",
                        path, (unsigned long long)need, (unsigned long long)(h->size - body));
-    if (strstr(h->text, "\nformat ascii"))
-      return check_text_numbers(path, body, 0, 0, header_lines(h->text, body) + 1, err);
+    if (strstr(h->text, "\nformat ascii")) {
+      const int first = header_lines(h->text, body) + 1;
+      zs_status st = check_text_numbers(path, body, 0, 0, first, err);
+      return st == ZS_OK && lay.n > 0 ? check_ply_lines(path, body, first, &lay, err) : st;
+    }
   } else if (has_extension(path, ".stl") && is_ascii_stl(h)) {
     return check_text_numbers(path, 0, 0, 1, 1, err);
   }

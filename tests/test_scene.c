@@ -1457,12 +1457,15 @@ static const struct {
     {"bad_header_line.ply", ":3: not a line of a PLY header"},
     {"deep_nodes.gltf", ": node tree deeper than 256"},
     {"empty.stl", ": "},
-    {"empty_face.ply", ": mesh 0 face 0: no vertices"},
+    {"empty_face.ply", ":18: vertex 3: fewer values than its 7 properties take"},
+    {"empty_face_binary.ply", ": mesh 0 face 1: no vertices"}, /* (assimp would abort) */
     {"face_index_negative.off", ":7: face corner '-1': expected a vertex index below 4"},
     {"face_index_past_end.off", ":8: face corner '7': expected a vertex index below 4, the "
                                 "header's vertex count"},
     {"face_of_ten.off", ":13: a face of 10 corners: assimp's OFF reader takes 1 to 9"},
     {"face_short.off", ":7: a face of 4 corners lists 3"},
+    {"face_short.ply", ":14: face 0: fewer values than its 1 properties take"},
+    {"cut_short.ply", ": cut short: 11 of the 14 element lines the header declares (face 3 of 6)"},
     {"garbage.ply", ": "},
     {"huge_accessor.gltf", ": "},
     {"huge_binary.ply", ": PLY header declares elements of at least 600000001 bytes"},
