@@ -758,12 +758,17 @@ static zs_status use_material(obj_parser *p, const char *name) {
 static zs_status load_mtl(obj_parser *p, const char *file) {
   char *path = join_path(p->dir, file);
   if (!path) return out_of_memory(p);
-  /* A missing library is not an error: its faces stay grey. */
+  /* A missing library is not an error: its faces stay grey, with a note
+   * (exporters often leave the .mtl behind). */
   char *text;
   size_t len;
   zs_status st = zs_load_file(path, path, (long long)ZS_OBJ_MAX_BYTES, ZS_LOAD_MISSING_OK, &text,
                               &len, p->r.err);
   if (st == ZS_OK && text) st = parse_mtl(text, len, path, &p->mtl, p->r.err);
+  if (st == ZS_OK && !text &&
+      !zs_notes_add(&p->m->notes, "%s:%ld: mtllib %s: no such file: its materials drawn grey",
+                    p->r.name, p->r.line, file))
+    st = out_of_memory(p);
   free(text);
   free(path);
   return st;
@@ -877,6 +882,10 @@ static zs_status texture_of(obj_parser *p, const mtl_def *d, const zs_texture **
 static zs_status resolve_material(obj_parser *p, size_t i, uint32_t *rgb) {
   const mtl_def *d = mtl_find(&p->mtl, p->used.names[i]);
   *rgb = d ? d->rgb : ZS_GREY;
+  if (!d && p->dir && p->mtl.n > 0 &&
+      !zs_notes_add(&p->m->notes, "%s: usemtl %s: no library defines it: drawn grey", p->r.name,
+                    p->used.names[i]))
+    return end_nomem(p);
   if (!d) return ZS_OK;
   zs_material *mat = &p->m->materials[i];
   *mat = d->mat;

@@ -1232,6 +1232,33 @@ static void write_text(const char *path, const char *text) {
   ck_assert_int_eq(fclose(f), 0);
 }
 
+/* An OBJ's material that cannot be had is drawn grey with a note: a
+ * library that is not there (by its mtllib line), a usemtl name that no
+ * library read defines. */
+START_TEST(obj_missing_materials_noted) {
+  char dir[4096], path[4200], want[9000];
+  snprintf(dir, sizeof dir, "%s", zs_test_bin("scene-test-nomtl"));
+  zs_os_mkdir(dir);
+  snprintf(path, sizeof path, "%s/m.mtl", dir);
+  write_text(path, "newmtl red\nKd 1 0 0\n");
+  snprintf(path, sizeof path, "%s/m.obj", dir);
+  write_text(path, "mtllib m.mtl\nmtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\n"
+                   "f 1 2 3\nusemtl rde\nf 1 3 2\n");
+  zs_model m;
+  zs_error err;
+  zs_error_clear(&err);
+  ck_assert_msg(zs_obj_load(path, &m, &err) == ZS_OK, "%s", err.msg);
+  snprintf(want, sizeof want,
+           "%s:2: mtllib gone.mtl: no such file: its materials drawn grey\n"
+           "%s: usemtl rde: no library defines it: drawn grey\n",
+           path, path);
+  ck_assert_ptr_nonnull(m.notes.text);
+  ck_assert_str_eq(m.notes.text, want);
+  ck_assert_uint_eq(m.mesh.face_rgb[0], 0xFF0000u);
+  zs_model_free(&m);
+}
+END_TEST
+
 /* A texture that cannot be opened, of a mesh file or of a mesh's own
  * material, is an error; with ZS_SCENEFILE_SKIP_MISSING_TEXTURES (and
  * zs_input_load's ZS_INPUT_SKIP_MISSING_TEXTURES) the material is drawn
@@ -1784,6 +1811,7 @@ static Suite *scene_suite(void) {
   tcase_add_test(tc, bad_scene_sizes_and_io);
   tcase_add_test(tc, mutated_examples);
   tcase_add_test(tc, scenefile_missing_textures_noted);
+  tcase_add_test(tc, obj_missing_materials_noted);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("assimp");
