@@ -354,12 +354,12 @@ typedef struct word_scan {
 } word_scan;
 
 /* The word just ended: refused, or noted. */
-static zs_status end_word(word_scan *w, const char *path, zs_error *err) {
+static zs_status end_word(word_scan *w, zs_error *err) {
   if (w->n == 0 || w->comment || w->named) return w->n = 0, ZS_OK;
   w->word[w->n < sizeof w->word ? w->n : sizeof w->word - 1] = '\0';
   w->n = 0;
   if (spells_non_finite(w->word))
-    return set_error(err, ZS_ERR_PARSE, "%s:%d: '%s': not a finite number", path, w->line,
+    return set_error(err, ZS_ERR_PARSE, "%s:%d: '%s': not a finite number", w->path, w->line,
                      w->word);
   if (w->stl && w->at == 0 && (strcmp(w->word, "solid") == 0 || strcmp(w->word, "endsolid") == 0))
     w->named = 1;
@@ -374,7 +374,7 @@ static zs_status take_words(void *user, const char *b, size_t n, int *more, zs_e
   for (size_t i = 0; i < n && st == ZS_OK; i++) {
     const char c = b[i];
     if (is_blank(c) || c == '\0') {
-      st = end_word(w, w->path, err);
+      st = end_word(w, err);
       if (c == '\n') w->line++, w->comment = w->named = w->at = 0;
       continue;
     }
@@ -389,7 +389,7 @@ static zs_status check_text_numbers(const char *path, uint64_t from, int off, in
                                     int first_line, zs_error *err) {
   word_scan w = {path, {0}, 0, first_line, 0, 0, 0, off, stl};
   zs_status st = read_from(path, from, take_words, &w, err);
-  return st == ZS_OK ? end_word(&w, path, err) : st; /* the file's last word */
+  return st == ZS_OK ? end_word(&w, err) : st; /* the file's last word */
 }
 
 /* The faces of a text OFF file, read as assimp 5.2's reader reads them:
@@ -410,15 +410,14 @@ typedef struct off_faces {
   int in_line;     /* a byte of this line seen */
 } off_faces;
 
-/* The word's value, or UINT64_MAX when it is not all digits. */
-static uint64_t off_word_value(const off_faces *f) {
-  if (f->n >= sizeof f->word) return UINT64_MAX;
-  uint64_t v = 0;
-  for (size_t i = 0; i < f->n; i++) {
-    if (f->word[i] < '0' || f->word[i] > '9') return UINT64_MAX;
-    v = v * 10 + (uint64_t)(f->word[i] - '0');
-  }
-  return v;
+/* The word's value (read_count), or UINT64_MAX when it is not all digits;
+ * the word is then NUL-terminated. */
+static uint64_t off_word_value(off_faces *f) {
+  const int whole = f->n < sizeof f->word;
+  f->word[whole ? f->n : sizeof f->word - 1] = '\0';
+  const char *c = f->word;
+  uint64_t v;
+  return whole && read_count(&c, &v) && *c == '\0' ? v : UINT64_MAX;
 }
 
 static int off_in_faces(const off_faces *f) {
@@ -428,7 +427,6 @@ static int off_in_faces(const off_faces *f) {
 static zs_status off_end_word(off_faces *f, zs_error *err) {
   if (f->n == 0) return ZS_OK;
   const uint64_t v = off_word_value(f);
-  f->word[f->n < sizeof f->word ? f->n : sizeof f->word - 1] = '\0';
   f->n = 0;
   if (!off_in_faces(f)) return ZS_OK;
   const int w = f->words++;

@@ -121,6 +121,10 @@ static const char usage_tail[] =
 
 
 
+/* The options that name the frame's files, in the order of their paths
+ * (out_png, out_pfm, out_normals, out_layer). */
+static const char *const output_options[] = {"-o", "--depth", "--normals", "--layer"};
+
 /* What the options ask together, and of the outputs: their formats,
  * their folders, the one stream standard output carries. */
 static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *err) {
@@ -214,7 +218,7 @@ static zs_status check_options(zs_cmd_render_opts *o, int in_memory, zs_error *e
                         "standard output (-) takes one stream: only one of -o -, --depth -, "
                         "--normals -, --layer - and --stats");
   /* one file, one output: the later would replace the earlier */
-  const char *const names[] = {"-o", "--depth", "--normals", "--layer"};
+  const char *const *names = output_options;
   const char *const paths[] = {o->out_png, o->out_pfm, o->out_normals, o->out_layer};
   for (int i = 0; i < 4; i++)
     for (int j = i + 1; j < 4; j++)
@@ -798,7 +802,7 @@ static zs_status run(const zs_cmd_render_opts *o, zs_image *keep, zs_error *err)
   /* the files replace theirs together or not at all; standard output,
    * which cannot be taken back, goes last */
   zs_out_set outs = ZS_OUT_SET_EMPTY;
-  const char *const names[] = {"-o", "--depth", "--normals", "--layer"};
+  const char *const *names = output_options;
   const char *const paths[] = {o->out_png, depth ? o->out_pfm : NULL,
                                normals ? o->out_normals : NULL, into ? o->out_layer : NULL};
   for (int last = 0; last < 2 && !st; last++)
